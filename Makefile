@@ -1,0 +1,39 @@
+# glarecam: the README's commands. Every target installs what it needs (idempotent) and builds.
+BUILD_DIR      ?= build
+ASAN_BUILD_DIR ?= build-asan
+JOBS           ?= $(shell nproc)
+DEMO_DIR       ?= demo-out
+CMAKE_FLAGS    ?=
+
+.PHONY: deps configure build test test-asan demo bench clean format
+
+deps:
+	bash scripts/install-deps.sh
+
+configure: deps
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_FLAGS)
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The whole suite, then the bad-stack corpus again under AddressSanitizer + UBSan.
+test: build test-asan
+	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+
+test-asan: deps
+	cmake -S . -B $(ASAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DGLARECAM_SANITIZE=ON \
+	  -DGLARECAM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
+	cmake --build $(ASAN_BUILD_DIR) -j $(JOBS) --target sanitized_tests
+	ctest --test-dir $(ASAN_BUILD_DIR) --output-on-failure -j $(JOBS) -L sanitized
+
+demo: build
+	bash scripts/demo.sh $(BUILD_DIR)/bin $(DEMO_DIR)
+
+bench: build
+	$(BUILD_DIR)/bin/glarecam-bench --benchmark_counters_tabular=true
+
+format:
+	git ls-files '*.cpp' '*.h' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD_DIR) $(ASAN_BUILD_DIR) $(DEMO_DIR)

@@ -1,0 +1,52 @@
+#include "apps/glarecam/cli.h"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <functional>
+#include <iostream>
+
+#include "apps/glarecam/commands.h"
+#include "core/error.h"
+#include "core/logging.h"
+#include "core/version.h"
+
+namespace glarecam::apps {
+
+int runGlarecam(int argc, char** argv) {
+  CLI::App app{"glarecam: measures glare of PV modules from bracketed camera stacks.\n"
+               "Docs: docs/process.md, docs/stack-format.md, docs/method.md"};
+  app.set_version_flag("--version", kVersion);
+  app.require_subcommand(1);
+  bool verbose = false, quiet = false, debug = false;
+  app.add_flag("-v,--verbose", verbose, "log progress details");
+  app.add_flag("--debug", debug, "log everything");
+  app.add_flag("-q,--quiet", quiet, "log errors only");
+
+  std::function<Status()> action;
+  addSimulateCommand(app, action);
+  addProcessCommand(app, action);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "glarecam: %s (see glarecam --help)\n", e.what());
+    return kExitBadInput;
+  }
+  initLogging(debug ? Verbosity::kDebug : verbose ? Verbosity::kVerbose : quiet ? Verbosity::kQuiet : Verbosity::kNormal);
+  Status status = action ? action() : badInput("no command given");
+  if (!status) {
+    std::fprintf(stderr, "glarecam: %s\n", status.error().message.c_str());
+    return exitStatus(status.error());
+  }
+  return kExitSuccess;
+}
+
+}  // namespace glarecam::apps

@@ -1,0 +1,47 @@
+#include "apps/glarecam/option_parsing.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace glarecam::apps {
+namespace {
+
+template <typename T>
+bool parseWhole(const std::string& text, T& value) {
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+}  // namespace
+
+Result<std::pair<int, int>> parseSize(const std::string& text, const std::string& option) {
+  const auto x = text.find('x');
+  int width = 0, height = 0;
+  if (x == std::string::npos || !parseWhole(text.substr(0, x), width) || !parseWhole(text.substr(x + 1), height)) {
+    return badInput(option + ": expected WIDTHxHEIGHT, got \"" + text + "\"");
+  }
+  return std::pair{width, height};
+}
+
+Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option, std::size_t min_count,
+                                            std::size_t max_count) {
+  std::vector<double> values;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    double value = 0;
+    if (!parseWhole(item, value) || !std::isfinite(value)) {
+      return badInput(option + ": \"" + item + "\" is not a finite number");
+    }
+    values.push_back(value);
+  }
+  if (values.size() < min_count || values.size() > max_count) {
+    return badInput(option + ": expected " + std::to_string(min_count) +
+                    (max_count != min_count ? " to " + std::to_string(max_count) : "") + " comma-separated numbers");
+  }
+  return values;
+}
+
+}  // namespace glarecam::apps

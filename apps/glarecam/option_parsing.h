@@ -1,0 +1,17 @@
+// Parsers for compound option values ("1224x1024", "0.1,-0.05,0,0,0"), returning kBadInput
+// errors that name the option.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+
+namespace glarecam::apps {
+
+Result<std::pair<int, int>> parseSize(const std::string& text, const std::string& option);
+Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option, std::size_t min_count,
+                                            std::size_t max_count);
+
+}  // namespace glarecam::apps

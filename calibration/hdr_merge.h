@@ -1,0 +1,55 @@
+// Calibrated HDR merge: a bracketed stack of raw frames -> absolute luminance (cd/m²).
+// Each frame pixel that is below saturation and at least min_signal_dn above black gives an
+// estimate L_i (radiometry.h). The estimates are combined with inverse-variance weights
+// (Granados et al. 2010), the variances taken from the noise model at a common reference
+// luminance (the best frame's estimate) so that weights do not correlate with each pixel's own
+// noise. Output per pixel: luminance, relative standard uncertainty (shot + read noise), the
+// number of valid frames, and a bound flag for pixels valid in no frame: saturated everywhere
+// gives a lower bound (the shortest frame's saturation luminance), dark everywhere an upper
+// bound (the longest frame's detection threshold).
+// One fused pass over the frames, bands of rows on all cores, no per-pixel allocation.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "calibration/radiometry.h"
+#include "core/error.h"
+#include "core/image.h"
+
+namespace glarecam::calibration {
+
+enum class PixelBound : std::uint8_t {
+  kMeasured = 0,    // at least one valid frame
+  kLowerBound = 1,  // saturated in every frame: true luminance is at least the value
+  kUpperBound = 2,  // under-exposed in every frame: true luminance is at most the value
+};
+
+struct MergeInput {
+  std::span<const RawFrame> frames;
+  std::span<const FrameRadiometry> radiometry;  // one per frame
+  double black_level_dn = 0;
+  double saturation_dn = 0;  // values at or above are saturated
+  const FloatImage* flat_field = nullptr;  // optional, 1 at the principal point
+};
+
+struct MergeOptions {
+  unsigned threads = 0;  // 0: all cores
+};
+
+struct MergedImage {
+  FloatImage luminance_cd_m2;
+  FloatImage relative_uncertainty;  // sigma / L; NaN where the pixel is a bound
+  ByteImage valid_frames;
+  ByteImage bound;  // PixelBound values
+};
+
+// Checks that the input is consistent (sizes, counts, finite constants).
+Status validate(const MergeInput& input);
+
+Result<MergedImage> merge(const MergeInput& input, const MergeOptions& options = {});
+// Same, reusing `output`'s buffers when they already have the right size (benchmarks, daemon).
+Status mergeInto(const MergeInput& input, const MergeOptions& options, MergedImage& output);
+
+}  // namespace glarecam::calibration

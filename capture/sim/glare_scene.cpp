@@ -1,0 +1,97 @@
+#include "capture/sim/glare_scene.h"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "core/parallel.h"
+
+namespace glarecam::capture {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+calibration::Ray normalise(double x, double y, double z) {
+  const double n = std::sqrt(x * x + y * y + z * z);
+  return {x / n, y / n, z / n};
+}
+
+double dot(const calibration::Ray& a, const calibration::Ray& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// Radius (in units of sigma) of the contour at `level` of B + (P - B) exp(-r²/2).
+double contourRadius(double peak, double background, double level) {
+  return std::sqrt(2.0 * std::log((peak - background) / (level - background)));
+}
+
+}  // namespace
+
+Result<GlareScene> GlareScene::create(const GlareLobe& lobe) {
+  const bool finite = std::isfinite(lobe.peak_cd_m2) && std::isfinite(lobe.background_cd_m2) &&
+                      std::isfinite(lobe.limit_cd_m2) && std::isfinite(lobe.vertical_deg) &&
+                      std::isfinite(lobe.horizontal_deg);
+  if (!finite || lobe.background_cd_m2 < 0) return badInput("glare scene: non-finite or negative parameters");
+  if (!(lobe.peak_cd_m2 > lobe.limit_cd_m2 && lobe.limit_cd_m2 > lobe.background_cd_m2)) {
+    return badInput("glare scene: needs peak > limit > background (peak " + std::to_string(lobe.peak_cd_m2) +
+                    ", limit " + std::to_string(lobe.limit_cd_m2) + ", background " +
+                    std::to_string(lobe.background_cd_m2) + " cd/m²)");
+  }
+  if (!(lobe.peak_cd_m2 > 2.0 * lobe.background_cd_m2)) return badInput("glare scene: peak must exceed twice the background");
+  if (!(lobe.vertical_deg > 0 && lobe.horizontal_deg > 0 && lobe.vertical_deg < 90 && lobe.horizontal_deg < 90)) {
+    return badInput("glare scene: axes must be between 0 and 90 degrees");
+  }
+  return GlareScene(lobe);
+}
+
+GlareScene::GlareScene(const GlareLobe& lobe) : lobe_(lobe) {
+  centre_ = normalise(std::tan(lobe.centre_direction_deg[0] * kDegToRad),
+                      std::tan(lobe.centre_direction_deg[1] * kDegToRad), 1.0);
+  // Tangent basis at the centre: image-horizontal and image-vertical directions, then rotated.
+  calibration::Ray h = normalise(1.0 - centre_.x * centre_.x, -centre_.x * centre_.y, -centre_.x * centre_.z);
+  calibration::Ray v{centre_.y * h.z - centre_.z * h.y, centre_.z * h.x - centre_.x * h.z, centre_.x * h.y - centre_.y * h.x};
+  const double c = std::cos(lobe.orientation_deg * kDegToRad), s = std::sin(lobe.orientation_deg * kDegToRad);
+  axis_h_ = {c * h.x + s * v.x, c * h.y + s * v.y, c * h.z + s * v.z};
+  axis_v_ = {-s * h.x + c * v.x, -s * h.y + c * v.y, -s * h.z + c * v.z};
+  const double r_limit = contourRadius(lobe.peak_cd_m2, lobe.background_cd_m2, lobe.limit_cd_m2);
+  sigma_h_rad_ = lobe.horizontal_deg / 2.0 * kDegToRad / r_limit;
+  sigma_v_rad_ = lobe.vertical_deg / 2.0 * kDegToRad / r_limit;
+}
+
+double GlareScene::luminanceCdM2(const calibration::Ray& ray) const {
+  const double p = dot(ray, axis_h_), q = dot(ray, axis_v_);
+  const double sideways = std::hypot(p, q);
+  const double rho = std::atan2(sideways, dot(ray, centre_));  // angle from the lobe centre
+  const double u = sideways > 0 ? rho * p / sideways : 0.0;
+  const double w = sideways > 0 ? rho * q / sideways : 0.0;
+  const double r2 = (u / sigma_h_rad_) * (u / sigma_h_rad_) + (w / sigma_v_rad_) * (w / sigma_v_rad_);
+  return lobe_.background_cd_m2 + (lobe_.peak_cd_m2 - lobe_.background_cd_m2) * std::exp(-0.5 * r2);
+}
+
+double GlareScene::fullAxisDeg(double level_cd_m2, double sigma_rad) const {
+  return 2.0 * sigma_rad * contourRadius(lobe_.peak_cd_m2, lobe_.background_cd_m2, level_cd_m2) / kDegToRad;
+}
+
+SceneTruth GlareScene::truth() const {
+  const double half = lobe_.peak_cd_m2 / 2.0;
+  return {.peak_cd_m2 = lobe_.peak_cd_m2,
+          .limit_cd_m2 = lobe_.limit_cd_m2,
+          .limit_vertical_deg = lobe_.vertical_deg,
+          .limit_horizontal_deg = lobe_.horizontal_deg,
+          .fwhm_vertical_deg = fullAxisDeg(half, sigma_v_rad_),
+          .fwhm_horizontal_deg = fullAxisDeg(half, sigma_h_rad_)};
+}
+
+FloatImage GlareScene::render(const calibration::CameraModel& camera, int width, int height) const {
+  FloatImage image(width, height);
+  parallelRows(height, defaultThreadCount(), [&](int begin, int end) {
+    std::vector<calibration::PixelPoint> pixels(static_cast<std::size_t>(width));
+    for (int y = begin; y < end; ++y) {
+      for (int x = 0; x < width; ++x) pixels[static_cast<std::size_t>(x)] = {static_cast<double>(x), static_cast<double>(y)};
+      const auto rays = camera.rays(pixels);
+      auto row = image.row(y);
+      for (int x = 0; x < width; ++x) row[static_cast<std::size_t>(x)] = static_cast<float>(luminanceCdM2(rays[static_cast<std::size_t>(x)]));
+    }
+  });
+  return image;
+}
+
+}  // namespace glarecam::capture

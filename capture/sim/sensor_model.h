@@ -1,0 +1,28 @@
+// A simulated machine-vision sensor: turns a true luminance image into the raw frame a linear
+// camera would record at a given exposure, through the same radiometric model the merge
+// inverts (calibration/radiometry.h), with Poisson shot noise, Gaussian read noise, a black
+// level, full-well clipping and ADC quantisation. Deterministic for a seed.
+#pragma once
+
+#include <cstdint>
+
+#include "core/image.h"
+#include "core/stack_manifest.h"
+
+namespace glarecam::capture {
+
+struct SensorModel {
+  int adc_bits = 12;             // Mono12
+  double black_level_dn = 64.0;
+  double saturation_dn = 4000.0;  // declared linear limit, below the ADC's full scale
+  double read_noise_dn = 2.0;
+  double dn_per_electron = 0.5;
+  double full_scale_dn() const { return static_cast<double>((1 << adc_bits) - 1); }
+};
+
+// Renders the frame `frame` of a stack calibrated by `calibration` (whose radiometry the sensor
+// obeys exactly) looking at `luminance_cd_m2`.
+RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame, const Calibration& calibration,
+                     const SensorModel& sensor, std::uint64_t seed);
+
+}  // namespace glarecam::capture

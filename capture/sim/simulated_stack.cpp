@@ -1,0 +1,155 @@
+#include "capture/sim/simulated_stack.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "calibration/radiometry.h"
+#include "capture/sim/module_model.h"
+#include "core/stack_io.h"
+#include "pipeline/limit_curve.h"
+
+namespace glarecam::capture {
+namespace {
+
+constexpr int kMinSide = 16, kMaxSide = 16384;
+constexpr std::string_view kTruthSchema = "glarecam.truth/1";
+
+Intrinsics pinholeIntrinsics(const SimulationOptions& options) {
+  Intrinsics k;
+  k.fx = k.fy = (options.width / 2.0) / std::tan(options.horizontal_fov_deg / 2.0 * std::numbers::pi / 180.0);
+  k.cx = (options.width - 1) / 2.0;
+  k.cy = (options.height - 1) / 2.0;
+  k.distortion = options.distortion;
+  return k;
+}
+
+Calibration simulatedCalibration(const SimulationOptions& options) {
+  Calibration calibration;
+  calibration.black_level_dn = options.sensor.black_level_dn;
+  calibration.saturation_dn = options.sensor.saturation_dn;
+  calibration.luminance_factor = options.luminance_factor;
+  calibration.reference_f_number = options.f_number;
+  calibration.intrinsics = pinholeIntrinsics(options);
+  calibration.noise = NoiseModel{options.sensor.read_noise_dn, options.sensor.dn_per_electron};
+  calibration.source = nlohmann::json::object();
+  return calibration;
+}
+
+std::string stackId(const SimulationOptions& options) {
+  char id[96];
+  std::snprintf(id, sizeof id, "sim-%s-a%05.2f-s%llu", options.module.c_str(), options.alpha_deg,
+                static_cast<unsigned long long>(options.seed));
+  return id;
+}
+
+// The metering a real auto-bracket does on a first frame: the brightest and the darkest
+// (5th percentile) luminance of the scene.
+std::pair<double, double> meterScene(const FloatImage& luminance) {
+  std::vector<float> values(luminance.data(), luminance.data() + luminance.pixelCount());
+  auto fifth = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 20);
+  std::nth_element(values.begin(), fifth, values.end());
+  const float peak = *std::max_element(values.begin(), values.end());
+  return {peak, *fifth};
+}
+
+StackManifest makeManifest(const SimulationOptions& options, const Calibration& calibration, const BracketPlan& plan) {
+  StackManifest manifest;
+  manifest.id = stackId(options);
+  manifest.alpha_deg = options.alpha_deg;
+  manifest.calibration = calibration;
+  for (std::size_t i = 0; i < plan.exposures_us.size(); ++i) {
+    char file[32];
+    std::snprintf(file, sizeof file, "frame-%02zu.png", i);
+    manifest.frames.push_back({.file = file, .exposure_us = plan.exposures_us[i], .gain_db = 0.0,
+                               .f_number = options.f_number, .nd_transmission = options.nd_transmission});
+  }
+  manifest.source = {{"camera", {{"backend", "sim"}, {"model", "glarecam-sim"}, {"serial", "SIM-0001"},
+                                 {"pixel_format", "Mono" + std::to_string(options.sensor.adc_bits)},
+                                 {"width", options.width}, {"height", options.height}}},
+                     {"simulation", {{"module", options.module}, {"seed", options.seed},
+                                     {"background_cd_m2", options.background_cd_m2}, {"peak_scale", options.peak_scale},
+                                     {"bracket", {{"peak_clipped", plan.peak_clipped},
+                                                  {"background_underexposed", plan.background_underexposed}}}}}};
+  return manifest;
+}
+
+}  // namespace
+
+Status SimulationOptions::validate() const {
+  if (!(alpha_deg >= 0 && alpha_deg <= pipeline::kMaxLimitAlphaDeg)) {
+    return badInput("simulate: --alpha must be between 0 and 80 degrees (the method's range)");
+  }
+  if (width < kMinSide || height < kMinSide || width > kMaxSide || height > kMaxSide) {
+    return badInput("simulate: --size must be between 16x16 and 16384x16384");
+  }
+  if (!(horizontal_fov_deg > 1 && horizontal_fov_deg < 150)) return badInput("simulate: field of view must be in (1, 150) degrees");
+  if (!(background_cd_m2 > 0 && peak_scale > 0 && luminance_factor > 0 && nd_transmission > 0 && nd_transmission <= 1 && f_number > 0)) {
+    return badInput("simulate: background, peak scale, K, ND and f-number must be positive");
+  }
+  if (!std::all_of(distortion.begin(), distortion.end(), [](double k) { return std::isfinite(k); })) {
+    return badInput("simulate: distortion coefficients must be finite");
+  }
+  return bracket.validate();
+}
+
+nlohmann::json SimulatedStack::truthJson() const {
+  return {{"schema", kTruthSchema},
+          {"stack", manifest.id.value_or("")},
+          {"alpha_deg", manifest.alpha_deg.value_or(0.0)},
+          {"luminance_max_cd_m2", truth.peak_cd_m2},
+          {"limit_cd_m2", truth.limit_cd_m2},
+          {"limit_axes_deg", {{"vertical", truth.limit_vertical_deg}, {"horizontal", truth.limit_horizontal_deg}}},
+          {"fwhm_axes_deg", {{"vertical", truth.fwhm_vertical_deg}, {"horizontal", truth.fwhm_horizontal_deg}}},
+          {"centre_pixel", centre_pixel},
+          {"bracket", {{"exposures_us", bracket.exposures_us}, {"peak_clipped", bracket.peak_clipped}}}};
+}
+
+Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
+  GLARECAM_CHECK(options.validate());
+  ModuleGlareModel module;
+  GLARECAM_ASSIGN(module, moduleModel(options.module));
+  const double limit = pipeline::glareLimitCdM2(options.alpha_deg).value_or(pipeline::kConstantGlareLimitCdM2);
+  auto scene = GlareScene::create({.peak_cd_m2 = module.lmax_cd_m2(options.alpha_deg) * options.peak_scale,
+                                             .background_cd_m2 = options.background_cd_m2,
+                                             .limit_cd_m2 = limit,
+                                             .vertical_deg = module.vertical_deg(options.alpha_deg),
+                                             .horizontal_deg = module.horizontal_deg(options.alpha_deg),
+                                             .orientation_deg = options.lobe_orientation_deg,
+                                             .centre_direction_deg = options.lobe_offset_deg});
+  if (!scene) return std::unexpected(scene.error());
+  SimulatedStack result;
+  const Calibration calibration = simulatedCalibration(options);
+  const calibration::CameraModel camera(calibration.intrinsics);
+  result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
+  result.truth = scene->truth();
+  const auto centre = camera.project(scene->centreRay());
+  result.centre_pixel = {centre.x, centre.y};
+
+  // Signal rates at the reference exposure of 1 µs, from a unit-exposure frame's radiometry.
+  FrameSpec unit;
+  unit.exposure_us = 1.0;
+  unit.f_number = options.f_number;
+  unit.nd_transmission = options.nd_transmission;
+  const double scale = calibration::frameRadiometry(unit, calibration).scale_cd_m2_per_dn;
+  const auto [peak, background] = meterScene(result.true_luminance_cd_m2);
+  GLARECAM_ASSIGN(result.bracket, planBracket(peak / scale, background / scale,
+                                              calibration.saturation_dn - calibration.black_level_dn, options.bracket));
+  result.manifest = makeManifest(options, calibration, result.bracket);
+  for (std::size_t i = 0; i < result.manifest.frames.size(); ++i) {
+    result.frames.push_back(exposeFrame(result.true_luminance_cd_m2, result.manifest.frames[i], calibration,
+                                        options.sensor, options.seed * 1000 + i));
+  }
+  return result;
+}
+
+Status writeSimulatedStack(const std::filesystem::path& directory, const SimulatedStack& stack) {
+  StackWriteRequest request;
+  request.manifest = stack.manifest;
+  request.frames = stack.frames;
+  request.text_files.emplace_back("truth.json", stack.truthJson().dump(2) + "\n");
+  return writeStack(directory, request);
+}
+
+}  // namespace glarecam::capture

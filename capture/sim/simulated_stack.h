@@ -1,0 +1,56 @@
+// `glarecam simulate`: a complete recorded stack of a simulated rig with known ground truth.
+// The scene is the module's glare lobe at alpha (module_model.h) over a background, seen by a
+// pinhole camera (optionally distorted) through a 12-bit sensor (sensor_model.h), bracketed
+// like a real auto-bracket (bracketing.h). The same pieces back the `sim:` camera.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "capture/bracketing.h"
+#include "capture/sim/glare_scene.h"
+#include "capture/sim/sensor_model.h"
+#include "core/stack_manifest.h"
+
+namespace glarecam::capture {
+
+struct SimulationOptions {
+  double alpha_deg = 40.0;
+  std::string module = "standard";
+  int width = 1224, height = 1024;  // half of a 5 MP machine-vision sensor
+  std::uint64_t seed = 1;
+  double horizontal_fov_deg = 40.0;
+  std::array<double, 5> distortion{};            // k1, k2, p1, p2, k3
+  std::array<double, 2> lobe_offset_deg{0, 0};   // lobe centre from the optical axis [h, v]
+  double lobe_orientation_deg = 0.0;
+  double background_cd_m2 = 3000.0;  // sky reflected in the module glass, an overcast-sky order
+  double peak_scale = 1.0;           // multiplies the module's luminance maximum (e.g. below-limit scenes)
+  SensorModel sensor;
+  double luminance_factor = 1500.0;     // K, cd/m² per DN/µs at f/8 without the ND filter
+  double nd_transmission = 1.0e-3;      // ND 3.0 filter: sun reflections need it
+  double f_number = 8.0;
+  BracketOptions bracket;
+  Status validate() const;
+};
+
+struct SimulatedStack {
+  StackManifest manifest;
+  std::vector<RawFrame> frames;
+  FloatImage true_luminance_cd_m2;
+  SceneTruth truth;
+  std::array<double, 2> centre_pixel{0, 0};
+  BracketPlan bracket;
+  nlohmann::json truthJson() const;
+};
+
+Result<SimulatedStack> simulateStack(const SimulationOptions& options);
+
+// Writes the stack atomically with truth.json inside it, beside stack.json.
+Status writeSimulatedStack(const std::filesystem::path& directory, const SimulatedStack& stack);
+
+}  // namespace glarecam::capture

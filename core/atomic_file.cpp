@@ -1,0 +1,161 @@
+#include "core/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+#include <system_error>
+
+namespace glarecam {
+namespace fs = std::filesystem;
+
+namespace {
+
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  ~FileDescriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+  // Closes explicitly so that a failing close (NFS, full disk) is reported.
+  int release() {
+    int result = ::close(fd_);
+    fd_ = -1;
+    return result;
+  }
+
+ private:
+  int fd_;
+};
+
+std::unexpected<Error> systemError(const fs::path& path, const char* what) {
+  int err = errno;
+  std::string message = path.string() + ": " + what + ": " + std::strerror(err);
+  if (err == ENOSPC) message += " (disk full)";
+  if (err == EROFS) message += " (read-only filesystem)";
+  return ioError(message);
+}
+
+Status writeAll(int fd, const fs::path& path, std::span<const std::byte> bytes) {
+  while (!bytes.empty()) {
+    ssize_t written = ::write(fd, bytes.data(), bytes.size());
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return systemError(path, "cannot write");
+    }
+    bytes = bytes.subspan(static_cast<std::size_t>(written));
+  }
+  return {};
+}
+
+fs::path temporarySibling(const fs::path& target) {
+  return target.parent_path() / (std::string(kTemporaryPrefix) + target.filename().string() + "-XXXXXX");
+}
+
+fs::path parentOf(const fs::path& path) {
+  return path.has_parent_path() ? path.parent_path() : fs::path(".");
+}
+
+}  // namespace
+
+Status fsyncPath(const fs::path& path) {
+  FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (fd.get() < 0) return systemError(path, "cannot open for fsync");
+  if (::fsync(fd.get()) != 0) return systemError(path, "fsync failed");
+  return {};
+}
+
+Status writeFileDurable(const fs::path& path, std::span<const std::byte> bytes) {
+  FileDescriptor fd(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+  if (fd.get() < 0) return systemError(path, "cannot create");
+  if (auto status = writeAll(fd.get(), path, bytes); !status) return status;
+  if (::fsync(fd.get()) != 0) return systemError(path, "fsync failed");
+  if (fd.release() != 0) return systemError(path, "close failed");
+  return {};
+}
+
+Status writeFileAtomic(const fs::path& path, std::span<const std::byte> bytes) {
+  std::string temp = temporarySibling(path).string();
+  FileDescriptor fd(::mkostemp(temp.data(), O_CLOEXEC));
+  if (fd.get() < 0) return systemError(path, "cannot create temporary file");
+  auto cleanup = [&](Status status) {
+    ::unlink(temp.c_str());
+    return status;
+  };
+  if (::fchmod(fd.get(), 0644) != 0) return cleanup(systemError(temp, "cannot chmod"));
+  if (auto status = writeAll(fd.get(), temp, bytes); !status) return cleanup(status);
+  if (::fsync(fd.get()) != 0) return cleanup(systemError(temp, "fsync failed"));
+  if (fd.release() != 0) return cleanup(systemError(temp, "close failed"));
+  if (::rename(temp.c_str(), path.c_str()) != 0) return cleanup(systemError(path, "cannot rename into place"));
+  return fsyncPath(parentOf(path));
+}
+
+Status writeFileAtomic(const fs::path& path, std::string_view text) {
+  return writeFileAtomic(path, std::as_bytes(std::span(text.data(), text.size())));
+}
+
+Result<StagingDirectory> StagingDirectory::create(const fs::path& target) {
+  std::string staging = temporarySibling(target).string();
+  if (::mkdtemp(staging.data()) == nullptr) return systemError(target, "cannot create staging directory");
+  // mkdtemp creates 0700; a stack is an ordinary shared directory once visible.
+  if (::chmod(staging.c_str(), 0755) != 0) {
+    auto error = systemError(staging, "cannot chmod staging directory");
+    ::rmdir(staging.c_str());
+    return error;
+  }
+  return StagingDirectory(fs::path(staging), target);
+}
+
+StagingDirectory::StagingDirectory(StagingDirectory&& other) noexcept
+    : staging_(std::move(other.staging_)), target_(std::move(other.target_)), committed_(other.committed_) {
+  other.committed_ = true;  // the moved-from object no longer owns the directory
+}
+
+StagingDirectory::~StagingDirectory() {
+  if (committed_) return;
+  std::error_code ignored;
+  fs::remove_all(staging_, ignored);
+}
+
+Status StagingDirectory::commit() {
+  if (committed_) return fail(ErrorCode::kInternal, target_.string() + ": staging directory already committed");
+  if (auto status = fsyncPath(staging_); !status) return status;
+  std::error_code ec;
+  bool replacing = fs::exists(target_, ec);
+  if (!replacing) {
+    // RENAME_NOREPLACE: a concurrent writer that got there first is not silently overwritten.
+    if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_NOREPLACE) != 0) {
+      return systemError(target_, "cannot rename staging directory into place");
+    }
+  } else {
+    // Swap the complete new directory with the old one in one step, then drop the old one.
+    if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0) {
+      return systemError(target_, "cannot exchange staging directory with existing one");
+    }
+  }
+  committed_ = true;
+  if (replacing) fs::remove_all(staging_, ec);
+  return fsyncPath(parentOf(target_));
+}
+
+std::size_t removeStaleTemporaries(const fs::path& directory) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(directory, ec)) {
+    if (!entry.path().filename().string().starts_with(kTemporaryPrefix)) continue;
+    std::error_code remove_ec;
+    fs::remove_all(entry.path(), remove_ec);
+    if (!remove_ec) ++removed;
+  }
+  return removed;
+}
+
+}  // namespace glarecam

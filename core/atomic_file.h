@@ -1,0 +1,54 @@
+// Crash-safe writes. A file or directory appears under its final name only complete: it is
+// built under a hidden temporary sibling name, fsynced, renamed into place, and the parent
+// directory fsynced. After a crash a reader sees the old version or the new one, never half.
+// Leftover temporaries start with ".tmp-" and are removed by removeStaleTemporaries().
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <span>
+#include <string_view>
+
+#include "core/error.h"
+
+namespace glarecam {
+
+// Writes bytes to path atomically (replacing an existing file).
+Status writeFileAtomic(const std::filesystem::path& path, std::span<const std::byte> bytes);
+Status writeFileAtomic(const std::filesystem::path& path, std::string_view text);
+
+// Writes a file's contents durably in place (no rename): for files inside a staging directory.
+Status writeFileDurable(const std::filesystem::path& path, std::span<const std::byte> bytes);
+
+Status fsyncPath(const std::filesystem::path& path);
+
+// The prefix every temporary sibling carries.
+inline constexpr std::string_view kTemporaryPrefix = ".tmp-";
+
+// A directory under construction. Files written into path() become visible under `target`
+// together when commit() succeeds; a StagingDirectory destroyed uncommitted removes itself.
+class StagingDirectory {
+ public:
+  static Result<StagingDirectory> create(const std::filesystem::path& target);
+  StagingDirectory(StagingDirectory&& other) noexcept;
+  StagingDirectory& operator=(StagingDirectory&&) = delete;
+  StagingDirectory(const StagingDirectory&) = delete;
+  ~StagingDirectory();
+
+  const std::filesystem::path& path() const { return staging_; }
+  // fsyncs the directory, renames it to the target (atomically exchanging an existing target,
+  // which is then removed) and fsyncs the parent.
+  Status commit();
+
+ private:
+  StagingDirectory(std::filesystem::path staging, std::filesystem::path target)
+      : staging_(std::move(staging)), target_(std::move(target)) {}
+  std::filesystem::path staging_;
+  std::filesystem::path target_;
+  bool committed_ = false;
+};
+
+// Removes ".tmp-*" entries left in directory by an interrupted writer; returns how many.
+std::size_t removeStaleTemporaries(const std::filesystem::path& directory);
+
+}  // namespace glarecam

@@ -1,0 +1,48 @@
+// Image<T>: a dense, row-major, single-channel image owning its pixels. Pixel (0, 0) is the
+// top-left pixel, x grows right and y down; pixel centres sit at integer coordinates.
+// RawFrame holds a camera's unprocessed values (up to 16 bits); FloatImage holds luminance in
+// cd/m² or any other per-pixel float quantity.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace glarecam {
+
+template <typename T>
+class Image {
+ public:
+  Image() = default;
+  Image(int width, int height, T fill = T{})
+      : width_(width), height_(height), pixels_(static_cast<std::size_t>(width) * height, fill) {}
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  std::size_t pixelCount() const { return pixels_.size(); }
+  bool empty() const { return pixels_.empty(); }
+  bool sameSize(int width, int height) const { return width_ == width && height_ == height; }
+
+  T* data() { return pixels_.data(); }
+  const T* data() const { return pixels_.data(); }
+  std::span<T> row(int y) { return {pixels_.data() + offset(0, y), static_cast<std::size_t>(width_)}; }
+  std::span<const T> row(int y) const {
+    return {pixels_.data() + offset(0, y), static_cast<std::size_t>(width_)};
+  }
+  T& at(int x, int y) { return pixels_[offset(x, y)]; }
+  const T& at(int x, int y) const { return pixels_[offset(x, y)]; }
+
+ private:
+  std::size_t offset(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<T> pixels_;
+};
+
+using RawFrame = Image<std::uint16_t>;
+using FloatImage = Image<float>;
+using ByteImage = Image<std::uint8_t>;
+
+}  // namespace glarecam

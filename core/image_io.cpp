@@ -1,0 +1,376 @@
+#include "core/image_io.h"
+
+#include <png.h>
+#include <tiffio.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStdIO.h>
+#include <ImfThreading.h>
+
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/parallel.h"
+
+namespace glarecam {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+constexpr std::uint8_t kTiffLittle[4] = {'I', 'I', 42, 0};
+constexpr std::uint8_t kTiffBig[4] = {'M', 'M', 0, 42};
+
+std::string describe(const fs::path& path) { return path.string(); }
+
+// ---------------------------------------------------------------- PNG
+
+struct PngErrorState {
+  std::jmp_buf jump;
+  char message[256] = "corrupt data";
+};
+
+void pngError(png_structp png, png_const_charp message) {
+  auto* state = static_cast<PngErrorState*>(png_get_error_ptr(png));
+  std::snprintf(state->message, sizeof state->message, "%s", message);
+  std::longjmp(state->jump, 1);
+}
+void pngWarning(png_structp, png_const_charp) {}
+
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+struct PngHeader {
+  png_uint_32 width = 0, height = 0;
+  int bit_depth = 0, color_type = 0, interlace = 0;
+};
+
+// Reads a PNG with libpng's setjmp error protocol. No object with a destructor lives in this
+// frame between setjmp and the last libpng call, so longjmp is safe.
+Result<DecodedFrame> readPng(const fs::path& path, std::FILE* file) {
+  PngErrorState state;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return fail(ErrorCode::kInternal, describe(path) + ": out of memory reading PNG");
+  }
+  DecodedFrame decoded;
+  std::vector<png_bytep> rows;
+  PngHeader header;
+  std::string problem;
+  std::vector<std::uint8_t> bytes8;
+  if (setjmp(state.jump)) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return badInput(describe(path) + ": corrupt or truncated PNG (" + state.message + ")");
+  }
+  png_init_io(png, file);
+  png_set_user_limits(png, 1u << 20, 1u << 20);
+  png_read_info(png, info);
+  png_get_IHDR(png, info, &header.width, &header.height, &header.bit_depth, &header.color_type,
+               &header.interlace, nullptr, nullptr);
+  if (header.color_type != PNG_COLOR_TYPE_GRAY) {
+    problem = "is not a single-channel greyscale PNG (colour type " + std::to_string(header.color_type) + ")";
+  } else if (header.bit_depth != 8 && header.bit_depth != 16) {
+    problem = "has " + std::to_string(header.bit_depth) + "-bit samples; frames must be 8- or 16-bit";
+  } else if (static_cast<std::uint64_t>(header.width) * header.height > kMaxFramePixels) {
+    problem = "is too large (" + std::to_string(header.width) + "x" + std::to_string(header.height) + ")";
+  }
+  if (!problem.empty()) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return badInput(describe(path) + ": " + problem);
+  }
+  if (header.bit_depth == 16) png_set_swap(png);  // PNG is big-endian; we are not
+  if (header.interlace != PNG_INTERLACE_NONE) png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  decoded.bit_depth = header.bit_depth;
+  decoded.pixels = RawFrame(static_cast<int>(header.width), static_cast<int>(header.height));
+  if (header.bit_depth == 8) bytes8.resize(static_cast<std::size_t>(header.width) * header.height);
+  rows.resize(header.height);
+  for (png_uint_32 y = 0; y < header.height; ++y) {
+    rows[y] = header.bit_depth == 16
+                  ? reinterpret_cast<png_bytep>(decoded.pixels.row(static_cast<int>(y)).data())
+                  : bytes8.data() + static_cast<std::size_t>(y) * header.width;
+  }
+  png_read_image(png, rows.data());
+  png_read_end(png, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  if (header.bit_depth == 8) std::copy(bytes8.begin(), bytes8.end(), decoded.pixels.data());
+  return decoded;
+}
+
+void pngWriteToVector(png_structp png, png_bytep data, png_size_t length) {
+  auto* out = static_cast<std::vector<std::byte>*>(png_get_io_ptr(png));
+  auto* begin = reinterpret_cast<const std::byte*>(data);
+  out->insert(out->end(), begin, begin + length);
+}
+void pngFlush(png_structp) {}
+
+// Encodes rows (already in PNG byte order) into a PNG in memory.
+Result<std::vector<std::byte>> encodePng(int width, int height, int bit_depth, int color_type,
+                                         const std::vector<const std::uint8_t*>& rows, int zlib_level) {
+  PngErrorState state;
+  std::vector<std::byte> out;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) {
+    png_destroy_write_struct(&png, &info);
+    return fail(ErrorCode::kInternal, "out of memory encoding PNG");
+  }
+  if (setjmp(state.jump)) {
+    png_destroy_write_struct(&png, &info);
+    return fail(ErrorCode::kInternal, std::string("PNG encoder failed: ") + state.message);
+  }
+  png_set_write_fn(png, &out, pngWriteToVector, pngFlush);
+  png_set_compression_level(png, zlib_level);
+  png_set_filter(png, 0, PNG_FILTER_SUB);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), bit_depth,
+               color_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  if (bit_depth == 16) png_set_swap(png);
+  png_write_rows(png, const_cast<png_bytepp>(rows.data()), static_cast<png_uint_32>(rows.size()));
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return out;
+}
+
+// ---------------------------------------------------------------- TIFF
+
+thread_local std::string tiff_last_error;
+
+void tiffErrorHandler(const char* module, const char* format, va_list args) {
+  char buffer[256];
+  std::vsnprintf(buffer, sizeof buffer, format, args);
+  tiff_last_error = (module ? std::string(module) + ": " : std::string()) + buffer;
+}
+void tiffWarningHandler(const char*, const char*, va_list) {}
+
+void installTiffHandlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    TIFFSetErrorHandler(tiffErrorHandler);
+    TIFFSetWarningHandler(tiffWarningHandler);
+  });
+}
+
+struct TiffCloser {
+  void operator()(TIFF* tiff) const { TIFFClose(tiff); }
+};
+using TiffPtr = std::unique_ptr<TIFF, TiffCloser>;
+
+Result<DecodedFrame> readTiff(const fs::path& path) {
+  installTiffHandlers();
+  tiff_last_error.clear();
+  TiffPtr tiff(TIFFOpen(path.c_str(), "r"));
+  auto tiffFailure = [&](const std::string& what) {
+    return badInput(describe(path) + ": " + what + (tiff_last_error.empty() ? "" : " (" + tiff_last_error + ")"));
+  };
+  if (!tiff) return tiffFailure("not a readable TIFF");
+  std::uint32_t width = 0, height = 0;
+  std::uint16_t samples = 1, bits = 0, format = SAMPLEFORMAT_UINT, photometric = PHOTOMETRIC_MINISBLACK;
+  TIFFGetField(tiff.get(), TIFFTAG_IMAGEWIDTH, &width);
+  TIFFGetField(tiff.get(), TIFFTAG_IMAGELENGTH, &height);
+  TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_SAMPLESPERPIXEL, &samples);
+  TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_BITSPERSAMPLE, &bits);
+  TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_SAMPLEFORMAT, &format);
+  TIFFGetField(tiff.get(), TIFFTAG_PHOTOMETRIC, &photometric);
+  if (samples != 1 || photometric != PHOTOMETRIC_MINISBLACK) {
+    return badInput(describe(path) + ": is not a single-channel greyscale TIFF (" + std::to_string(samples) +
+                    " samples per pixel)");
+  }
+  if ((bits != 8 && bits != 16) || format != SAMPLEFORMAT_UINT) {
+    return badInput(describe(path) + ": has " + std::to_string(bits) + "-bit samples; frames must be unsigned 8- or 16-bit");
+  }
+  if (width == 0 || height == 0 || static_cast<std::uint64_t>(width) * height > kMaxFramePixels) {
+    return badInput(describe(path) + ": has an unusable size (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+  }
+  if (TIFFIsTiled(tiff.get())) return badInput(describe(path) + ": tiled TIFF is not supported; write strips");
+  DecodedFrame decoded{RawFrame(static_cast<int>(width), static_cast<int>(height)), bits};
+  std::vector<std::uint8_t> line(static_cast<std::size_t>(TIFFScanlineSize(tiff.get())));
+  if (line.size() < static_cast<std::size_t>(width) * (bits / 8)) return tiffFailure("inconsistent scanline size");
+  for (std::uint32_t y = 0; y < height; ++y) {
+    if (TIFFReadScanline(tiff.get(), line.data(), y, 0) < 0) {
+      return tiffFailure("corrupt or truncated TIFF at row " + std::to_string(y));
+    }
+    auto row = decoded.pixels.row(static_cast<int>(y));
+    if (bits == 16) {
+      std::memcpy(row.data(), line.data(), row.size_bytes());
+    } else {
+      std::copy(line.begin(), line.begin() + width, row.begin());
+    }
+  }
+  return decoded;
+}
+
+// ---------------------------------------------------------------- EXR
+
+void configureExrThreads() {
+  static std::once_flag once;
+  std::call_once(once, [] { Imf::setGlobalThreadCount(static_cast<int>(defaultThreadCount())); });
+}
+
+std::vector<std::uint8_t> readMagic(std::FILE* file) {
+  std::vector<std::uint8_t> magic(8, 0);
+  magic.resize(std::fread(magic.data(), 1, magic.size(), file));
+  std::rewind(file);
+  return magic;
+}
+
+bool startsWith(const std::vector<std::uint8_t>& bytes, std::span<const std::uint8_t> prefix) {
+  return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
+}
+
+}  // namespace
+
+Result<DecodedFrame> readRawFrame(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return badInput(describe(path) + ": frame file is missing or not a regular file");
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  if (!file) return badInput(describe(path) + ": cannot open frame: " + std::strerror(errno));
+  auto magic = readMagic(file.get());
+  if (magic.empty()) return badInput(describe(path) + ": frame file is empty");
+  if (startsWith(magic, kPngSignature)) return readPng(path, file.get());
+  if (startsWith(magic, kTiffLittle) || startsWith(magic, kTiffBig)) return readTiff(path);
+  return badInput(describe(path) + ": not a PNG or TIFF image");
+}
+
+Result<std::vector<std::byte>> encodePngGray(const RawFrame& frame, int bit_depth, int zlib_level) {
+  std::vector<std::uint8_t> bytes8;
+  std::vector<const std::uint8_t*> rows(static_cast<std::size_t>(frame.height()));
+  if (bit_depth == 8) {
+    bytes8.resize(frame.pixelCount());
+    for (std::size_t i = 0; i < bytes8.size(); ++i) bytes8[i] = static_cast<std::uint8_t>(std::min<int>(frame.data()[i], 255));
+  }
+  for (int y = 0; y < frame.height(); ++y) {
+    rows[static_cast<std::size_t>(y)] =
+        bit_depth == 8 ? bytes8.data() + static_cast<std::size_t>(y) * frame.width()
+                       : reinterpret_cast<const std::uint8_t*>(frame.row(y).data());
+  }
+  return encodePng(frame.width(), frame.height(), bit_depth, PNG_COLOR_TYPE_GRAY, rows, zlib_level);
+}
+
+Status writePngGray(const fs::path& path, const RawFrame& frame, int bit_depth) {
+  auto bytes = encodePngGray(frame, bit_depth);
+  if (!bytes) return std::unexpected(withContext(bytes.error(), describe(path)));
+  return writeFileAtomic(path, *bytes);
+}
+
+Status writePngRgb(const fs::path& path, int width, int height, std::span<const std::uint8_t> rgb, int zlib_level) {
+  if (rgb.size() != static_cast<std::size_t>(width) * height * 3) {
+    return fail(ErrorCode::kInternal, describe(path) + ": RGB buffer does not match the image size");
+  }
+  std::vector<const std::uint8_t*> rows(static_cast<std::size_t>(height));
+  for (int y = 0; y < height; ++y) rows[static_cast<std::size_t>(y)] = rgb.data() + static_cast<std::size_t>(y) * width * 3;
+  auto bytes = encodePng(width, height, 8, PNG_COLOR_TYPE_RGB, rows, zlib_level);
+  if (!bytes) return std::unexpected(withContext(bytes.error(), describe(path)));
+  return writeFileAtomic(path, *bytes);
+}
+
+Status writeTiffGray16(const fs::path& path, const RawFrame& frame) {
+  installTiffHandlers();
+  std::string temp = path.string() + ".partial";
+  {
+    TiffPtr tiff(TIFFOpen(temp.c_str(), "w"));
+    if (!tiff) return ioError(describe(path) + ": cannot create TIFF (" + tiff_last_error + ")");
+    TIFFSetField(tiff.get(), TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(frame.width()));
+    TIFFSetField(tiff.get(), TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(frame.height()));
+    TIFFSetField(tiff.get(), TIFFTAG_SAMPLESPERPIXEL, 1);
+    TIFFSetField(tiff.get(), TIFFTAG_BITSPERSAMPLE, 16);
+    TIFFSetField(tiff.get(), TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+    TIFFSetField(tiff.get(), TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+    TIFFSetField(tiff.get(), TIFFTAG_ROWSPERSTRIP, 64);
+    for (int y = 0; y < frame.height(); ++y) {
+      auto row = frame.row(y);
+      if (TIFFWriteScanline(tiff.get(), const_cast<std::uint16_t*>(row.data()), static_cast<std::uint32_t>(y), 0) < 0) {
+        std::remove(temp.c_str());
+        return ioError(describe(path) + ": cannot write TIFF row (" + tiff_last_error + ")");
+      }
+    }
+  }
+  if (auto status = fsyncPath(temp); !status) return status;
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) return ioError(describe(path) + ": cannot rename TIFF into place: " + ec.message());
+  return {};
+}
+
+Status writeExr(const fs::path& path, std::span<const ExrChannel> channels) {
+  if (channels.empty() || !channels.front().image) return fail(ErrorCode::kInternal, describe(path) + ": no EXR channel");
+  configureExrThreads();
+  const FloatImage& first = *channels.front().image;
+  try {
+    Imf::Header header(first.width(), first.height());
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::FrameBuffer buffer;
+    for (const auto& channel : channels) {
+      header.channels().insert(channel.name, Imf::Channel(Imf::FLOAT));
+      auto* base = const_cast<char*>(reinterpret_cast<const char*>(channel.image->data()));
+      buffer.insert(channel.name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * first.width()));
+    }
+    std::ostringstream bytes;
+    {
+      Imf::StdOSStream stream;
+      Imf::OutputFile file(stream, header);
+      file.setFrameBuffer(buffer);
+      file.writePixels(first.height());
+      bytes.str(stream.str());
+    }
+    return writeFileAtomic(path, std::string_view(bytes.view()));
+  } catch (const std::exception& e) {
+    return fail(ErrorCode::kInternal, describe(path) + ": cannot encode EXR: " + e.what());
+  }
+}
+
+Status writeExr(const fs::path& path, const FloatImage& image, const std::string& channel) {
+  ExrChannel only{channel, &image};
+  return writeExr(path, std::span(&only, 1));
+}
+
+Result<FloatImage> readExr(const fs::path& path, const std::string& channel) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return badInput(describe(path) + ": EXR file is missing");
+  configureExrThreads();
+  try {
+    Imf::InputFile file(path.c_str());
+    const auto& channels = file.header().channels();
+    std::string name = channel;
+    if (!channels.findChannel(name)) {
+      auto it = channels.begin();
+      if (it == channels.end() || ++channels.begin() != channels.end()) {
+        return badInput(describe(path) + ": EXR has no channel \"" + channel + "\" and more than one other");
+      }
+      name = it.name();
+    }
+    Imath::Box2i window = file.header().dataWindow();
+    int width = window.max.x - window.min.x + 1;
+    int height = window.max.y - window.min.y + 1;
+    if (width <= 0 || height <= 0 || static_cast<std::uint64_t>(width) * height > kMaxFramePixels) {
+      return badInput(describe(path) + ": EXR has an unusable size");
+    }
+    FloatImage image(width, height);
+    char* origin = reinterpret_cast<char*>(image.data()) -
+                   (static_cast<std::ptrdiff_t>(window.min.x) + static_cast<std::ptrdiff_t>(window.min.y) * width) *
+                       static_cast<std::ptrdiff_t>(sizeof(float));
+    Imf::FrameBuffer buffer;
+    buffer.insert(name, Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * width));
+    file.setFrameBuffer(buffer);
+    file.readPixels(window.min.y, window.max.y);
+    return image;
+  } catch (const std::exception& e) {
+    return badInput(describe(path) + ": unreadable EXR: " + e.what());
+  }
+}
+
+}  // namespace glarecam

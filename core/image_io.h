@@ -1,0 +1,56 @@
+// Reading and writing the image files of a stack and its results.
+// - Raw frames: single-channel 8- or 16-bit PNG or TIFF (strips), values returned unchanged
+//   in a 16-bit container (8-bit frames are widened, not scaled).
+// - Float images: OpenEXR, one FLOAT channel ("Y" for luminance, as EXR viewers expect).
+// - Pictures: 8-bit RGB PNG for false-colour renderings.
+// Every decoder is defensive: a truncated, colour, oversize or otherwise unusable file yields
+// an Error naming the file and the problem, never a crash. Writers are atomic (atomic_file.h).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/image.h"
+
+namespace glarecam {
+
+struct DecodedFrame {
+  RawFrame pixels;
+  int bit_depth = 16;  // of the file: 8 or 16
+};
+
+// Largest frame accepted (pixels), far above any machine-vision sensor: protects against
+// headers that announce absurd sizes.
+inline constexpr std::uint64_t kMaxFramePixels = 1ull << 28;
+
+Result<DecodedFrame> readRawFrame(const std::filesystem::path& path);
+
+// Encodes a raw frame as a single-channel 16-bit PNG (for bit_depth 16) or 8-bit PNG.
+Result<std::vector<std::byte>> encodePngGray(const RawFrame& frame, int bit_depth = 16,
+                                             int zlib_level = 3);
+Status writePngGray(const std::filesystem::path& path, const RawFrame& frame, int bit_depth = 16);
+
+// 16-bit single-channel TIFF (for tests and tools that produce TIFF stacks).
+Status writeTiffGray16(const std::filesystem::path& path, const RawFrame& frame);
+
+// rgb holds width*height*3 bytes, row-major.
+Status writePngRgb(const std::filesystem::path& path, int width, int height,
+                   std::span<const std::uint8_t> rgb, int zlib_level = 3);
+
+// A float image with named FLOAT channels, ZIP-compressed, written atomically.
+struct ExrChannel {
+  std::string name;
+  const FloatImage* image = nullptr;
+};
+Status writeExr(const std::filesystem::path& path, std::span<const ExrChannel> channels);
+Status writeExr(const std::filesystem::path& path, const FloatImage& image,
+                const std::string& channel = "Y");
+
+// Reads channel `channel` (or, when it is absent, the only channel) of an EXR as float.
+Result<FloatImage> readExr(const std::filesystem::path& path, const std::string& channel = "Y");
+
+}  // namespace glarecam

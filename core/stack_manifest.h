@@ -1,0 +1,79 @@
+// The manifest of a recorded stack (glarecam.stack/1, docs/stack-format.md) as value types.
+// parseManifest() validates everything that can be checked without the frames and fills the
+// documented defaults; toJson() writes it back over the document it came from, so fields this
+// version does not know survive a read-modify-write. Units are in the field names.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace glarecam {
+
+inline constexpr std::string_view kStackSchema = "glarecam.stack/1";
+inline constexpr std::string_view kManifestFileName = "stack.json";
+
+// Pinhole camera + OpenCV distortion (k1, k2, p1, p2, k3), in pixels.
+struct Intrinsics {
+  double fx = 0, fy = 0, cx = 0, cy = 0;
+  std::array<double, 5> distortion{};
+};
+
+// Sensor noise at gain 0 dB: temporal read noise and conversion gain.
+struct NoiseModel {
+  double read_noise_dn = 0;
+  double dn_per_electron = 0;
+};
+
+struct Calibration {
+  double black_level_dn = 0;
+  double saturation_dn = 0;
+  double luminance_factor = 0;  // K: cd/m² per (DN/µs) at the reference f-number
+  std::optional<double> reference_f_number;
+  Intrinsics intrinsics;
+  std::optional<std::string> flat_field;  // path relative to the calibration's directory
+  std::optional<NoiseModel> noise;
+  nlohmann::json source = nlohmann::json::object();  // the block as read, unknown keys kept
+};
+
+struct FrameSpec {
+  std::string file;
+  double exposure_us = 0;
+  double gain_db = 0;
+  std::optional<double> f_number;  // absent: the calibration's reference f-number
+  double nd_transmission = 1;
+  nlohmann::json source = nlohmann::json::object();
+};
+
+struct StackManifest {
+  std::optional<std::string> id;
+  std::optional<std::string> captured_at;
+  std::optional<double> alpha_deg;
+  std::optional<Calibration> calibration;       // given inline
+  std::optional<std::string> calibration_path;  // or as a path relative to the stack
+  std::vector<FrameSpec> frames;
+  nlohmann::json source = nlohmann::json::object();  // camera, geometry, unknown keys
+};
+
+// `where` names the file in error messages.
+Result<StackManifest> parseManifest(const nlohmann::json& document, const std::string& where);
+Result<Calibration> parseCalibration(const nlohmann::json& block, const std::string& where);
+
+nlohmann::json toJson(const Calibration& calibration);
+nlohmann::json toJson(const StackManifest& manifest);
+
+// Parses JSON text; the error names `where` and the parser's line and column.
+Result<nlohmann::json> parseJsonText(std::string_view text, const std::string& where);
+// Reads and parses a JSON file; a missing file is kBadInput.
+Result<nlohmann::json> readJsonFile(const std::string& path);
+
+// True when `relative` is a plain relative path that stays inside its base directory.
+bool isContainedRelativePath(std::string_view relative);
+
+}  // namespace glarecam

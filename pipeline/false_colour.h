@@ -1,0 +1,34 @@
+// False-colour picture of a luminance image for people: log-scaled luminance in the Turbo
+// colour map, with a labelled colour bar in cd/m² to the right, the glare limit marked on the
+// bar, saturated pixels (lower bounds) in white and under-exposed ones in black.
+// Pure function: returns an 8-bit RGB raster; writing it is the caller's business.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calibration/hdr_merge.h"
+#include "core/error.h"
+
+namespace glarecam::pipeline {
+
+struct FalseColourOptions {
+  std::optional<double> min_cd_m2;  // bottom of the scale; default: 1st percentile, at most 6 decades below max
+  std::optional<double> max_cd_m2;  // top of the scale; default: the image maximum
+  std::optional<double> limit_cd_m2;  // marked on the colour bar when given
+  std::string title;                  // drawn above the colour bar (e.g. "α 40°")
+};
+
+struct RgbImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;  // row-major, 3 bytes per pixel
+};
+
+// Turbo colour map (Google, 2019; polynomial approximation), t in [0, 1].
+void turboColour(double t, std::uint8_t rgb[3]);
+
+Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged, const FalseColourOptions& options = {});
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,57 @@
+#include "pipeline/luminance_stats.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace glarecam::pipeline {
+
+namespace {
+// The median uncertainty is estimated from a regular subsample: exact enough for a summary
+// and independent of image size.
+constexpr std::size_t kUncertaintySamples = 1 << 16;
+}  // namespace
+
+LuminanceStats luminanceStats(const calibration::MergedImage& merged) {
+  using calibration::PixelBound;
+  LuminanceStats stats;
+  const std::size_t count = merged.luminance_cd_m2.pixelCount();
+  const float* luminance = merged.luminance_cd_m2.data();
+  const std::uint8_t* bound = merged.bound.data();
+  std::size_t max_index = 0;
+  float max_value = -1.0f;
+  std::size_t measured = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto flag = static_cast<PixelBound>(bound[i]);
+    measured += flag == PixelBound::kMeasured;
+    stats.saturated_pixels += flag == PixelBound::kLowerBound;
+    stats.dark_pixels += flag == PixelBound::kUpperBound;
+    // Upper bounds are not measurements of a bright pixel; they never hold the maximum.
+    if (flag != PixelBound::kUpperBound && luminance[i] > max_value) {
+      max_value = luminance[i];
+      max_index = i;
+    }
+  }
+  const int width = merged.luminance_cd_m2.width();
+  if (count == 0) return stats;
+  stats.max_cd_m2 = std::max(0.0f, max_value);
+  stats.max_x = static_cast<int>(max_index % static_cast<std::size_t>(width));
+  stats.max_y = static_cast<int>(max_index / static_cast<std::size_t>(width));
+  stats.max_is_lower_bound = static_cast<PixelBound>(bound[max_index]) == PixelBound::kLowerBound;
+  stats.valid_fraction = static_cast<double>(measured) / static_cast<double>(count);
+
+  std::vector<float> sample;
+  const std::size_t step = std::max<std::size_t>(1, count / kUncertaintySamples);
+  const float* relative = merged.relative_uncertainty.data();
+  for (std::size_t i = 0; i < count; i += step) {
+    if (std::isfinite(relative[i])) sample.push_back(relative[i]);
+  }
+  if (!sample.empty()) {
+    auto middle = sample.begin() + static_cast<std::ptrdiff_t>(sample.size() / 2);
+    std::nth_element(sample.begin(), middle, sample.end());
+    stats.median_relative_uncertainty = *middle;
+  }
+  return stats;
+}
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,23 @@
+// Summary statistics of a merged luminance image: the maximum and where it is, how much of
+// the image was measured, and how many pixels are only bounds. Pure function, no I/O.
+#pragma once
+
+#include <cstddef>
+
+#include "calibration/hdr_merge.h"
+
+namespace glarecam::pipeline {
+
+struct LuminanceStats {
+  double max_cd_m2 = 0;
+  int max_x = 0, max_y = 0;
+  bool max_is_lower_bound = false;  // the maximum pixel was saturated in every frame
+  double valid_fraction = 0;        // pixels with at least one valid frame
+  std::size_t saturated_pixels = 0;  // saturated in every frame (lower bounds)
+  std::size_t dark_pixels = 0;       // under-exposed in every frame (upper bounds)
+  double median_relative_uncertainty = 0;  // over measured pixels
+};
+
+LuminanceStats luminanceStats(const calibration::MergedImage& merged);
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,112 @@
+#include "pipeline/process_stack.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+
+#include "calibration/hdr_merge.h"
+#include "core/atomic_file.h"
+#include "core/image_io.h"
+#include "core/progress.h"
+#include "core/stack_io.h"
+#include "pipeline/false_colour.h"
+#include "pipeline/limit_curve.h"
+#include "pipeline/luminance_stats.h"
+#include "pipeline/result.h"
+
+namespace glarecam::pipeline {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kProcessSteps = 6;
+
+Status writeQualityExr(const fs::path& path, const calibration::MergedImage& merged) {
+  FloatImage valid(merged.valid_frames.width(), merged.valid_frames.height());
+  FloatImage bound(valid.width(), valid.height());
+  for (std::size_t i = 0; i < valid.pixelCount(); ++i) {
+    valid.data()[i] = merged.valid_frames.data()[i];
+    bound.data()[i] = merged.bound.data()[i];
+  }
+  const ExrChannel channels[] = {{"relative_uncertainty", &merged.relative_uncertainty},
+                                 {"valid_frames", &valid},
+                                 {"bound", &bound}};
+  return writeExr(path, channels);
+}
+
+std::string stackId(const Stack& stack) {
+  if (stack.manifest.id) return *stack.manifest.id;
+  return fs::absolute(stack.directory).lexically_normal().filename().string();
+}
+
+Status prepareOutputDirectory(const fs::path& directory) {
+  std::error_code ec;
+  fs::create_directories(directory, ec);
+  if (ec) return ioError(directory.string() + ": cannot create output directory: " + ec.message());
+  removeStaleTemporaries(directory);
+  return {};
+}
+
+}  // namespace
+
+std::string ProcessSummary::briefReport() const {
+  const auto& lum = result.at("luminance");
+  const auto& limit = result.at("limit").at("limit_cd_m2");
+  char line[256];
+  std::snprintf(line, sizeof line, "%s: Lmax %.4g cd/m² at (%d, %d), limit %s, glare %s",
+                result.at("stack").get<std::string>().c_str(), lum.at("max_cd_m2").get<double>(),
+                lum.at("max_pixel")[0].get<int>(), lum.at("max_pixel")[1].get<int>(),
+                limit.is_null() ? "none" : std::to_string(limit.get<long long>()).c_str(),
+                result.at("glare").is_null() ? "n/a" : (result.at("glare").get<bool>() ? "yes" : "no"));
+  return line;
+}
+
+Result<ProcessSummary> processStack(const fs::path& stack_directory, const ProcessOptions& options) {
+  Progress progress("process " + stack_directory.filename().string(), kProcessSteps, options.show_progress);
+  StackReadOptions read_options{.calibration_file = options.calibration_file, .threads = options.threads};
+  Stack stack;
+  GLARECAM_ASSIGN(stack, readStack(stack_directory, read_options));
+  progress.advance("read");
+
+  const auto radiometry = calibration::frameRadiometry(stack.manifest.frames, stack.calibration);
+  calibration::MergeInput input{stack.frames, radiometry, stack.calibration.black_level_dn,
+                                stack.calibration.saturation_dn, stack.flat_field ? &*stack.flat_field : nullptr};
+  calibration::MergedImage merged;
+  GLARECAM_ASSIGN(merged, calibration::merge(input, {.threads = options.threads}));
+  stack.frames.clear();  // the raw frames are no longer needed: free them before the outputs
+  progress.advance("merged");
+
+  const LuminanceStats stats = luminanceStats(merged);
+  const std::optional<double> limit = stack.manifest.alpha_deg ? glareLimitCdM2(*stack.manifest.alpha_deg) : std::nullopt;
+  ProcessSummary summary;
+  summary.output_directory = options.output_directory.value_or(stack_directory / "result");
+  summary.result = makeResult({.stack_id = stackId(stack),
+                               .alpha_deg = stack.manifest.alpha_deg,
+                               .width = merged.luminance_cd_m2.width(),
+                               .height = merged.luminance_cd_m2.height(),
+                               .calibration_origin = stack.calibration_origin,
+                               .noise_model_assumed = !stack.calibration.noise,
+                               .stats = stats,
+                               .limit_cd_m2 = limit});
+  if (!stack.calibration.noise) spdlog::warn("{}: calibration has no noise model; assuming a typical sensor", stackId(stack));
+
+  const fs::path& out = summary.output_directory;
+  GLARECAM_CHECK(prepareOutputDirectory(out));
+  GLARECAM_CHECK(writeExr(out / "luminance.exr", merged.luminance_cd_m2, "Y"));
+  progress.advance("luminance.exr");
+  GLARECAM_CHECK(writeQualityExr(out / "quality.exr", merged));
+  progress.advance("quality.exr");
+  std::string title = stack.manifest.alpha_deg ? "\u03b1 " + std::to_string(static_cast<int>(std::lround(*stack.manifest.alpha_deg))) + "\u00b0" : "";
+  FalseColourOptions picture_options;
+  picture_options.limit_cd_m2 = limit;
+  picture_options.title = title;
+  RgbImage picture;
+  GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
+  GLARECAM_CHECK(writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb));
+  progress.advance("luminance.png");
+  GLARECAM_CHECK(writeFileAtomic(out / "result.json", summary.result.dump(2) + "\n"));
+  progress.advance("result.json");
+  return summary;
+}
+
+}  // namespace glarecam::pipeline

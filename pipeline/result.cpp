@@ -1,0 +1,32 @@
+#include "pipeline/result.h"
+
+#include "core/version.h"
+
+namespace glarecam::pipeline {
+
+nlohmann::json makeResult(const ResultInputs& in) {
+  using nlohmann::json;
+  const LuminanceStats& s = in.stats;
+  json result;
+  result["schema"] = kResultSchema;
+  result["stack"] = in.stack_id;
+  result["alpha_deg"] = in.alpha_deg ? json(*in.alpha_deg) : json(nullptr);
+  result["image"] = {{"width", in.width}, {"height", in.height}};
+  result["calibration"] = {{"origin", in.calibration_origin},
+                           {"noise_model", in.noise_model_assumed ? "assumed" : "calibrated"}};
+  result["luminance"] = {{"max_cd_m2", s.max_cd_m2},
+                         {"max_pixel", {s.max_x, s.max_y}},
+                         {"max_is_lower_bound", s.max_is_lower_bound},
+                         {"valid_fraction", s.valid_fraction},
+                         {"saturated_pixels", s.saturated_pixels},
+                         {"dark_pixels", s.dark_pixels},
+                         {"median_relative_uncertainty", s.median_relative_uncertainty}};
+  result["limit"] = {{"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
+                     {"mode", "alpha_curve"}};
+  result["glare"] = in.limit_cd_m2 ? json(s.max_cd_m2 >= *in.limit_cd_m2) : json(nullptr);
+  result["outputs"] = {{"luminance_exr", "luminance.exr"}, {"quality_exr", "quality.exr"}, {"luminance_png", "luminance.png"}};
+  result["generator"] = {{"name", "glarecam"}, {"version", kVersion}};
+  return result;
+}
+
+}  // namespace glarecam::pipeline

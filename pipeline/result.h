@@ -1,0 +1,28 @@
+// The result document of one processed stack (schema glarecam.result/1, docs/process.md).
+// Built from plain values; later stages (glare ellipse, FWHM) add their own keys.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/luminance_stats.h"
+
+namespace glarecam::pipeline {
+
+inline constexpr std::string_view kResultSchema = "glarecam.result/1";
+
+struct ResultInputs {
+  std::string stack_id;
+  std::optional<double> alpha_deg;
+  int width = 0, height = 0;
+  std::string calibration_origin;  // "inline", a path
+  bool noise_model_assumed = false;
+  LuminanceStats stats;
+  std::optional<double> limit_cd_m2;
+};
+
+nlohmann::json makeResult(const ResultInputs& inputs);
+
+}  // namespace glarecam::pipeline

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <system_error>
 
+#include <sys/stat.h>
+
 #include "core/atomic_file.h"
 #include "core/image_io.h"
 #include "core/parallel.h"
@@ -110,7 +112,9 @@ Result<Calibration> readCalibrationFile(const fs::path& path) {
   return parseCalibration(*document, path.string());
 }
 
-Result<Stack> readStack(const fs::path& directory, const StackReadOptions& options) {
+namespace {
+
+Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& options) {
   std::error_code ec;
   if (!fs::is_directory(directory, ec)) return badInput(directory.string() + ": not a stack directory");
   const fs::path manifest_path = directory / kManifestFileName;
@@ -141,6 +145,27 @@ Result<Stack> readStack(const fs::path& directory, const StackReadOptions& optio
   GLARECAM_CHECK(decodeFrames(stack, paths, options.threads ? options.threads : defaultThreadCount()));
   GLARECAM_CHECK(loadFlatField(stack, resolved.base_directory, where));
   return stack;
+}
+
+// The identity of the directory a path names now: a writer replacing the stack (rename
+// exchange) gives the path a new inode.
+std::optional<ino_t> directoryIdentity(const fs::path& directory) {
+  struct stat info {};
+  if (::stat(directory.c_str(), &info) != 0) return std::nullopt;
+  return info.st_ino;
+}
+
+// A stack replaced while it is read would mix two versions; such reads are retried.
+constexpr int kReadAttempts = 5;
+
+}  // namespace
+
+Result<Stack> readStack(const fs::path& directory, const StackReadOptions& options) {
+  for (int attempt = 1;; ++attempt) {
+    const auto before = directoryIdentity(directory);
+    auto stack = readStackOnce(directory, options);
+    if (before == directoryIdentity(directory) || attempt == kReadAttempts) return stack;
+  }
 }
 
 Status writeStack(const fs::path& directory, const StackWriteRequest& request) {

@@ -244,17 +244,14 @@ json toJson(const StackManifest& manifest) {
 }
 
 Result<json> parseJsonText(std::string_view text, const std::string& where) {
-  json document = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (!document.is_discarded()) return document;
   try {
-    [[maybe_unused]] const json unused = json::parse(text);
-  } catch (const json::parse_error& e) {
+    return json::parse(text);
+  } catch (const json::exception& e) {
     std::string message = e.what();
     // "[json.exception.parse_error.101] parse error at line 3, ..." -> keep the readable part.
     if (auto pos = message.find("] "); pos != std::string::npos) message = message.substr(pos + 2);
     return badInput(where + ": invalid JSON: " + message);
   }
-  return badInput(where + ": invalid JSON");
 }
 
 Result<json> readJsonFile(const std::string& path) {

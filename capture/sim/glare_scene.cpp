@@ -25,19 +25,30 @@ double contourRadius(double peak, double background, double level) {
 
 }  // namespace
 
+Result<GlareLobe> lobeWithAxesAt(double level_cd_m2, double peak_cd_m2, double background_cd_m2, double vertical_deg,
+                                 double horizontal_deg) {
+  if (!(peak_cd_m2 > level_cd_m2 && level_cd_m2 > background_cd_m2 && background_cd_m2 >= 0)) {
+    return badInput("glare scene: needs peak > level > background (peak " + std::to_string(peak_cd_m2) + ", level " +
+                    std::to_string(level_cd_m2) + ", background " + std::to_string(background_cd_m2) + " cd/m²)");
+  }
+  const double radius = contourRadius(peak_cd_m2, background_cd_m2, level_cd_m2);
+  GlareLobe lobe;
+  lobe.peak_cd_m2 = peak_cd_m2;
+  lobe.background_cd_m2 = background_cd_m2;
+  lobe.sigma_h_deg = horizontal_deg / 2.0 / radius;
+  lobe.sigma_v_deg = vertical_deg / 2.0 / radius;
+  return lobe;
+}
+
 Result<GlareScene> GlareScene::create(const GlareLobe& lobe) {
   const bool finite = std::isfinite(lobe.peak_cd_m2) && std::isfinite(lobe.background_cd_m2) &&
-                      std::isfinite(lobe.limit_cd_m2) && std::isfinite(lobe.vertical_deg) &&
-                      std::isfinite(lobe.horizontal_deg);
-  if (!finite || lobe.background_cd_m2 < 0) return badInput("glare scene: non-finite or negative parameters");
-  if (!(lobe.peak_cd_m2 > lobe.limit_cd_m2 && lobe.limit_cd_m2 > lobe.background_cd_m2)) {
-    return badInput("glare scene: needs peak > limit > background (peak " + std::to_string(lobe.peak_cd_m2) +
-                    ", limit " + std::to_string(lobe.limit_cd_m2) + ", background " +
-                    std::to_string(lobe.background_cd_m2) + " cd/m²)");
+                      std::isfinite(lobe.sigma_h_deg) && std::isfinite(lobe.sigma_v_deg) &&
+                      std::isfinite(lobe.orientation_deg);
+  if (!finite || lobe.background_cd_m2 < 0 || !(lobe.peak_cd_m2 > 0)) {
+    return badInput("glare scene: non-finite or non-positive parameters");
   }
-  if (!(lobe.peak_cd_m2 > 2.0 * lobe.background_cd_m2)) return badInput("glare scene: peak must exceed twice the background");
-  if (!(lobe.vertical_deg > 0 && lobe.horizontal_deg > 0 && lobe.vertical_deg < 90 && lobe.horizontal_deg < 90)) {
-    return badInput("glare scene: axes must be between 0 and 90 degrees");
+  if (!(lobe.sigma_h_deg > 0 && lobe.sigma_v_deg > 0 && lobe.sigma_h_deg < 45 && lobe.sigma_v_deg < 45)) {
+    return badInput("glare scene: lobe widths must be between 0 and 45 degrees");
   }
   return GlareScene(lobe);
 }
@@ -51,33 +62,28 @@ GlareScene::GlareScene(const GlareLobe& lobe) : lobe_(lobe) {
   const double c = std::cos(lobe.orientation_deg * kDegToRad), s = std::sin(lobe.orientation_deg * kDegToRad);
   axis_h_ = {c * h.x + s * v.x, c * h.y + s * v.y, c * h.z + s * v.z};
   axis_v_ = {-s * h.x + c * v.x, -s * h.y + c * v.y, -s * h.z + c * v.z};
-  const double r_limit = contourRadius(lobe.peak_cd_m2, lobe.background_cd_m2, lobe.limit_cd_m2);
-  sigma_h_rad_ = lobe.horizontal_deg / 2.0 * kDegToRad / r_limit;
-  sigma_v_rad_ = lobe.vertical_deg / 2.0 * kDegToRad / r_limit;
 }
 
 double GlareScene::luminanceCdM2(const calibration::Ray& ray) const {
   const double p = dot(ray, axis_h_), q = dot(ray, axis_v_);
   const double sideways = std::hypot(p, q);
-  const double rho = std::atan2(sideways, dot(ray, centre_));  // angle from the lobe centre
-  const double u = sideways > 0 ? rho * p / sideways : 0.0;
-  const double w = sideways > 0 ? rho * q / sideways : 0.0;
-  const double r2 = (u / sigma_h_rad_) * (u / sigma_h_rad_) + (w / sigma_v_rad_) * (w / sigma_v_rad_);
-  return lobe_.background_cd_m2 + (lobe_.peak_cd_m2 - lobe_.background_cd_m2) * std::exp(-0.5 * r2);
+  const double rho_deg = std::atan2(sideways, dot(ray, centre_)) / kDegToRad;  // angle from the lobe centre
+  const double u = sideways > 0 ? rho_deg * p / sideways / lobe_.sigma_h_deg : 0.0;
+  const double w = sideways > 0 ? rho_deg * q / sideways / lobe_.sigma_v_deg : 0.0;
+  return lobe_.background_cd_m2 + (lobe_.peak_cd_m2 - lobe_.background_cd_m2) * std::exp(-0.5 * (u * u + w * w));
 }
 
-double GlareScene::fullAxisDeg(double level_cd_m2, double sigma_rad) const {
-  return 2.0 * sigma_rad * contourRadius(lobe_.peak_cd_m2, lobe_.background_cd_m2, level_cd_m2) / kDegToRad;
+std::optional<EllipseAxes> GlareScene::axesAt(double level_cd_m2) const {
+  if (!(lobe_.peak_cd_m2 > level_cd_m2 && level_cd_m2 > lobe_.background_cd_m2)) return std::nullopt;
+  const double radius = contourRadius(lobe_.peak_cd_m2, lobe_.background_cd_m2, level_cd_m2);
+  return EllipseAxes{2.0 * lobe_.sigma_v_deg * radius, 2.0 * lobe_.sigma_h_deg * radius};
 }
 
-SceneTruth GlareScene::truth() const {
-  const double half = lobe_.peak_cd_m2 / 2.0;
+SceneTruth GlareScene::truth(double limit_cd_m2) const {
   return {.peak_cd_m2 = lobe_.peak_cd_m2,
-          .limit_cd_m2 = lobe_.limit_cd_m2,
-          .limit_vertical_deg = lobe_.vertical_deg,
-          .limit_horizontal_deg = lobe_.horizontal_deg,
-          .fwhm_vertical_deg = fullAxisDeg(half, sigma_v_rad_),
-          .fwhm_horizontal_deg = fullAxisDeg(half, sigma_h_rad_)};
+          .limit_cd_m2 = limit_cd_m2,
+          .limit_axes = axesAt(limit_cd_m2),
+          .fwhm_axes = axesAt(lobe_.peak_cd_m2 / 2.0)};
 }
 
 FloatImage GlareScene::render(const calibration::CameraModel& camera, int width, int height) const {

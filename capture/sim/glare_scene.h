@@ -4,11 +4,12 @@
 // the two ends of an iso-contour axis is exactly that axis's length in degrees, whatever the
 // lens distortion and wherever the lobe sits in the image.
 //   L(theta) = B + (P - B) exp(-r²/2),  r² = (u / sigma_h)² + (v / sigma_v)²
-// sigma_h and sigma_v are chosen so that the iso-contour at `limit_cd_m2` has the requested
-// full axes; the FWHM axes follow analytically.
+// lobeWithAxesAt() picks sigma_h and sigma_v so that one iso-contour (the glare limit) has
+// given full axes; the axes at any other level (the limit, half maximum) follow analytically.
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "calibration/camera_model.h"
 #include "core/error.h"
@@ -19,28 +20,36 @@ namespace glarecam::capture {
 struct GlareLobe {
   double peak_cd_m2 = 0;
   double background_cd_m2 = 0;
-  double limit_cd_m2 = 0;      // iso-contour at which the axes below hold
-  double vertical_deg = 0;     // full axis at the limit, along the image vertical when orientation is 0
-  double horizontal_deg = 0;   // full axis at the limit, along the image horizontal
+  double sigma_h_deg = 0;      // Gaussian width along the lobe's horizontal axis (angular)
+  double sigma_v_deg = 0;      // ... and along its vertical axis
   double orientation_deg = 0;  // rotation of the horizontal axis from image horizontal
   std::array<double, 2> centre_direction_deg{0, 0};  // [horizontal, vertical] from the optical axis
+};
+
+// The lobe whose iso-contour at `level_cd_m2` has the given full axes (needs peak > level >
+// background).
+Result<GlareLobe> lobeWithAxesAt(double level_cd_m2, double peak_cd_m2, double background_cd_m2, double vertical_deg,
+                                 double horizontal_deg);
+
+struct EllipseAxes {
+  double vertical_deg = 0, horizontal_deg = 0;
 };
 
 struct SceneTruth {
   double peak_cd_m2 = 0;
   double limit_cd_m2 = 0;
-  double limit_vertical_deg = 0, limit_horizontal_deg = 0;
-  double fwhm_vertical_deg = 0, fwhm_horizontal_deg = 0;
+  std::optional<EllipseAxes> limit_axes;  // none when the peak does not reach the limit
+  std::optional<EllipseAxes> fwhm_axes;   // none when the peak is not above twice the background
 };
 
 class GlareScene {
  public:
-  // Refuses lobes without a contour at the limit (needs peak > limit > background) or
-  // without a half-maximum contour (needs peak > 2 background).
   static Result<GlareScene> create(const GlareLobe& lobe);
 
   double luminanceCdM2(const calibration::Ray& ray) const;
-  SceneTruth truth() const;
+  // Full axes of the iso-contour at `level_cd_m2`, when the lobe reaches it.
+  std::optional<EllipseAxes> axesAt(double level_cd_m2) const;
+  SceneTruth truth(double limit_cd_m2) const;
   const GlareLobe& lobe() const { return lobe_; }
   calibration::Ray centreRay() const { return centre_; }
 
@@ -49,11 +58,9 @@ class GlareScene {
 
  private:
   explicit GlareScene(const GlareLobe& lobe);
-  double fullAxisDeg(double level_cd_m2, double sigma_rad) const;
 
   GlareLobe lobe_;
   calibration::Ray centre_, axis_h_, axis_v_;  // lobe centre and its tangent-plane basis
-  double sigma_h_rad_ = 0, sigma_v_rad_ = 0;
 };
 
 }  // namespace glarecam::capture

@@ -75,6 +75,11 @@ StackManifest makeManifest(const SimulationOptions& options, const Calibration& 
   return manifest;
 }
 
+nlohmann::json axesJson(const std::optional<EllipseAxes>& axes) {
+  if (!axes) return nullptr;
+  return {{"vertical", axes->vertical_deg}, {"horizontal", axes->horizontal_deg}};
+}
+
 }  // namespace
 
 Status SimulationOptions::validate() const {
@@ -100,8 +105,9 @@ nlohmann::json SimulatedStack::truthJson() const {
           {"alpha_deg", manifest.alpha_deg.value_or(0.0)},
           {"luminance_max_cd_m2", truth.peak_cd_m2},
           {"limit_cd_m2", truth.limit_cd_m2},
-          {"limit_axes_deg", {{"vertical", truth.limit_vertical_deg}, {"horizontal", truth.limit_horizontal_deg}}},
-          {"fwhm_axes_deg", {{"vertical", truth.fwhm_vertical_deg}, {"horizontal", truth.fwhm_horizontal_deg}}},
+          {"limit_axes_deg", axesJson(truth.limit_axes)},
+          {"fwhm_axes_deg", axesJson(truth.fwhm_axes)},
+          {"glare", truth.peak_cd_m2 >= truth.limit_cd_m2},
           {"centre_pixel", centre_pixel},
           {"bracket", {{"exposures_us", bracket.exposures_us}, {"peak_clipped", bracket.peak_clipped}}}};
 }
@@ -111,19 +117,22 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   ModuleGlareModel module;
   GLARECAM_ASSIGN(module, moduleModel(options.module));
   const double limit = pipeline::glareLimitCdM2(options.alpha_deg).value_or(pipeline::kConstantGlareLimitCdM2);
-  auto scene = GlareScene::create({.peak_cd_m2 = module.lmax_cd_m2(options.alpha_deg) * options.peak_scale,
-                                             .background_cd_m2 = options.background_cd_m2,
-                                             .limit_cd_m2 = limit,
-                                             .vertical_deg = module.vertical_deg(options.alpha_deg),
-                                             .horizontal_deg = module.horizontal_deg(options.alpha_deg),
-                                             .orientation_deg = options.lobe_orientation_deg,
-                                             .centre_direction_deg = options.lobe_offset_deg});
+  // The lobe's shape comes from the module's axes at the limit for its own peak; peak_scale
+  // then changes only the brightness (a dimmer module glares less and over a smaller ellipse).
+  const double model_peak = module.lmax_cd_m2(options.alpha_deg);
+  auto lobe = lobeWithAxesAt(limit, model_peak, options.background_cd_m2, module.vertical_deg(options.alpha_deg),
+                             module.horizontal_deg(options.alpha_deg));
+  if (!lobe) return std::unexpected(lobe.error());
+  lobe->peak_cd_m2 = model_peak * options.peak_scale;
+  lobe->orientation_deg = options.lobe_orientation_deg;
+  lobe->centre_direction_deg = options.lobe_offset_deg;
+  auto scene = GlareScene::create(*lobe);
   if (!scene) return std::unexpected(scene.error());
   SimulatedStack result;
   const Calibration calibration = simulatedCalibration(options);
   const calibration::CameraModel camera(calibration.intrinsics);
   result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
-  result.truth = scene->truth();
+  result.truth = scene->truth(limit);
   const auto centre = camera.project(scene->centreRay());
   result.centre_pixel = {centre.x, centre.y};
 

@@ -1,0 +1,93 @@
+#include "bench/bench_stack.h"
+
+#include <stdlib.h>  // mkdtemp (POSIX)
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <system_error>
+
+namespace glarecam::bench {
+namespace {
+
+constexpr const char* kScratchTemplate = "glarecam-bench-XXXXXX";
+
+Result<BenchStack> buildStack() {
+  BenchStack stack;
+  stack.options.width = kStackWidth;
+  stack.options.height = kStackHeight;
+  stack.options.alpha_deg = kStackAlphaDeg;
+  stack.options.seed = kStackSeed;
+  GLARECAM_ASSIGN(stack.simulated, capture::simulateStack(stack.options));
+  if (stack.simulated.frames.empty() || !stack.simulated.manifest.calibration) {
+    return fail(ErrorCode::kInternal, "bench: the simulated stack has no frames or no calibration");
+  }
+  stack.calibration = *stack.simulated.manifest.calibration;
+  stack.radiometry = calibration::frameRadiometry(stack.simulated.manifest.frames, stack.calibration);
+  return stack;
+}
+
+// Owns the scratch directory; its destructor (at normal exit) removes it.
+class ScratchDirectory {
+ public:
+  ScratchDirectory() {
+    std::string pattern = (std::filesystem::temp_directory_path() / kScratchTemplate).string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      std::perror(("glarecam-bench: cannot create " + pattern).c_str());
+      std::exit(1);
+    }
+    path_ = pattern;
+  }
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace
+
+calibration::MergeInput BenchStack::mergeInput() const {
+  calibration::MergeInput input;
+  input.frames = simulated.frames;
+  input.radiometry = radiometry;
+  input.black_level_dn = calibration.black_level_dn;
+  input.saturation_dn = calibration.saturation_dn;
+  input.flat_field = nullptr;  // the simulated lens has no vignetting
+  return input;
+}
+
+void setStackCounters(benchmark::State& state, const BenchStack& stack) {
+  state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(stack.rawBytes()));
+  state.counters["pixels"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * static_cast<double>(stack.pixelCount()), benchmark::Counter::kIsRate);
+}
+
+const Result<BenchStack>& benchStack() {
+  static const Result<BenchStack> stack = buildStack();
+  return stack;
+}
+
+const std::filesystem::path& scratchDirectory() {
+  static const ScratchDirectory directory;
+  return directory.path();
+}
+
+const Result<std::filesystem::path>& benchStackDirectory() {
+  static const Result<std::filesystem::path> directory = []() -> Result<std::filesystem::path> {
+    const Result<BenchStack>& stack = benchStack();
+    if (!stack) return std::unexpected(stack.error());
+    const std::filesystem::path path = scratchDirectory() / "stack";
+    GLARECAM_CHECK(capture::writeSimulatedStack(path, stack->simulated));
+    return path;
+  }();
+  return directory;
+}
+
+}  // namespace glarecam::bench

@@ -1,0 +1,56 @@
+// The synthetic stack every benchmark works on, built once per process and cached: a simulated
+// rig (capture/sim) at full sensor size, so the frames carry a real glare lobe, saturated and
+// under-exposed regions, and noise, i.e. the branches the merge kernel takes on real data.
+// Also a scratch directory for the benchmarks that go through files, removed at exit.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "calibration/hdr_merge.h"
+#include "calibration/radiometry.h"
+#include "capture/sim/simulated_stack.h"
+#include "core/error.h"
+
+namespace glarecam::bench {
+
+// A 5 MP machine-vision sensor (Sony IMX250 class), the rig's camera.
+inline constexpr int kStackWidth = 2448;
+inline constexpr int kStackHeight = 2048;
+// A viewing angle with a bright lobe that clips the shortest frames' neighbours.
+inline constexpr double kStackAlphaDeg = 60.0;
+inline constexpr std::uint64_t kStackSeed = 1;
+
+struct BenchStack {
+  capture::SimulationOptions options;
+  capture::SimulatedStack simulated;
+  Calibration calibration;  // the stack's inline calibration
+  std::vector<calibration::FrameRadiometry> radiometry;
+
+  // What pipeline::processStack hands to the merge for this stack.
+  calibration::MergeInput mergeInput() const;
+  std::size_t frameCount() const { return simulated.frames.size(); }
+  std::size_t pixelCount() const { return simulated.frames.front().pixelCount(); }
+  // Bytes of raw frame data the stack holds (16-bit containers).
+  std::size_t rawBytes() const { return frameCount() * pixelCount() * sizeof(std::uint16_t); }
+};
+
+// The counters every benchmark reports, so their rates compare on the same work: the raw
+// stack's bytes (SetBytesProcessed) and the merged pixels ("pixels"), per second of real time.
+void setStackCounters(benchmark::State& state, const BenchStack& stack);
+
+// The cached stack; an error when the simulation failed (reported by every benchmark).
+const Result<BenchStack>& benchStack();
+
+// The cached stack written once as a recorded stack directory (PNG frames + stack.json).
+const Result<std::filesystem::path>& benchStackDirectory();
+
+// A private directory under the system temp directory, created on first use and removed
+// (with everything in it) when the process exits normally.
+const std::filesystem::path& scratchDirectory();
+
+}  // namespace glarecam::bench

@@ -1,0 +1,124 @@
+#include "core/stack_io.h"
+
+#include <gtest/gtest.h>
+
+#include "core/image_io.h"
+#include "support/test_support.h"
+
+namespace glarecam {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+TEST(StackIo, WrittenStackReadsBackIdentically) {
+  testing::TempDir dir;
+  const auto simulated = testing::writeSmallStack(dir / "s");
+  auto stack = readStack(dir / "s");
+  ASSERT_TRUE(stack) << stack.error().message;
+  ASSERT_EQ(stack->frames.size(), simulated.frames.size());
+  for (std::size_t f = 0; f < stack->frames.size(); ++f) {
+    ASSERT_EQ(stack->bit_depths[f], 16);
+    for (std::size_t i = 0; i < stack->frames[f].pixelCount(); ++i) {
+      ASSERT_EQ(stack->frames[f].data()[i], simulated.frames[f].data()[i]);
+    }
+    EXPECT_EQ(stack->manifest.frames[f].exposure_us, simulated.manifest.frames[f].exposure_us);
+  }
+  EXPECT_EQ(stack->calibration_origin, "inline");
+  EXPECT_EQ(stack->manifest.alpha_deg, 40.0);
+  EXPECT_TRUE(fs::exists(dir / "s" / "truth.json"));
+  EXPECT_EQ(fs::status(dir / "s").permissions() & fs::perms::others_read, fs::perms::others_read);
+}
+
+TEST(StackIo, AcceptsTiffAnd8BitFrames) {
+  testing::TempDir dir;
+  const auto simulated = testing::writeSmallStack(dir / "s");
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  RawFrame eight_bit(simulated.frames[0].width(), simulated.frames[0].height(), 200);
+  ASSERT_TRUE(writeTiffGray16(dir / "s" / "frame-00.tif", simulated.frames[0]));
+  ASSERT_TRUE(writePngGray(dir / "s" / "frame-01.png", eight_bit, 8));
+  manifest["frames"][0]["file"] = "frame-00.tif";
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto stack = readStack(dir / "s");
+  ASSERT_TRUE(stack) << stack.error().message;
+  EXPECT_EQ(stack->frames[0].data()[5], simulated.frames[0].data()[5]);
+  EXPECT_EQ(stack->bit_depths[1], 8);
+  EXPECT_EQ(stack->frames[1].data()[5], 200);
+}
+
+TEST(StackIo, CalibrationFromTheCommandLineOverridesPathWhichIsRelativeToTheStack) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  json calibration = manifest["calibration"];
+  calibration["luminance_factor"] = 111.0;
+  fs::create_directories(dir / "calib");
+  testing::writeText(dir / "calib" / "rig.json", calibration.dump());
+  manifest["calibration"] = "../calib/rig.json";
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+
+  StackReadOptions manifest_only;
+  manifest_only.decode_frames = false;
+  auto from_path = readStack(dir / "s", manifest_only);
+  ASSERT_TRUE(from_path) << from_path.error().message;
+  EXPECT_EQ(from_path->calibration.luminance_factor, 111.0);
+  EXPECT_EQ(from_path->calibration_origin, "../calib/rig.json");
+
+  calibration["luminance_factor"] = 222.0;
+  testing::writeText(dir / "override.json", calibration.dump());
+  StackReadOptions options;
+  options.calibration_file = dir / "override.json";
+  options.decode_frames = false;
+  auto overridden = readStack(dir / "s", options);
+  ASSERT_TRUE(overridden) << overridden.error().message;
+  EXPECT_EQ(overridden->calibration.luminance_factor, 222.0);
+}
+
+TEST(StackIo, FlatFieldIsLoadedRelativeToTheCalibration) {
+  testing::TempDir dir;
+  const auto simulated = testing::writeSmallStack(dir / "s");
+  FloatImage flat(simulated.frames[0].width(), simulated.frames[0].height(), 0.8f);
+  ASSERT_TRUE(writeExr(dir / "s" / "flat.exr", flat));
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  manifest["calibration"]["flat_field"] = "flat.exr";
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto stack = readStack(dir / "s");
+  ASSERT_TRUE(stack) << stack.error().message;
+  ASSERT_TRUE(stack->flat_field);
+  EXPECT_FLOAT_EQ(stack->flat_field->at(3, 3), 0.8f);
+}
+
+TEST(StackIo, FNumberNeedsAReferenceFNumber) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  manifest["calibration"].erase("reference_f_number");
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto stack = readStack(dir / "s");
+  ASSERT_FALSE(stack);
+  EXPECT_NE(stack.error().message.find("no reference_f_number"), std::string::npos) << stack.error().message;
+}
+
+TEST(StackIo, RewritingPreservesUnknownFieldsAndReplacesAtomically) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  json document = json::parse(testing::readText(dir / "s" / "stack.json"));
+  document["operator_note"] = "cloud at 10:14";
+  testing::writeText(dir / "s" / "stack.json", document.dump());
+  auto stack = readStack(dir / "s");
+  ASSERT_TRUE(stack) << stack.error().message;
+  stack->manifest.alpha_deg = 12.5;
+  StackWriteRequest request;
+  request.manifest = stack->manifest;
+  request.frames = stack->frames;
+  ASSERT_TRUE(writeStack(dir / "s", request));
+  auto reread = readStack(dir / "s");
+  ASSERT_TRUE(reread) << reread.error().message;
+  EXPECT_EQ(reread->manifest.alpha_deg, 12.5);
+  EXPECT_EQ(reread->manifest.source["operator_note"], "cloud at 10:14");
+  for (const auto& entry : fs::directory_iterator(dir.path())) {
+    EXPECT_FALSE(entry.path().filename().string().starts_with(".tmp-")) << entry.path();
+  }
+}
+
+}  // namespace
+}  // namespace glarecam

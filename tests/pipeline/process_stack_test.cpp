@@ -1,0 +1,100 @@
+#include "pipeline/process_stack.h"
+
+#include <gtest/gtest.h>
+
+#include "core/image_io.h"
+#include "pipeline/limit_curve.h"
+#include "support/test_support.h"
+
+namespace glarecam::pipeline {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+ProcessOptions quiet() {
+  ProcessOptions options;
+  options.show_progress = false;
+  return options;
+}
+
+TEST(ProcessStack, WritesEveryOutputAndAResultMatchingTheTruth) {
+  testing::TempDir dir;
+  const auto simulated = testing::writeSmallStack(dir / "s", testing::smallScene(65.0));
+  auto summary = processStack(dir / "s", quiet());
+  ASSERT_TRUE(summary) << summary.error().message;
+  const fs::path out = dir / "s" / "result";
+  EXPECT_EQ(summary->output_directory, out);
+  for (const char* name : {"luminance.exr", "quality.exr", "luminance.png", "result.json"}) {
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
+  }
+  const json result = json::parse(testing::readText(out / "result.json"));
+  EXPECT_EQ(result, summary->result);
+  EXPECT_EQ(result["schema"], "glarecam.result/1");
+  EXPECT_EQ(result["stack"], *simulated.manifest.id);
+  EXPECT_EQ(result["alpha_deg"], 65.0);
+  EXPECT_NEAR(result["limit"]["limit_cd_m2"].get<double>(), *glareLimitCdM2(65.0), 1e-6);
+  // The pixel maximum of a noisy image sits slightly above the true peak (max of noise);
+  // with ~1 % noise per pixel at the peak, 3 % bounds it comfortably.
+  EXPECT_NEAR(result["luminance"]["max_cd_m2"].get<double>() / simulated.truth.peak_cd_m2, 1.0, 0.03);
+  EXPECT_NEAR(result["luminance"]["max_pixel"][0].get<double>(), simulated.centre_pixel[0], 3.0);
+  EXPECT_NEAR(result["luminance"]["max_pixel"][1].get<double>(), simulated.centre_pixel[1], 3.0);
+  EXPECT_EQ(result["luminance"]["valid_fraction"], 1.0);
+  EXPECT_EQ(result["luminance"]["saturated_pixels"], 0);
+  EXPECT_EQ(result["glare"], true);
+
+  auto luminance = readExr(out / "luminance.exr");
+  ASSERT_TRUE(luminance) << luminance.error().message;
+  EXPECT_TRUE(luminance->sameSize(simulated.frames[0].width(), simulated.frames[0].height()));
+}
+
+TEST(ProcessStack, NoAlphaMeansNoLimitAndNoVerdict) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  manifest.erase("alpha_deg");
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  ProcessOptions options = quiet();
+  options.output_directory = dir / "out";
+  auto summary = processStack(dir / "s", options);
+  ASSERT_TRUE(summary) << summary.error().message;
+  EXPECT_TRUE(summary->result["limit"]["limit_cd_m2"].is_null());
+  EXPECT_TRUE(summary->result["glare"].is_null());
+  EXPECT_TRUE(fs::exists(dir / "out" / "result.json"));
+}
+
+TEST(ProcessStack, BelowTheLimitDoesNotGlare) {
+  testing::TempDir dir;
+  capture::SimulationOptions options = testing::smallScene(30.0);
+  options.peak_scale = 0.03;  // ~16 000 cd/m², below the 30 000 limit
+  const auto simulated = testing::writeSmallStack(dir / "s", options);
+  ASSERT_FALSE(simulated.truth.limit_axes.has_value());
+  auto summary = processStack(dir / "s", quiet());
+  ASSERT_TRUE(summary) << summary.error().message;
+  EXPECT_EQ(summary->result["glare"], false);
+  EXPECT_LT(summary->result["luminance"]["max_cd_m2"].get<double>(), 30'000.0);
+}
+
+TEST(ProcessStack, SaturatedPeakIsReportedAsALowerBound) {
+  testing::TempDir dir;
+  const auto simulated = testing::writeSmallStack(dir / "s");
+  // Drop the shortest frames: what remains saturates at the peak.
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  json frames = manifest["frames"];
+  manifest["frames"] = json::array({frames[4], frames[5]});
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto summary = processStack(dir / "s", quiet());
+  ASSERT_TRUE(summary) << summary.error().message;
+  EXPECT_GT(summary->result["luminance"]["saturated_pixels"].get<int>(), 0);
+  EXPECT_TRUE(summary->result["luminance"]["max_is_lower_bound"].get<bool>());
+  EXPECT_LT(summary->result["luminance"]["max_cd_m2"].get<double>(), simulated.truth.peak_cd_m2);
+}
+
+TEST(ProcessStack, BadStackIsBadInput) {
+  testing::TempDir dir;
+  auto summary = processStack(dir / "nothing-here", quiet());
+  ASSERT_FALSE(summary);
+  EXPECT_EQ(summary.error().code, ErrorCode::kBadInput);
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline

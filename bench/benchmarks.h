@@ -1,13 +1,20 @@
 // The benchmarks of glarecam-bench, registered explicitly from main() so that they run in a
-// fixed order (static registration across files would follow link order) and so that main()
-// can register them before running them.
+// fixed order (static registration across files would follow link order). The names are what
+// the reports print and what main() computes the ratios from.
 #pragma once
+
+#include <string>
+#include <vector>
 
 namespace glarecam::bench {
 
-// merge/glarecam, merge/memory_floor, merge/opencv_debevec.
-void registerMergeBenchmarks();
-// process/end_to_end.
-void registerProcessBenchmarks();
+inline constexpr const char* kMergeGlarecam = "merge/glarecam";
+inline constexpr const char* kMergeMemoryFloor = "merge/memory_floor";
+inline constexpr const char* kMergeOpenCvDebevec = "merge/opencv_debevec";
+inline constexpr const char* kProcessEndToEnd = "process/end_to_end";
+
+// Each returns the names it registered.
+std::vector<std::string> registerMergeBenchmarks();  // merge/*
+std::vector<std::string> registerProcessBenchmarks();  // process/end_to_end
 
 }  // namespace glarecam::bench

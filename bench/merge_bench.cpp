@@ -130,13 +130,14 @@ void mergeOpenCvDebevec(benchmark::State& state) {
 
 }  // namespace
 
-void registerMergeBenchmarks() {
-  benchmark::RegisterBenchmark("merge/glarecam", mergeGlarecam)->UseRealTime()->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("merge/memory_floor", mergeMemoryFloor)->UseRealTime()->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("merge/opencv_debevec", mergeOpenCvDebevec)
+std::vector<std::string> registerMergeBenchmarks() {
+  benchmark::RegisterBenchmark(kMergeGlarecam, mergeGlarecam)->UseRealTime()->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(kMergeMemoryFloor, mergeMemoryFloor)->UseRealTime()->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(kMergeOpenCvDebevec, mergeOpenCvDebevec)
       ->UseRealTime()
       ->Unit(benchmark::kMillisecond)
       ->Iterations(kDebevecIterations);
+  return {kMergeGlarecam, kMergeMemoryFloor, kMergeOpenCvDebevec};
 }
 
 }  // namespace glarecam::bench

@@ -5,6 +5,8 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "bench/bench_stack.h"
 #include "bench/benchmarks.h"
@@ -39,11 +41,12 @@ void processEndToEnd(benchmark::State& state) {
 
 }  // namespace
 
-void registerProcessBenchmarks() {
-  benchmark::RegisterBenchmark("process/end_to_end", processEndToEnd)
+std::vector<std::string> registerProcessBenchmarks() {
+  benchmark::RegisterBenchmark(kProcessEndToEnd, processEndToEnd)
       ->UseRealTime()
       ->Unit(benchmark::kMillisecond)
       ->Iterations(kEndToEndIterations);
+  return {kProcessEndToEnd};
 }
 
 }  // namespace glarecam::bench

@@ -16,28 +16,16 @@ LuminanceStats luminanceStats(const calibration::MergedImage& merged) {
   using calibration::PixelBound;
   LuminanceStats stats;
   const std::size_t count = merged.luminance_cd_m2.pixelCount();
-  const float* luminance = merged.luminance_cd_m2.data();
   const std::uint8_t* bound = merged.bound.data();
-  std::size_t max_index = 0;
-  float max_value = -1.0f;
   std::size_t measured = 0;
   for (std::size_t i = 0; i < count; ++i) {
     const auto flag = static_cast<PixelBound>(bound[i]);
     measured += flag == PixelBound::kMeasured;
     stats.saturated_pixels += flag == PixelBound::kLowerBound;
     stats.dark_pixels += flag == PixelBound::kUpperBound;
-    // Upper bounds are not measurements of a bright pixel; they never hold the maximum.
-    if (flag != PixelBound::kUpperBound && luminance[i] > max_value) {
-      max_value = luminance[i];
-      max_index = i;
-    }
   }
-  const int width = merged.luminance_cd_m2.width();
   if (count == 0) return stats;
-  stats.max_cd_m2 = std::max(0.0f, max_value);
-  stats.max_x = static_cast<int>(max_index % static_cast<std::size_t>(width));
-  stats.max_y = static_cast<int>(max_index / static_cast<std::size_t>(width));
-  stats.max_is_lower_bound = static_cast<PixelBound>(bound[max_index]) == PixelBound::kLowerBound;
+  stats.max = findLuminancePeak(merged);
   stats.valid_fraction = static_cast<double>(measured) / static_cast<double>(count);
 
   std::vector<float> sample;

@@ -5,13 +5,12 @@
 #include <cstddef>
 
 #include "calibration/hdr_merge.h"
+#include "pipeline/luminance_peak.h"
 
 namespace glarecam::pipeline {
 
 struct LuminanceStats {
-  double max_cd_m2 = 0;
-  int max_x = 0, max_y = 0;
-  bool max_is_lower_bound = false;  // the maximum pixel was saturated in every frame
+  LuminancePeak max;                // robust maximum (luminance_peak.h)
   double valid_fraction = 0;        // pixels with at least one valid frame
   std::size_t saturated_pixels = 0;  // saturated in every frame (lower bounds)
   std::size_t dark_pixels = 0;       // under-exposed in every frame (upper bounds)

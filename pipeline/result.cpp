@@ -1,5 +1,7 @@
 #include "pipeline/result.h"
 
+#include <cmath>
+
 #include "core/version.h"
 
 namespace glarecam::pipeline {
@@ -14,16 +16,18 @@ nlohmann::json makeResult(const ResultInputs& in) {
   result["image"] = {{"width", in.width}, {"height", in.height}};
   result["calibration"] = {{"origin", in.calibration_origin},
                            {"noise_model", in.noise_model_assumed ? "assumed" : "calibrated"}};
-  result["luminance"] = {{"max_cd_m2", s.max_cd_m2},
-                         {"max_pixel", {s.max_x, s.max_y}},
-                         {"max_is_lower_bound", s.max_is_lower_bound},
+  result["luminance"] = {{"max_cd_m2", s.max.value_cd_m2},
+                         {"max_pixel", {std::lround(s.max.x_px), std::lround(s.max.y_px)}},
+                         {"max_position_px", {s.max.x_px, s.max.y_px}},
+                         {"max_method", toString(s.max.method)},
+                         {"max_is_lower_bound", s.max.method == PeakMethod::kLowerBound},
                          {"valid_fraction", s.valid_fraction},
                          {"saturated_pixels", s.saturated_pixels},
                          {"dark_pixels", s.dark_pixels},
                          {"median_relative_uncertainty", s.median_relative_uncertainty}};
   result["limit"] = {{"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
                      {"mode", "alpha_curve"}};
-  result["glare"] = in.limit_cd_m2 ? json(s.max_cd_m2 >= *in.limit_cd_m2) : json(nullptr);
+  result["glare"] = in.limit_cd_m2 ? json(s.max.value_cd_m2 >= *in.limit_cd_m2) : json(nullptr);
   result["outputs"] = {{"luminance_exr", "luminance.exr"}, {"quality_exr", "quality.exr"}, {"luminance_png", "luminance.png"}};
   result["generator"] = {{"name", "glarecam"}, {"version", kVersion}};
   return result;

@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# End-to-end tests of the glarecam executable: exit statuses (0 ok, 2 bad input or usage,
+# 1 other failure), one-line errors naming the file, and the outputs of simulate + process.
+# Usage: glarecam_cli_test.sh GLARECAM BAD_STACK_CORPUS_DIR
+set -uo pipefail
+GLARECAM=$1
+CORPUS=$2
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+passed=0
+failed=0
+
+check() {  # check NAME EXPECTED_STATUS COMMAND... ; leaves stdout/stderr in $WORK/out, $WORK/err
+  local name=$1 expected=$2
+  shift 2
+  "$@" >"$WORK/out" 2>"$WORK/err"
+  local status=$?
+  if [[ $status -eq $expected ]]; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    echo "FAIL $name: exit $status, expected $expected"
+    sed 's/^/  stderr: /' "$WORK/err" | head -5
+  fi
+}
+
+expect() {  # expect NAME CONDITION-COMMAND...
+  local name=$1
+  shift
+  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL $name"; fi
+}
+
+one_line_naming() {  # stderr is exactly one line and contains $1
+  [[ $(wc -l <"$WORK/err") -eq 1 ]] && grep -qF -- "$1" "$WORK/err"
+}
+
+# Usage errors.
+check "help" 0 "$GLARECAM" --help
+expect "help lists commands" grep -q "simulate" "$WORK/out"
+check "process help" 0 "$GLARECAM" process --help
+check "no command" 2 "$GLARECAM"
+check "unknown command" 2 "$GLARECAM" frobnicate
+check "unknown option" 2 "$GLARECAM" process --frobnicate x
+check "simulate without --out" 2 "$GLARECAM" simulate
+check "alpha out of range" 2 "$GLARECAM" simulate --out "$WORK/x" --alpha 95
+expect "alpha error is one line" one_line_naming "--alpha"
+check "bad size" 2 "$GLARECAM" simulate --out "$WORK/x" --size 100by20
+check "unknown module" 2 "$GLARECAM" simulate --out "$WORK/x" --module bifacial
+expect "unknown module lists the known ones" one_line_naming "known: standard"
+expect "nothing written on bad input" test ! -e "$WORK/x"
+
+# The happy path.
+check "simulate" 0 "$GLARECAM" simulate --out "$WORK/s" --alpha 70 --size 200x160 --fov 16 --seed 3
+expect "simulate prints the stack path" grep -qF "$WORK/s" "$WORK/out"
+expect "stack has manifest and truth" test -f "$WORK/s/stack.json" -a -f "$WORK/s/truth.json"
+check "process" 0 "$GLARECAM" process --no-progress "$WORK/s"
+for f in luminance.exr quality.exr luminance.png result.json; do
+  expect "process writes $f" test -s "$WORK/s/result/$f"
+done
+check "process --json" 0 "$GLARECAM" process --no-progress --json --out "$WORK/r2" "$WORK/s"
+expect "--json prints the result" grep -q '"schema": "glarecam.result/1"' "$WORK/out"
+expect "--json result has glare" grep -q '"glare": true' "$WORK/out"
+expect "--out is honoured" test -s "$WORK/r2/result.json"
+
+# Calibration override from the command line.
+check "process with missing --calibration" 2 "$GLARECAM" process "$WORK/s" --calibration "$WORK/none.json"
+expect "missing calibration named" one_line_naming "none.json"
+
+# Failures that are not the user's input exit 1.
+check "unwritable output" 1 "$GLARECAM" process --no-progress --out /proc/glarecam-cannot-write "$WORK/s"
+expect "unwritable output is one line" one_line_naming "/proc/glarecam-cannot-write"
+
+# Every bad stack of the corpus: exit 2, one line naming the stack's file and the problem.
+check "missing stack" 2 "$GLARECAM" process "$WORK/no-such-stack"
+for stack in "$CORPUS"/*/; do
+  name=$(basename "$stack")
+  check "bad stack $name" 2 "$GLARECAM" process --no-progress --out "$WORK/bad-out" "$stack"
+  expect "bad stack $name: one line with the expected text" one_line_naming "$(head -1 "$stack/expect.txt")"
+  expect "bad stack $name: names the stack" grep -qF "$name" "$WORK/err"
+done
+expect "no output for bad stacks" test ! -e "$WORK/bad-out/result.json"
+
+echo "$passed passed, $failed failed"
+[[ $failed -eq 0 ]]

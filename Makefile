@@ -24,7 +24,8 @@ test-asan: deps
 	cmake -S . -B $(ASAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DGLARECAM_SANITIZE=ON \
 	  -DGLARECAM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD_DIR) -j $(JOBS) --target sanitized_tests
-	ctest --test-dir $(ASAN_BUILD_DIR) --output-on-failure -j $(JOBS) -L sanitized
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ctest --test-dir $(ASAN_BUILD_DIR) \
+	  --output-on-failure -j $(JOBS) -L sanitized
 
 demo: build
 	bash scripts/demo.sh $(BUILD_DIR)/bin $(DEMO_DIR)

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <system_error>
 
@@ -59,7 +60,7 @@ calibration::MergeInput BenchStack::mergeInput() const {
   input.radiometry = radiometry;
   input.black_level_dn = calibration.black_level_dn;
   input.saturation_dn = calibration.saturation_dn;
-  input.flat_field = nullptr;  // the simulated lens has no vignetting
+  input.flat_field = nullptr;  // simulated stacks carry no flat field
   return input;
 }
 

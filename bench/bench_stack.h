@@ -21,7 +21,8 @@ namespace glarecam::bench {
 // A 5 MP machine-vision sensor (Sony IMX250 class), the rig's camera.
 inline constexpr int kStackWidth = 2448;
 inline constexpr int kStackHeight = 2048;
-// A viewing angle with a bright lobe that clips the shortest frames' neighbours.
+// A viewing angle whose glare lobe (about 2e6 cd/m² peak) spans the whole bracket: the shortest
+// of the 6 frames exposes the peak and is mostly dark, each longer one clips more of the lobe.
 inline constexpr double kStackAlphaDeg = 60.0;
 inline constexpr std::uint64_t kStackSeed = 1;
 

@@ -1,17 +1,22 @@
 // glarecam-bench: runs the benchmarks (benchmarks.h) with Google Benchmark's usual flags, then
 // prints the two ratios the merge kernel is held to, from the real times of this same run:
 //   merge/opencv_debevec ÷ merge/glarecam   (target >= 40x: far faster than the off-the-shelf merge)
-//   merge/glarecam ÷ merge/memory_floor     (target <= 2x: close to what the memory bandwidth allows)
+//   merge/glarecam ÷ merge/memory_floor     (target <= 2x: close to what memory bandwidth allows)
 // A ratio is printed only when both of its benchmarks ran (--benchmark_filter may skip some).
+// The console report is always used (it records the times); for machine-readable results add
+// --benchmark_out=FILE --benchmark_out_format=json.
 #include <benchmark/benchmark.h>
 
 #include <unistd.h>  // isatty
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdio>
-#include <ostream>
 #include <map>
 #include <optional>
+#include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/benchmarks.h"
@@ -21,14 +26,23 @@ namespace {
 
 constexpr double kDebevecTargetRatio = 40.0;
 constexpr double kMemoryFloorTargetRatio = 2.0;
+// Room after a name for an aggregate's suffix ("_median", "_stddev") with --benchmark_repetitions.
+constexpr std::size_t kAggregateSuffixWidth = 7;
 
 // The console reporter, plus:
-//  - it records each benchmark's mean real time per iteration (seconds, over its repetitions);
 //  - it prints the names as registered: Google Benchmark appends "/iterations:N" and
-//    "/real_time" to the names of benchmarks set up with Iterations() and UseRealTime().
+//    "/real_time" to the names of benchmarks set up with Iterations() and UseRealTime();
+//  - it records each benchmark's mean real time per iteration (seconds, over repetitions).
 class RecordingReporter : public benchmark::ConsoleReporter {
  public:
-  using ConsoleReporter::ConsoleReporter;
+  RecordingReporter(OutputOptions options, std::size_t longest_name)
+      : ConsoleReporter(options), name_width_(longest_name + kAggregateSuffixWidth) {}
+
+  bool ReportContext(const Context& context) override {
+    const bool ok = ConsoleReporter::ReportContext(context);
+    name_field_width_ = std::min(name_field_width_, name_width_);  // sized for the suffixed names
+    return ok;
+  }
 
   void ReportRuns(const std::vector<Run>& runs) override {
     std::vector<Run> renamed = runs;
@@ -55,6 +69,7 @@ class RecordingReporter : public benchmark::ConsoleReporter {
     double total_s = 0;
     int runs = 0;
   };
+  std::size_t name_width_;
   std::map<std::string, Timing> timings_;
 };
 
@@ -67,8 +82,8 @@ void printRatio(const RecordingReporter& reporter, const std::string& numerator,
   const std::optional<double> bottom = reporter.realTimeSeconds(denominator);
   if (!top || !bottom || !(*bottom > 0)) return;
   char line[256];
-  std::snprintf(line, sizeof line, "ratio %s \u00f7 %s = %.*fx (target %s %gx)\n", numerator.c_str(), denominator.c_str(),
-                decimals, *top / *bottom, target == Target::kAtLeast ? ">=" : "<=", target_ratio);
+  std::snprintf(line, sizeof line, "ratio %s \u00f7 %s = %.*fx (target %s %gx)\n", numerator.c_str(),
+                denominator.c_str(), decimals, *top / *bottom, target == Target::kAtLeast ? ">=" : "<=", target_ratio);
   reporter.GetOutputStream() << line << std::flush;
 }
 
@@ -79,16 +94,19 @@ int main(int argc, char** argv) {
   using namespace glarecam::bench;
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  registerMergeBenchmarks();
-  registerProcessBenchmarks();
+  std::vector<std::string> names = registerMergeBenchmarks();
+  for (std::string& name : registerProcessBenchmarks()) names.push_back(std::move(name));
+  std::size_t longest_name = 0;
+  for (const std::string& name : names) longest_name = std::max(longest_name, name.size());
 
-  // A display reporter given to RunSpecifiedBenchmarks replaces the one --benchmark_format and
-  // --benchmark_color would choose: tabular counters, colour on a terminal.
+  // Tabular counters, colour on a terminal (this reporter replaces the one --benchmark_format
+  // and --benchmark_color would choose).
   const bool colour = ::isatty(STDOUT_FILENO) != 0;
-  RecordingReporter reporter(colour ? benchmark::ConsoleReporter::OO_ColorTabular : benchmark::ConsoleReporter::OO_Tabular);
+  RecordingReporter reporter(colour ? benchmark::ConsoleReporter::OO_ColorTabular : benchmark::ConsoleReporter::OO_Tabular,
+                             longest_name);
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  printRatio(reporter, "merge/opencv_debevec", "merge/glarecam", 1, Target::kAtLeast, kDebevecTargetRatio);
-  printRatio(reporter, "merge/glarecam", "merge/memory_floor", 2, Target::kAtMost, kMemoryFloorTargetRatio);
+  printRatio(reporter, kMergeOpenCvDebevec, kMergeGlarecam, 1, Target::kAtLeast, kDebevecTargetRatio);
+  printRatio(reporter, kMergeGlarecam, kMergeMemoryFloor, 2, Target::kAtMost, kMemoryFloorTargetRatio);
   benchmark::Shutdown();
   return 0;
 }

@@ -40,8 +40,10 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
 // Row buffers of one worker: allocated once per band, reused for every row.
 struct RowAccumulator {
   explicit RowAccumulator(int width)
-      : best(width), weight_sum(width), weighted_sum(width), valid_count(width), lower_bound(width) {}
+      : best(width), weight_sum(width), weighted_sum(width), valid_count(width), lower_bound(width),
+        inverse_flat(width, 1.0f) {}
   std::vector<float> best, weight_sum, weighted_sum, valid_count, lower_bound;
+  mutable std::vector<float> inverse_flat;  // 1 / flat field of the row (all ones without one)
 };
 
 class MergeKernel {
@@ -74,66 +76,90 @@ class MergeKernel {
   // Pass 1: the reference luminance of each pixel (longest valid frame) and the lower bound.
   void estimateReference(int y, RowAccumulator& row) const {
     const std::size_t width = row.best.size();
-    float* __restrict best = row.best.data();
-    float* __restrict lower = row.lower_bound.data();
-    std::fill_n(best, width, 0.0f);
-    std::fill_n(lower, width, 0.0f);
+    std::fill_n(row.best.data(), width, 0.0f);
+    std::fill_n(row.lower_bound.data(), width, 0.0f);
     for (const FrameConstants& f : frames_) {
-      const std::uint16_t* __restrict dn = f.frame->row(y).data();
-      for (std::size_t x = 0; x < width; ++x) {
-        const float value = dn[x];
-        const float signal = value - black_;
-        const bool saturated = value >= saturation_;
-        const bool valid = !saturated & (signal >= f.min_signal_dn);
-        best[x] = valid ? signal * f.scale : best[x];
-        lower[x] = std::max(lower[x], saturated ? f.saturated_cd_m2 : 0.0f);
-      }
+      referenceRow(f.frame->row(y).data(), row.best.data(), row.lower_bound.data(), width, black_, saturation_,
+                   f.min_signal_dn, f.scale, f.saturated_cd_m2);
+    }
+  }
+
+  // The loops below take every constant by value so that the compiler keeps them in registers
+  // and vectorises (with -fno-trapping-math the selects become blends).
+  static void referenceRow(const std::uint16_t* __restrict dn, float* __restrict best, float* __restrict lower,
+                           std::size_t width, float black, float saturation, float min_signal, float scale,
+                           float saturated_cd_m2) {
+    for (std::size_t x = 0; x < width; ++x) {
+      const float value = dn[x];
+      const float signal = value - black;
+      const bool saturated = value >= saturation;
+      const bool valid = (value < saturation) & (signal >= min_signal);
+      best[x] = valid ? signal * scale : best[x];
+      lower[x] = std::max(lower[x], saturated ? saturated_cd_m2 : 0.0f);
     }
   }
 
   // Pass 2: inverse-variance weighted sum of the valid estimates.
   void accumulate(int y, RowAccumulator& row) const {
     const std::size_t width = row.best.size();
-    const float* __restrict best = row.best.data();
-    float* __restrict weight_sum = row.weight_sum.data();
-    float* __restrict weighted_sum = row.weighted_sum.data();
-    float* __restrict count = row.valid_count.data();
-    std::fill_n(weight_sum, width, 0.0f);
-    std::fill_n(weighted_sum, width, 0.0f);
-    std::fill_n(count, width, 0.0f);
+    std::fill_n(row.weight_sum.data(), width, 0.0f);
+    std::fill_n(row.weighted_sum.data(), width, 0.0f);
+    std::fill_n(row.valid_count.data(), width, 0.0f);
     for (const FrameConstants& f : frames_) {
-      const std::uint16_t* __restrict dn = f.frame->row(y).data();
-      for (std::size_t x = 0; x < width; ++x) {
-        const float value = dn[x];
-        const float signal = value - black_;
-        const bool valid = (value < saturation_) & (signal >= f.min_signal_dn);
-        const float weight = valid ? 1.0f / (f.shot_coefficient * best[x] + f.read_coefficient) : 0.0f;
-        weight_sum[x] += weight;
-        weighted_sum[x] += weight * (signal * f.scale);
-        count[x] += valid ? 1.0f : 0.0f;
-      }
+      accumulateRow(f.frame->row(y).data(), row.best.data(), row.weight_sum.data(), row.weighted_sum.data(),
+                    row.valid_count.data(), width, black_, saturation_, f);
+    }
+  }
+
+  static void accumulateRow(const std::uint16_t* __restrict dn, const float* __restrict best,
+                            float* __restrict weight_sum, float* __restrict weighted_sum, float* __restrict count,
+                            std::size_t width, float black, float saturation, FrameConstants f) {
+    const float min_signal = f.min_signal_dn, scale = f.scale, shot = f.shot_coefficient;
+    // The smallest normal float keeps 0/0 out of pixels with no reference and no read noise.
+    const float read = f.read_coefficient + std::numeric_limits<float>::min();
+    for (std::size_t x = 0; x < width; ++x) {
+      const float value = dn[x];
+      const float signal = value - black;
+      const float valid = ((value < saturation) & (signal >= min_signal)) ? 1.0f : 0.0f;
+      const float weight = valid / (shot * best[x] + read);  // inverse variance, or 0
+      weight_sum[x] += weight;
+      weighted_sum[x] += weight * (signal * scale);
+      count[x] += valid;
     }
   }
 
   // Pass 3: luminance, uncertainty and flags of the row, flat field applied once.
   void finish(int y, const RowAccumulator& row) const {
-    const std::size_t width = row.best.size();
-    float* __restrict luminance = output_.luminance_cd_m2.row(y).data();
-    float* __restrict relative = output_.relative_uncertainty.row(y).data();
-    std::uint8_t* __restrict valid = output_.valid_frames.row(y).data();
-    std::uint8_t* __restrict bound = output_.bound.row(y).data();
-    const float* __restrict flat = flat_ ? flat_->row(y).data() : nullptr;
+    const float* inverse_flat = row.inverse_flat.data();
+    if (flat_) {
+      auto flat = flat_->row(y);
+      for (std::size_t x = 0; x < flat.size(); ++x) row.inverse_flat[x] = 1.0f / flat[x];
+    }
+    finishRow(row, inverse_flat, upper_bound_, output_.luminance_cd_m2.row(y).data(),
+              output_.relative_uncertainty.row(y).data(), output_.valid_frames.row(y).data(),
+              output_.bound.row(y).data());
+  }
+
+  static void finishRow(const RowAccumulator& row, const float* __restrict inverse_flat, float upper_bound,
+                        float* __restrict luminance, float* __restrict relative, std::uint8_t* __restrict valid,
+                        std::uint8_t* __restrict bound) {
+    const float* __restrict weight_sum = row.weight_sum.data();
+    const float* __restrict weighted_sum = row.weighted_sum.data();
+    const float* __restrict count = row.valid_count.data();
+    const float* __restrict lower = row.lower_bound.data();
     const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::size_t width = row.best.size();
     for (std::size_t x = 0; x < width; ++x) {
-      const bool measured = row.valid_count[x] > 0.0f;
-      const bool saturated = row.lower_bound[x] > 0.0f;
-      const float mean = row.weighted_sum[x] / row.weight_sum[x];
-      const float unflat = measured ? mean : (saturated ? row.lower_bound[x] : upper_bound_);
-      luminance[x] = flat ? unflat / flat[x] : unflat;
-      relative[x] = measured ? 1.0f / (std::sqrt(row.weight_sum[x]) * mean) : nan;
-      valid[x] = static_cast<std::uint8_t>(row.valid_count[x]);
-      bound[x] = static_cast<std::uint8_t>(measured ? PixelBound::kMeasured
-                                                    : (saturated ? PixelBound::kLowerBound : PixelBound::kUpperBound));
+      const bool measured = count[x] > 0.0f;
+      const bool saturated = lower[x] > 0.0f;
+      const float mean = weighted_sum[x] / weight_sum[x];
+      const float unmeasured = saturated ? lower[x] : upper_bound;
+      luminance[x] = (measured ? mean : unmeasured) * inverse_flat[x];
+      relative[x] = measured ? 1.0f / (std::sqrt(weight_sum[x]) * mean) : nan;
+      valid[x] = static_cast<std::uint8_t>(count[x]);
+      // PixelBound: 0 measured, 1 lower bound (saturated), 2 upper bound (dark).
+      const std::uint8_t unmeasured_flag = saturated ? 1 : 2;
+      bound[x] = measured ? 0 : unmeasured_flag;
     }
   }
 

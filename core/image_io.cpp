@@ -319,15 +319,14 @@ Status writeExr(const fs::path& path, std::span<const ExrChannel> channels) {
       auto* base = const_cast<char*>(reinterpret_cast<const char*>(channel.image->data()));
       buffer.insert(channel.name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * first.width()));
     }
-    std::ostringstream bytes;
+    Imf::StdOSStream stream;
     {
-      Imf::StdOSStream stream;
       Imf::OutputFile file(stream, header);
       file.setFrameBuffer(buffer);
       file.writePixels(first.height());
-      bytes.str(stream.str());
-    }
-    return writeFileAtomic(path, std::string_view(bytes.view()));
+    }  // the OutputFile destructor writes the line-offset table: copy the bytes only after it
+    const std::string bytes = stream.str();
+    return writeFileAtomic(path, std::string_view(bytes));
   } catch (const std::exception& e) {
     return fail(ErrorCode::kInternal, describe(path) + ": cannot encode EXR: " + e.what());
   }

@@ -17,16 +17,16 @@ namespace {
 
 // Resolves `relative` under `base` and refuses symlinks that lead outside it.
 Result<fs::path> resolveInside(const fs::path& base, const std::string& relative, const std::string& where,
-                               const std::string& what) {
+                               const std::string& what, const std::string& base_name = "the stack directory") {
   if (!isContainedRelativePath(relative)) {
-    return badInput(where + ": " + what + " \"" + relative + "\" escapes the stack directory");
+    return badInput(where + ": " + what + " \"" + relative + "\" escapes " + base_name);
   }
   std::error_code ec;
   fs::path resolved = fs::weakly_canonical(base / relative, ec);
   fs::path root = fs::weakly_canonical(base, ec);
   if (ec) return badInput(where + ": cannot resolve " + what + " \"" + relative + "\": " + ec.message());
   auto [root_end, ignored] = std::mismatch(root.begin(), root.end(), resolved.begin(), resolved.end());
-  if (root_end != root.end()) return badInput(where + ": " + what + " \"" + relative + "\" links outside the stack directory");
+  if (root_end != root.end()) return badInput(where + ": " + what + " \"" + relative + "\" links outside " + base_name);
   return base / relative;
 }
 
@@ -90,7 +90,8 @@ Status decodeFrames(Stack& stack, const std::vector<fs::path>& paths, unsigned t
 Status loadFlatField(Stack& stack, const fs::path& base, const std::string& where) {
   if (!stack.calibration.flat_field) return {};
   fs::path path;
-  GLARECAM_ASSIGN(path, resolveInside(base, *stack.calibration.flat_field, where, "flat_field"));
+  const std::string base_name = stack.calibration_origin == "inline" ? "the stack directory" : "the calibration's directory";
+  GLARECAM_ASSIGN(path, resolveInside(base, *stack.calibration.flat_field, where, "flat_field", base_name));
   GLARECAM_ASSIGN(stack.flat_field, readExr(path));
   const RawFrame& first = stack.frames.front();
   if (!stack.flat_field->sameSize(first.width(), first.height())) {

@@ -27,7 +27,8 @@ std::optional<double> glareLimitCdM2(double alpha_deg) {
   for (std::size_t i = 1; i < kLimitCurve.size(); ++i) {
     const LimitPoint& lo = kLimitCurve[i - 1];
     const LimitPoint& hi = kLimitCurve[i];
-    if (alpha_deg <= hi.alpha_deg) {
+    if (alpha_deg == hi.alpha_deg) return hi.limit_cd_m2;  // exact at the table's points
+    if (alpha_deg < hi.alpha_deg) {
       const double t = (alpha_deg - lo.alpha_deg) / (hi.alpha_deg - lo.alpha_deg);
       return std::exp(std::log(lo.limit_cd_m2) + t * (std::log(hi.limit_cd_m2) - std::log(lo.limit_cd_m2)));
     }

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "calibration/hdr_merge.h"
@@ -56,7 +57,7 @@ std::string ProcessSummary::briefReport() const {
   std::snprintf(line, sizeof line, "%s: Lmax %.4g cd/m² at (%d, %d), limit %s, glare %s",
                 result.at("stack").get<std::string>().c_str(), lum.at("max_cd_m2").get<double>(),
                 lum.at("max_pixel")[0].get<int>(), lum.at("max_pixel")[1].get<int>(),
-                limit.is_null() ? "none" : std::to_string(limit.get<long long>()).c_str(),
+                limit.is_null() ? "none" : std::to_string(std::lround(limit.get<double>())).c_str(),
                 result.at("glare").is_null() ? "n/a" : (result.at("glare").get<bool>() ? "yes" : "no"));
   return line;
 }

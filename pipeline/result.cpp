@@ -6,6 +6,19 @@
 
 namespace glarecam::pipeline {
 
+namespace {
+
+// true / false, or null when there is no limit or the verdict cannot be known: a maximum that
+// is only a lower bound (saturated everywhere) and is below the limit may still exceed it.
+nlohmann::json glareVerdict(const LuminancePeak& max, const std::optional<double>& limit_cd_m2) {
+  if (!limit_cd_m2) return nullptr;
+  const bool reaches = max.value_cd_m2 >= *limit_cd_m2;
+  if (!reaches && max.method == PeakMethod::kLowerBound) return nullptr;
+  return reaches;
+}
+
+}  // namespace
+
 nlohmann::json makeResult(const ResultInputs& in) {
   using nlohmann::json;
   const LuminanceStats& s = in.stats;
@@ -27,7 +40,7 @@ nlohmann::json makeResult(const ResultInputs& in) {
                          {"median_relative_uncertainty", s.median_relative_uncertainty}};
   result["limit"] = {{"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
                      {"mode", "alpha_curve"}};
-  result["glare"] = in.limit_cd_m2 ? json(s.max.value_cd_m2 >= *in.limit_cd_m2) : json(nullptr);
+  result["glare"] = glareVerdict(s.max, in.limit_cd_m2);
   result["outputs"] = {{"luminance_exr", "luminance.exr"}, {"quality_exr", "quality.exr"}, {"luminance_png", "luminance.png"}};
   result["generator"] = {{"name", "glarecam"}, {"version", kVersion}};
   return result;

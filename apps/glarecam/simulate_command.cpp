@@ -11,6 +11,7 @@ namespace glarecam::apps {
 namespace {
 
 struct SimulateArgs {
+  SimulateArgs() { options.show_progress = true; }
   std::string out;
   std::string size = "1224x1024";
   std::string distortion, offset;
@@ -56,6 +57,7 @@ void addSimulateCommand(CLI::App& app, Action& action) {
   sub->add_option("--orientation", args->options.lobe_orientation_deg, "lobe rotation in degrees")->capture_default_str();
   sub->add_option("--background", args->options.background_cd_m2, "background luminance, cd/m²")->capture_default_str();
   sub->add_option("--peak-scale", args->options.peak_scale, "scale the module's luminance maximum")->capture_default_str();
+  sub->add_flag("!--no-progress", args->options.show_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSimulate(*args); }; });
 }
 

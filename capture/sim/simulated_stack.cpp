@@ -7,6 +7,7 @@
 
 #include "calibration/radiometry.h"
 #include "capture/sim/module_model.h"
+#include "core/progress.h"
 #include "core/stack_io.h"
 #include "pipeline/limit_curve.h"
 
@@ -129,10 +130,12 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   auto scene = GlareScene::create(*lobe);
   if (!scene) return std::unexpected(scene.error());
   SimulatedStack result;
+  Progress progress("simulate", 1 + options.bracket.min_frames, options.show_progress);
   const Calibration calibration = simulatedCalibration(options);
   const calibration::CameraModel camera(calibration.intrinsics);
   result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
   result.truth = scene->truth(limit);
+  progress.advance("scene rendered");
   const auto centre = camera.project(scene->centreRay());
   result.centre_pixel = {centre.x, centre.y};
 
@@ -146,9 +149,11 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   GLARECAM_ASSIGN(result.bracket, planBracket(peak / scale, background / scale,
                                               calibration.saturation_dn - calibration.black_level_dn, options.bracket));
   result.manifest = makeManifest(options, calibration, result.bracket);
+  progress.setTotal(1 + static_cast<int>(result.manifest.frames.size()));
   for (std::size_t i = 0; i < result.manifest.frames.size(); ++i) {
     result.frames.push_back(exposeFrame(result.true_luminance_cd_m2, result.manifest.frames[i], calibration,
                                         options.sensor, options.seed * 1000 + i));
+    progress.advance("frame " + std::to_string(i + 1) + "/" + std::to_string(result.manifest.frames.size()));
   }
   return result;
 }

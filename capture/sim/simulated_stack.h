@@ -35,6 +35,7 @@ struct SimulationOptions {
   double nd_transmission = 1.0e-3;      // ND 3.0 filter: sun reflections need it
   double f_number = 8.0;
   BracketOptions bracket;
+  bool show_progress = false;  // progress on stderr (the CLI turns it on)
   Status validate() const;
 };
 

@@ -1,6 +1,8 @@
 #include "calibration/hdr_merge.h"
 
 #include <algorithm>
+#include <array>
+#include <memory>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -21,8 +23,8 @@ struct FrameConstants {
   float read_coefficient;
 };
 
-// Frames sorted from the shortest effective exposure (largest scale) to the longest, so the
-// last valid estimate seen for a pixel comes from the frame with the most signal.
+// Frames sorted from the longest effective exposure (smallest scale) to the shortest, so the
+// first valid estimate met for a pixel comes from the frame with the most signal.
 std::vector<FrameConstants> frameConstants(const MergeInput& input) {
   std::vector<FrameConstants> constants;
   const double full_range_dn = input.saturation_dn - input.black_level_dn;
@@ -33,18 +35,77 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
                          static_cast<float>(r.scale_cd_m2_per_dn * r.dn_per_electron),
                          static_cast<float>(r.scale_cd_m2_per_dn * r.scale_cd_m2_per_dn * r.read_noise_dn * r.read_noise_dn)});
   }
-  std::stable_sort(constants.begin(), constants.end(), [](const auto& a, const auto& b) { return a.scale > b.scale; });
+  std::stable_sort(constants.begin(), constants.end(), [](const auto& a, const auto& b) { return a.scale < b.scale; });
   return constants;
 }
 
-// Row buffers of one worker: allocated once per band, reused for every row.
-struct RowAccumulator {
-  explicit RowAccumulator(int width)
-      : best(width), weight_sum(width), weighted_sum(width), valid_count(width), lower_bound(width),
-        inverse_flat(width, 1.0f) {}
-  std::vector<float> best, weight_sum, weighted_sum, valid_count, lower_bound;
-  mutable std::vector<float> inverse_flat;  // 1 / flat field of the row (all ones without one)
+// The per-pixel loops are compiled twice on x86-64, for the baseline and for AVX2 (a feature
+// test; an "arch=" clone would match one CPU model only), and the loader picks the best the
+// CPU has. Sanitizer builds skip it.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#define GLARECAM_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define GLARECAM_SIMD_CLONES
+#endif
+
+// Pixels handled per step: the six float buffers of a segment (24 KiB) stay in L1.
+constexpr int kSegmentPixels = 1024;
+
+// Buffers of one worker for one segment of a row, allocated once per band.
+struct SegmentBuffers {
+  std::array<float, kSegmentPixels> reference, weight_sum, weighted_sum, valid_count, lower_bound, inverse_flat;
 };
+
+// One frame's contribution, frames taken from the longest exposure to the shortest. The
+// first valid estimate met (the longest valid frame, the one with the most signal) becomes the
+// pixel's reference luminance, at which every frame's noise variance is evaluated; each valid
+// estimate is added with its inverse variance as weight. Saturated pixels raise the lower
+// bound to the frame's saturation luminance.
+GLARECAM_SIMD_CLONES void accumulateSegment(const std::uint16_t* __restrict dn, float* __restrict reference,
+                                            float* __restrict weight_sum, float* __restrict weighted_sum,
+                                            float* __restrict valid_count, float* __restrict lower, int count,
+                                            float black, float saturation, const FrameConstants& frame) {
+  const float min_signal = frame.min_signal_dn, scale = frame.scale, shot = frame.shot_coefficient;
+  const float saturated_cd_m2 = frame.saturated_cd_m2;
+  // The smallest normal float keeps 0/0 out of pixels with no reference and no read noise.
+  const float read = frame.read_coefficient + std::numeric_limits<float>::min();
+  for (int x = 0; x < count; ++x) {
+    const float value = dn[x];
+    const float signal = value - black;
+    const float estimate = signal * scale;
+    const bool saturated = value >= saturation;
+    const bool valid = (value < saturation) & (signal >= min_signal);
+    // Written as arithmetic, not a select: GCC turns "r[x] = c ? v : r[x]" into a masked store,
+    // which is microcoded and slow on AMD cores.
+    const float take = (valid & (reference[x] == 0.0f)) ? 1.0f : 0.0f;
+    const float ref = reference[x] + take * (estimate - reference[x]);
+    reference[x] = ref;
+    const float weight = (valid ? 1.0f : 0.0f) / (shot * ref + read);  // inverse variance, or 0
+    weight_sum[x] += weight;
+    weighted_sum[x] += weight * estimate;
+    valid_count[x] += valid ? 1.0f : 0.0f;
+    lower[x] = std::max(lower[x], saturated ? saturated_cd_m2 : 0.0f);
+  }
+}
+
+// Pass 3: luminance, relative uncertainty and flags, flat field applied once.
+GLARECAM_SIMD_CLONES void finishSegment(const SegmentBuffers& b, int count, float upper_bound,
+                                        float* __restrict luminance, float* __restrict relative,
+                                        std::uint8_t* __restrict valid, std::uint8_t* __restrict bound) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int x = 0; x < count; ++x) {
+    const bool measured = b.valid_count[x] > 0.0f;
+    const bool saturated = b.lower_bound[x] > 0.0f;
+    const float mean = b.weighted_sum[x] / b.weight_sum[x];
+    const float unmeasured = saturated ? b.lower_bound[x] : upper_bound;
+    luminance[x] = (measured ? mean : unmeasured) * b.inverse_flat[x];
+    relative[x] = measured ? 1.0f / (std::sqrt(b.weight_sum[x]) * mean) : nan;
+    valid[x] = static_cast<std::uint8_t>(b.valid_count[x]);
+    // PixelBound: 0 measured, 1 lower bound (saturated), 2 upper bound (dark).
+    const std::uint8_t unmeasured_flag = saturated ? 1 : 2;
+    bound[x] = measured ? 0 : unmeasured_flag;
+  }
+}
 
 class MergeKernel {
  public:
@@ -57,11 +118,10 @@ class MergeKernel {
         upper_bound_(upperBound(frames_)) {}
 
   void runRows(int begin, int end) const {
-    RowAccumulator row(output_.luminance_cd_m2.width());
+    auto buffers = std::make_unique<SegmentBuffers>();
+    const int width = output_.luminance_cd_m2.width();
     for (int y = begin; y < end; ++y) {
-      estimateReference(y, row);
-      accumulate(y, row);
-      finish(y, row);
+      for (int x0 = 0; x0 < width; x0 += kSegmentPixels) runSegment(y, x0, std::min(kSegmentPixels, width - x0), *buffers);
     }
   }
 
@@ -73,94 +133,22 @@ class MergeKernel {
     return bound;
   }
 
-  // Pass 1: the reference luminance of each pixel (longest valid frame) and the lower bound.
-  void estimateReference(int y, RowAccumulator& row) const {
-    const std::size_t width = row.best.size();
-    std::fill_n(row.best.data(), width, 0.0f);
-    std::fill_n(row.lower_bound.data(), width, 0.0f);
+  void runSegment(int y, int x0, int count, SegmentBuffers& b) const {
+    const auto n = static_cast<std::size_t>(count);
+    std::fill_n(b.reference.begin(), n, 0.0f);
+    std::fill_n(b.lower_bound.begin(), n, 0.0f);
+    std::fill_n(b.weight_sum.begin(), n, 0.0f);
+    std::fill_n(b.weighted_sum.begin(), n, 0.0f);
+    std::fill_n(b.valid_count.begin(), n, 0.0f);
     for (const FrameConstants& f : frames_) {
-      referenceRow(f.frame->row(y).data(), row.best.data(), row.lower_bound.data(), width, black_, saturation_,
-                   f.min_signal_dn, f.scale, f.saturated_cd_m2);
+      accumulateSegment(f.frame->row(y).data() + x0, b.reference.data(), b.weight_sum.data(), b.weighted_sum.data(),
+                        b.valid_count.data(), b.lower_bound.data(), count, black_, saturation_, f);
     }
-  }
-
-  // The loops below take every constant by value so that the compiler keeps them in registers
-  // and vectorises (with -fno-trapping-math the selects become blends).
-  static void referenceRow(const std::uint16_t* __restrict dn, float* __restrict best, float* __restrict lower,
-                           std::size_t width, float black, float saturation, float min_signal, float scale,
-                           float saturated_cd_m2) {
-    for (std::size_t x = 0; x < width; ++x) {
-      const float value = dn[x];
-      const float signal = value - black;
-      const bool saturated = value >= saturation;
-      const bool valid = (value < saturation) & (signal >= min_signal);
-      best[x] = valid ? signal * scale : best[x];
-      lower[x] = std::max(lower[x], saturated ? saturated_cd_m2 : 0.0f);
-    }
-  }
-
-  // Pass 2: inverse-variance weighted sum of the valid estimates.
-  void accumulate(int y, RowAccumulator& row) const {
-    const std::size_t width = row.best.size();
-    std::fill_n(row.weight_sum.data(), width, 0.0f);
-    std::fill_n(row.weighted_sum.data(), width, 0.0f);
-    std::fill_n(row.valid_count.data(), width, 0.0f);
-    for (const FrameConstants& f : frames_) {
-      accumulateRow(f.frame->row(y).data(), row.best.data(), row.weight_sum.data(), row.weighted_sum.data(),
-                    row.valid_count.data(), width, black_, saturation_, f);
-    }
-  }
-
-  static void accumulateRow(const std::uint16_t* __restrict dn, const float* __restrict best,
-                            float* __restrict weight_sum, float* __restrict weighted_sum, float* __restrict count,
-                            std::size_t width, float black, float saturation, FrameConstants f) {
-    const float min_signal = f.min_signal_dn, scale = f.scale, shot = f.shot_coefficient;
-    // The smallest normal float keeps 0/0 out of pixels with no reference and no read noise.
-    const float read = f.read_coefficient + std::numeric_limits<float>::min();
-    for (std::size_t x = 0; x < width; ++x) {
-      const float value = dn[x];
-      const float signal = value - black;
-      const float valid = ((value < saturation) & (signal >= min_signal)) ? 1.0f : 0.0f;
-      const float weight = valid / (shot * best[x] + read);  // inverse variance, or 0
-      weight_sum[x] += weight;
-      weighted_sum[x] += weight * (signal * scale);
-      count[x] += valid;
-    }
-  }
-
-  // Pass 3: luminance, uncertainty and flags of the row, flat field applied once.
-  void finish(int y, const RowAccumulator& row) const {
-    const float* inverse_flat = row.inverse_flat.data();
-    if (flat_) {
-      auto flat = flat_->row(y);
-      for (std::size_t x = 0; x < flat.size(); ++x) row.inverse_flat[x] = 1.0f / flat[x];
-    }
-    finishRow(row, inverse_flat, upper_bound_, output_.luminance_cd_m2.row(y).data(),
-              output_.relative_uncertainty.row(y).data(), output_.valid_frames.row(y).data(),
-              output_.bound.row(y).data());
-  }
-
-  static void finishRow(const RowAccumulator& row, const float* __restrict inverse_flat, float upper_bound,
-                        float* __restrict luminance, float* __restrict relative, std::uint8_t* __restrict valid,
-                        std::uint8_t* __restrict bound) {
-    const float* __restrict weight_sum = row.weight_sum.data();
-    const float* __restrict weighted_sum = row.weighted_sum.data();
-    const float* __restrict count = row.valid_count.data();
-    const float* __restrict lower = row.lower_bound.data();
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    const std::size_t width = row.best.size();
-    for (std::size_t x = 0; x < width; ++x) {
-      const bool measured = count[x] > 0.0f;
-      const bool saturated = lower[x] > 0.0f;
-      const float mean = weighted_sum[x] / weight_sum[x];
-      const float unmeasured = saturated ? lower[x] : upper_bound;
-      luminance[x] = (measured ? mean : unmeasured) * inverse_flat[x];
-      relative[x] = measured ? 1.0f / (std::sqrt(weight_sum[x]) * mean) : nan;
-      valid[x] = static_cast<std::uint8_t>(count[x]);
-      // PixelBound: 0 measured, 1 lower bound (saturated), 2 upper bound (dark).
-      const std::uint8_t unmeasured_flag = saturated ? 1 : 2;
-      bound[x] = measured ? 0 : unmeasured_flag;
-    }
+    const float* flat = flat_ ? flat_->row(y).data() + x0 : nullptr;
+    for (int x = 0; x < count; ++x) b.inverse_flat[static_cast<std::size_t>(x)] = flat ? 1.0f / flat[x] : 1.0f;
+    finishSegment(b, count, upper_bound_, output_.luminance_cd_m2.row(y).data() + x0,
+                  output_.relative_uncertainty.row(y).data() + x0, output_.valid_frames.row(y).data() + x0,
+                  output_.bound.row(y).data() + x0);
   }
 
   MergedImage& output_;

@@ -1,9 +1,9 @@
 // Calibrated HDR merge: a bracketed stack of raw frames -> absolute luminance (cd/m²).
 // Each frame pixel that is below saturation and at least min_signal_dn above black gives an
 // estimate L_i (radiometry.h). The estimates are combined with inverse-variance weights
-// (Granados et al. 2010), the variances taken from the noise model at a common reference
-// luminance (the best frame's estimate) so that weights do not correlate with each pixel's own
-// noise. Output per pixel: luminance, relative standard uncertainty (shot + read noise), the
+// (Granados et al. 2010), the variances taken from the noise model at one reference luminance
+// per pixel, the estimate of its longest valid frame (weights from each frame's own value would
+// favour the frames that happened to read low and bias the mean down). Output per pixel: luminance, relative standard uncertainty (shot + read noise), the
 // number of valid frames, and a bound flag for pixels valid in no frame: saturated everywhere
 // gives a lower bound (the shortest frame's saturation luminance), dark everywhere an upper
 // bound (the longest frame's detection threshold).

@@ -24,7 +24,8 @@ Result<BenchStack> buildStack() {
     return fail(ErrorCode::kInternal, "bench: the simulated stack has no frames or no calibration");
   }
   stack.calibration = *stack.simulated.manifest.calibration;
-  stack.radiometry = calibration::frameRadiometry(stack.simulated.manifest.frames, stack.calibration);
+  stack.radiometry =
+      calibration::frameRadiometry(stack.simulated.manifest.frames, stack.calibration);
   return stack;
 }
 
@@ -67,7 +68,8 @@ calibration::MergeInput BenchStack::mergeInput() const {
 void setStackCounters(benchmark::State& state, const BenchStack& stack) {
   state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(stack.rawBytes()));
   state.counters["pixels"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * static_cast<double>(stack.pixelCount()), benchmark::Counter::kIsRate);
+      static_cast<double>(state.iterations()) * static_cast<double>(stack.pixelCount()),
+      benchmark::Counter::kIsRate);
 }
 
 const Result<BenchStack>& benchStack() {

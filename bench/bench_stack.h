@@ -4,12 +4,12 @@
 // Also a scratch directory for the benchmarks that go through files, removed at exit.
 #pragma once
 
+#include <benchmark/benchmark.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #include "calibration/hdr_merge.h"
 #include "calibration/radiometry.h"

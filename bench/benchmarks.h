@@ -14,7 +14,7 @@ inline constexpr const char* kMergeOpenCvDebevec = "merge/opencv_debevec";
 inline constexpr const char* kProcessEndToEnd = "process/end_to_end";
 
 // Each returns the names it registered.
-std::vector<std::string> registerMergeBenchmarks();  // merge/*
+std::vector<std::string> registerMergeBenchmarks();    // merge/*
 std::vector<std::string> registerProcessBenchmarks();  // process/end_to_end
 
 }  // namespace glarecam::bench

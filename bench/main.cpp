@@ -1,12 +1,12 @@
 // glarecam-bench: runs the benchmarks (benchmarks.h) with Google Benchmark's usual flags, then
 // prints the two ratios the merge kernel is held to, from the real times of this same run:
-//   merge/opencv_debevec ÷ merge/glarecam   (target >= 40x: far faster than the off-the-shelf merge)
-//   merge/glarecam ÷ merge/memory_floor     (target <= 2x: close to what memory bandwidth allows)
+//   merge/opencv_debevec ÷ merge/glarecam   (target >= 40x: far faster than the off-the-shelf
+//   merge) merge/glarecam ÷ merge/memory_floor     (target <= 2x: close to what memory bandwidth
+//   allows)
 // A ratio is printed only when both of its benchmarks ran (--benchmark_filter may skip some).
 // The console report is always used (it records the times); for machine-readable results add
 // --benchmark_out=FILE --benchmark_out_format=json.
 #include <benchmark/benchmark.h>
-
 #include <unistd.h>  // isatty
 
 #include <algorithm>
@@ -76,14 +76,15 @@ class RecordingReporter : public benchmark::ConsoleReporter {
 enum class Target { kAtLeast, kAtMost };
 
 // One line "ratio A ÷ B = N.Nx (target >= Tx)", when both benchmarks ran.
-void printRatio(const RecordingReporter& reporter, const std::string& numerator, const std::string& denominator,
-                int decimals, Target target, double target_ratio) {
+void printRatio(const RecordingReporter& reporter, const std::string& numerator,
+                const std::string& denominator, int decimals, Target target, double target_ratio) {
   const std::optional<double> top = reporter.realTimeSeconds(numerator);
   const std::optional<double> bottom = reporter.realTimeSeconds(denominator);
   if (!top || !bottom || !(*bottom > 0)) return;
   char line[256];
-  std::snprintf(line, sizeof line, "ratio %s \u00f7 %s = %.*fx (target %s %gx)\n", numerator.c_str(),
-                denominator.c_str(), decimals, *top / *bottom, target == Target::kAtLeast ? ">=" : "<=", target_ratio);
+  std::snprintf(line, sizeof line, "ratio %s \u00f7 %s = %.*fx (target %s %gx)\n",
+                numerator.c_str(), denominator.c_str(), decimals, *top / *bottom,
+                target == Target::kAtLeast ? ">=" : "<=", target_ratio);
   reporter.GetOutputStream() << line << std::flush;
 }
 
@@ -102,11 +103,14 @@ int main(int argc, char** argv) {
   // Tabular counters, colour on a terminal (this reporter replaces the one --benchmark_format
   // and --benchmark_color would choose).
   const bool colour = ::isatty(STDOUT_FILENO) != 0;
-  RecordingReporter reporter(colour ? benchmark::ConsoleReporter::OO_ColorTabular : benchmark::ConsoleReporter::OO_Tabular,
-                             longest_name);
+  RecordingReporter reporter(
+      colour ? benchmark::ConsoleReporter::OO_ColorTabular : benchmark::ConsoleReporter::OO_Tabular,
+      longest_name);
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  printRatio(reporter, kMergeOpenCvDebevec, kMergeGlarecam, 1, Target::kAtLeast, kDebevecTargetRatio);
-  printRatio(reporter, kMergeGlarecam, kMergeMemoryFloor, 2, Target::kAtMost, kMemoryFloorTargetRatio);
+  printRatio(reporter, kMergeOpenCvDebevec, kMergeGlarecam, 1, Target::kAtLeast,
+             kDebevecTargetRatio);
+  printRatio(reporter, kMergeGlarecam, kMergeMemoryFloor, 2, Target::kAtMost,
+             kMemoryFloorTargetRatio);
   benchmark::Shutdown();
   return 0;
 }

@@ -7,12 +7,11 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
-#include <string>
-#include <vector>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/photo.hpp>
+#include <string>
+#include <vector>
 
 #include "bench/bench_stack.h"
 #include "bench/benchmarks.h"
@@ -42,7 +41,8 @@ void mergeGlarecam(benchmark::State& state) {
   const calibration::MergeInput input = stack->mergeInput();
   const calibration::MergeOptions options;  // threads = 0: all cores
   calibration::MergedImage output;
-  if (Status status = calibration::mergeInto(input, options, output); !status) {  // allocates the buffers
+  if (Status status = calibration::mergeInto(input, options, output);
+      !status) {  // allocates the buffers
     state.SkipWithError(status.error().message.c_str());
     return;
   }
@@ -103,13 +103,16 @@ DebevecInput makeDebevecInput(const BenchStack& stack) {
   const double to_8_bit = 255.0 / stack.options.sensor.full_scale_dn();
   for (std::size_t i = 0; i < stack.frameCount(); ++i) {
     const RawFrame& frame = stack.simulated.frames[i];
-    // A header over the frame's pixels (no copy; const_cast only because cv::Mat has no const view).
-    const cv::Mat raw(frame.height(), frame.width(), CV_16UC1, const_cast<std::uint16_t*>(frame.data()));
+    // A header over the frame's pixels (no copy; const_cast only because cv::Mat has no const
+    // view).
+    const cv::Mat raw(frame.height(), frame.width(), CV_16UC1,
+                      const_cast<std::uint16_t*>(frame.data()));
     cv::Mat gray, colour;
     raw.convertTo(gray, CV_8U, to_8_bit);
     cv::cvtColor(gray, colour, cv::COLOR_GRAY2BGR);
     input.images.push_back(colour);
-    input.times_s.push_back(static_cast<float>(stack.simulated.manifest.frames[i].exposure_us / kMicrosecondsPerSecond));
+    input.times_s.push_back(static_cast<float>(stack.simulated.manifest.frames[i].exposure_us /
+                                               kMicrosecondsPerSecond));
   }
   return input;
 }
@@ -131,8 +134,12 @@ void mergeOpenCvDebevec(benchmark::State& state) {
 }  // namespace
 
 std::vector<std::string> registerMergeBenchmarks() {
-  benchmark::RegisterBenchmark(kMergeGlarecam, mergeGlarecam)->UseRealTime()->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark(kMergeMemoryFloor, mergeMemoryFloor)->UseRealTime()->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(kMergeGlarecam, mergeGlarecam)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(kMergeMemoryFloor, mergeMemoryFloor)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark(kMergeOpenCvDebevec, mergeOpenCvDebevec)
       ->UseRealTime()
       ->Unit(benchmark::kMillisecond)

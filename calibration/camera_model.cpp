@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-
 #include <opencv2/calib3d.hpp>
 
 namespace glarecam::calibration {
@@ -31,7 +30,8 @@ double angleBetweenDeg(const Ray& a, const Ray& b) {
 }
 
 bool CameraModel::hasDistortion() const {
-  return std::any_of(intrinsics_.distortion.begin(), intrinsics_.distortion.end(), [](double k) { return k != 0.0; });
+  return std::any_of(intrinsics_.distortion.begin(), intrinsics_.distortion.end(),
+                     [](double k) { return k != 0.0; });
 }
 
 std::vector<Ray> CameraModel::rays(std::span<const PixelPoint> pixels) const {
@@ -46,13 +46,14 @@ std::vector<Ray> CameraModel::rays(std::span<const PixelPoint> pixels) const {
   std::vector<cv::Point2d> source(pixels.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) source[i] = {pixels[i].x, pixels[i].y};
   const cv::Matx33d camera(k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1);
-  const cv::Matx<double, 1, 5> distortion(k.distortion[0], k.distortion[1], k.distortion[2], k.distortion[3],
-                                          k.distortion[4]);
+  const cv::Matx<double, 1, 5> distortion(k.distortion[0], k.distortion[1], k.distortion[2],
+                                          k.distortion[3], k.distortion[4]);
   std::vector<cv::Point2d> undistorted;
   cv::undistortPoints(source, undistorted, camera, distortion, cv::noArray(), cv::noArray(),
-                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, kUndistortIterations,
-                                       kUndistortEpsilon));
-  for (std::size_t i = 0; i < pixels.size(); ++i) result[i] = normalised(undistorted[i].x, undistorted[i].y);
+                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS,
+                                       kUndistortIterations, kUndistortEpsilon));
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    result[i] = normalised(undistorted[i].x, undistorted[i].y);
   return result;
 }
 

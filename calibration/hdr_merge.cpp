@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <memory>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <string>
 
@@ -30,19 +30,23 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
   const double full_range_dn = input.saturation_dn - input.black_level_dn;
   for (std::size_t i = 0; i < input.frames.size(); ++i) {
     const FrameRadiometry& r = input.radiometry[i];
-    constants.push_back({&input.frames[i], static_cast<float>(r.scale_cd_m2_per_dn), static_cast<float>(r.min_signal_dn),
+    constants.push_back({&input.frames[i], static_cast<float>(r.scale_cd_m2_per_dn),
+                         static_cast<float>(r.min_signal_dn),
                          static_cast<float>(full_range_dn * r.scale_cd_m2_per_dn),
                          static_cast<float>(r.scale_cd_m2_per_dn * r.dn_per_electron),
-                         static_cast<float>(r.scale_cd_m2_per_dn * r.scale_cd_m2_per_dn * r.read_noise_dn * r.read_noise_dn)});
+                         static_cast<float>(r.scale_cd_m2_per_dn * r.scale_cd_m2_per_dn *
+                                            r.read_noise_dn * r.read_noise_dn)});
   }
-  std::stable_sort(constants.begin(), constants.end(), [](const auto& a, const auto& b) { return a.scale < b.scale; });
+  std::stable_sort(constants.begin(), constants.end(),
+                   [](const auto& a, const auto& b) { return a.scale < b.scale; });
   return constants;
 }
 
 // The per-pixel loops are compiled twice on x86-64, for the baseline and for AVX2 (a feature
 // test; an "arch=" clone would match one CPU model only), and the loader picks the best the
 // CPU has. Sanitizer builds skip it.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(__SANITIZE_ADDRESS__)
 #define GLARECAM_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define GLARECAM_SIMD_CLONES
@@ -53,7 +57,8 @@ constexpr int kSegmentPixels = 1024;
 
 // Buffers of one worker for one segment of a row, allocated once per band.
 struct SegmentBuffers {
-  std::array<float, kSegmentPixels> reference, weight_sum, weighted_sum, valid_count, lower_bound, inverse_flat;
+  std::array<float, kSegmentPixels> reference, weight_sum, weighted_sum, valid_count, lower_bound,
+      inverse_flat;
 };
 
 // One frame's contribution, frames taken from the longest exposure to the shortest. The
@@ -61,10 +66,10 @@ struct SegmentBuffers {
 // pixel's reference luminance, at which every frame's noise variance is evaluated; each valid
 // estimate is added with its inverse variance as weight. Saturated pixels raise the lower
 // bound to the frame's saturation luminance.
-GLARECAM_SIMD_CLONES void accumulateSegment(const std::uint16_t* __restrict dn, float* __restrict reference,
-                                            float* __restrict weight_sum, float* __restrict weighted_sum,
-                                            float* __restrict valid_count, float* __restrict lower, int count,
-                                            float black, float saturation, const FrameConstants& frame) {
+GLARECAM_SIMD_CLONES void accumulateSegment(
+    const std::uint16_t* __restrict dn, float* __restrict reference, float* __restrict weight_sum,
+    float* __restrict weighted_sum, float* __restrict valid_count, float* __restrict lower,
+    int count, float black, float saturation, const FrameConstants& frame) {
   const float min_signal = frame.min_signal_dn, scale = frame.scale, shot = frame.shot_coefficient;
   const float saturated_cd_m2 = frame.saturated_cd_m2;
   // The smallest normal float keeps 0/0 out of pixels with no reference and no read noise.
@@ -91,7 +96,8 @@ GLARECAM_SIMD_CLONES void accumulateSegment(const std::uint16_t* __restrict dn, 
 // Pass 3: luminance, relative uncertainty and flags, flat field applied once.
 GLARECAM_SIMD_CLONES void finishSegment(const SegmentBuffers& b, int count, float upper_bound,
                                         float* __restrict luminance, float* __restrict relative,
-                                        std::uint8_t* __restrict valid, std::uint8_t* __restrict bound) {
+                                        std::uint8_t* __restrict valid,
+                                        std::uint8_t* __restrict bound) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (int x = 0; x < count; ++x) {
     const bool measured = b.valid_count[x] > 0.0f;
@@ -121,7 +127,8 @@ class MergeKernel {
     auto buffers = std::make_unique<SegmentBuffers>();
     const int width = output_.luminance_cd_m2.width();
     for (int y = begin; y < end; ++y) {
-      for (int x0 = 0; x0 < width; x0 += kSegmentPixels) runSegment(y, x0, std::min(kSegmentPixels, width - x0), *buffers);
+      for (int x0 = 0; x0 < width; x0 += kSegmentPixels)
+        runSegment(y, x0, std::min(kSegmentPixels, width - x0), *buffers);
     }
   }
 
@@ -141,14 +148,16 @@ class MergeKernel {
     std::fill_n(b.weighted_sum.begin(), n, 0.0f);
     std::fill_n(b.valid_count.begin(), n, 0.0f);
     for (const FrameConstants& f : frames_) {
-      accumulateSegment(f.frame->row(y).data() + x0, b.reference.data(), b.weight_sum.data(), b.weighted_sum.data(),
-                        b.valid_count.data(), b.lower_bound.data(), count, black_, saturation_, f);
+      accumulateSegment(f.frame->row(y).data() + x0, b.reference.data(), b.weight_sum.data(),
+                        b.weighted_sum.data(), b.valid_count.data(), b.lower_bound.data(), count,
+                        black_, saturation_, f);
     }
     const float* flat = flat_ ? flat_->row(y).data() + x0 : nullptr;
-    for (int x = 0; x < count; ++x) b.inverse_flat[static_cast<std::size_t>(x)] = flat ? 1.0f / flat[x] : 1.0f;
+    for (int x = 0; x < count; ++x)
+      b.inverse_flat[static_cast<std::size_t>(x)] = flat ? 1.0f / flat[x] : 1.0f;
     finishSegment(b, count, upper_bound_, output_.luminance_cd_m2.row(y).data() + x0,
-                  output_.relative_uncertainty.row(y).data() + x0, output_.valid_frames.row(y).data() + x0,
-                  output_.bound.row(y).data() + x0);
+                  output_.relative_uncertainty.row(y).data() + x0,
+                  output_.valid_frames.row(y).data() + x0, output_.bound.row(y).data() + x0);
   }
 
   MergedImage& output_;
@@ -170,9 +179,12 @@ bool finitePositive(double value) { return std::isfinite(value) && value > 0; }
 
 Status validate(const MergeInput& input) {
   if (input.frames.empty()) return badInput("merge: no frames");
-  if (input.frames.size() != input.radiometry.size()) return fail(ErrorCode::kInternal, "merge: one radiometry per frame needed");
-  if (input.frames.size() > std::numeric_limits<std::uint8_t>::max()) return badInput("merge: more than 255 frames");
-  if (!(input.black_level_dn >= 0 && input.black_level_dn < input.saturation_dn && std::isfinite(input.saturation_dn))) {
+  if (input.frames.size() != input.radiometry.size())
+    return fail(ErrorCode::kInternal, "merge: one radiometry per frame needed");
+  if (input.frames.size() > std::numeric_limits<std::uint8_t>::max())
+    return badInput("merge: more than 255 frames");
+  if (!(input.black_level_dn >= 0 && input.black_level_dn < input.saturation_dn &&
+        std::isfinite(input.saturation_dn))) {
     return badInput("merge: black level must be below saturation");
   }
   const RawFrame& first = input.frames.front();
@@ -181,9 +193,11 @@ Status validate(const MergeInput& input) {
       return badInput("merge: frame " + std::to_string(i) + " differs in size from frame 0");
     }
     const FrameRadiometry& r = input.radiometry[i];
-    if (!finitePositive(r.scale_cd_m2_per_dn) || !finitePositive(r.dn_per_electron) || !finitePositive(r.min_signal_dn) ||
+    if (!finitePositive(r.scale_cd_m2_per_dn) || !finitePositive(r.dn_per_electron) ||
+        !finitePositive(r.min_signal_dn) ||
         !(std::isfinite(r.read_noise_dn) && r.read_noise_dn >= 0)) {
-      return badInput("merge: frame " + std::to_string(i) + " has non-finite or non-positive radiometric constants");
+      return badInput("merge: frame " + std::to_string(i) +
+                      " has non-finite or non-positive radiometric constants");
     }
   }
   if (input.flat_field && !input.flat_field->sameSize(first.width(), first.height())) {

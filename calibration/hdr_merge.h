@@ -3,10 +3,10 @@
 // estimate L_i (radiometry.h). The estimates are combined with inverse-variance weights
 // (Granados et al. 2010), the variances taken from the noise model at one reference luminance
 // per pixel, the estimate of its longest valid frame (weights from each frame's own value would
-// favour the frames that happened to read low and bias the mean down). Output per pixel: luminance, relative standard uncertainty (shot + read noise), the
-// number of valid frames, and a bound flag for pixels valid in no frame: saturated everywhere
-// gives a lower bound (the shortest frame's saturation luminance), dark everywhere an upper
-// bound (the longest frame's detection threshold).
+// favour the frames that happened to read low and bias the mean down). Output per pixel: luminance,
+// relative standard uncertainty (shot + read noise), the number of valid frames, and a bound flag
+// for pixels valid in no frame: saturated everywhere gives a lower bound (the shortest frame's
+// saturation luminance), dark everywhere an upper bound (the longest frame's detection threshold).
 // One fused pass over the frames, bands of rows on all cores, no per-pixel allocation.
 #pragma once
 
@@ -30,7 +30,7 @@ struct MergeInput {
   std::span<const RawFrame> frames;
   std::span<const FrameRadiometry> radiometry;  // one per frame
   double black_level_dn = 0;
-  double saturation_dn = 0;  // values at or above are saturated
+  double saturation_dn = 0;                // values at or above are saturated
   const FloatImage* flat_field = nullptr;  // optional, 1 at the principal point
 };
 

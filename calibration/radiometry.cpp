@@ -7,7 +7,9 @@ namespace glarecam::calibration {
 
 double linearGain(double gain_db) { return std::pow(10.0, gain_db / 20.0); }
 
-NoiseModel noiseModelOf(const Calibration& calibration) { return calibration.noise.value_or(kAssumedNoiseModel); }
+NoiseModel noiseModelOf(const Calibration& calibration) {
+  return calibration.noise.value_or(kAssumedNoiseModel);
+}
 
 FrameRadiometry frameRadiometry(const FrameSpec& frame, const Calibration& calibration) {
   const double gain = linearGain(frame.gain_db);
@@ -15,15 +17,18 @@ FrameRadiometry frameRadiometry(const FrameSpec& frame, const Calibration& calib
   const double aperture_ratio = frame.f_number.value_or(reference_f) / reference_f;
   const NoiseModel noise = noiseModelOf(calibration);
   FrameRadiometry radiometry;
-  radiometry.scale_cd_m2_per_dn = calibration.luminance_factor / (frame.exposure_us * gain * frame.nd_transmission) *
+  radiometry.scale_cd_m2_per_dn = calibration.luminance_factor /
+                                  (frame.exposure_us * gain * frame.nd_transmission) *
                                   aperture_ratio * aperture_ratio;
   radiometry.dn_per_electron = noise.dn_per_electron * gain;
   radiometry.read_noise_dn = noise.read_noise_dn * gain;
-  radiometry.min_signal_dn = std::max(kMinimumSignalDn, kDarkThresholdSigmas * radiometry.read_noise_dn);
+  radiometry.min_signal_dn =
+      std::max(kMinimumSignalDn, kDarkThresholdSigmas * radiometry.read_noise_dn);
   return radiometry;
 }
 
-std::vector<FrameRadiometry> frameRadiometry(const std::vector<FrameSpec>& frames, const Calibration& calibration) {
+std::vector<FrameRadiometry> frameRadiometry(const std::vector<FrameSpec>& frames,
+                                             const Calibration& calibration) {
   std::vector<FrameRadiometry> result;
   result.reserve(frames.size());
   for (const FrameSpec& frame : frames) result.push_back(frameRadiometry(frame, calibration));

@@ -31,6 +31,7 @@ struct FrameRadiometry {
 double linearGain(double gain_db);
 NoiseModel noiseModelOf(const Calibration& calibration);
 FrameRadiometry frameRadiometry(const FrameSpec& frame, const Calibration& calibration);
-std::vector<FrameRadiometry> frameRadiometry(const std::vector<FrameSpec>& frames, const Calibration& calibration);
+std::vector<FrameRadiometry> frameRadiometry(const std::vector<FrameSpec>& frames,
+                                             const Calibration& calibration);
 
 }  // namespace glarecam::calibration

@@ -6,9 +6,11 @@
 namespace glarecam::capture {
 
 Status BracketOptions::validate() const {
-  if (min_frames < 1 || min_frames > 64) return badInput("bracket: min_frames must be between 1 and 64");
+  if (min_frames < 1 || min_frames > 64)
+    return badInput("bracket: min_frames must be between 1 and 64");
   if (!(max_step_ratio > 1.0)) return badInput("bracket: max_step_ratio must exceed 1");
-  if (!(peak_fraction > 0 && peak_fraction <= 1 && background_fraction > 0 && background_fraction <= 1)) {
+  if (!(peak_fraction > 0 && peak_fraction <= 1 && background_fraction > 0 &&
+        background_fraction <= 1)) {
     return badInput("bracket: fractions must be in (0, 1]");
   }
   if (!(min_exposure_us > 0 && max_exposure_us >= min_exposure_us && exposure_step_us > 0)) {
@@ -17,8 +19,8 @@ Status BracketOptions::validate() const {
   return {};
 }
 
-Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_us, double usable_range_dn,
-                                const BracketOptions& options) {
+Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_us,
+                                double usable_range_dn, const BracketOptions& options) {
   GLARECAM_CHECK(options.validate());
   if (!(peak_dn_per_us > 0 && background_dn_per_us > 0 && usable_range_dn > 0) ||
       !std::isfinite(peak_dn_per_us) || !std::isfinite(background_dn_per_us)) {
@@ -33,12 +35,17 @@ Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_
   shortest = std::clamp(shortest, options.min_exposure_us, options.max_exposure_us);
   longest = std::clamp(longest, shortest, options.max_exposure_us);
   const double span = longest / shortest;
-  const int steps = std::max(options.min_frames - 1, static_cast<int>(std::ceil(std::log(span) / std::log(options.max_step_ratio))));
+  const int steps =
+      std::max(options.min_frames - 1,
+               static_cast<int>(std::ceil(std::log(span) / std::log(options.max_step_ratio))));
   for (int i = 0; i <= steps; ++i) {
-    const double exposure = shortest * std::pow(span, steps == 0 ? 0.0 : static_cast<double>(i) / steps);
+    const double exposure =
+        shortest * std::pow(span, steps == 0 ? 0.0 : static_cast<double>(i) / steps);
     // Round to the camera's resolution, never beyond its limits: this is the applied value.
-    const double rounded = std::round(exposure / options.exposure_step_us) * options.exposure_step_us;
-    plan.exposures_us.push_back(std::clamp(rounded, options.min_exposure_us, options.max_exposure_us));
+    const double rounded =
+        std::round(exposure / options.exposure_step_us) * options.exposure_step_us;
+    plan.exposures_us.push_back(
+        std::clamp(rounded, options.min_exposure_us, options.max_exposure_us));
   }
   return plan;
 }

@@ -15,23 +15,23 @@
 namespace glarecam::capture {
 
 struct BracketOptions {
-  int min_frames = 6;              // the SPF paper used six
-  double max_step_ratio = 10.0;    // each frame valid over about one decade
+  int min_frames = 6;            // the SPF paper used six
+  double max_step_ratio = 10.0;  // each frame valid over about one decade
   double peak_fraction = 0.7;
   double background_fraction = 0.5;
   double min_exposure_us = 10.0;
   double max_exposure_us = 2.0e6;
-  double exposure_step_us = 1.0;   // the camera's exposure resolution
+  double exposure_step_us = 1.0;  // the camera's exposure resolution
   Status validate() const;
 };
 
 struct BracketPlan {
-  std::vector<double> exposures_us;  // ascending
-  bool peak_clipped = false;         // even the shortest exposure saturates the peak
+  std::vector<double> exposures_us;      // ascending
+  bool peak_clipped = false;             // even the shortest exposure saturates the peak
   bool background_underexposed = false;  // even the longest leaves the background dark
 };
 
-Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_us, double usable_range_dn,
-                                const BracketOptions& options = {});
+Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_us,
+                                double usable_range_dn, const BracketOptions& options = {});
 
 }  // namespace glarecam::capture

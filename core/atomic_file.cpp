@@ -1,9 +1,9 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -57,7 +57,8 @@ Status writeAll(int fd, const fs::path& path, std::span<const std::byte> bytes) 
 }
 
 fs::path temporarySibling(const fs::path& target) {
-  return target.parent_path() / (std::string(kTemporaryPrefix) + target.filename().string() + "-XXXXXX");
+  return target.parent_path() /
+         (std::string(kTemporaryPrefix) + target.filename().string() + "-XXXXXX");
 }
 
 fs::path parentOf(const fs::path& path) {
@@ -94,7 +95,8 @@ Status writeFileAtomic(const fs::path& path, std::span<const std::byte> bytes) {
   if (auto status = writeAll(fd.get(), temp, bytes); !status) return cleanup(status);
   if (::fsync(fd.get()) != 0) return cleanup(systemError(temp, "fsync failed"));
   if (fd.release() != 0) return cleanup(systemError(temp, "close failed"));
-  if (::rename(temp.c_str(), path.c_str()) != 0) return cleanup(systemError(path, "cannot rename into place"));
+  if (::rename(temp.c_str(), path.c_str()) != 0)
+    return cleanup(systemError(path, "cannot rename into place"));
   return fsyncPath(parentOf(path));
 }
 
@@ -104,7 +106,8 @@ Status writeFileAtomic(const fs::path& path, std::string_view text) {
 
 Result<StagingDirectory> StagingDirectory::create(const fs::path& target) {
   std::string staging = temporarySibling(target).string();
-  if (::mkdtemp(staging.data()) == nullptr) return systemError(target, "cannot create staging directory");
+  if (::mkdtemp(staging.data()) == nullptr)
+    return systemError(target, "cannot create staging directory");
   // mkdtemp creates 0700; a stack is an ordinary shared directory once visible.
   if (::chmod(staging.c_str(), 0755) != 0) {
     auto error = systemError(staging, "cannot chmod staging directory");
@@ -115,7 +118,9 @@ Result<StagingDirectory> StagingDirectory::create(const fs::path& target) {
 }
 
 StagingDirectory::StagingDirectory(StagingDirectory&& other) noexcept
-    : staging_(std::move(other.staging_)), target_(std::move(other.target_)), committed_(other.committed_) {
+    : staging_(std::move(other.staging_)),
+      target_(std::move(other.target_)),
+      committed_(other.committed_) {
   other.committed_ = true;  // the moved-from object no longer owns the directory
 }
 
@@ -126,7 +131,8 @@ StagingDirectory::~StagingDirectory() {
 }
 
 Status StagingDirectory::commit() {
-  if (committed_) return fail(ErrorCode::kInternal, target_.string() + ": staging directory already committed");
+  if (committed_)
+    return fail(ErrorCode::kInternal, target_.string() + ": staging directory already committed");
   if (auto status = fsyncPath(staging_); !status) return status;
   std::error_code ec;
   bool replacing = fs::exists(target_, ec);

@@ -55,16 +55,16 @@ inline Error withContext(Error error, const std::string& context) {
 
 // Inside a function returning Result<...> or Status: evaluates a Result expression, returns its
 // error if it failed, otherwise assigns its value to `target`.
-#define GLARECAM_ASSIGN(target, expression)                                \
-  do {                                                                     \
-    auto glarecam_result_ = (expression);                                  \
+#define GLARECAM_ASSIGN(target, expression)                                  \
+  do {                                                                       \
+    auto glarecam_result_ = (expression);                                    \
     if (!glarecam_result_) return std::unexpected(glarecam_result_.error()); \
-    target = std::move(*glarecam_result_);                                 \
+    target = std::move(*glarecam_result_);                                   \
   } while (0)
 
 // Same for a Status expression: returns its error if it failed.
-#define GLARECAM_CHECK(expression)                                         \
-  do {                                                                     \
-    auto glarecam_status_ = (expression);                                  \
+#define GLARECAM_CHECK(expression)                                           \
+  do {                                                                       \
+    auto glarecam_status_ = (expression);                                    \
     if (!glarecam_status_) return std::unexpected(glarecam_status_.error()); \
   } while (0)

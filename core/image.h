@@ -26,7 +26,9 @@ class Image {
 
   T* data() { return pixels_.data(); }
   const T* data() const { return pixels_.data(); }
-  std::span<T> row(int y) { return {pixels_.data() + offset(0, y), static_cast<std::size_t>(width_)}; }
+  std::span<T> row(int y) {
+    return {pixels_.data() + offset(0, y), static_cast<std::size_t>(width_)};
+  }
   std::span<const T> row(int y) const {
     return {pixels_.data() + offset(0, y), static_cast<std::size_t>(width_)};
   }

@@ -1,8 +1,5 @@
 #include "core/image_io.h"
 
-#include <png.h>
-#include <tiffio.h>
-
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -10,6 +7,8 @@
 #include <ImfOutputFile.h>
 #include <ImfStdIO.h>
 #include <ImfThreading.h>
+#include <png.h>
+#include <tiffio.h>
 
 #include <csetjmp>
 #include <cstdio>
@@ -82,11 +81,14 @@ Result<DecodedFrame> readPng(const fs::path& path, std::FILE* file) {
   png_get_IHDR(png, info, &header.width, &header.height, &header.bit_depth, &header.color_type,
                &header.interlace, nullptr, nullptr);
   if (header.color_type != PNG_COLOR_TYPE_GRAY) {
-    problem = "is not a single-channel greyscale PNG (colour type " + std::to_string(header.color_type) + ")";
+    problem = "is not a single-channel greyscale PNG (colour type " +
+              std::to_string(header.color_type) + ")";
   } else if (header.bit_depth != 8 && header.bit_depth != 16) {
-    problem = "has " + std::to_string(header.bit_depth) + "-bit samples; frames must be 8- or 16-bit";
+    problem =
+        "has " + std::to_string(header.bit_depth) + "-bit samples; frames must be 8- or 16-bit";
   } else if (static_cast<std::uint64_t>(header.width) * header.height > kMaxFramePixels) {
-    problem = "is too large (" + std::to_string(header.width) + "x" + std::to_string(header.height) + ")";
+    problem =
+        "is too large (" + std::to_string(header.width) + "x" + std::to_string(header.height) + ")";
   }
   if (!problem.empty()) {
     png_destroy_read_struct(&png, &info, nullptr);
@@ -120,7 +122,8 @@ void pngFlush(png_structp) {}
 
 // Encodes rows (already in PNG byte order) into a PNG in memory.
 Result<std::vector<std::byte>> encodePng(int width, int height, int bit_depth, int color_type,
-                                         const std::vector<const std::uint8_t*>& rows, int zlib_level) {
+                                         const std::vector<const std::uint8_t*>& rows,
+                                         int zlib_level) {
   PngErrorState state;
   std::vector<std::byte> out;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);
@@ -136,8 +139,9 @@ Result<std::vector<std::byte>> encodePng(int width, int height, int bit_depth, i
   png_set_write_fn(png, &out, pngWriteToVector, pngFlush);
   png_set_compression_level(png, zlib_level);
   png_set_filter(png, 0, PNG_FILTER_SUB);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), bit_depth,
-               color_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height),
+               bit_depth, color_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   if (bit_depth == 16) png_set_swap(png);
   png_write_rows(png, const_cast<png_bytepp>(rows.data()), static_cast<png_uint_32>(rows.size()));
@@ -175,11 +179,13 @@ Result<DecodedFrame> readTiff(const fs::path& path) {
   tiff_last_error.clear();
   TiffPtr tiff(TIFFOpen(path.c_str(), "r"));
   auto tiffFailure = [&](const std::string& what) {
-    return badInput(describe(path) + ": " + what + (tiff_last_error.empty() ? "" : " (" + tiff_last_error + ")"));
+    return badInput(describe(path) + ": " + what +
+                    (tiff_last_error.empty() ? "" : " (" + tiff_last_error + ")"));
   };
   if (!tiff) return tiffFailure("not a readable TIFF");
   std::uint32_t width = 0, height = 0;
-  std::uint16_t samples = 1, bits = 0, format = SAMPLEFORMAT_UINT, photometric = PHOTOMETRIC_MINISBLACK;
+  std::uint16_t samples = 1, bits = 0, format = SAMPLEFORMAT_UINT,
+                photometric = PHOTOMETRIC_MINISBLACK;
   TIFFGetField(tiff.get(), TIFFTAG_IMAGEWIDTH, &width);
   TIFFGetField(tiff.get(), TIFFTAG_IMAGELENGTH, &height);
   TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_SAMPLESPERPIXEL, &samples);
@@ -187,19 +193,23 @@ Result<DecodedFrame> readTiff(const fs::path& path) {
   TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_SAMPLEFORMAT, &format);
   TIFFGetField(tiff.get(), TIFFTAG_PHOTOMETRIC, &photometric);
   if (samples != 1 || photometric != PHOTOMETRIC_MINISBLACK) {
-    return badInput(describe(path) + ": is not a single-channel greyscale TIFF (" + std::to_string(samples) +
-                    " samples per pixel)");
+    return badInput(describe(path) + ": is not a single-channel greyscale TIFF (" +
+                    std::to_string(samples) + " samples per pixel)");
   }
   if ((bits != 8 && bits != 16) || format != SAMPLEFORMAT_UINT) {
-    return badInput(describe(path) + ": has " + std::to_string(bits) + "-bit samples; frames must be unsigned 8- or 16-bit");
+    return badInput(describe(path) + ": has " + std::to_string(bits) +
+                    "-bit samples; frames must be unsigned 8- or 16-bit");
   }
   if (width == 0 || height == 0 || static_cast<std::uint64_t>(width) * height > kMaxFramePixels) {
-    return badInput(describe(path) + ": has an unusable size (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    return badInput(describe(path) + ": has an unusable size (" + std::to_string(width) + "x" +
+                    std::to_string(height) + ")");
   }
-  if (TIFFIsTiled(tiff.get())) return badInput(describe(path) + ": tiled TIFF is not supported; write strips");
+  if (TIFFIsTiled(tiff.get()))
+    return badInput(describe(path) + ": tiled TIFF is not supported; write strips");
   DecodedFrame decoded{RawFrame(static_cast<int>(width), static_cast<int>(height)), bits};
   std::vector<std::uint8_t> line(static_cast<std::size_t>(TIFFScanlineSize(tiff.get())));
-  if (line.size() < static_cast<std::size_t>(width) * (bits / 8)) return tiffFailure("inconsistent scanline size");
+  if (line.size() < static_cast<std::size_t>(width) * (bits / 8))
+    return tiffFailure("inconsistent scanline size");
   for (std::uint32_t y = 0; y < height; ++y) {
     if (TIFFReadScanline(tiff.get(), line.data(), y, 0) < 0) {
       return tiffFailure("corrupt or truncated TIFF at row " + std::to_string(y));
@@ -236,7 +246,8 @@ bool startsWith(const std::vector<std::uint8_t>& bytes, std::span<const std::uin
 
 Result<DecodedFrame> readRawFrame(const fs::path& path) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return badInput(describe(path) + ": frame file is missing or not a regular file");
+  if (!fs::is_regular_file(path, ec))
+    return badInput(describe(path) + ": frame file is missing or not a regular file");
   FilePtr file(std::fopen(path.c_str(), "rb"));
   if (!file) return badInput(describe(path) + ": cannot open frame: " + std::strerror(errno));
   auto magic = readMagic(file.get());
@@ -251,7 +262,8 @@ Result<std::vector<std::byte>> encodePngGray(const RawFrame& frame, int bit_dept
   std::vector<const std::uint8_t*> rows(static_cast<std::size_t>(frame.height()));
   if (bit_depth == 8) {
     bytes8.resize(frame.pixelCount());
-    for (std::size_t i = 0; i < bytes8.size(); ++i) bytes8[i] = static_cast<std::uint8_t>(std::min<int>(frame.data()[i], 255));
+    for (std::size_t i = 0; i < bytes8.size(); ++i)
+      bytes8[i] = static_cast<std::uint8_t>(std::min<int>(frame.data()[i], 255));
   }
   for (int y = 0; y < frame.height(); ++y) {
     rows[static_cast<std::size_t>(y)] =
@@ -267,12 +279,15 @@ Status writePngGray(const fs::path& path, const RawFrame& frame, int bit_depth) 
   return writeFileAtomic(path, *bytes);
 }
 
-Status writePngRgb(const fs::path& path, int width, int height, std::span<const std::uint8_t> rgb, int zlib_level) {
+Status writePngRgb(const fs::path& path, int width, int height, std::span<const std::uint8_t> rgb,
+                   int zlib_level) {
   if (rgb.size() != static_cast<std::size_t>(width) * height * 3) {
-    return fail(ErrorCode::kInternal, describe(path) + ": RGB buffer does not match the image size");
+    return fail(ErrorCode::kInternal,
+                describe(path) + ": RGB buffer does not match the image size");
   }
   std::vector<const std::uint8_t*> rows(static_cast<std::size_t>(height));
-  for (int y = 0; y < height; ++y) rows[static_cast<std::size_t>(y)] = rgb.data() + static_cast<std::size_t>(y) * width * 3;
+  for (int y = 0; y < height; ++y)
+    rows[static_cast<std::size_t>(y)] = rgb.data() + static_cast<std::size_t>(y) * width * 3;
   auto bytes = encodePng(width, height, 8, PNG_COLOR_TYPE_RGB, rows, zlib_level);
   if (!bytes) return std::unexpected(withContext(bytes.error(), describe(path)));
   return writeFileAtomic(path, *bytes);
@@ -293,7 +308,8 @@ Status writeTiffGray16(const fs::path& path, const RawFrame& frame) {
     TIFFSetField(tiff.get(), TIFFTAG_ROWSPERSTRIP, 64);
     for (int y = 0; y < frame.height(); ++y) {
       auto row = frame.row(y);
-      if (TIFFWriteScanline(tiff.get(), const_cast<std::uint16_t*>(row.data()), static_cast<std::uint32_t>(y), 0) < 0) {
+      if (TIFFWriteScanline(tiff.get(), const_cast<std::uint16_t*>(row.data()),
+                            static_cast<std::uint32_t>(y), 0) < 0) {
         std::remove(temp.c_str());
         return ioError(describe(path) + ": cannot write TIFF row (" + tiff_last_error + ")");
       }
@@ -307,7 +323,8 @@ Status writeTiffGray16(const fs::path& path, const RawFrame& frame) {
 }
 
 Status writeExr(const fs::path& path, std::span<const ExrChannel> channels) {
-  if (channels.empty() || !channels.front().image) return fail(ErrorCode::kInternal, describe(path) + ": no EXR channel");
+  if (channels.empty() || !channels.front().image)
+    return fail(ErrorCode::kInternal, describe(path) + ": no EXR channel");
   configureExrThreads();
   const FloatImage& first = *channels.front().image;
   try {
@@ -317,7 +334,8 @@ Status writeExr(const fs::path& path, std::span<const ExrChannel> channels) {
     for (const auto& channel : channels) {
       header.channels().insert(channel.name, Imf::Channel(Imf::FLOAT));
       auto* base = const_cast<char*>(reinterpret_cast<const char*>(channel.image->data()));
-      buffer.insert(channel.name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * first.width()));
+      buffer.insert(channel.name,
+                    Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * first.width()));
     }
     Imf::StdOSStream stream;
     {
@@ -348,7 +366,8 @@ Result<FloatImage> readExr(const fs::path& path, const std::string& channel) {
     if (!channels.findChannel(name)) {
       auto it = channels.begin();
       if (it == channels.end() || ++channels.begin() != channels.end()) {
-        return badInput(describe(path) + ": EXR has no channel \"" + channel + "\" and more than one other");
+        return badInput(describe(path) + ": EXR has no channel \"" + channel +
+                        "\" and more than one other");
       }
       name = it.name();
     }
@@ -360,7 +379,8 @@ Result<FloatImage> readExr(const fs::path& path, const std::string& channel) {
     }
     FloatImage image(width, height);
     char* origin = reinterpret_cast<char*>(image.data()) -
-                   (static_cast<std::ptrdiff_t>(window.min.x) + static_cast<std::ptrdiff_t>(window.min.y) * width) *
+                   (static_cast<std::ptrdiff_t>(window.min.x) +
+                    static_cast<std::ptrdiff_t>(window.min.y) * width) *
                        static_cast<std::ptrdiff_t>(sizeof(float));
     Imf::FrameBuffer buffer;
     buffer.insert(name, Imf::Slice(Imf::FLOAT, origin, sizeof(float), sizeof(float) * width));

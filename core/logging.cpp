@@ -8,10 +8,18 @@ void initLogging(Verbosity verbosity) {
   auto logger = spdlog::stderr_color_mt("glarecam");
   logger->set_pattern("%^%l%$: %v");
   switch (verbosity) {
-    case Verbosity::kQuiet: logger->set_level(spdlog::level::err); break;
-    case Verbosity::kNormal: logger->set_level(spdlog::level::warn); break;
-    case Verbosity::kVerbose: logger->set_level(spdlog::level::info); break;
-    case Verbosity::kDebug: logger->set_level(spdlog::level::debug); break;
+    case Verbosity::kQuiet:
+      logger->set_level(spdlog::level::err);
+      break;
+    case Verbosity::kNormal:
+      logger->set_level(spdlog::level::warn);
+      break;
+    case Verbosity::kVerbose:
+      logger->set_level(spdlog::level::info);
+      break;
+    case Verbosity::kDebug:
+      logger->set_level(spdlog::level::debug);
+      break;
   }
   spdlog::set_default_logger(logger);
 }

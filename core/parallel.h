@@ -19,7 +19,9 @@ void parallelRows(int rows, unsigned threads, Body&& body) {
   }
   std::vector<std::jthread> workers;
   workers.reserve(threads - 1);
-  auto band = [&](unsigned i) { return static_cast<int>(static_cast<long long>(rows) * i / threads); };
+  auto band = [&](unsigned i) {
+    return static_cast<int>(static_cast<long long>(rows) * i / threads);
+  };
   for (unsigned i = 1; i < threads; ++i) {
     workers.emplace_back([&, i] { body(band(i), band(i + 1)); });
   }

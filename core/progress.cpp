@@ -36,9 +36,11 @@ void Progress::finish() {
 }
 
 void Progress::print() {
-  double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  std::fprintf(stderr, "%s%s: %d/%d %s(%.1f s)%s", terminal_ ? "\r\033[K" : "", label_.c_str(), done_, total_,
-               message_.empty() ? "" : (message_ + " ").c_str(), elapsed_s, terminal_ ? "" : "\n");
+  double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::fprintf(stderr, "%s%s: %d/%d %s(%.1f s)%s", terminal_ ? "\r\033[K" : "", label_.c_str(),
+               done_, total_, message_.empty() ? "" : (message_ + " ").c_str(), elapsed_s,
+               terminal_ ? "" : "\n");
   std::fflush(stderr);
   printed_ = true;
 }

@@ -17,7 +17,7 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void advance(const std::string& message = {});  // one step done
-  void setTotal(int total) { total_ = total; }     // when the work turns out larger
+  void setTotal(int total) { total_ = total; }    // when the work turns out larger
   void finish();
 
  private:

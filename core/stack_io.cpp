@@ -1,10 +1,10 @@
 #include "core/stack_io.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <fstream>
 #include <system_error>
-
-#include <sys/stat.h>
 
 #include "core/atomic_file.h"
 #include "core/image_io.h"
@@ -16,17 +16,21 @@ namespace fs = std::filesystem;
 namespace {
 
 // Resolves `relative` under `base` and refuses symlinks that lead outside it.
-Result<fs::path> resolveInside(const fs::path& base, const std::string& relative, const std::string& where,
-                               const std::string& what, const std::string& base_name = "the stack directory") {
+Result<fs::path> resolveInside(const fs::path& base, const std::string& relative,
+                               const std::string& where, const std::string& what,
+                               const std::string& base_name = "the stack directory") {
   if (!isContainedRelativePath(relative)) {
     return badInput(where + ": " + what + " \"" + relative + "\" escapes " + base_name);
   }
   std::error_code ec;
   fs::path resolved = fs::weakly_canonical(base / relative, ec);
   fs::path root = fs::weakly_canonical(base, ec);
-  if (ec) return badInput(where + ": cannot resolve " + what + " \"" + relative + "\": " + ec.message());
-  auto [root_end, ignored] = std::mismatch(root.begin(), root.end(), resolved.begin(), resolved.end());
-  if (root_end != root.end()) return badInput(where + ": " + what + " \"" + relative + "\" links outside " + base_name);
+  if (ec)
+    return badInput(where + ": cannot resolve " + what + " \"" + relative + "\": " + ec.message());
+  auto [root_end, ignored] =
+      std::mismatch(root.begin(), root.end(), resolved.begin(), resolved.end());
+  if (root_end != root.end())
+    return badInput(where + ": " + what + " \"" + relative + "\" links outside " + base_name);
   return base / relative;
 }
 
@@ -36,8 +40,10 @@ struct ResolvedCalibration {
   std::string origin;
 };
 
-Result<ResolvedCalibration> resolveCalibration(const fs::path& directory, const StackManifest& manifest,
-                                               const StackReadOptions& options, const std::string& where) {
+Result<ResolvedCalibration> resolveCalibration(const fs::path& directory,
+                                               const StackManifest& manifest,
+                                               const StackReadOptions& options,
+                                               const std::string& where) {
   if (options.calibration_file) {
     auto calibration = readCalibrationFile(*options.calibration_file);
     if (!calibration) return std::unexpected(calibration.error());
@@ -50,13 +56,16 @@ Result<ResolvedCalibration> resolveCalibration(const fs::path& directory, const 
     fs::path path = directory / *manifest.calibration_path;
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
-      return badInput(where + ": calibration file \"" + *manifest.calibration_path + "\" does not exist");
+      return badInput(where + ": calibration file \"" + *manifest.calibration_path +
+                      "\" does not exist");
     }
     auto calibration = readCalibrationFile(path);
     if (!calibration) return std::unexpected(calibration.error());
-    return ResolvedCalibration{std::move(*calibration), path.parent_path(), *manifest.calibration_path};
+    return ResolvedCalibration{std::move(*calibration), path.parent_path(),
+                               *manifest.calibration_path};
   }
-  return badInput(where + ": no calibration: give one inline, as a path, or with --calibration FILE");
+  return badInput(where +
+                  ": no calibration: give one inline, as a path, or with --calibration FILE");
 }
 
 Status checkFrameSizes(const Stack& stack) {
@@ -65,9 +74,10 @@ Status checkFrameSizes(const Stack& stack) {
     const RawFrame& frame = stack.frames[i];
     if (!frame.sameSize(first.width(), first.height())) {
       return badInput((stack.directory / stack.manifest.frames[i].file).string() + ": frame is " +
-                      std::to_string(frame.width()) + "x" + std::to_string(frame.height()) + " but " +
-                      stack.manifest.frames.front().file + " is " + std::to_string(first.width()) + "x" +
-                      std::to_string(first.height()) + "; all frames of a stack must have the same size");
+                      std::to_string(frame.width()) + "x" + std::to_string(frame.height()) +
+                      " but " + stack.manifest.frames.front().file + " is " +
+                      std::to_string(first.width()) + "x" + std::to_string(first.height()) +
+                      "; all frames of a stack must have the same size");
     }
   }
   return {};
@@ -77,7 +87,8 @@ Status decodeFrames(Stack& stack, const std::vector<fs::path>& paths, unsigned t
   std::vector<Result<DecodedFrame>> decoded(paths.size(), badInput("not decoded"));
   // One frame per task; frames are independent, so bands of the frame index are disjoint.
   parallelRows(static_cast<int>(paths.size()), threads, [&](int begin, int end) {
-    for (int i = begin; i < end; ++i) decoded[static_cast<std::size_t>(i)] = readRawFrame(paths[static_cast<std::size_t>(i)]);
+    for (int i = begin; i < end; ++i)
+      decoded[static_cast<std::size_t>(i)] = readRawFrame(paths[static_cast<std::size_t>(i)]);
   });
   for (auto& frame : decoded) {
     if (!frame) return std::unexpected(frame.error());
@@ -90,18 +101,22 @@ Status decodeFrames(Stack& stack, const std::vector<fs::path>& paths, unsigned t
 Status loadFlatField(Stack& stack, const fs::path& base, const std::string& where) {
   if (!stack.calibration.flat_field) return {};
   fs::path path;
-  const std::string base_name = stack.calibration_origin == "inline" ? "the stack directory" : "the calibration's directory";
-  GLARECAM_ASSIGN(path, resolveInside(base, *stack.calibration.flat_field, where, "flat_field", base_name));
+  const std::string base_name =
+      stack.calibration_origin == "inline" ? "the stack directory" : "the calibration's directory";
+  GLARECAM_ASSIGN(
+      path, resolveInside(base, *stack.calibration.flat_field, where, "flat_field", base_name));
   GLARECAM_ASSIGN(stack.flat_field, readExr(path));
   const RawFrame& first = stack.frames.front();
   if (!stack.flat_field->sameSize(first.width(), first.height())) {
-    return badInput(path.string() + ": flat field is " + std::to_string(stack.flat_field->width()) + "x" +
-                    std::to_string(stack.flat_field->height()) + ", frames are " + std::to_string(first.width()) +
-                    "x" + std::to_string(first.height()));
+    return badInput(path.string() + ": flat field is " + std::to_string(stack.flat_field->width()) +
+                    "x" + std::to_string(stack.flat_field->height()) + ", frames are " +
+                    std::to_string(first.width()) + "x" + std::to_string(first.height()));
   }
   const float* values = stack.flat_field->data();
-  bool usable = std::all_of(values, values + stack.flat_field->pixelCount(), [](float v) { return v > 0 && std::isfinite(v); });
-  if (!usable) return badInput(path.string() + ": flat field has non-positive or non-finite values");
+  bool usable = std::all_of(values, values + stack.flat_field->pixelCount(),
+                            [](float v) { return v > 0 && std::isfinite(v); });
+  if (!usable)
+    return badInput(path.string() + ": flat field has non-positive or non-finite values");
   return {};
 }
 
@@ -117,7 +132,8 @@ namespace {
 
 Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& options) {
   std::error_code ec;
-  if (!fs::is_directory(directory, ec)) return badInput(directory.string() + ": not a stack directory");
+  if (!fs::is_directory(directory, ec))
+    return badInput(directory.string() + ": not a stack directory");
   const fs::path manifest_path = directory / kManifestFileName;
   const std::string where = manifest_path.string();
   if (!fs::exists(manifest_path, ec)) return badInput(where + ": manifest is missing");
@@ -133,7 +149,8 @@ Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& o
   stack.calibration_origin = std::move(resolved.origin);
   for (const FrameSpec& frame : stack.manifest.frames) {
     if (frame.f_number && !stack.calibration.reference_f_number) {
-      return badInput(where + ": frame " + frame.file + " gives f_number but the calibration has no reference_f_number");
+      return badInput(where + ": frame " + frame.file +
+                      " gives f_number but the calibration has no reference_f_number");
     }
   }
   std::vector<fs::path> paths;
@@ -143,7 +160,8 @@ Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& o
     paths.push_back(std::move(path));
   }
   if (!options.decode_frames) return stack;
-  GLARECAM_CHECK(decodeFrames(stack, paths, options.threads ? options.threads : defaultThreadCount()));
+  GLARECAM_CHECK(
+      decodeFrames(stack, paths, options.threads ? options.threads : defaultThreadCount()));
   GLARECAM_CHECK(loadFlatField(stack, resolved.base_directory, where));
   return stack;
 }
@@ -172,15 +190,18 @@ Result<Stack> readStack(const fs::path& directory, const StackReadOptions& optio
 Status writeStack(const fs::path& directory, const StackWriteRequest& request) {
   const auto& specs = request.manifest.frames;
   if (specs.empty() || specs.size() != request.frames.size()) {
-    return fail(ErrorCode::kInternal, directory.string() + ": manifest lists " + std::to_string(specs.size()) +
-                                          " frames but " + std::to_string(request.frames.size()) + " were given");
+    return fail(ErrorCode::kInternal, directory.string() + ": manifest lists " +
+                                          std::to_string(specs.size()) + " frames but " +
+                                          std::to_string(request.frames.size()) + " were given");
   }
   if (request.bit_depth != 8 && request.bit_depth != 16) {
-    return fail(ErrorCode::kInternal, directory.string() + ": frames are written as 8- or 16-bit PNG");
+    return fail(ErrorCode::kInternal,
+                directory.string() + ": frames are written as 8- or 16-bit PNG");
   }
   for (const FrameSpec& spec : specs) {
     if (!isContainedRelativePath(spec.file)) {
-      return fail(ErrorCode::kInternal, directory.string() + ": frame file \"" + spec.file + "\" escapes the stack");
+      return fail(ErrorCode::kInternal,
+                  directory.string() + ": frame file \"" + spec.file + "\" escapes the stack");
     }
   }
   auto staging = StagingDirectory::create(directory);
@@ -202,18 +223,22 @@ Status writeStack(const fs::path& directory, const StackWriteRequest& request) {
     fs::path target = staging->path() / attachment.relative_path;
     fs::create_directories(target.parent_path(), ec);
     fs::copy_file(attachment.source, target, fs::copy_options::overwrite_existing, ec);
-    if (ec) return ioError(attachment.source.string() + ": cannot copy into stack: " + ec.message());
+    if (ec)
+      return ioError(attachment.source.string() + ": cannot copy into stack: " + ec.message());
     GLARECAM_CHECK(fsyncPath(target));
   }
   for (const auto& [relative_path, content] : request.text_files) {
     if (!isContainedRelativePath(relative_path)) {
-      return fail(ErrorCode::kInternal, directory.string() + ": \"" + relative_path + "\" escapes the stack");
+      return fail(ErrorCode::kInternal,
+                  directory.string() + ": \"" + relative_path + "\" escapes the stack");
     }
-    GLARECAM_CHECK(writeFileDurable(staging->path() / relative_path, std::as_bytes(std::span(content.data(), content.size()))));
+    GLARECAM_CHECK(writeFileDurable(staging->path() / relative_path,
+                                    std::as_bytes(std::span(content.data(), content.size()))));
   }
   const std::string manifest_text = toJson(request.manifest).dump(2) + "\n";
-  GLARECAM_CHECK(writeFileDurable(staging->path() / kManifestFileName,
-                                  std::as_bytes(std::span(manifest_text.data(), manifest_text.size()))));
+  GLARECAM_CHECK(
+      writeFileDurable(staging->path() / kManifestFileName,
+                       std::as_bytes(std::span(manifest_text.data(), manifest_text.size()))));
   return staging->commit();
 }
 

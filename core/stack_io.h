@@ -21,7 +21,7 @@ namespace glarecam {
 struct Stack {
   std::filesystem::path directory;
   StackManifest manifest;
-  Calibration calibration;  // the one in force, after overrides
+  Calibration calibration;         // the one in force, after overrides
   std::string calibration_origin;  // "inline", the manifest's path, or the --calibration file
   std::vector<RawFrame> frames;    // in manifest order
   std::vector<int> bit_depths;     // of each frame's file
@@ -30,26 +30,27 @@ struct Stack {
 
 struct StackReadOptions {
   std::optional<std::filesystem::path> calibration_file;  // overrides the manifest's
-  bool decode_frames = true;  // false: manifest and calibration only
-  unsigned threads = 0;       // 0: all cores
+  bool decode_frames = true;                              // false: manifest and calibration only
+  unsigned threads = 0;                                   // 0: all cores
 };
 
-Result<Stack> readStack(const std::filesystem::path& directory, const StackReadOptions& options = {});
+Result<Stack> readStack(const std::filesystem::path& directory,
+                        const StackReadOptions& options = {});
 
 // Reads a calibration file: a JSON object with the keys of the manifest's calibration block
 // (glarecam.calibration/1 is a superset).
 Result<Calibration> readCalibrationFile(const std::filesystem::path& path);
 
 struct StackAttachment {
-  std::string relative_path;         // where it goes inside the stack
-  std::filesystem::path source;      // the file to copy
+  std::string relative_path;     // where it goes inside the stack
+  std::filesystem::path source;  // the file to copy
 };
 
 struct StackWriteRequest {
-  StackManifest manifest;                  // frames[i].file names frames[i]'s file
+  StackManifest manifest;  // frames[i].file names frames[i]'s file
   std::span<const RawFrame> frames;
-  int bit_depth = 16;                      // 16 or 8
-  std::vector<StackAttachment> attachments;  // e.g. the flat field
+  int bit_depth = 16;                                           // 16 or 8
+  std::vector<StackAttachment> attachments;                     // e.g. the flat field
   std::vector<std::pair<std::string, std::string>> text_files;  // relative path, content
 };
 

@@ -25,7 +25,9 @@ class FieldReader {
     return badInput(where_ + ": " + name(key) + " " + problem);
   }
   std::string name(std::string_view key) const { return prefix_ + std::string(key); }
-  bool has(std::string_view key) const { return object_.contains(key) && !object_.at(key).is_null(); }
+  bool has(std::string_view key) const {
+    return object_.contains(key) && !object_.at(key).is_null();
+  }
   const json& at(std::string_view key) const { return object_.at(key); }
 
   // A finite number; absent or null gives nullopt.
@@ -50,7 +52,8 @@ class FieldReader {
   }
   Result<std::optional<std::string>> optionalString(std::string_view key) const {
     if (!has(key)) return std::optional<std::string>{};
-    if (!object_.at(key).is_string()) return error(key, "must be a string, not " + show(object_.at(key)));
+    if (!object_.at(key).is_string())
+      return error(key, "must be a string, not " + show(object_.at(key)));
     return object_.at(key).get<std::string>();
   }
   // A relative path that stays inside its base directory.
@@ -67,7 +70,6 @@ class FieldReader {
   std::string where_;
   std::string prefix_;
 };
-
 
 Result<Intrinsics> parseIntrinsics(const FieldReader& parent, const std::string& where) {
   if (!parent.has("intrinsics")) return parent.error("intrinsics", "is required (fx, fy, cx, cy)");
@@ -107,7 +109,8 @@ Result<std::optional<NoiseModel>> parseNoise(const FieldReader& parent, const st
 
 Result<FrameSpec> parseFrame(const json& entry, std::size_t index, const std::string& where) {
   std::string prefix = "frames[" + std::to_string(index) + "].";
-  if (!entry.is_object()) return badInput(where + ": frames[" + std::to_string(index) + "] must be an object");
+  if (!entry.is_object())
+    return badInput(where + ": frames[" + std::to_string(index) + "] must be an object");
   FieldReader fields(entry, where, prefix);
   FrameSpec frame;
   frame.source = entry;
@@ -124,7 +127,8 @@ Result<FrameSpec> parseFrame(const json& entry, std::size_t index, const std::st
   frame.nd_transmission = nd.value_or(1.0);
   if (frame.f_number && *frame.f_number <= 0) return fields.error("f_number", "must be positive");
   if (frame.nd_transmission <= 0 || frame.nd_transmission > 1) {
-    return fields.error("nd_transmission", "must be in (0, 1], not " + show(entry.at("nd_transmission")));
+    return fields.error("nd_transmission",
+                        "must be in (0, 1], not " + show(entry.at("nd_transmission")));
   }
   return frame;
 }
@@ -141,7 +145,8 @@ bool isContainedRelativePath(std::string_view relative) {
 }
 
 Result<Calibration> parseCalibration(const json& block, const std::string& where) {
-  if (!block.is_object()) return badInput(where + ": calibration must be an object or a path string");
+  if (!block.is_object())
+    return badInput(where + ": calibration must be an object or a path string");
   FieldReader fields(block, where, "calibration.");
   Calibration calibration;
   calibration.source = block;
@@ -168,9 +173,11 @@ Result<StackManifest> parseManifest(const json& document, const std::string& whe
   FieldReader fields(document, where, "");
   std::optional<std::string> schema;
   GLARECAM_ASSIGN(schema, fields.optionalString("schema"));
-  if (!schema) return fields.error("schema", "is missing (expected \"" + std::string(kStackSchema) + "\")");
+  if (!schema)
+    return fields.error("schema", "is missing (expected \"" + std::string(kStackSchema) + "\")");
   if (*schema != kStackSchema) {
-    return badInput(where + ": schema \"" + *schema + "\" is not supported (expected \"" + std::string(kStackSchema) + "\")");
+    return badInput(where + ": schema \"" + *schema + "\" is not supported (expected \"" +
+                    std::string(kStackSchema) + "\")");
   }
   StackManifest manifest;
   manifest.source = document;
@@ -178,7 +185,8 @@ Result<StackManifest> parseManifest(const json& document, const std::string& whe
   GLARECAM_ASSIGN(manifest.captured_at, fields.optionalString("captured_at"));
   GLARECAM_ASSIGN(manifest.alpha_deg, fields.optionalNumber("alpha_deg"));
   if (manifest.alpha_deg && (*manifest.alpha_deg < 0 || *manifest.alpha_deg > 90)) {
-    return fields.error("alpha_deg", "must be between 0 and 90 degrees, not " + show(document.at("alpha_deg")));
+    return fields.error("alpha_deg",
+                        "must be between 0 and 90 degrees, not " + show(document.at("alpha_deg")));
   }
   if (fields.has("calibration")) {
     if (document.at("calibration").is_string()) {
@@ -187,7 +195,8 @@ Result<StackManifest> parseManifest(const json& document, const std::string& whe
       GLARECAM_ASSIGN(manifest.calibration, parseCalibration(document.at("calibration"), where));
     }
   }
-  if (!fields.has("frames") || !document.at("frames").is_array()) return fields.error("frames", "must be a list of frames");
+  if (!fields.has("frames") || !document.at("frames").is_array())
+    return fields.error("frames", "must be a list of frames");
   const json& frames = document.at("frames");
   if (frames.empty()) return fields.error("frames", "is empty: a stack needs at least one frame");
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -205,12 +214,16 @@ json toJson(const Calibration& calibration) {
   block["luminance_factor"] = calibration.luminance_factor;
   if (calibration.reference_f_number) block["reference_f_number"] = *calibration.reference_f_number;
   const Intrinsics& k = calibration.intrinsics;
-  json intrinsics = block.contains("intrinsics") && block["intrinsics"].is_object() ? block["intrinsics"] : json::object();
-  intrinsics.update(json{{"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}, {"distortion", k.distortion}});
+  json intrinsics = block.contains("intrinsics") && block["intrinsics"].is_object()
+                        ? block["intrinsics"]
+                        : json::object();
+  intrinsics.update(
+      json{{"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}, {"distortion", k.distortion}});
   block["intrinsics"] = intrinsics;
   if (calibration.flat_field) block["flat_field"] = *calibration.flat_field;
   if (calibration.noise) {
-    json noise = block.contains("noise") && block["noise"].is_object() ? block["noise"] : json::object();
+    json noise =
+        block.contains("noise") && block["noise"].is_object() ? block["noise"] : json::object();
     noise["read_noise_dn"] = calibration.noise->read_noise_dn;
     noise["dn_per_electron"] = calibration.noise->dn_per_electron;
     block["noise"] = noise;
@@ -256,7 +269,8 @@ Result<json> parseJsonText(std::string_view text, const std::string& where) {
 
 Result<json> readJsonFile(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return badInput(path + ": file is missing or not a regular file");
+  if (!std::filesystem::is_regular_file(path, ec))
+    return badInput(path + ": file is missing or not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) return badInput(path + ": cannot open for reading");
   std::ostringstream text;

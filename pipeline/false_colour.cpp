@@ -14,8 +14,8 @@ namespace glarecam::pipeline {
 namespace {
 
 constexpr int kLutSize = 1024;
-constexpr double kMaxDecades = 6.0;       // the scale never spans more than this
-constexpr double kLowPercentile = 0.01;   // default bottom of the scale
+constexpr double kMaxDecades = 6.0;                   // the scale never spans more than this
+constexpr double kLowPercentile = 0.01;               // default bottom of the scale
 constexpr std::uint32_t kSaturatedArgb = 0xFFFFFFFF;  // white
 constexpr std::uint32_t kDarkArgb = 0xFF000000;       // black
 
@@ -33,7 +33,8 @@ std::uint32_t argb(const std::uint8_t rgb[3]) {
 struct Scale {
   double log_min, log_max;
   double position(double value) const {  // 0 at min, 1 at max
-    return std::clamp((std::log10(std::max(value, 1e-30)) - log_min) / (log_max - log_min), 0.0, 1.0);
+    return std::clamp((std::log10(std::max(value, 1e-30)) - log_min) / (log_max - log_min), 0.0,
+                      1.0);
   }
 };
 
@@ -50,7 +51,8 @@ Scale chooseScale(const calibration::MergedImage& merged, const FalseColourOptio
   double top = options.max_cd_m2.value_or(max_value > 0 ? max_value : 1.0);
   double bottom = top / std::pow(10.0, kMaxDecades);
   if (!sample.empty()) {
-    auto nth = sample.begin() + static_cast<std::ptrdiff_t>(kLowPercentile * static_cast<double>(sample.size() - 1));
+    auto nth = sample.begin() +
+               static_cast<std::ptrdiff_t>(kLowPercentile * static_cast<double>(sample.size() - 1));
     std::nth_element(sample.begin(), nth, sample.end());
     bottom = std::max(bottom, static_cast<double>(*nth));
   }
@@ -67,11 +69,13 @@ std::string tickLabel(double value) {
     ++group;
   }
   char text[32];
-  std::snprintf(text, sizeof text, value < 1.0 ? "%.2g%s" : "%.0f%s", value, kSuffix[static_cast<std::size_t>(group)]);
+  std::snprintf(text, sizeof text, value < 1.0 ? "%.2g%s" : "%.0f%s", value,
+                kSuffix[static_cast<std::size_t>(group)]);
   return text;
 }
 
-void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged, const Scale& scale) {
+void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged,
+                const Scale& scale) {
   std::array<std::uint32_t, kLutSize> lut;
   for (int i = 0; i < kLutSize; ++i) {
     std::uint8_t rgb[3];
@@ -112,7 +116,8 @@ void drawText(cairo_t* cr, double x, double y, const std::string& text) {
   cairo_show_text(cr, text.c_str());
 }
 
-void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale, const FalseColourOptions& options) {
+void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
+                    const FalseColourOptions& options) {
   cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, p.font_px);
   const int steps = static_cast<int>(p.bar_bottom - p.bar_top);
@@ -123,10 +128,13 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale, const
     cairo_rectangle(cr, p.bar_x, p.bar_top + i, p.bar_width, 1.0);
     cairo_fill(cr);
   }
-  auto yOf = [&](double value) { return p.bar_bottom - scale.position(value) * (p.bar_bottom - p.bar_top); };
+  auto yOf = [&](double value) {
+    return p.bar_bottom - scale.position(value) * (p.bar_bottom - p.bar_top);
+  };
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_set_line_width(cr, std::max(1.0, p.font_px / 10));
-  for (int decade = static_cast<int>(std::ceil(scale.log_min)); decade <= static_cast<int>(std::floor(scale.log_max)); ++decade) {
+  for (int decade = static_cast<int>(std::ceil(scale.log_min));
+       decade <= static_cast<int>(std::floor(scale.log_max)); ++decade) {
     const double value = std::pow(10.0, decade);
     const double y = yOf(value);
     cairo_move_to(cr, p.bar_x + p.bar_width, y);
@@ -147,7 +155,8 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale, const
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, p.bar_x, p.bar_bottom + p.font_px * 0.8, p.bar_width, p.font_px);
   cairo_fill(cr);
-  drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, p.bar_bottom + p.font_px * 1.7, "saturated");
+  drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, p.bar_bottom + p.font_px * 1.7,
+           "saturated");
 }
 
 RgbImage toRgb(cairo_surface_t* surface) {
@@ -159,7 +168,8 @@ RgbImage toRgb(cairo_surface_t* surface) {
   const unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   for (int y = 0; y < image.height; ++y) {
-    const auto* in = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    const auto* in =
+        reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
     std::uint8_t* out = image.rgb.data() + static_cast<std::size_t>(y) * image.width * 3;
     for (int x = 0; x < image.width; ++x) {
       out[3 * x + 0] = static_cast<std::uint8_t>(in[x] >> 16);
@@ -174,9 +184,12 @@ RgbImage toRgb(cairo_surface_t* surface) {
 
 void turboColour(double t, std::uint8_t rgb[3]) {
   // Polynomial fit of the Turbo colour map (A. Mikhailov, Google AI blog, 2019).
-  static constexpr double kRed[6] = {0.13572138, 4.61539260, -42.66032258, 132.13108234, -152.94239396, 59.28637943};
-  static constexpr double kGreen[6] = {0.09140261, 2.19418839, 4.84296658, -14.18503333, 4.27729857, 2.82956604};
-  static constexpr double kBlue[6] = {0.10667330, 12.64194608, -60.58204836, 110.36276771, -89.90310912, 27.34824973};
+  static constexpr double kRed[6] = {0.13572138,   4.61539260,    -42.66032258,
+                                     132.13108234, -152.94239396, 59.28637943};
+  static constexpr double kGreen[6] = {0.09140261,   2.19418839, 4.84296658,
+                                       -14.18503333, 4.27729857, 2.82956604};
+  static constexpr double kBlue[6] = {0.10667330,   12.64194608,  -60.58204836,
+                                      110.36276771, -89.90310912, 27.34824973};
   t = std::clamp(t, 0.0, 1.0);
   auto channel = [t](const double* c) {
     double value = c[5];
@@ -188,7 +201,8 @@ void turboColour(double t, std::uint8_t rgb[3]) {
   rgb[2] = channel(kBlue);
 }
 
-Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged, const FalseColourOptions& options) {
+Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
+                                   const FalseColourOptions& options) {
   const int width = merged.luminance_cd_m2.width();
   const int height = merged.luminance_cd_m2.height();
   if (width <= 0 || height <= 0) return badInput("false colour: empty image");
@@ -199,7 +213,8 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged, const
   std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
       cairo_image_surface_create(CAIRO_FORMAT_RGB24, width + panel_width, canvas_height));
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-    return fail(ErrorCode::kInternal, "false colour: cannot allocate a " + std::to_string(width + panel_width) + "x" +
+    return fail(ErrorCode::kInternal, "false colour: cannot allocate a " +
+                                          std::to_string(width + panel_width) + "x" +
                                           std::to_string(canvas_height) + " picture");
   }
   const Scale scale = chooseScale(merged, options);
@@ -207,8 +222,8 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged, const
   cairo_set_source_rgb(cr.get(), 0.12, 0.12, 0.12);
   cairo_paint(cr.get());
   paintImage(surface.get(), merged, scale);
-  const PanelLayout layout{font_px * 4.0,
-                           canvas_height - font_px * 4.0, width + font_px, font_px * 1.5, font_px};
+  const PanelLayout layout{font_px * 4.0, canvas_height - font_px * 4.0, width + font_px,
+                           font_px * 1.5, font_px};
   paintColourBar(cr.get(), layout, scale, options);
   return toRgb(surface.get());
 }

@@ -15,8 +15,9 @@
 namespace glarecam::pipeline {
 
 struct FalseColourOptions {
-  std::optional<double> min_cd_m2;  // bottom of the scale; default: 1st percentile, at most 6 decades below max
-  std::optional<double> max_cd_m2;  // top of the scale; default: the image maximum
+  std::optional<double>
+      min_cd_m2;  // bottom of the scale; default: 1st percentile, at most 6 decades below max
+  std::optional<double> max_cd_m2;    // top of the scale; default: the image maximum
   std::optional<double> limit_cd_m2;  // marked on the colour bar when given
   std::string title;                  // drawn above the colour bar (e.g. "α 40°")
 };
@@ -29,6 +30,7 @@ struct RgbImage {
 // Turbo colour map (Google, 2019; polynomial approximation), t in [0, 1].
 void turboColour(double t, std::uint8_t rgb[3]);
 
-Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged, const FalseColourOptions& options = {});
+Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
+                                   const FalseColourOptions& options = {});
 
 }  // namespace glarecam::pipeline

@@ -10,10 +10,10 @@
 namespace glarecam::pipeline {
 
 struct LuminanceStats {
-  LuminancePeak max;                // robust maximum (luminance_peak.h)
-  double valid_fraction = 0;        // pixels with at least one valid frame
-  std::size_t saturated_pixels = 0;  // saturated in every frame (lower bounds)
-  std::size_t dark_pixels = 0;       // under-exposed in every frame (upper bounds)
+  LuminancePeak max;                       // robust maximum (luminance_peak.h)
+  double valid_fraction = 0;               // pixels with at least one valid frame
+  std::size_t saturated_pixels = 0;        // saturated in every frame (lower bounds)
+  std::size_t dark_pixels = 0;             // under-exposed in every frame (upper bounds)
   double median_relative_uncertainty = 0;  // over measured pixels
 };
 

@@ -54,31 +54,37 @@ std::string ProcessSummary::briefReport() const {
   const auto& lum = result.at("luminance");
   const auto& limit = result.at("limit").at("limit_cd_m2");
   char line[256];
-  std::snprintf(line, sizeof line, "%s: Lmax %.4g cd/m² at (%d, %d), limit %s, glare %s",
-                result.at("stack").get<std::string>().c_str(), lum.at("max_cd_m2").get<double>(),
-                lum.at("max_pixel")[0].get<int>(), lum.at("max_pixel")[1].get<int>(),
-                limit.is_null() ? "none" : std::to_string(std::lround(limit.get<double>())).c_str(),
-                result.at("glare").is_null() ? "n/a" : (result.at("glare").get<bool>() ? "yes" : "no"));
+  std::snprintf(
+      line, sizeof line, "%s: Lmax %.4g cd/m² at (%d, %d), limit %s, glare %s",
+      result.at("stack").get<std::string>().c_str(), lum.at("max_cd_m2").get<double>(),
+      lum.at("max_pixel")[0].get<int>(), lum.at("max_pixel")[1].get<int>(),
+      limit.is_null() ? "none" : std::to_string(std::lround(limit.get<double>())).c_str(),
+      result.at("glare").is_null() ? "n/a" : (result.at("glare").get<bool>() ? "yes" : "no"));
   return line;
 }
 
-Result<ProcessSummary> processStack(const fs::path& stack_directory, const ProcessOptions& options) {
-  Progress progress("process " + stack_directory.filename().string(), kProcessSteps, options.show_progress);
-  StackReadOptions read_options{.calibration_file = options.calibration_file, .threads = options.threads};
+Result<ProcessSummary> processStack(const fs::path& stack_directory,
+                                    const ProcessOptions& options) {
+  Progress progress("process " + stack_directory.filename().string(), kProcessSteps,
+                    options.show_progress);
+  StackReadOptions read_options{.calibration_file = options.calibration_file,
+                                .threads = options.threads};
   Stack stack;
   GLARECAM_ASSIGN(stack, readStack(stack_directory, read_options));
   progress.advance("read");
 
   const auto radiometry = calibration::frameRadiometry(stack.manifest.frames, stack.calibration);
   calibration::MergeInput input{stack.frames, radiometry, stack.calibration.black_level_dn,
-                                stack.calibration.saturation_dn, stack.flat_field ? &*stack.flat_field : nullptr};
+                                stack.calibration.saturation_dn,
+                                stack.flat_field ? &*stack.flat_field : nullptr};
   calibration::MergedImage merged;
   GLARECAM_ASSIGN(merged, calibration::merge(input, {.threads = options.threads}));
   stack.frames.clear();  // the raw frames are no longer needed: free them before the outputs
   progress.advance("merged");
 
   const LuminanceStats stats = luminanceStats(merged);
-  const std::optional<double> limit = stack.manifest.alpha_deg ? glareLimitCdM2(*stack.manifest.alpha_deg) : std::nullopt;
+  const std::optional<double> limit =
+      stack.manifest.alpha_deg ? glareLimitCdM2(*stack.manifest.alpha_deg) : std::nullopt;
   ProcessSummary summary;
   summary.output_directory = options.output_directory.value_or(stack_directory / "result");
   summary.result = makeResult({.stack_id = stackId(stack),
@@ -89,7 +95,8 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory, const Proce
                                .noise_model_assumed = !stack.calibration.noise,
                                .stats = stats,
                                .limit_cd_m2 = limit});
-  if (!stack.calibration.noise) spdlog::warn("{}: calibration has no noise model; assuming a typical sensor", stackId(stack));
+  if (!stack.calibration.noise)
+    spdlog::warn("{}: calibration has no noise model; assuming a typical sensor", stackId(stack));
 
   const fs::path& out = summary.output_directory;
   GLARECAM_CHECK(prepareOutputDirectory(out));
@@ -97,7 +104,11 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory, const Proce
   progress.advance("luminance.exr");
   GLARECAM_CHECK(writeQualityExr(out / "quality.exr", merged));
   progress.advance("quality.exr");
-  std::string title = stack.manifest.alpha_deg ? "\u03b1 " + std::to_string(static_cast<int>(std::lround(*stack.manifest.alpha_deg))) + "\u00b0" : "";
+  std::string title =
+      stack.manifest.alpha_deg
+          ? "\u03b1 " + std::to_string(static_cast<int>(std::lround(*stack.manifest.alpha_deg))) +
+                "\u00b0"
+          : "";
   FalseColourOptions picture_options;
   picture_options.limit_cd_m2 = limit;
   picture_options.title = title;

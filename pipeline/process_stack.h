@@ -6,10 +6,9 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 
@@ -28,6 +27,7 @@ struct ProcessSummary {
   std::string briefReport() const;  // one line for logs
 };
 
-Result<ProcessSummary> processStack(const std::filesystem::path& stack_directory, const ProcessOptions& options = {});
+Result<ProcessSummary> processStack(const std::filesystem::path& stack_directory,
+                                    const ProcessOptions& options = {});
 
 }  // namespace glarecam::pipeline

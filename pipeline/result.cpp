@@ -41,7 +41,9 @@ nlohmann::json makeResult(const ResultInputs& in) {
   result["limit"] = {{"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
                      {"mode", "alpha_curve"}};
   result["glare"] = glareVerdict(s.max, in.limit_cd_m2);
-  result["outputs"] = {{"luminance_exr", "luminance.exr"}, {"quality_exr", "quality.exr"}, {"luminance_png", "luminance.png"}};
+  result["outputs"] = {{"luminance_exr", "luminance.exr"},
+                       {"quality_exr", "quality.exr"},
+                       {"luminance_png", "luminance.png"}};
   result["generator"] = {{"name", "glarecam"}, {"version", kVersion}};
   return result;
 }

@@ -2,10 +2,9 @@
 // Built from plain values; later stages (glare ellipse, FWHM) add their own keys.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "pipeline/luminance_stats.h"
 

@@ -1,8 +1,8 @@
 #include "apps/glarecam/cli.h"
 
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <functional>
 #include <iostream>
@@ -15,8 +15,9 @@
 namespace glarecam::apps {
 
 int runGlarecam(int argc, char** argv) {
-  CLI::App app{"glarecam: measures glare of PV modules from bracketed camera stacks.\n"
-               "Docs: docs/process.md, docs/stack-format.md, docs/method.md"};
+  CLI::App app{
+      "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
+      "Docs: docs/process.md, docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
   bool verbose = false, quiet = false, debug = false;
@@ -40,7 +41,10 @@ int runGlarecam(int argc, char** argv) {
     std::fprintf(stderr, "glarecam: %s (see glarecam --help)\n", e.what());
     return kExitBadInput;
   }
-  initLogging(debug ? Verbosity::kDebug : verbose ? Verbosity::kVerbose : quiet ? Verbosity::kQuiet : Verbosity::kNormal);
+  initLogging(debug     ? Verbosity::kDebug
+              : verbose ? Verbosity::kVerbose
+              : quiet   ? Verbosity::kQuiet
+                        : Verbosity::kNormal);
   Status status = action ? action() : badInput("no command given");
   if (!status) {
     std::fprintf(stderr, "glarecam: %s\n", status.error().message.c_str());

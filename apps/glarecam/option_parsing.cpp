@@ -19,14 +19,15 @@ bool parseWhole(const std::string& text, T& value) {
 Result<std::pair<int, int>> parseSize(const std::string& text, const std::string& option) {
   const auto x = text.find('x');
   int width = 0, height = 0;
-  if (x == std::string::npos || !parseWhole(text.substr(0, x), width) || !parseWhole(text.substr(x + 1), height)) {
+  if (x == std::string::npos || !parseWhole(text.substr(0, x), width) ||
+      !parseWhole(text.substr(x + 1), height)) {
     return badInput(option + ": expected WIDTHxHEIGHT, got \"" + text + "\"");
   }
   return std::pair{width, height};
 }
 
-Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option, std::size_t min_count,
-                                            std::size_t max_count) {
+Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option,
+                                            std::size_t min_count, std::size_t max_count) {
   std::vector<double> values;
   std::stringstream stream(text);
   std::string item;
@@ -39,7 +40,8 @@ Result<std::vector<double>> parseNumberList(const std::string& text, const std::
   }
   if (values.size() < min_count || values.size() > max_count) {
     return badInput(option + ": expected " + std::to_string(min_count) +
-                    (max_count != min_count ? " to " + std::to_string(max_count) : "") + " comma-separated numbers");
+                    (max_count != min_count ? " to " + std::to_string(max_count) : "") +
+                    " comma-separated numbers");
   }
   return values;
 }

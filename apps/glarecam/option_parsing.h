@@ -11,7 +11,7 @@
 namespace glarecam::apps {
 
 Result<std::pair<int, int>> parseSize(const std::string& text, const std::string& option);
-Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option, std::size_t min_count,
-                                            std::size_t max_count);
+Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option,
+                                            std::size_t min_count, std::size_t max_count);
 
 }  // namespace glarecam::apps

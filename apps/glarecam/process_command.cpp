@@ -38,9 +38,11 @@ Status runProcess(const ProcessArgs& args) {
 
 void addProcessCommand(CLI::App& app, Action& action) {
   auto args = std::make_shared<ProcessArgs>();
-  CLI::App* sub = app.add_subcommand("process", "Turn a stack into a luminance image and result.json (docs/process.md)");
+  CLI::App* sub = app.add_subcommand(
+      "process", "Turn a stack into a luminance image and result.json (docs/process.md)");
   sub->add_option("STACK", args->stack, "stack directory (holding stack.json)")->required();
-  sub->add_option("--calibration", args->calibration, "calibration JSON file; overrides the stack's");
+  sub->add_option("--calibration", args->calibration,
+                  "calibration JSON file; overrides the stack's");
   sub->add_option("--out", args->out, "output directory (default STACK/result)");
   sub->add_flag("--json", args->json, "print result.json on stdout");
   sub->add_option("--threads", args->threads, "worker threads (default: all cores)");

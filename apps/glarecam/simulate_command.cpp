@@ -45,18 +45,29 @@ void addSimulateCommand(CLI::App& app, Action& action) {
   auto args = std::make_shared<SimulateArgs>();
   std::string modules;
   for (const auto& name : capture::moduleNames()) modules += (modules.empty() ? "" : ", ") + name;
-  CLI::App* sub = app.add_subcommand("simulate", "Write a stack of the simulated rig, with truth.json (docs/simulate.md)");
-  sub->add_option("--out", args->out, "stack directory to create (replaced atomically if it exists)")->required();
-  sub->add_option("--alpha", args->options.alpha_deg, "angle of incidence in degrees, 0..80")->capture_default_str();
-  sub->add_option("--module", args->options.module, "module glare model (" + modules + ")")->capture_default_str();
+  CLI::App* sub = app.add_subcommand(
+      "simulate", "Write a stack of the simulated rig, with truth.json (docs/simulate.md)");
+  sub->add_option("--out", args->out,
+                  "stack directory to create (replaced atomically if it exists)")
+      ->required();
+  sub->add_option("--alpha", args->options.alpha_deg, "angle of incidence in degrees, 0..80")
+      ->capture_default_str();
+  sub->add_option("--module", args->options.module, "module glare model (" + modules + ")")
+      ->capture_default_str();
   sub->add_option("--size", args->size, "frame size WIDTHxHEIGHT")->capture_default_str();
-  sub->add_option("--seed", args->options.seed, "noise seed; same seed, same stack")->capture_default_str();
-  sub->add_option("--fov", args->options.horizontal_fov_deg, "horizontal field of view in degrees")->capture_default_str();
-  sub->add_option("--distortion", args->distortion, "lens distortion k1,k2,p1,p2,k3 (OpenCV order)");
+  sub->add_option("--seed", args->options.seed, "noise seed; same seed, same stack")
+      ->capture_default_str();
+  sub->add_option("--fov", args->options.horizontal_fov_deg, "horizontal field of view in degrees")
+      ->capture_default_str();
+  sub->add_option("--distortion", args->distortion,
+                  "lens distortion k1,k2,p1,p2,k3 (OpenCV order)");
   sub->add_option("--offset-deg", args->offset, "lobe centre H,V degrees from the optical axis");
-  sub->add_option("--orientation", args->options.lobe_orientation_deg, "lobe rotation in degrees")->capture_default_str();
-  sub->add_option("--background", args->options.background_cd_m2, "background luminance, cd/m²")->capture_default_str();
-  sub->add_option("--peak-scale", args->options.peak_scale, "scale the module's luminance maximum")->capture_default_str();
+  sub->add_option("--orientation", args->options.lobe_orientation_deg, "lobe rotation in degrees")
+      ->capture_default_str();
+  sub->add_option("--background", args->options.background_cd_m2, "background luminance, cd/m²")
+      ->capture_default_str();
+  sub->add_option("--peak-scale", args->options.peak_scale, "scale the module's luminance maximum")
+      ->capture_default_str();
   sub->add_flag("!--no-progress", args->options.show_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSimulate(*args); }; });
 }

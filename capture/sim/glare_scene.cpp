@@ -16,7 +16,9 @@ calibration::Ray normalise(double x, double y, double z) {
   return {x / n, y / n, z / n};
 }
 
-double dot(const calibration::Ray& a, const calibration::Ray& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double dot(const calibration::Ray& a, const calibration::Ray& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
 // Radius (in units of sigma) of the contour at `level` of B + (P - B) exp(-r²/2).
 double contourRadius(double peak, double background, double level) {
@@ -25,11 +27,12 @@ double contourRadius(double peak, double background, double level) {
 
 }  // namespace
 
-Result<GlareLobe> lobeWithAxesAt(double level_cd_m2, double peak_cd_m2, double background_cd_m2, double vertical_deg,
-                                 double horizontal_deg) {
+Result<GlareLobe> lobeWithAxesAt(double level_cd_m2, double peak_cd_m2, double background_cd_m2,
+                                 double vertical_deg, double horizontal_deg) {
   if (!(peak_cd_m2 > level_cd_m2 && level_cd_m2 > background_cd_m2 && background_cd_m2 >= 0)) {
-    return badInput("glare scene: needs peak > level > background (peak " + std::to_string(peak_cd_m2) + ", level " +
-                    std::to_string(level_cd_m2) + ", background " + std::to_string(background_cd_m2) + " cd/m²)");
+    return badInput("glare scene: needs peak > level > background (peak " +
+                    std::to_string(peak_cd_m2) + ", level " + std::to_string(level_cd_m2) +
+                    ", background " + std::to_string(background_cd_m2) + " cd/m²)");
   }
   const double radius = contourRadius(peak_cd_m2, background_cd_m2, level_cd_m2);
   GlareLobe lobe;
@@ -47,7 +50,8 @@ Result<GlareScene> GlareScene::create(const GlareLobe& lobe) {
   if (!finite || lobe.background_cd_m2 < 0 || !(lobe.peak_cd_m2 > 0)) {
     return badInput("glare scene: non-finite or non-positive parameters");
   }
-  if (!(lobe.sigma_h_deg > 0 && lobe.sigma_v_deg > 0 && lobe.sigma_h_deg < 45 && lobe.sigma_v_deg < 45)) {
+  if (!(lobe.sigma_h_deg > 0 && lobe.sigma_v_deg > 0 && lobe.sigma_h_deg < 45 &&
+        lobe.sigma_v_deg < 45)) {
     return badInput("glare scene: lobe widths must be between 0 and 45 degrees");
   }
   return GlareScene(lobe);
@@ -57,9 +61,12 @@ GlareScene::GlareScene(const GlareLobe& lobe) : lobe_(lobe) {
   centre_ = normalise(std::tan(lobe.centre_direction_deg[0] * kDegToRad),
                       std::tan(lobe.centre_direction_deg[1] * kDegToRad), 1.0);
   // Tangent basis at the centre: image-horizontal and image-vertical directions, then rotated.
-  calibration::Ray h = normalise(1.0 - centre_.x * centre_.x, -centre_.x * centre_.y, -centre_.x * centre_.z);
-  calibration::Ray v{centre_.y * h.z - centre_.z * h.y, centre_.z * h.x - centre_.x * h.z, centre_.x * h.y - centre_.y * h.x};
-  const double c = std::cos(lobe.orientation_deg * kDegToRad), s = std::sin(lobe.orientation_deg * kDegToRad);
+  calibration::Ray h =
+      normalise(1.0 - centre_.x * centre_.x, -centre_.x * centre_.y, -centre_.x * centre_.z);
+  calibration::Ray v{centre_.y * h.z - centre_.z * h.y, centre_.z * h.x - centre_.x * h.z,
+                     centre_.x * h.y - centre_.y * h.x};
+  const double c = std::cos(lobe.orientation_deg * kDegToRad),
+               s = std::sin(lobe.orientation_deg * kDegToRad);
   axis_h_ = {c * h.x + s * v.x, c * h.y + s * v.y, c * h.z + s * v.z};
   axis_v_ = {-s * h.x + c * v.x, -s * h.y + c * v.y, -s * h.z + c * v.z};
 }
@@ -67,14 +74,17 @@ GlareScene::GlareScene(const GlareLobe& lobe) : lobe_(lobe) {
 double GlareScene::luminanceCdM2(const calibration::Ray& ray) const {
   const double p = dot(ray, axis_h_), q = dot(ray, axis_v_);
   const double sideways = std::hypot(p, q);
-  const double rho_deg = std::atan2(sideways, dot(ray, centre_)) / kDegToRad;  // angle from the lobe centre
+  const double rho_deg =
+      std::atan2(sideways, dot(ray, centre_)) / kDegToRad;  // angle from the lobe centre
   const double u = sideways > 0 ? rho_deg * p / sideways / lobe_.sigma_h_deg : 0.0;
   const double w = sideways > 0 ? rho_deg * q / sideways / lobe_.sigma_v_deg : 0.0;
-  return lobe_.background_cd_m2 + (lobe_.peak_cd_m2 - lobe_.background_cd_m2) * std::exp(-0.5 * (u * u + w * w));
+  return lobe_.background_cd_m2 +
+         (lobe_.peak_cd_m2 - lobe_.background_cd_m2) * std::exp(-0.5 * (u * u + w * w));
 }
 
 std::optional<EllipseAxes> GlareScene::axesAt(double level_cd_m2) const {
-  if (!(lobe_.peak_cd_m2 > level_cd_m2 && level_cd_m2 > lobe_.background_cd_m2)) return std::nullopt;
+  if (!(lobe_.peak_cd_m2 > level_cd_m2 && level_cd_m2 > lobe_.background_cd_m2))
+    return std::nullopt;
   const double radius = contourRadius(lobe_.peak_cd_m2, lobe_.background_cd_m2, level_cd_m2);
   return EllipseAxes{2.0 * lobe_.sigma_v_deg * radius, 2.0 * lobe_.sigma_h_deg * radius};
 }
@@ -91,10 +101,13 @@ FloatImage GlareScene::render(const calibration::CameraModel& camera, int width,
   parallelRows(height, defaultThreadCount(), [&](int begin, int end) {
     std::vector<calibration::PixelPoint> pixels(static_cast<std::size_t>(width));
     for (int y = begin; y < end; ++y) {
-      for (int x = 0; x < width; ++x) pixels[static_cast<std::size_t>(x)] = {static_cast<double>(x), static_cast<double>(y)};
+      for (int x = 0; x < width; ++x)
+        pixels[static_cast<std::size_t>(x)] = {static_cast<double>(x), static_cast<double>(y)};
       const auto rays = camera.rays(pixels);
       auto row = image.row(y);
-      for (int x = 0; x < width; ++x) row[static_cast<std::size_t>(x)] = static_cast<float>(luminanceCdM2(rays[static_cast<std::size_t>(x)]));
+      for (int x = 0; x < width; ++x)
+        row[static_cast<std::size_t>(x)] =
+            static_cast<float>(luminanceCdM2(rays[static_cast<std::size_t>(x)]));
     }
   });
   return image;

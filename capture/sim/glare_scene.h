@@ -28,8 +28,8 @@ struct GlareLobe {
 
 // The lobe whose iso-contour at `level_cd_m2` has the given full axes (needs peak > level >
 // background).
-Result<GlareLobe> lobeWithAxesAt(double level_cd_m2, double peak_cd_m2, double background_cd_m2, double vertical_deg,
-                                 double horizontal_deg);
+Result<GlareLobe> lobeWithAxesAt(double level_cd_m2, double peak_cd_m2, double background_cd_m2,
+                                 double vertical_deg, double horizontal_deg);
 
 struct EllipseAxes {
   double vertical_deg = 0, horizontal_deg = 0;

@@ -4,7 +4,9 @@
 
 namespace glarecam::capture {
 
-double LogisticCurve::operator()(double alpha_deg) const { return a / (1.0 + std::exp(-(alpha_deg - b) * d)) + c; }
+double LogisticCurve::operator()(double alpha_deg) const {
+  return a / (1.0 + std::exp(-(alpha_deg - b) * d)) + c;
+}
 
 double BiquadraticLnCurve::operator()(double alpha_deg) const {
   const double a2 = alpha_deg * alpha_deg;

@@ -23,13 +23,16 @@ std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser: independent strea
 
 }  // namespace
 
-RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame, const Calibration& calibration,
-                     const SensorModel& sensor, std::uint64_t seed) {
+RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame,
+                     const Calibration& calibration, const SensorModel& sensor,
+                     std::uint64_t seed) {
   const calibration::FrameRadiometry radiometry = calibration::frameRadiometry(frame, calibration);
-  const double electrons_per_cd_m2 = 1.0 / (radiometry.scale_cd_m2_per_dn * radiometry.dn_per_electron);
+  const double electrons_per_cd_m2 =
+      1.0 / (radiometry.scale_cd_m2_per_dn * radiometry.dn_per_electron);
   const double full_scale = sensor.full_scale_dn();
   RawFrame raw(luminance_cd_m2.width(), luminance_cd_m2.height());
-  const std::uint64_t frame_seed = mix(seed ^ mix(static_cast<std::uint64_t>(frame.exposure_us * 1000.0)));
+  const std::uint64_t frame_seed =
+      mix(seed ^ mix(static_cast<std::uint64_t>(frame.exposure_us * 1000.0)));
   parallelRows(raw.height(), defaultThreadCount(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
       std::mt19937_64 rng(mix(frame_seed + static_cast<std::uint64_t>(y)));
@@ -37,12 +40,14 @@ RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame, 
       auto in = luminance_cd_m2.row(y);
       auto out = raw.row(y);
       for (std::size_t x = 0; x < in.size(); ++x) {
-        const double mean_electrons = std::max(0.0, static_cast<double>(in[x]) * electrons_per_cd_m2);
+        const double mean_electrons =
+            std::max(0.0, static_cast<double>(in[x]) * electrons_per_cd_m2);
         double electrons;
         if (mean_electrons > kNormalApproximationElectrons) {
           electrons = mean_electrons + std::sqrt(mean_electrons) * unit_normal(rng);
         } else if (mean_electrons > 0.0) {
-          electrons = static_cast<double>(std::poisson_distribution<long long>(mean_electrons)(rng));
+          electrons =
+              static_cast<double>(std::poisson_distribution<long long>(mean_electrons)(rng));
         } else {
           electrons = 0.0;
         }

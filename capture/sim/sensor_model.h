@@ -12,7 +12,7 @@
 namespace glarecam::capture {
 
 struct SensorModel {
-  int adc_bits = 12;             // Mono12
+  int adc_bits = 12;  // Mono12
   double black_level_dn = 64.0;
   double saturation_dn = 4000.0;  // declared linear limit, below the ADC's full scale
   double read_noise_dn = 2.0;
@@ -22,7 +22,7 @@ struct SensorModel {
 
 // Renders the frame `frame` of a stack calibrated by `calibration` (whose radiometry the sensor
 // obeys exactly) looking at `luminance_cd_m2`.
-RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame, const Calibration& calibration,
-                     const SensorModel& sensor, std::uint64_t seed);
+RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame,
+                     const Calibration& calibration, const SensorModel& sensor, std::uint64_t seed);
 
 }  // namespace glarecam::capture

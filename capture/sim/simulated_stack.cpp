@@ -19,7 +19,8 @@ constexpr std::string_view kTruthSchema = "glarecam.truth/1";
 
 Intrinsics pinholeIntrinsics(const SimulationOptions& options) {
   Intrinsics k;
-  k.fx = k.fy = (options.width / 2.0) / std::tan(options.horizontal_fov_deg / 2.0 * std::numbers::pi / 180.0);
+  k.fx = k.fy =
+      (options.width / 2.0) / std::tan(options.horizontal_fov_deg / 2.0 * std::numbers::pi / 180.0);
   k.cx = (options.width - 1) / 2.0;
   k.cy = (options.height - 1) / 2.0;
   k.distortion = options.distortion;
@@ -55,7 +56,8 @@ std::pair<double, double> meterScene(const FloatImage& luminance) {
   return {peak, *fifth};
 }
 
-StackManifest makeManifest(const SimulationOptions& options, const Calibration& calibration, const BracketPlan& plan) {
+StackManifest makeManifest(const SimulationOptions& options, const Calibration& calibration,
+                           const BracketPlan& plan) {
   StackManifest manifest;
   manifest.id = stackId(options);
   manifest.alpha_deg = options.alpha_deg;
@@ -63,16 +65,27 @@ StackManifest makeManifest(const SimulationOptions& options, const Calibration& 
   for (std::size_t i = 0; i < plan.exposures_us.size(); ++i) {
     char file[32];
     std::snprintf(file, sizeof file, "frame-%02zu.png", i);
-    manifest.frames.push_back({.file = file, .exposure_us = plan.exposures_us[i], .gain_db = 0.0,
-                               .f_number = options.f_number, .nd_transmission = options.nd_transmission});
+    manifest.frames.push_back({.file = file,
+                               .exposure_us = plan.exposures_us[i],
+                               .gain_db = 0.0,
+                               .f_number = options.f_number,
+                               .nd_transmission = options.nd_transmission});
   }
-  manifest.source = {{"camera", {{"backend", "sim"}, {"model", "glarecam-sim"}, {"serial", "SIM-0001"},
-                                 {"pixel_format", "Mono" + std::to_string(options.sensor.adc_bits)},
-                                 {"width", options.width}, {"height", options.height}}},
-                     {"simulation", {{"module", options.module}, {"seed", options.seed},
-                                     {"background_cd_m2", options.background_cd_m2}, {"peak_scale", options.peak_scale},
-                                     {"bracket", {{"peak_clipped", plan.peak_clipped},
-                                                  {"background_underexposed", plan.background_underexposed}}}}}};
+  manifest.source = {{"camera",
+                      {{"backend", "sim"},
+                       {"model", "glarecam-sim"},
+                       {"serial", "SIM-0001"},
+                       {"pixel_format", "Mono" + std::to_string(options.sensor.adc_bits)},
+                       {"width", options.width},
+                       {"height", options.height}}},
+                     {"simulation",
+                      {{"module", options.module},
+                       {"seed", options.seed},
+                       {"background_cd_m2", options.background_cd_m2},
+                       {"peak_scale", options.peak_scale},
+                       {"bracket",
+                        {{"peak_clipped", plan.peak_clipped},
+                         {"background_underexposed", plan.background_underexposed}}}}}};
   return manifest;
 }
 
@@ -90,11 +103,14 @@ Status SimulationOptions::validate() const {
   if (width < kMinSide || height < kMinSide || width > kMaxSide || height > kMaxSide) {
     return badInput("simulate: --size must be between 16x16 and 16384x16384");
   }
-  if (!(horizontal_fov_deg > 1 && horizontal_fov_deg < 150)) return badInput("simulate: field of view must be in (1, 150) degrees");
-  if (!(background_cd_m2 > 0 && peak_scale > 0 && luminance_factor > 0 && nd_transmission > 0 && nd_transmission <= 1 && f_number > 0)) {
+  if (!(horizontal_fov_deg > 1 && horizontal_fov_deg < 150))
+    return badInput("simulate: field of view must be in (1, 150) degrees");
+  if (!(background_cd_m2 > 0 && peak_scale > 0 && luminance_factor > 0 && nd_transmission > 0 &&
+        nd_transmission <= 1 && f_number > 0)) {
     return badInput("simulate: background, peak scale, K, ND and f-number must be positive");
   }
-  if (!std::all_of(distortion.begin(), distortion.end(), [](double k) { return std::isfinite(k); })) {
+  if (!std::all_of(distortion.begin(), distortion.end(),
+                   [](double k) { return std::isfinite(k); })) {
     return badInput("simulate: distortion coefficients must be finite");
   }
   return bracket.validate();
@@ -110,18 +126,21 @@ nlohmann::json SimulatedStack::truthJson() const {
           {"fwhm_axes_deg", axesJson(truth.fwhm_axes)},
           {"glare", truth.peak_cd_m2 >= truth.limit_cd_m2},
           {"centre_pixel", centre_pixel},
-          {"bracket", {{"exposures_us", bracket.exposures_us}, {"peak_clipped", bracket.peak_clipped}}}};
+          {"bracket",
+           {{"exposures_us", bracket.exposures_us}, {"peak_clipped", bracket.peak_clipped}}}};
 }
 
 Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   GLARECAM_CHECK(options.validate());
   ModuleGlareModel module;
   GLARECAM_ASSIGN(module, moduleModel(options.module));
-  const double limit = pipeline::glareLimitCdM2(options.alpha_deg).value_or(pipeline::kConstantGlareLimitCdM2);
+  const double limit =
+      pipeline::glareLimitCdM2(options.alpha_deg).value_or(pipeline::kConstantGlareLimitCdM2);
   // The lobe's shape comes from the module's axes at the limit for its own peak; peak_scale
   // then changes only the brightness (a dimmer module glares less and over a smaller ellipse).
   const double model_peak = module.lmax_cd_m2(options.alpha_deg);
-  auto lobe = lobeWithAxesAt(limit, model_peak, options.background_cd_m2, module.vertical_deg(options.alpha_deg),
+  auto lobe = lobeWithAxesAt(limit, model_peak, options.background_cd_m2,
+                             module.vertical_deg(options.alpha_deg),
                              module.horizontal_deg(options.alpha_deg));
   if (!lobe) return std::unexpected(lobe.error());
   lobe->peak_cd_m2 = model_peak * options.peak_scale;
@@ -146,14 +165,17 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   unit.nd_transmission = options.nd_transmission;
   const double scale = calibration::frameRadiometry(unit, calibration).scale_cd_m2_per_dn;
   const auto [peak, background] = meterScene(result.true_luminance_cd_m2);
-  GLARECAM_ASSIGN(result.bracket, planBracket(peak / scale, background / scale,
-                                              calibration.saturation_dn - calibration.black_level_dn, options.bracket));
+  GLARECAM_ASSIGN(
+      result.bracket,
+      planBracket(peak / scale, background / scale,
+                  calibration.saturation_dn - calibration.black_level_dn, options.bracket));
   result.manifest = makeManifest(options, calibration, result.bracket);
   progress.setTotal(1 + static_cast<int>(result.manifest.frames.size()));
   for (std::size_t i = 0; i < result.manifest.frames.size(); ++i) {
-    result.frames.push_back(exposeFrame(result.true_luminance_cd_m2, result.manifest.frames[i], calibration,
-                                        options.sensor, options.seed * 1000 + i));
-    progress.advance("frame " + std::to_string(i + 1) + "/" + std::to_string(result.manifest.frames.size()));
+    result.frames.push_back(exposeFrame(result.true_luminance_cd_m2, result.manifest.frames[i],
+                                        calibration, options.sensor, options.seed * 1000 + i));
+    progress.advance("frame " + std::to_string(i + 1) + "/" +
+                     std::to_string(result.manifest.frames.size()));
   }
   return result;
 }

@@ -23,7 +23,8 @@ Calibration basicCalibration() {
   return calibration;
 }
 
-FrameSpec frame(double exposure_us, double gain_db = 0, std::optional<double> f_number = {}, double nd = 1) {
+FrameSpec frame(double exposure_us, double gain_db = 0, std::optional<double> f_number = {},
+                double nd = 1) {
   FrameSpec spec;
   spec.file = "f.png";
   spec.exposure_us = exposure_us;
@@ -38,7 +39,8 @@ struct MergeCase {
   std::vector<FrameRadiometry> radiometry;
   Calibration calibration = basicCalibration();
   MergedImage run(const FloatImage* flat = nullptr) const {
-    MergeInput input{frames, radiometry, calibration.black_level_dn, calibration.saturation_dn, flat};
+    MergeInput input{frames, radiometry, calibration.black_level_dn, calibration.saturation_dn,
+                     flat};
     auto merged = merge(input);
     EXPECT_TRUE(merged) << (merged ? "" : merged.error().message);
     return merged ? std::move(*merged) : MergedImage{};
@@ -52,7 +54,8 @@ struct MergeCase {
 TEST(Radiometry, FollowsTheStackFormatEquation) {
   const Calibration calibration = basicCalibration();
   // K (DN - B) / (t g tau) (N / N_ref)^2 with t = 200 µs, +6.0206 dB (x2), tau 0.5, f/11.
-  const FrameRadiometry r = frameRadiometry(frame(200, 20 * std::log10(2.0), 11.0, 0.5), calibration);
+  const FrameRadiometry r =
+      frameRadiometry(frame(200, 20 * std::log10(2.0), 11.0, 0.5), calibration);
   EXPECT_NEAR(r.scale_cd_m2_per_dn, 1500.0 / (200 * 2.0 * 0.5) * (11.0 / 8.0) * (11.0 / 8.0), 1e-9);
   EXPECT_NEAR(r.dn_per_electron, 1.0, 1e-12);  // 0.5 DN/e- amplified x2
   EXPECT_NEAR(r.read_noise_dn, 4.0, 1e-12);
@@ -74,9 +77,9 @@ TEST(HdrMerge, SingleValidFrameGivesTheEquationsLuminance) {
 
 TEST(HdrMerge, CombinesFramesWithInverseVarianceWeights) {
   MergeCase c;
-  c.add(1064, frame(100));   // L1 = 15000
-  c.add(2064, frame(200));   // L2 = 15000 (consistent)
-  c.add(4064, frame(400));   // saturated: ignored
+  c.add(1064, frame(100));  // L1 = 15000
+  c.add(2064, frame(200));  // L2 = 15000 (consistent)
+  c.add(4064, frame(400));  // saturated: ignored
   const MergedImage merged = c.run();
   EXPECT_EQ(merged.valid_frames.at(0, 0), 2);
   EXPECT_NEAR(merged.luminance_cd_m2.at(0, 0), 15000.0, 1e-2);
@@ -88,7 +91,8 @@ TEST(HdrMerge, CombinesFramesWithInverseVarianceWeights) {
   const double L = 16500.0;  // reference luminance: the longest valid frame
   const double w1 = 1.0 / (15.0 * 0.5 * L + 225.0 * 4.0), w2 = 1.0 / (7.5 * 0.5 * L + 56.25 * 4.0);
   EXPECT_NEAR(m.luminance_cd_m2.at(0, 0), (w1 * 15000.0 + w2 * 16500.0) / (w1 + w2), 0.05);
-  EXPECT_NEAR(m.relative_uncertainty.at(0, 0), std::sqrt(1.0 / (w1 + w2)) / m.luminance_cd_m2.at(0, 0), 1e-5);
+  EXPECT_NEAR(m.relative_uncertainty.at(0, 0),
+              std::sqrt(1.0 / (w1 + w2)) / m.luminance_cd_m2.at(0, 0), 1e-5);
 }
 
 TEST(HdrMerge, SaturatedEverywhereIsALowerBoundDarkEverywhereAnUpperBound) {
@@ -98,7 +102,8 @@ TEST(HdrMerge, SaturatedEverywhereIsALowerBoundDarkEverywhereAnUpperBound) {
   const MergedImage s = saturated.run();
   EXPECT_EQ(static_cast<PixelBound>(s.bound.at(2, 2)), PixelBound::kLowerBound);
   EXPECT_EQ(s.valid_frames.at(2, 2), 0);
-  EXPECT_NEAR(s.luminance_cd_m2.at(2, 2), 1500.0 / 10 * (4000 - 64), 1e-1);  // shortest frame at saturation
+  EXPECT_NEAR(s.luminance_cd_m2.at(2, 2), 1500.0 / 10 * (4000 - 64),
+              1e-1);  // shortest frame at saturation
   EXPECT_TRUE(std::isnan(s.relative_uncertainty.at(2, 2)));
 
   MergeCase dark;
@@ -106,7 +111,8 @@ TEST(HdrMerge, SaturatedEverywhereIsALowerBoundDarkEverywhereAnUpperBound) {
   dark.add(66, frame(100));
   const MergedImage d = dark.run();
   EXPECT_EQ(static_cast<PixelBound>(d.bound.at(2, 2)), PixelBound::kUpperBound);
-  EXPECT_NEAR(d.luminance_cd_m2.at(2, 2), 1500.0 / 100 * 6.0, 1e-3);  // longest frame's 3-sigma threshold
+  EXPECT_NEAR(d.luminance_cd_m2.at(2, 2), 1500.0 / 100 * 6.0,
+              1e-3);  // longest frame's 3-sigma threshold
 }
 
 TEST(HdrMerge, DividesByTheFlatField) {
@@ -150,7 +156,8 @@ AccuracyReport accuracy(const capture::SimulatedStack& stack) {
     const double z = (value - truth) / (merged->relative_uncertainty.data()[i] * value);
     sum_z2 += z * z;
   }
-  std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2), ratios.end());
+  std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2),
+                   ratios.end());
   return {ratios[ratios.size() / 2], std::sqrt(sum_z2 / static_cast<double>(ratios.size()))};
 }
 

@@ -15,8 +15,8 @@ TEST(Bracketing, CoversPeakToBackgroundInDecadeSteps) {
   ASSERT_TRUE(plan) << plan.error().message;
   const auto& t = plan->exposures_us;
   ASSERT_GE(t.size(), 6u);
-  EXPECT_NEAR(t.front(), 0.7 * kRange / 40.0, 1.0);       // peak at 70 % of the range
-  EXPECT_NEAR(t.back(), 0.5 * kRange / 0.002, 1.0);       // background at 50 %
+  EXPECT_NEAR(t.front(), 0.7 * kRange / 40.0, 1.0);  // peak at 70 % of the range
+  EXPECT_NEAR(t.back(), 0.5 * kRange / 0.002, 1.0);  // background at 50 %
   for (std::size_t i = 1; i < t.size(); ++i) {
     EXPECT_GT(t[i], t[i - 1]);
     EXPECT_LE(t[i] / t[i - 1], 10.0 * 1.001);  // at most a decade apart

@@ -16,8 +16,13 @@ TEST(ModuleModel, StandardModuleReproducesThePapersTableIII) {
   ASSERT_TRUE(module);
   // Fits, not data: the paper's R² of 0.983 (ln L) and 0.995/0.955 (axes) allow these spreads
   // against Table III (docs/method.md): ln L within 0.35, axes within 0.5°.
-  struct Row { double alpha, lmax, vertical, horizontal; };
-  const Row table[] = {{5, 594000, 5.0, 5.7}, {30, 587000, 4.9, 5.2}, {60, 2400000, 7.4, 4.7}, {80, 47500000, 8.2, 2.3}};
+  struct Row {
+    double alpha, lmax, vertical, horizontal;
+  };
+  const Row table[] = {{5, 594000, 5.0, 5.7},
+                       {30, 587000, 4.9, 5.2},
+                       {60, 2400000, 7.4, 4.7},
+                       {80, 47500000, 8.2, 2.3}};
   for (const Row& row : table) {
     EXPECT_NEAR(std::log(module->lmax_cd_m2(row.alpha)), std::log(row.lmax), 0.35) << row.alpha;
     EXPECT_NEAR(module->vertical_deg(row.alpha), row.vertical, 0.5) << row.alpha;
@@ -29,12 +34,14 @@ TEST(ModuleModel, StandardModuleReproducesThePapersTableIII) {
 }
 
 // A point `angle_deg` away from `base` on the great circle towards `towards`.
-calibration::Ray rotateTowards(const calibration::Ray& base, calibration::Ray towards, double angle_deg) {
+calibration::Ray rotateTowards(const calibration::Ray& base, calibration::Ray towards,
+                               double angle_deg) {
   const double d = towards.x * base.x + towards.y * base.y + towards.z * base.z;
   calibration::Ray t{towards.x - d * base.x, towards.y - d * base.y, towards.z - d * base.z};
   const double n = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
   const double a = angle_deg * M_PI / 180.0;
-  return {std::cos(a) * base.x + std::sin(a) * t.x / n, std::cos(a) * base.y + std::sin(a) * t.y / n,
+  return {std::cos(a) * base.x + std::sin(a) * t.x / n,
+          std::cos(a) * base.y + std::sin(a) * t.y / n,
           std::cos(a) * base.z + std::sin(a) * t.z / n};
 }
 
@@ -53,7 +60,9 @@ TEST(GlareScene, ContoursHaveTheRequestedAxesOnTheSphere) {
   const SceneTruth truth = scene->truth(30000);
   ASSERT_TRUE(truth.limit_axes && truth.fwhm_axes);
   EXPECT_NEAR(truth.limit_axes->vertical_deg, 6.0, 1e-12);
-  EXPECT_NEAR(scene->luminanceCdM2(rotateTowards(centre, {0, 1, 0}, truth.fwhm_axes->vertical_deg / 2)), 300000.0, 1e-6);
+  EXPECT_NEAR(
+      scene->luminanceCdM2(rotateTowards(centre, {0, 1, 0}, truth.fwhm_axes->vertical_deg / 2)),
+      300000.0, 1e-6);
 }
 
 TEST(GlareScene, OffAxisLobeKeepsItsAngularSize) {
@@ -63,7 +72,8 @@ TEST(GlareScene, OffAxisLobeKeepsItsAngularSize) {
   auto scene = GlareScene::create(*lobe);
   ASSERT_TRUE(scene);
   const calibration::Ray centre = scene->centreRay();
-  for (const calibration::Ray& towards : {calibration::Ray{1, 0, 0}, calibration::Ray{0, 1, 0}, calibration::Ray{1, 1, 0}}) {
+  for (const calibration::Ray& towards :
+       {calibration::Ray{1, 0, 0}, calibration::Ray{0, 1, 0}, calibration::Ray{1, 1, 0}}) {
     EXPECT_NEAR(scene->luminanceCdM2(rotateTowards(centre, towards, 2.5)), 30000.0, 1e-6);
   }
 }
@@ -99,7 +109,8 @@ TEST(SimulatedStack, FollowsTheModuleAndTheLimitCurve) {
   // 12-bit raw values, six or more frames, the brightest pixel unsaturated in the shortest.
   EXPECT_GE(stack->frames.size(), 6u);
   std::uint16_t brightest = 0;
-  for (std::size_t i = 0; i < stack->frames[0].pixelCount(); ++i) brightest = std::max(brightest, stack->frames[0].data()[i]);
+  for (std::size_t i = 0; i < stack->frames[0].pixelCount(); ++i)
+    brightest = std::max(brightest, stack->frames[0].data()[i]);
   EXPECT_LT(brightest, stack->manifest.calibration->saturation_dn);
   for (const auto& frame : stack->frames) {
     for (std::size_t i = 0; i < frame.pixelCount(); ++i) ASSERT_LE(frame.data()[i], 4095);

@@ -105,7 +105,8 @@ TEST(AtomicFile, WritersKilledAtRandomMomentsLeaveNoPartialStack) {
     const pid_t writer = ::fork();
     ASSERT_GE(writer, 0);
     if (writer == 0) ::_exit(writeTagged(target, trial + 1) ? 0 : 1);
-    std::this_thread::sleep_for(std::chrono::microseconds(std::uniform_int_distribution<int>(0, 30000)(rng)));
+    std::this_thread::sleep_for(
+        std::chrono::microseconds(std::uniform_int_distribution<int>(0, 30000)(rng)));
     ::kill(writer, SIGKILL);
     int status = 0;
     ::waitpid(writer, &status, 0);

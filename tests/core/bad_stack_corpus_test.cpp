@@ -38,25 +38,44 @@ TEST_P(BadStackCorpus, IsRefusedWithOneClearLine) {
   ASSERT_FALSE(result.has_value()) << stack << " was accepted";
   const Error& error = result.error();
   EXPECT_EQ(error.code, ErrorCode::kBadInput) << error.message;
-  EXPECT_NE(error.message.find(expected), std::string::npos) << "message: " << error.message << "\nexpected: " << expected;
+  EXPECT_NE(error.message.find(expected), std::string::npos)
+      << "message: " << error.message << "\nexpected: " << expected;
   EXPECT_EQ(error.message.find('\n'), std::string::npos) << "not one line: " << error.message;
-  EXPECT_NE(error.message.find(stack.filename().string()), std::string::npos) << "does not name the stack's file: " << error.message;
+  EXPECT_NE(error.message.find(stack.filename().string()), std::string::npos)
+      << "does not name the stack's file: " << error.message;
 }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, BadStackCorpus, ::testing::ValuesIn(corpusCases()),
                          [](const ::testing::TestParamInfo<fs::path>& info) {
                            std::string name = info.param.filename().string();
-                           std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+                           std::replace_if(
+                               name.begin(), name.end(),
+                               [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); },
+                               '_');
                            return name;
                          });
 
 TEST(BadStackCorpus, CoversTheListOfStackFormatMd) {
   // The cases the issue and docs/stack-format.md name; the corpus may hold more.
-  const char* required[] = {"missing-manifest", "invalid-json", "wrong-schema", "empty-frame-list", "missing-frame",
-                            "truncated-png", "zero-byte-png", "colour-png", "frame-size-mismatch", "exposure-zero",
-                            "exposure-not-a-number", "black-at-saturation", "fx-zero", "frame-path-dotdot",
-                            "frame-path-absolute", "calibration-path-missing", "flat-field-escapes"};
-  for (const char* name : required) EXPECT_TRUE(fs::is_directory(testing::testDataDir() / "bad-stacks" / name)) << name;
+  const char* required[] = {"missing-manifest",
+                            "invalid-json",
+                            "wrong-schema",
+                            "empty-frame-list",
+                            "missing-frame",
+                            "truncated-png",
+                            "zero-byte-png",
+                            "colour-png",
+                            "frame-size-mismatch",
+                            "exposure-zero",
+                            "exposure-not-a-number",
+                            "black-at-saturation",
+                            "fx-zero",
+                            "frame-path-dotdot",
+                            "frame-path-absolute",
+                            "calibration-path-missing",
+                            "flat-field-escapes"};
+  for (const char* name : required)
+    EXPECT_TRUE(fs::is_directory(testing::testDataDir() / "bad-stacks" / name)) << name;
 }
 
 }  // namespace

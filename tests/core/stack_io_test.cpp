@@ -95,7 +95,8 @@ TEST(StackIo, FNumberNeedsAReferenceFNumber) {
   testing::writeText(dir / "s" / "stack.json", manifest.dump());
   auto stack = readStack(dir / "s");
   ASSERT_FALSE(stack);
-  EXPECT_NE(stack.error().message.find("no reference_f_number"), std::string::npos) << stack.error().message;
+  EXPECT_NE(stack.error().message.find("no reference_f_number"), std::string::npos)
+      << stack.error().message;
 }
 
 TEST(StackIo, RewritingPreservesUnknownFieldsAndReplacesAtomically) {

@@ -64,7 +64,8 @@ TEST(StackManifest, ErrorsNameTheFileAndTheField) {
   auto manifest = parseManifest(document, "/data/s1/stack.json");
   ASSERT_FALSE(manifest);
   EXPECT_EQ(manifest.error().code, ErrorCode::kBadInput);
-  EXPECT_EQ(manifest.error().message, "/data/s1/stack.json: frames[0].gain_db must be a number, not \"high\"");
+  EXPECT_EQ(manifest.error().message,
+            "/data/s1/stack.json: frames[0].gain_db must be a number, not \"high\"");
 }
 
 TEST(StackManifest, RefusesPathsThatEscape) {

@@ -12,7 +12,8 @@ calibration::MergedImage gradient(int width, int height) {
   merged.valid_frames = ByteImage(width, height, 1);
   merged.bound = ByteImage(width, height, 0);
   for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) merged.luminance_cd_m2.at(x, y) = std::pow(10.0f, 2.0f + 4.0f * x / (width - 1));
+    for (int x = 0; x < width; ++x)
+      merged.luminance_cd_m2.at(x, y) = std::pow(10.0f, 2.0f + 4.0f * x / (width - 1));
   }
   return merged;
 }

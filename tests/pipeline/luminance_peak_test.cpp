@@ -10,7 +10,8 @@ namespace {
 
 using calibration::PixelBound;
 
-calibration::MergedImage gaussianLobe(double peak, double cx, double cy, double sigma, double noise, unsigned seed) {
+calibration::MergedImage gaussianLobe(double peak, double cx, double cy, double sigma, double noise,
+                                      unsigned seed) {
   constexpr int kWidth = 120, kHeight = 90;
   calibration::MergedImage merged;
   merged.luminance_cd_m2 = FloatImage(kWidth, kHeight);
@@ -47,7 +48,8 @@ TEST(LuminancePeak, IsNotBiasedHighByNoiseLikeThePixelMaximum) {
     const auto merged = gaussianLobe(5.0e5, 60.0, 45.0, 15.0, 0.02, 100 + trial);
     fitted_sum += findLuminancePeak(merged).value_cd_m2 / 501000.0;
     float raw = 0;
-    for (std::size_t i = 0; i < merged.luminance_cd_m2.pixelCount(); ++i) raw = std::max(raw, merged.luminance_cd_m2.data()[i]);
+    for (std::size_t i = 0; i < merged.luminance_cd_m2.pixelCount(); ++i)
+      raw = std::max(raw, merged.luminance_cd_m2.data()[i]);
     raw_sum += raw / 501000.0;
   }
   // Mean over 20 trials: the fit's bias stays below 0.3 % (its noise is ~0.2 % per trial and

@@ -34,7 +34,8 @@ TEST(ProcessStack, WritesEveryOutputAndAResultMatchingTheTruth) {
   EXPECT_EQ(result["alpha_deg"], 65.0);
   EXPECT_NEAR(result["limit"]["limit_cd_m2"].get<double>(), *glareLimitCdM2(65.0), 1e-6);
   // The fitted maximum averages ~1 % per-pixel noise over its window: 1 % is several sigma.
-  EXPECT_NEAR(result["luminance"]["max_cd_m2"].get<double>() / simulated.truth.peak_cd_m2, 1.0, 0.01);
+  EXPECT_NEAR(result["luminance"]["max_cd_m2"].get<double>() / simulated.truth.peak_cd_m2, 1.0,
+              0.01);
   EXPECT_EQ(result["luminance"]["max_method"], "quadratic_fit");
   EXPECT_NEAR(result["luminance"]["max_pixel"][0].get<double>(), simulated.centre_pixel[0], 3.0);
   EXPECT_NEAR(result["luminance"]["max_pixel"][1].get<double>(), simulated.centre_pixel[1], 3.0);

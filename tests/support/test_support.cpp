@@ -32,7 +32,8 @@ capture::SimulationOptions smallScene(double alpha_deg, int width, int height) {
   return options;
 }
 
-capture::SimulatedStack writeSmallStack(const fs::path& directory, const capture::SimulationOptions& options) {
+capture::SimulatedStack writeSmallStack(const fs::path& directory,
+                                        const capture::SimulationOptions& options) {
   auto stack = capture::simulateStack(options);
   EXPECT_TRUE(stack.has_value()) << (stack ? "" : stack.error().message);
   if (!stack) return {};

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
-#include <memory>
 #include <numeric>
 #include <string>
 
@@ -42,9 +43,9 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
   return constants;
 }
 
-// The per-pixel loops are compiled twice on x86-64, for the baseline and for AVX2 (a feature
-// test; an "arch=" clone would match one CPU model only), and the loader picks the best the
-// CPU has. Sanitizer builds skip it.
+// The row loop is compiled twice on x86-64, for the baseline and for AVX2 (a feature test; an
+// "arch=" clone would match one CPU model only), and the loader picks the best the CPU has.
+// Sanitizer builds skip it.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(__SANITIZE_ADDRESS__)
 #define GLARECAM_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
@@ -52,83 +53,143 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
 #define GLARECAM_SIMD_CLONES
 #endif
 
-// Pixels handled per step: the six float buffers of a segment (24 KiB) stay in L1.
-constexpr int kSegmentPixels = 1024;
+// Eight pixels at a time, in GCC's portable vector extensions (SSE2, AVX2 and NEON alike):
+// each frame pixel is read once, every accumulator lives in registers, only outputs are stored.
+constexpr int kLanes = 8;
+using FloatLanes = float __attribute__((vector_size(kLanes * sizeof(float))));
+using IntLanes = std::int32_t __attribute__((vector_size(kLanes * sizeof(std::int32_t))));
+using WordLanes = std::uint16_t __attribute__((vector_size(kLanes * sizeof(std::uint16_t))));
 
-// Buffers of one worker for one segment of a row, allocated once per band.
-struct SegmentBuffers {
-  std::array<float, kSegmentPixels> reference, weight_sum, weighted_sum, valid_count, lower_bound,
-      inverse_flat;
-};
-
-// One frame's contribution, frames taken from the longest exposure to the shortest. The
-// first valid estimate met (the longest valid frame, the one with the most signal) becomes the
-// pixel's reference luminance, at which every frame's noise variance is evaluated; each valid
-// estimate is added with its inverse variance as weight. Saturated pixels raise the lower
-// bound to the frame's saturation luminance.
-GLARECAM_SIMD_CLONES void accumulateSegment(
-    const std::uint16_t* __restrict dn, float* __restrict reference, float* __restrict weight_sum,
-    float* __restrict weighted_sum, float* __restrict valid_count, float* __restrict lower,
-    int count, float black, float saturation, const FrameConstants& frame) {
-  const float min_signal = frame.min_signal_dn, scale = frame.scale, shot = frame.shot_coefficient;
-  const float saturated_cd_m2 = frame.saturated_cd_m2;
-  // The smallest normal float keeps 0/0 out of pixels with no reference and no read noise.
-  const float read = frame.read_coefficient + std::numeric_limits<float>::min();
-  for (int x = 0; x < count; ++x) {
-    const float value = dn[x];
-    const float signal = value - black;
-    const float estimate = signal * scale;
-    const bool saturated = value >= saturation;
-    const bool valid = (value < saturation) & (signal >= min_signal);
-    // Written as arithmetic, not a select: GCC turns "r[x] = c ? v : r[x]" into a masked store,
-    // which is microcoded and slow on AMD cores.
-    const float take = (valid & (reference[x] == 0.0f)) ? 1.0f : 0.0f;
-    const float ref = reference[x] + take * (estimate - reference[x]);
-    reference[x] = ref;
-    const float weight = (valid ? 1.0f : 0.0f) / (shot * ref + read);  // inverse variance, or 0
-    weight_sum[x] += weight;
-    weighted_sum[x] += weight * estimate;
-    valid_count[x] += valid ? 1.0f : 0.0f;
-    lower[x] = std::max(lower[x], saturated ? saturated_cd_m2 : 0.0f);
-  }
+template <typename Lanes, typename T>
+inline Lanes loadLanes(const T* source) {
+  Lanes lanes;
+  std::memcpy(&lanes, source, sizeof lanes);
+  return lanes;
 }
 
-// Pass 3: luminance, relative uncertainty and flags, flat field applied once.
-GLARECAM_SIMD_CLONES void finishSegment(const SegmentBuffers& b, int count, float upper_bound,
-                                        float* __restrict luminance, float* __restrict relative,
-                                        std::uint8_t* __restrict valid,
-                                        std::uint8_t* __restrict bound) {
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  for (int x = 0; x < count; ++x) {
-    const bool measured = b.valid_count[x] > 0.0f;
-    const bool saturated = b.lower_bound[x] > 0.0f;
-    const float mean = b.weighted_sum[x] / b.weight_sum[x];
-    const float unmeasured = saturated ? b.lower_bound[x] : upper_bound;
-    luminance[x] = (measured ? mean : unmeasured) * b.inverse_flat[x];
-    relative[x] = measured ? 1.0f / (std::sqrt(b.weight_sum[x]) * mean) : nan;
-    valid[x] = static_cast<std::uint8_t>(b.valid_count[x]);
-    // PixelBound: 0 measured, 1 lower bound (saturated), 2 upper bound (dark).
-    const std::uint8_t unmeasured_flag = saturated ? 1 : 2;
-    bound[x] = measured ? 0 : unmeasured_flag;
+template <typename Lanes, typename T>
+inline void storeLanes(T* target, const Lanes& lanes) {
+  std::memcpy(target, &lanes, sizeof lanes);
+}
+
+// Where one row's eight pixels come from and go to.
+struct LanePointers {
+  const std::uint16_t* const* frames;  // one row pointer per frame
+  const float* inverse_flat;
+  float* luminance;
+  float* relative;
+  float* valid;  // counts, flags and weight sums as floats, finished once per row: lane-wise
+  float* bound;  // float-to-byte conversion and sqrt do not vectorise inside the lanes
+  float* weight_sum;
+};
+
+struct KernelConstants {
+  const FrameConstants* frames;  // from the longest effective exposure to the shortest
+  int frame_count;
+  float black, saturation, upper_bound;
+};
+
+// Frames are met from the longest effective exposure to the shortest: the first valid estimate
+// (the one with the most signal) becomes the pixel's reference luminance, at which every
+// frame's noise variance is evaluated, and each valid estimate is added with its inverse
+// variance as weight. Saturated frames raise the lower bound to their saturation luminance.
+[[gnu::always_inline]] inline void mergeLanes(const KernelConstants& k, const LanePointers& p,
+                                              int offset) {
+  const FloatLanes zero{}, one = zero + 1.0f;
+  FloatLanes reference = zero, weight_sum = zero, weighted_sum = zero, count = zero, lower = zero;
+  for (int i = 0; i < k.frame_count; ++i) {
+    const FrameConstants& f = k.frames[i];
+    const FloatLanes value =
+        __builtin_convertvector(loadLanes<WordLanes>(p.frames[i] + offset), FloatLanes);
+    const FloatLanes signal = value - k.black;
+    const FloatLanes estimate = signal * f.scale;
+    const IntLanes saturated = value >= k.saturation;
+    const IntLanes valid = (value < k.saturation) & (signal >= f.min_signal_dn);
+    reference = (valid & (reference == zero)) ? estimate : reference;
+    // The smallest normal float keeps 0/0 out of lanes with no reference and no read noise.
+    const FloatLanes variance = f.shot_coefficient * reference + f.read_coefficient +
+                                std::numeric_limits<float>::min();
+    const FloatLanes weight = valid ? one / variance : zero;
+    weight_sum += weight;
+    weighted_sum += weight * estimate;
+    count += valid ? one : zero;
+    lower = (saturated & (lower < f.saturated_cd_m2)) ? zero + f.saturated_cd_m2 : lower;
+  }
+  const IntLanes measured = count > zero;
+  const IntLanes clipped = lower > zero;
+  const FloatLanes mean = weighted_sum / (measured ? weight_sum : one);
+  const FloatLanes unmeasured = clipped ? lower : zero + k.upper_bound;
+  const FloatLanes nan = zero + std::numeric_limits<float>::quiet_NaN();
+  storeLanes(p.luminance + offset,
+             (measured ? mean : unmeasured) * loadLanes<FloatLanes>(p.inverse_flat + offset));
+  storeLanes(p.relative + offset, measured ? one / mean : nan);  // / sqrt(weight_sum) per row
+  storeLanes(p.weight_sum + offset, weight_sum);
+  storeLanes(p.valid + offset, count);
+  // PixelBound: 0 measured, 1 lower bound (saturated), 2 upper bound (dark).
+  storeLanes(p.bound + offset, measured ? zero : (clipped ? one : one + one));
+}
+
+// The last width % 8 pixels of a row, through zero-padded copies.
+void mergeTail(const KernelConstants& k, const LanePointers& p, int whole, int rest) {
+  std::vector<std::uint16_t> frame_tail(static_cast<std::size_t>(k.frame_count) * kLanes, 0);
+  std::vector<const std::uint16_t*> frame_rows(static_cast<std::size_t>(k.frame_count));
+  for (int i = 0; i < k.frame_count; ++i) {
+    std::uint16_t* tail = frame_tail.data() + static_cast<std::size_t>(i) * kLanes;
+    std::copy_n(p.frames[i] + whole, rest, tail);
+    frame_rows[static_cast<std::size_t>(i)] = tail;
+  }
+  float flat[kLanes] = {}, luminance[kLanes], relative[kLanes], valid[kLanes], bound[kLanes],
+        weight_sum[kLanes];
+  std::copy_n(p.inverse_flat + whole, rest, flat);
+  mergeLanes(k, {frame_rows.data(), flat, luminance, relative, valid, bound, weight_sum}, 0);
+  std::copy_n(luminance, rest, p.luminance + whole);
+  std::copy_n(relative, rest, p.relative + whole);
+  std::copy_n(valid, rest, p.valid + whole);
+  std::copy_n(bound, rest, p.bound + whole);
+  std::copy_n(weight_sum, rest, p.weight_sum + whole);
+}
+
+// A row: whole groups of eight in place, the rest through zero-padded copies (a zero DN is
+// under-exposed, so padding never disturbs anything and is never stored). Then the counts and
+// flags are narrowed to bytes.
+GLARECAM_SIMD_CLONES void mergeRow(const KernelConstants& k, const LanePointers& p, int width,
+                                   std::uint8_t* __restrict valid, std::uint8_t* __restrict bound) {
+  const int whole = width - width % kLanes;
+  for (int x = 0; x < whole; x += kLanes) mergeLanes(k, p, x);
+  if (whole < width) mergeTail(k, p, whole, width - whole);
+  for (int x = 0; x < width; ++x) {
+    p.relative[x] /= std::sqrt(p.weight_sum[x]);  // sigma / L = 1 / (sqrt(sum w) L)
+    valid[x] = static_cast<std::uint8_t>(p.valid[x]);
+    bound[x] = static_cast<std::uint8_t>(p.bound[x]);
   }
 }
 
 class MergeKernel {
  public:
   MergeKernel(const MergeInput& input, MergedImage& output)
-      : output_(output),
-        frames_(frameConstants(input)),
-        flat_(input.flat_field),
-        black_(static_cast<float>(input.black_level_dn)),
-        saturation_(static_cast<float>(input.saturation_dn)),
-        upper_bound_(upperBound(frames_)) {}
+      : output_(output), frames_(frameConstants(input)), flat_(input.flat_field) {
+    constants_ = {frames_.data(), static_cast<int>(frames_.size()),
+                  static_cast<float>(input.black_level_dn), static_cast<float>(input.saturation_dn),
+                  upperBound(frames_)};
+  }
 
   void runRows(int begin, int end) const {
-    auto buffers = std::make_unique<SegmentBuffers>();
     const int width = output_.luminance_cd_m2.width();
+    std::vector<const std::uint16_t*> rows(frames_.size());
+    std::vector<float> inverse_flat(static_cast<std::size_t>(width), 1.0f);
+    std::vector<float> valid(static_cast<std::size_t>(width)), bound(valid.size()),
+        weight_sum(valid.size());
     for (int y = begin; y < end; ++y) {
-      for (int x0 = 0; x0 < width; x0 += kSegmentPixels)
-        runSegment(y, x0, std::min(kSegmentPixels, width - x0), *buffers);
+      for (std::size_t i = 0; i < frames_.size(); ++i) rows[i] = frames_[i].frame->row(y).data();
+      if (flat_) {
+        auto flat = flat_->row(y);
+        for (std::size_t x = 0; x < flat.size(); ++x) inverse_flat[x] = 1.0f / flat[x];
+      }
+      mergeRow(constants_,
+               {rows.data(), inverse_flat.data(), output_.luminance_cd_m2.row(y).data(),
+                output_.relative_uncertainty.row(y).data(), valid.data(), bound.data(),
+                weight_sum.data()},
+               width, output_.valid_frames.row(y).data(), output_.bound.row(y).data());
     }
   }
 
@@ -140,32 +201,10 @@ class MergeKernel {
     return bound;
   }
 
-  void runSegment(int y, int x0, int count, SegmentBuffers& b) const {
-    const auto n = static_cast<std::size_t>(count);
-    std::fill_n(b.reference.begin(), n, 0.0f);
-    std::fill_n(b.lower_bound.begin(), n, 0.0f);
-    std::fill_n(b.weight_sum.begin(), n, 0.0f);
-    std::fill_n(b.weighted_sum.begin(), n, 0.0f);
-    std::fill_n(b.valid_count.begin(), n, 0.0f);
-    for (const FrameConstants& f : frames_) {
-      accumulateSegment(f.frame->row(y).data() + x0, b.reference.data(), b.weight_sum.data(),
-                        b.weighted_sum.data(), b.valid_count.data(), b.lower_bound.data(), count,
-                        black_, saturation_, f);
-    }
-    const float* flat = flat_ ? flat_->row(y).data() + x0 : nullptr;
-    for (int x = 0; x < count; ++x)
-      b.inverse_flat[static_cast<std::size_t>(x)] = flat ? 1.0f / flat[x] : 1.0f;
-    finishSegment(b, count, upper_bound_, output_.luminance_cd_m2.row(y).data() + x0,
-                  output_.relative_uncertainty.row(y).data() + x0,
-                  output_.valid_frames.row(y).data() + x0, output_.bound.row(y).data() + x0);
-  }
-
   MergedImage& output_;
   std::vector<FrameConstants> frames_;
   const FloatImage* flat_;
-  float black_;
-  float saturation_;
-  float upper_bound_;
+  KernelConstants constants_{};
 };
 
 template <typename T>

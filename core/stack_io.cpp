@@ -1,6 +1,8 @@
 #include "core/stack_io.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
@@ -166,13 +168,28 @@ Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& o
   return stack;
 }
 
-// The identity of the directory a path names now: a writer replacing the stack (rename
-// exchange) gives the path a new inode.
-std::optional<ino_t> directoryIdentity(const fs::path& directory) {
-  struct stat info {};
-  if (::stat(directory.c_str(), &info) != 0) return std::nullopt;
-  return info.st_ino;
-}
+// Pins the directory a path names when reading starts. While the descriptor is open the
+// directory's inode cannot be freed and reused, so "the path still names the pinned
+// directory" after the read proves that no writer replaced the stack meanwhile (an inode
+// number alone could come back: A replaced by B, then B by a new directory that got A's).
+class PinnedDirectory {
+ public:
+  explicit PinnedDirectory(const fs::path& directory)
+      : fd_(::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {}
+  PinnedDirectory(const PinnedDirectory&) = delete;
+  PinnedDirectory& operator=(const PinnedDirectory&) = delete;
+  ~PinnedDirectory() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  bool stillNamedBy(const fs::path& directory) const {
+    struct stat pinned {}, now {};
+    if (fd_ < 0 || ::fstat(fd_, &pinned) != 0 || ::stat(directory.c_str(), &now) != 0) return false;
+    return pinned.st_dev == now.st_dev && pinned.st_ino == now.st_ino;
+  }
+
+ private:
+  int fd_;
+};
 
 // A stack replaced while it is read would mix two versions; such reads are retried.
 constexpr int kReadAttempts = 5;
@@ -180,11 +197,16 @@ constexpr int kReadAttempts = 5;
 }  // namespace
 
 Result<Stack> readStack(const fs::path& directory, const StackReadOptions& options) {
-  for (int attempt = 1;; ++attempt) {
-    const auto before = directoryIdentity(directory);
+  for (int attempt = 0; attempt < kReadAttempts; ++attempt) {
+    const PinnedDirectory pinned(directory);
     auto stack = readStackOnce(directory, options);
-    if (before == directoryIdentity(directory) || attempt == kReadAttempts) return stack;
+    if (pinned.stillNamedBy(directory)) return stack;
+    // A path that names nothing (any more) is the reader's own answer, not a race.
+    std::error_code ec;
+    if (!fs::exists(directory, ec)) return stack;
   }
+  return ioError(directory.string() + ": stack was replaced " + std::to_string(kReadAttempts) +
+                 " times while being read; try again");
 }
 
 Status writeStack(const fs::path& directory, const StackWriteRequest& request) {

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -48,6 +49,22 @@ Status prepareOutputDirectory(const fs::path& directory) {
   return {};
 }
 
+// A frame cannot hold values above its container's maximum, so a value at that maximum is
+// clipped whatever the calibration says (an 8-bit frame under a 12-bit calibration).
+Result<double> effectiveSaturationDn(const Stack& stack) {
+  const int bits = *std::min_element(stack.bit_depths.begin(), stack.bit_depths.end());
+  const double container_max_dn = static_cast<double>((1 << bits) - 1);
+  if (stack.calibration.saturation_dn <= container_max_dn) return stack.calibration.saturation_dn;
+  if (stack.calibration.black_level_dn >= container_max_dn) {
+    return badInput((stack.directory / kManifestFileName).string() + ": black level " +
+                    std::to_string(stack.calibration.black_level_dn) + " DN does not fit " +
+                    std::to_string(bits) + "-bit frames");
+  }
+  spdlog::warn("{}: saturation_dn {} exceeds what {}-bit frames hold; treating {} DN as saturated",
+               stack.directory.string(), stack.calibration.saturation_dn, bits, container_max_dn);
+  return container_max_dn;
+}
+
 }  // namespace
 
 std::string ProcessSummary::briefReport() const {
@@ -74,9 +91,10 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   progress.advance("read");
 
   const auto radiometry = calibration::frameRadiometry(stack.manifest.frames, stack.calibration);
+  double saturation_dn = 0;
+  GLARECAM_ASSIGN(saturation_dn, effectiveSaturationDn(stack));
   calibration::MergeInput input{stack.frames, radiometry, stack.calibration.black_level_dn,
-                                stack.calibration.saturation_dn,
-                                stack.flat_field ? &*stack.flat_field : nullptr};
+                                saturation_dn, stack.flat_field ? &*stack.flat_field : nullptr};
   calibration::MergedImage merged;
   GLARECAM_ASSIGN(merged, calibration::merge(input, {.threads = options.threads}));
   stack.frames.clear();  // the raw frames are no longer needed: free them before the outputs

@@ -90,6 +90,24 @@ TEST(ProcessStack, SaturatedPeakIsReportedAsALowerBound) {
   EXPECT_LT(summary->result["luminance"]["max_cd_m2"].get<double>(), simulated.truth.peak_cd_m2);
 }
 
+TEST(ProcessStack, EightBitFramesSaturateAtTheirMaximum) {
+  testing::TempDir dir;
+  const auto simulated = testing::writeSmallStack(dir / "s");
+  // Replace the frames by 8-bit ones that clip at 255 under the 12-bit calibration (4000 DN).
+  for (std::size_t i = 0; i < simulated.frames.size(); ++i) {
+    RawFrame clipped = simulated.frames[i];
+    for (std::size_t p = 0; p < clipped.pixelCount(); ++p) {
+      clipped.data()[p] = std::min<std::uint16_t>(clipped.data()[p], 255);
+    }
+    ASSERT_TRUE(writePngGray(dir / "s" / simulated.manifest.frames[i].file, clipped, 8));
+  }
+  auto summary = processStack(dir / "s", quiet());
+  ASSERT_TRUE(summary) << summary.error().message;
+  // The peak is clipped at 255 in every frame: a lower bound, not a measurement of 255 DN.
+  EXPECT_TRUE(summary->result["luminance"]["max_is_lower_bound"].get<bool>());
+  EXPECT_GT(summary->result["luminance"]["saturated_pixels"].get<int>(), 0);
+}
+
 TEST(ProcessStack, BadStackIsBadInput) {
   testing::TempDir dir;
   auto summary = processStack(dir / "nothing-here", quiet());

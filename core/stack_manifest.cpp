@@ -257,13 +257,22 @@ json toJson(const StackManifest& manifest) {
 }
 
 Result<json> parseJsonText(std::string_view text, const std::string& where) {
+  // Deeper documents are refused while parsing: copying or printing them recurses once per
+  // level and a hostile manifest nested 100 000 deep would overflow the stack.
+  const json::parser_callback_t depth_guard = [](int depth, json::parse_event_t, json&) {
+    if (depth > kMaxJsonDepth)
+      throw std::length_error("nesting deeper than " + std::to_string(kMaxJsonDepth));
+    return true;
+  };
   try {
-    return json::parse(text);
+    return json::parse(text, depth_guard);
   } catch (const json::exception& e) {
     std::string message = e.what();
     // "[json.exception.parse_error.101] parse error at line 3, ..." -> keep the readable part.
     if (auto pos = message.find("] "); pos != std::string::npos) message = message.substr(pos + 2);
     return badInput(where + ": invalid JSON: " + message);
+  } catch (const std::length_error& e) {
+    return badInput(where + ": invalid JSON: " + e.what());
   }
 }
 

@@ -67,6 +67,9 @@ Result<Calibration> parseCalibration(const nlohmann::json& block, const std::str
 nlohmann::json toJson(const Calibration& calibration);
 nlohmann::json toJson(const StackManifest& manifest);
 
+// Deepest nesting accepted in a JSON document (manifests need 4).
+inline constexpr int kMaxJsonDepth = 64;
+
 // Parses JSON text; the error names `where` and the parser's line and column.
 Result<nlohmann::json> parseJsonText(std::string_view text, const std::string& where);
 // Reads and parses a JSON file; a missing file is kBadInput.

@@ -1,5 +1,6 @@
 #include "pipeline/process_stack.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -65,6 +66,21 @@ Result<double> effectiveSaturationDn(const Stack& stack) {
   return container_max_dn;
 }
 
+// Refuses, naming the file and frame, manifests whose numbers are valid one by one but combine
+// into a scale the merge cannot compute with (gain_db 1000, exposure_us 1e-30).
+Status checkRadiometry(const Stack& stack,
+                       const std::vector<calibration::FrameRadiometry>& radiometry) {
+  for (std::size_t i = 0; i < radiometry.size(); ++i) {
+    if (calibration::isRepresentable(radiometry[i])) continue;
+    return badInput((stack.directory / kManifestFileName).string() + ": frames[" +
+                    std::to_string(i) + "] (" + stack.manifest.frames[i].file +
+                    "): exposure_us, gain_db, nd_transmission and luminance_factor give " +
+                    fmt::format("{:.3g}", radiometry[i].scale_cd_m2_per_dn) +
+                    " cd/m² per DN, outside the range the merge computes in");
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string ProcessSummary::briefReport() const {
@@ -91,6 +107,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   progress.advance("read");
 
   const auto radiometry = calibration::frameRadiometry(stack.manifest.frames, stack.calibration);
+  GLARECAM_CHECK(checkRadiometry(stack, radiometry));
   double saturation_dn = 0;
   GLARECAM_ASSIGN(saturation_dn, effectiveSaturationDn(stack));
   calibration::MergeInput input{stack.frames, radiometry, stack.calibration.black_level_dn,

@@ -82,6 +82,8 @@ def main():
     os.remove(os.path.join(OUT, "missing-manifest", "stack.json"))
     case("invalid-json", "invalid JSON", manifest_text='{"schema": "glarecam.stack/1", "frames": [\n')
     case("manifest-not-object", "must be a JSON object", manifest_text="[1, 2, 3]\n")
+    deep = json.dumps(manifest)[:-1] + ', "x": ' + "[" * 100000 + "]" * 100000 + "}"
+    case("json-nested-too-deep", "nesting deeper than 64", manifest_text=deep)
     case("wrong-schema", "is not supported", edit=set_path(["schema"], "glarecam.stack/2"))
     case("missing-schema", "schema is missing", edit=remove_path(["schema"]))
     case("empty-frame-list", "frames is empty", edit=set_path(["frames"], []))
@@ -111,6 +113,11 @@ def main():
          manifest_text=json.dumps(manifest, indent=2).replace(
              '"exposure_us": %s' % json.dumps(manifest["frames"][1]["exposure_us"]), '"exposure_us": 1e999'))
     case("gain-not-a-number", "gain_db must be a number", edit=set_path(["frames", 0, "gain_db"], [3]))
+    case("gain-absurd", "outside the range the merge computes in", edit=set_path(["frames", 0, "gain_db"], 1000))
+    case("exposure-absurdly-short", "outside the range the merge computes in",
+         edit=set_path(["frames", 1, "exposure_us"], 1e-30))
+    case("luminance-factor-absurd", "outside the range the merge computes in",
+         edit=set_path(["calibration", "luminance_factor"], 1e300))
     case("nd-zero", "nd_transmission must be in (0, 1]", edit=set_path(["frames", 0, "nd_transmission"], 0))
     case("f-number-negative", "f_number must be positive", edit=set_path(["frames", 0, "f_number"], -8))
     case("frame-file-missing-key", "file is required", edit=remove_path(["frames", 0, "file"]))

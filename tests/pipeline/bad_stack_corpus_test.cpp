@@ -1,13 +1,14 @@
-// Every stack under tests/data/bad-stacks/ is refused by the reader with a kBadInput error:
-// one line, naming a file of the stack, containing the case's expect.txt. Also run under
-// AddressSanitizer + UBSan (label "sanitized"), so "never a crash" is checked, not assumed.
+// Every stack under tests/data/bad-stacks/ is refused by `glarecam process`'s library call with
+// a kBadInput error: one line, naming a file of the stack, containing the case's expect.txt,
+// and no output written. Also run under AddressSanitizer + UBSan (label "sanitized"), so
+// "never a crash" is checked, not assumed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
 #include <vector>
 
-#include "core/stack_io.h"
+#include "pipeline/process_stack.h"
 #include "support/test_support.h"
 
 namespace glarecam {
@@ -34,8 +35,13 @@ TEST_P(BadStackCorpus, IsRefusedWithOneClearLine) {
   const fs::path stack = GetParam();
   const std::string expected = trim(testing::readText(stack / "expect.txt"));
   ASSERT_FALSE(expected.empty()) << stack;
-  auto result = readStack(stack);
+  testing::TempDir out;
+  pipeline::ProcessOptions options;
+  options.output_directory = out / "result";
+  options.show_progress = false;
+  auto result = pipeline::processStack(stack, options);
   ASSERT_FALSE(result.has_value()) << stack << " was accepted";
+  EXPECT_FALSE(fs::exists(out / "result" / "result.json"));
   const Error& error = result.error();
   EXPECT_EQ(error.code, ErrorCode::kBadInput) << error.message;
   EXPECT_NE(error.message.find(expected), std::string::npos)

@@ -63,7 +63,7 @@ using WordLanes = std::uint16_t __attribute__((vector_size(kLanes * sizeof(std::
 // Always inlined: a 32-byte vector passed or returned by value through a real call would follow
 // a different ABI in the baseline and the AVX2 clone (wrong numbers at -O0 otherwise).
 template <typename Lanes, typename T>
-inline Lanes loadLanes(const T* source) {
+[[gnu::always_inline]] inline Lanes loadLanes(const T* source) {
   Lanes lanes;
   std::memcpy(&lanes, source, sizeof lanes);
   return lanes;

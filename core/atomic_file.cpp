@@ -148,15 +148,21 @@ Status StagingDirectory::commit() {
     }
   }
   committed_ = true;
+  // Make the new name durable before the old contents go away.
+  Status synced = fsyncPath(parentOf(target_));
   if (replacing) fs::remove_all(staging_, ec);
-  return fsyncPath(parentOf(target_));
+  return synced;
 }
 
-std::size_t removeStaleTemporaries(const fs::path& directory) {
+std::size_t removeStaleTemporaries(const fs::path& directory, std::chrono::seconds min_age) {
   std::size_t removed = 0;
   std::error_code ec;
+  const auto now = fs::file_time_type::clock::now();
   for (const auto& entry : fs::directory_iterator(directory, ec)) {
     if (!entry.path().filename().string().starts_with(kTemporaryPrefix)) continue;
+    std::error_code time_ec;
+    const auto modified = fs::last_write_time(entry.path(), time_ec);
+    if (time_ec || now - modified < min_age) continue;
     std::error_code remove_ec;
     fs::remove_all(entry.path(), remove_ec);
     if (!remove_ec) ++removed;

@@ -4,6 +4,7 @@
 // Leftover temporaries start with ".tmp-" and are removed by removeStaleTemporaries().
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <span>
@@ -48,7 +49,9 @@ class StagingDirectory {
   bool committed_ = false;
 };
 
-// Removes ".tmp-*" entries left in directory by an interrupted writer; returns how many.
-std::size_t removeStaleTemporaries(const std::filesystem::path& directory);
+// Removes ".tmp-*" entries left in directory by an interrupted writer, those not modified for
+// at least `min_age` (a younger one may belong to a writer still running); returns how many.
+std::size_t removeStaleTemporaries(const std::filesystem::path& directory,
+                                   std::chrono::seconds min_age = std::chrono::seconds(0));
 
 }  // namespace glarecam

@@ -181,8 +181,10 @@ class PinnedDirectory {
   ~PinnedDirectory() {
     if (fd_ >= 0) ::close(fd_);
   }
+  bool isOpen() const { return fd_ >= 0; }
   bool stillNamedBy(const fs::path& directory) const {
-    struct stat pinned {}, now {};
+    struct stat pinned {
+    }, now{};
     if (fd_ < 0 || ::fstat(fd_, &pinned) != 0 || ::stat(directory.c_str(), &now) != 0) return false;
     return pinned.st_dev == now.st_dev && pinned.st_ino == now.st_ino;
   }
@@ -200,16 +202,34 @@ Result<Stack> readStack(const fs::path& directory, const StackReadOptions& optio
   for (int attempt = 0; attempt < kReadAttempts; ++attempt) {
     const PinnedDirectory pinned(directory);
     auto stack = readStackOnce(directory, options);
-    if (pinned.stillNamedBy(directory)) return stack;
-    // A path that names nothing (any more) is the reader's own answer, not a race.
-    std::error_code ec;
-    if (!fs::exists(directory, ec)) return stack;
+    // Not a directory, or one that cannot be opened: the reader's own answer is the message.
+    if (!pinned.isOpen() || pinned.stillNamedBy(directory)) return stack;
   }
   return ioError(directory.string() + ": stack was replaced " + std::to_string(kReadAttempts) +
                  " times while being read; try again");
 }
 
-Status writeStack(const fs::path& directory, const StackWriteRequest& request) {
+Result<fs::path> stackTarget(const fs::path& requested) {
+  if (requested.empty()) return badInput("stack directory: the path is empty");
+  std::error_code ec;
+  fs::path target = fs::absolute(requested, ec).lexically_normal();
+  if (ec) return badInput(requested.string() + ": " + ec.message());
+  if (target.filename().empty()) target = target.parent_path();  // "dir/" -> "dir"
+  if (target == target.root_path())
+    return badInput(requested.string() + ": cannot write a stack over the root directory");
+  if (!fs::exists(fs::symlink_status(target, ec))) return target;
+  // Replacing deletes what was there: only ever another stack, never someone's files.
+  if (!fs::is_directory(fs::symlink_status(target, ec)) ||
+      !fs::is_regular_file(target / kManifestFileName, ec)) {
+    return badInput(requested.string() + ": exists and is not a stack (no " +
+                    std::string(kManifestFileName) + "); refusing to replace it");
+  }
+  return target;
+}
+
+Status writeStack(const fs::path& requested_directory, const StackWriteRequest& request) {
+  fs::path directory;
+  GLARECAM_ASSIGN(directory, stackTarget(requested_directory));
   const auto& specs = request.manifest.frames;
   if (specs.empty() || specs.size() != request.frames.size()) {
     return fail(ErrorCode::kInternal, directory.string() + ": manifest lists " +
@@ -241,6 +261,10 @@ Status writeStack(const fs::path& directory, const StackWriteRequest& request) {
   });
   for (const Status& status : written) GLARECAM_CHECK(status);
   for (const StackAttachment& attachment : request.attachments) {
+    if (!isContainedRelativePath(attachment.relative_path)) {
+      return fail(ErrorCode::kInternal,
+                  directory.string() + ": \"" + attachment.relative_path + "\" escapes the stack");
+    }
     std::error_code ec;
     fs::path target = staging->path() / attachment.relative_path;
     fs::create_directories(target.parent_path(), ec);

@@ -54,7 +54,13 @@ struct StackWriteRequest {
   std::vector<std::pair<std::string, std::string>> text_files;  // relative path, content
 };
 
-// Writes (or atomically replaces) the stack at `directory`.
+// Writes the stack at `directory`, or atomically replaces the stack that is there. Anything else
+// at that path (a file, a directory without stack.json, "/", ".") is refused as kBadInput:
+// replacing deletes the old contents, and those must only ever be an older stack.
 Status writeStack(const std::filesystem::path& directory, const StackWriteRequest& request);
+
+// The absolute, normalised path a stack at `requested` would be written to, or the reason it
+// cannot be (see writeStack).
+Result<std::filesystem::path> stackTarget(const std::filesystem::path& requested);
 
 }  // namespace glarecam

@@ -23,6 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kProcessSteps = 6;
+constexpr const char* kResultFileName = "result.json";
 
 Status writeQualityExr(const fs::path& path, const calibration::MergedImage& merged) {
   FloatImage valid(merged.valid_frames.width(), merged.valid_frames.height());
@@ -42,11 +43,22 @@ std::string stackId(const Stack& stack) {
   return fs::absolute(stack.directory).lexically_normal().filename().string();
 }
 
+// A leftover temporary younger than this may belong to another process still writing.
+constexpr std::chrono::minutes kStaleTemporaryAge{10};
+
+// Creates the output directory and withdraws an earlier result.json first, so that an
+// interrupted run never leaves old results beside new pictures under a complete-looking set.
 Status prepareOutputDirectory(const fs::path& directory) {
   std::error_code ec;
   fs::create_directories(directory, ec);
   if (ec) return ioError(directory.string() + ": cannot create output directory: " + ec.message());
-  removeStaleTemporaries(directory);
+  if (!fs::is_directory(directory, ec))
+    return badInput(directory.string() + ": output path is not a directory");
+  removeStaleTemporaries(directory, kStaleTemporaryAge);
+  fs::remove(directory / kResultFileName, ec);
+  if (ec)
+    return ioError((directory / kResultFileName).string() +
+                   ": cannot remove the previous result: " + ec.message());
   return {};
 }
 
@@ -151,7 +163,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
   GLARECAM_CHECK(writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb));
   progress.advance("luminance.png");
-  GLARECAM_CHECK(writeFileAtomic(out / "result.json", summary.result.dump(2) + "\n"));
+  GLARECAM_CHECK(writeFileAtomic(out / kResultFileName, summary.result.dump(2) + "\n"));
   progress.advance("result.json");
   return summary;
 }

@@ -6,6 +6,7 @@
 #include "apps/glarecam/option_parsing.h"
 #include "capture/sim/module_model.h"
 #include "capture/sim/simulated_stack.h"
+#include "core/stack_io.h"
 
 namespace glarecam::apps {
 namespace {
@@ -32,6 +33,8 @@ Status runSimulate(SimulateArgs& args) {
     if (!offset) return std::unexpected(offset.error());
     args.options.lobe_offset_deg = {(*offset)[0], (*offset)[1]};
   }
+  // Refuse a bad --out before spending seconds on the simulation.
+  if (auto target = stackTarget(args.out); !target) return std::unexpected(target.error());
   auto stack = capture::simulateStack(args.options);
   if (!stack) return std::unexpected(stack.error());
   GLARECAM_CHECK(capture::writeSimulatedStack(args.out, *stack));

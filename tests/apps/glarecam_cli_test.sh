@@ -70,6 +70,16 @@ expect "missing calibration named" one_line_naming "none.json"
 check "unwritable output" 1 "$GLARECAM" process --no-progress --out /proc/glarecam-cannot-write "$WORK/s"
 expect "unwritable output is one line" one_line_naming "/proc/glarecam-cannot-write"
 
+# Never replace what is not a stack; never read what is not a directory.
+mkdir -p "$WORK/precious" && echo keep >"$WORK/precious/thesis.txt"
+check "simulate over a non-stack directory" 2 "$GLARECAM" simulate --out "$WORK/precious" --size 32x32
+expect "non-stack directory untouched" grep -q keep "$WORK/precious/thesis.txt"
+expect "refusal is one line" one_line_naming "refusing to replace"
+check "simulate over a file" 2 "$GLARECAM" simulate --out "$WORK/precious/thesis.txt" --size 32x32
+check "simulate over ." 2 "$GLARECAM" simulate --out . --size 32x32
+check "process a regular file" 2 "$GLARECAM" process "$WORK/precious/thesis.txt"
+expect "regular file: not a stack directory" one_line_naming "not a stack directory"
+
 # Every bad stack of the corpus: exit 2, one line naming the stack's file and the problem.
 check "missing stack" 2 "$GLARECAM" process "$WORK/no-such-stack"
 for stack in "$CORPUS"/*/; do

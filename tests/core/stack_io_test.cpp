@@ -123,3 +123,34 @@ TEST(StackIo, RewritingPreservesUnknownFieldsAndReplacesAtomically) {
 
 }  // namespace
 }  // namespace glarecam
+
+namespace glarecam {
+namespace {
+
+TEST(StackIo, NeverReplacesSomethingThatIsNotAStack) {
+  testing::TempDir dir;
+  const auto simulated = testing::writeSmallStack(dir / "s");
+  StackWriteRequest request;
+  request.manifest = simulated.manifest;
+  request.frames = simulated.frames;
+  // A directory holding someone's files, a plain file, the root: all refused, all untouched.
+  fs::create_directories(dir / "thesis");
+  testing::writeText(dir / "thesis" / "chapter1.tex", "precious");
+  testing::writeText(dir / "notes.txt", "precious");
+  for (const fs::path& target : {dir / "thesis", dir / "notes.txt", fs::path("/"), fs::path("")}) {
+    auto status = writeStack(target, request);
+    ASSERT_FALSE(status) << target;
+    EXPECT_EQ(status.error().code, ErrorCode::kBadInput) << status.error().message;
+  }
+  EXPECT_EQ(testing::readText(dir / "thesis" / "chapter1.tex"), "precious");
+  EXPECT_EQ(testing::readText(dir / "notes.txt"), "precious");
+  // An existing stack is replaced, also when named with a trailing slash.
+  EXPECT_TRUE(writeStack((dir / "s").string() + "/", request));
+  EXPECT_TRUE(fs::is_regular_file(dir / "s" / "stack.json"));
+  for (const auto& entry : fs::directory_iterator(dir.path())) {
+    EXPECT_FALSE(entry.path().filename().string().starts_with(".tmp-")) << entry.path();
+  }
+}
+
+}  // namespace
+}  // namespace glarecam

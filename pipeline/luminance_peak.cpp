@@ -1,77 +1,87 @@
 #include "pipeline/luminance_peak.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
+
+#include "core/parallel.h"
 
 namespace glarecam::pipeline {
 namespace {
 
 using calibration::PixelBound;
 
-// The quadratic-fit window grows from 7x7 while its whole border stays on the cap of the lobe
-// (above kCapFraction of the peak), up to 31x31: sharp lobes get a small window, wide ones
-// average many pixels, which both cuts the noise and dilutes the selection bias of having
-// located the peak on noisy data.
+// The fit window's half-widths grow from 3 px while the lobe stays on its cap (above
+// kCapFraction of the peak) along the row and the column through the peak, up to 15 px: sharp
+// lobes get a small window, wide or elongated ones average many pixels along each axis, which
+// cuts the noise and dilutes the selection bias of having located the peak on noisy data.
 constexpr int kMinFitRadius = 3;
 constexpr int kMaxFitRadius = 15;
 constexpr double kCapFraction = 0.8;
 constexpr int kMinFitSamples = 12;
+// A fit whose ln L residuals exceed this RMS (about 5 % in L, several times a good merge's
+// per-pixel noise) is no cap of a smooth lobe: a glint, a plateau edge or clutter.
+constexpr double kMaxFitResidualRms = 0.05;
 
-bool ringAbove(const cv::Mat& image, int cx, int cy, int radius, double level) {
-  for (int d = -radius; d <= radius; ++d) {
-    const cv::Point ring[4] = {
-        {cx + d, cy - radius}, {cx + d, cy + radius}, {cx - radius, cy + d}, {cx + radius, cy + d}};
-    for (const cv::Point& p : ring) {
-      if (p.x < 0 || p.y < 0 || p.x >= image.cols || p.y >= image.rows ||
-          image.at<float>(p) < level)
-        return false;
-    }
-  }
-  return true;
+bool isBound(const calibration::MergedImage& merged, int x, int y, PixelBound bound) {
+  return merged.bound.at(x, y) == static_cast<std::uint8_t>(bound);
 }
 
-int fitRadius(const cv::Mat& median, cv::Point peak, double peak_value) {
+// Second-largest of each pixel's 3x3 neighbourhood (outside the image counts as 0), over the
+// pixels that are measurements or lower bounds: upper bounds are not bright pixels.
+FloatImage secondLargest3x3(const calibration::MergedImage& merged) {
+  const FloatImage& image = merged.luminance_cd_m2;
+  const int width = image.width(), height = image.height();
+  FloatImage result(width, height);
+  parallelRows(height, defaultThreadCount(), [&](int begin, int end) {
+    for (int y = begin; y < end; ++y) {
+      for (int x = 0; x < width; ++x) {
+        float first = 0, second = 0;
+        for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy) {
+          for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx) {
+            const float v = image.at(xx, yy);
+            if (!(v > second) || isBound(merged, xx, yy, PixelBound::kUpperBound)) continue;
+            second = std::min(v, first);
+            first = std::max(v, first);
+          }
+        }
+        result.at(x, y) = second;
+      }
+    }
+  });
+  return result;
+}
+
+// How far along one axis the located image stays above `level`, within the radius limits.
+int capRadius(const FloatImage& located, int x, int y, int dx, int dy, double level) {
   int radius = kMinFitRadius;
-  while (radius < kMaxFitRadius &&
-         ringAbove(median, peak.x, peak.y, radius + 1, kCapFraction * peak_value))
-    ++radius;
+  while (radius < kMaxFitRadius) {
+    const int next = radius + 1;
+    const int x1 = x - next * dx, y1 = y - next * dy, x2 = x + next * dx, y2 = y + next * dy;
+    const bool inside = x1 >= 0 && y1 >= 0 && x2 < located.width() && y2 < located.height();
+    if (!inside || located.at(x1, y1) < level || located.at(x2, y2) < level) break;
+    radius = next;
+  }
   return radius;
 }
 
-// Luminance with non-measurements zeroed, as an OpenCV view for the median filter.
-cv::Mat measuredLuminance(const calibration::MergedImage& merged) {
-  const FloatImage& image = merged.luminance_cd_m2;
-  cv::Mat out(image.height(), image.width(), CV_32F);
-  for (int y = 0; y < image.height(); ++y) {
-    auto in = image.row(y);
-    auto bound = merged.bound.row(y);
-    float* row = out.ptr<float>(y);
-    for (int x = 0; x < image.width(); ++x) {
-      const float v = in[static_cast<std::size_t>(x)];
-      const bool usable = bound[static_cast<std::size_t>(x)] !=
-                              static_cast<std::uint8_t>(PixelBound::kUpperBound) &&
-                          std::isfinite(v);
-      row[x] = usable ? v : 0.0f;
-    }
-  }
-  return out;
-}
+struct FitWindow {
+  int cx, cy, rx, ry;
+};
 
-// Least-squares fit of ln L = c0 + c1 x + c2 y + c3 x² + c4 xy + c5 y² around (cx, cy);
-// returns the vertex when the surface is a cap whose top lies inside the window.
-bool fitQuadraticCap(const calibration::MergedImage& merged, int cx, int cy, int radius,
+// Least-squares fit of ln L = c0 + c1 x + c2 y + c3 x² + c4 xy + c5 y² over the window;
+// returns the vertex when the surface fits the data and is a cap whose top lies inside.
+bool fitQuadraticCap(const calibration::MergedImage& merged, const FitWindow& w,
                      LuminancePeak& peak) {
   const FloatImage& image = merged.luminance_cd_m2;
   cv::Mat a(0, 6, CV_64F), b(0, 1, CV_64F);
-  for (int dy = -radius; dy <= radius; ++dy) {
-    for (int dx = -radius; dx <= radius; ++dx) {
-      const int x = cx + dx, y = cy + dy;
+  for (int dy = -w.ry; dy <= w.ry; ++dy) {
+    for (int dx = -w.rx; dx <= w.rx; ++dx) {
+      const int x = w.cx + dx, y = w.cy + dy;
       if (x < 0 || y < 0 || x >= image.width() || y >= image.height()) continue;
       const float v = image.at(x, y);
-      if (merged.bound.at(x, y) != static_cast<std::uint8_t>(PixelBound::kMeasured) || !(v > 0))
-        continue;
+      if (!isBound(merged, x, y, PixelBound::kMeasured) || !(v > 0)) continue;
       double row[6] = {
           1.0, double(dx), double(dy), double(dx * dx), double(dx * dy), double(dy * dy)};
       a.push_back(cv::Mat(1, 6, CV_64F, row));
@@ -81,6 +91,8 @@ bool fitQuadraticCap(const calibration::MergedImage& merged, int cx, int cy, int
   if (a.rows < kMinFitSamples) return false;
   cv::Mat c;
   if (!cv::solve(a, b, c, cv::DECOMP_SVD)) return false;
+  if (cv::norm(a * c - b) / std::sqrt(static_cast<double>(a.rows)) > kMaxFitResidualRms)
+    return false;
   const double c1 = c.at<double>(1), c2 = c.at<double>(2), c3 = c.at<double>(3),
                c4 = c.at<double>(4), c5 = c.at<double>(5);
   // Vertex: gradient zero. Hessian [[2c3, c4], [c4, 2c5]] must be negative definite.
@@ -88,33 +100,38 @@ bool fitQuadraticCap(const calibration::MergedImage& merged, int cx, int cy, int
   if (!(c3 < 0 && det > 0)) return false;
   const double vx = (-2 * c5 * c1 + c4 * c2) / det;
   const double vy = (-2 * c3 * c2 + c4 * c1) / det;
-  if (std::abs(vx) > radius || std::abs(vy) > radius) return false;
+  if (std::abs(vx) > w.rx || std::abs(vy) > w.ry) return false;
   const double ln_peak =
       c.at<double>(0) + c1 * vx + c2 * vy + c3 * vx * vx + c4 * vx * vy + c5 * vy * vy;
-  peak = {std::exp(ln_peak), cx + vx, cy + vy, PeakMethod::kQuadraticFit};
+  peak = {std::exp(ln_peak), w.cx + vx, w.cy + vy, PeakMethod::kQuadraticFit};
   return true;
 }
 
 // A top saturated in every frame: the true maximum is only known to exceed the largest lower
 // bound around it (measured neighbours of a clipped plateau may even read higher).
-bool saturatedTop(const calibration::MergedImage& merged, cv::Point location, int radius,
-                  LuminancePeak& peak) {
+bool saturatedTop(const calibration::MergedImage& merged, const FitWindow& w, LuminancePeak& peak) {
   const FloatImage& image = merged.luminance_cd_m2;
   bool saturated = false;
-  for (int y = std::max(0, location.y - radius);
-       y <= std::min(image.height() - 1, location.y + radius); ++y) {
-    for (int x = std::max(0, location.x - radius);
-         x <= std::min(image.width() - 1, location.x + radius); ++x) {
-      if (merged.bound.at(x, y) != static_cast<std::uint8_t>(PixelBound::kLowerBound)) continue;
+  for (int y = std::max(0, w.cy - w.ry); y <= std::min(image.height() - 1, w.cy + w.ry); ++y) {
+    for (int x = std::max(0, w.cx - w.rx); x <= std::min(image.width() - 1, w.cx + w.rx); ++x) {
+      if (!isBound(merged, x, y, PixelBound::kLowerBound)) continue;
       if (!saturated || image.at(x, y) > peak.value_cd_m2)
         peak = {image.at(x, y), double(x), double(y), PeakMethod::kLowerBound};
       saturated = true;
     }
   }
   if (saturated)
-    peak.value_cd_m2 =
-        std::max(peak.value_cd_m2, static_cast<double>(image.at(location.x, location.y)));
+    peak.value_cd_m2 = std::max(peak.value_cd_m2, static_cast<double>(image.at(w.cx, w.cy)));
   return saturated;
+}
+
+// An image under-exposed in every pixel: its maximum is at most the largest upper bound.
+LuminancePeak darkImagePeak(const calibration::MergedImage& merged) {
+  const FloatImage& image = merged.luminance_cd_m2;
+  const float* top = std::max_element(image.data(), image.data() + image.pixelCount());
+  const auto index = static_cast<std::size_t>(top - image.data());
+  const auto width = static_cast<std::size_t>(image.width());
+  return {*top, double(index % width), double(index / width), PeakMethod::kUpperBound};
 }
 
 }  // namespace
@@ -123,25 +140,30 @@ const char* toString(PeakMethod method) {
   switch (method) {
     case PeakMethod::kQuadraticFit:
       return "quadratic_fit";
-    case PeakMethod::kMedian3x3:
-      return "median_3x3";
+    case PeakMethod::kNeighbourhood3x3:
+      return "neighbourhood_3x3";
     case PeakMethod::kLowerBound:
       return "lower_bound";
+    case PeakMethod::kUpperBound:
+      return "upper_bound";
   }
   return "unknown";
 }
 
 LuminancePeak findLuminancePeak(const calibration::MergedImage& merged) {
   if (merged.luminance_cd_m2.empty()) return {};
-  cv::Mat median;
-  cv::medianBlur(measuredLuminance(merged), median, 3);
-  cv::Point location;
-  double value = 0;
-  cv::minMaxLoc(median, nullptr, &value, nullptr, &location);
-  LuminancePeak peak{value, double(location.x), double(location.y), PeakMethod::kMedian3x3};
-  const int radius = fitRadius(median, location, value);
-  if (saturatedTop(merged, location, radius, peak)) return peak;
-  fitQuadraticCap(merged, location.x, location.y, radius, peak);
+  const FloatImage located = secondLargest3x3(merged);
+  const float* top = std::max_element(located.data(), located.data() + located.pixelCount());
+  if (!(*top > 0)) return darkImagePeak(merged);
+  const auto index = static_cast<std::size_t>(top - located.data());
+  const int cx = static_cast<int>(index % static_cast<std::size_t>(located.width()));
+  const int cy = static_cast<int>(index / static_cast<std::size_t>(located.width()));
+  const double level = kCapFraction * *top;
+  const FitWindow window{cx, cy, capRadius(located, cx, cy, 1, 0, level),
+                         capRadius(located, cx, cy, 0, 1, level)};
+  LuminancePeak peak{*top, double(cx), double(cy), PeakMethod::kNeighbourhood3x3};
+  if (saturatedTop(merged, window, peak)) return peak;
+  fitQuadraticCap(merged, window, peak);
   return peak;
 }
 

@@ -8,12 +8,14 @@ namespace glarecam::pipeline {
 
 namespace {
 
-// true / false, or null when there is no limit or the verdict cannot be known: a maximum that
-// is only a lower bound (saturated everywhere) and is below the limit may still exceed it.
+// true / false, or null when there is no limit or the verdict cannot be known: a lower bound
+// (saturated everywhere) below the limit may still exceed it, an upper bound (dark everywhere)
+// above it may still stay below.
 nlohmann::json glareVerdict(const LuminancePeak& max, const std::optional<double>& limit_cd_m2) {
   if (!limit_cd_m2) return nullptr;
   const bool reaches = max.value_cd_m2 >= *limit_cd_m2;
   if (!reaches && max.method == PeakMethod::kLowerBound) return nullptr;
+  if (reaches && max.method == PeakMethod::kUpperBound) return nullptr;
   return reaches;
 }
 
@@ -34,6 +36,7 @@ nlohmann::json makeResult(const ResultInputs& in) {
                          {"max_position_px", {s.max.x_px, s.max.y_px}},
                          {"max_method", toString(s.max.method)},
                          {"max_is_lower_bound", s.max.method == PeakMethod::kLowerBound},
+                         {"max_is_upper_bound", s.max.method == PeakMethod::kUpperBound},
                          {"valid_fraction", s.valid_fraction},
                          {"saturated_pixels", s.saturated_pixels},
                          {"dark_pixels", s.dark_pixels},

@@ -10,8 +10,10 @@ namespace {
 
 using calibration::PixelBound;
 
+// A Gaussian lobe of `peak` over a 1000 cd/m² background; sigma_y defaults to sigma.
 calibration::MergedImage gaussianLobe(double peak, double cx, double cy, double sigma, double noise,
-                                      unsigned seed) {
+                                      unsigned seed, double sigma_y = 0) {
+  if (sigma_y == 0) sigma_y = sigma;
   constexpr int kWidth = 120, kHeight = 90;
   calibration::MergedImage merged;
   merged.luminance_cd_m2 = FloatImage(kWidth, kHeight);
@@ -22,7 +24,8 @@ calibration::MergedImage gaussianLobe(double peak, double cx, double cy, double 
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (int y = 0; y < kHeight; ++y) {
     for (int x = 0; x < kWidth; ++x) {
-      const double r2 = ((x - cx) * (x - cx) + (y - cy) * (y - cy)) / (sigma * sigma);
+      const double r2 =
+          (x - cx) * (x - cx) / (sigma * sigma) + (y - cy) * (y - cy) / (sigma_y * sigma_y);
       const double value = 1000.0 + peak * std::exp(-0.5 * r2);
       merged.luminance_cd_m2.at(x, y) = static_cast<float>(value * (1.0 + noise * gauss(rng)));
     }
@@ -79,6 +82,35 @@ TEST(LuminancePeak, SaturatedTopIsALowerBound) {
   // A lower bound: at least the clipped plateau, at most the true peak.
   EXPECT_GE(peak.value_cd_m2, 4.0e5);
   EXPECT_LE(peak.value_cd_m2, 5.01e5);
+}
+
+TEST(LuminancePeak, KeepsAPeakTwoPixelsWide) {
+  auto merged = gaussianLobe(1.0, 60.0, 45.0, 8.0, 0.0, 1);  // background 1000 only
+  for (int y = 44; y <= 45; ++y) {
+    for (int x = 70; x <= 71; ++x) merged.luminance_cd_m2.at(x, y) = 3.0e5f;  // a 2x2 glint
+  }
+  const LuminancePeak peak = findLuminancePeak(merged);
+  EXPECT_NEAR(peak.value_cd_m2, 3.0e5, 1.0);
+  EXPECT_NEAR(peak.x_px, 70.5, 0.6);
+}
+
+TEST(LuminancePeak, FitsAnElongatedLobe) {
+  // 4 px wide, 30 px tall with 1 % noise: the window must follow each axis separately.
+  const auto merged = gaussianLobe(5.0e5, 60.0, 45.0, 4.0, 0.01, 3, 30.0);
+  const LuminancePeak peak = findLuminancePeak(merged);
+  EXPECT_EQ(peak.method, PeakMethod::kQuadraticFit);
+  EXPECT_NEAR(peak.value_cd_m2 / 501000.0, 1.0, 0.01);
+  EXPECT_NEAR(peak.y_px, 45.0, 2.0);
+}
+
+TEST(LuminancePeak, DarkEverywhereIsAnUpperBound) {
+  auto merged = gaussianLobe(1.0, 60.0, 45.0, 8.0, 0.0, 1);
+  for (std::size_t i = 0; i < merged.bound.pixelCount(); ++i) {
+    merged.bound.data()[i] = static_cast<std::uint8_t>(PixelBound::kUpperBound);
+  }
+  const LuminancePeak peak = findLuminancePeak(merged);
+  EXPECT_EQ(peak.method, PeakMethod::kUpperBound);
+  EXPECT_NEAR(peak.value_cd_m2, 1001.0, 1.0);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
+#include <string>
 
 #include "apps/glarecam/commands.h"
 #include "core/error.h"
@@ -14,12 +15,29 @@
 
 namespace glarecam::apps {
 
+namespace {
+
+// CLI11 says "A subcommand is required" for a misspelt command too: name it instead.
+std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error, int argc,
+                              char** argv) {
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+    std::string known;
+    for (const CLI::App* sub : app.get_subcommands({}))
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    return std::string("unknown command \"") + argv[1] + "\" (known: " + known + ")";
+  }
+  return error.what();
+}
+
+}  // namespace
+
 int runGlarecam(int argc, char** argv) {
   CLI::App app{
       "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
       "Docs: docs/process.md, docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
+  app.fallthrough();  // global options (-v, -q) also after the subcommand
   bool verbose = false, quiet = false, debug = false;
   app.add_flag("-v,--verbose", verbose, "log progress details");
   app.add_flag("--debug", debug, "log everything");
@@ -38,7 +56,8 @@ int runGlarecam(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "glarecam: %s (see glarecam --help)\n", e.what());
+    std::fprintf(stderr, "glarecam: %s (see glarecam --help)\n",
+                 parseErrorMessage(app, e, argc, argv).c_str());
     return kExitBadInput;
   }
   initLogging(debug     ? Verbosity::kDebug

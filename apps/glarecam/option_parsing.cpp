@@ -16,6 +16,13 @@ bool parseWhole(const std::string& text, T& value) {
 
 }  // namespace
 
+Result<std::uint64_t> parseUnsigned(const std::string& text, const std::string& option) {
+  std::uint64_t value = 0;
+  if (!parseWhole(text, value))
+    return badInput(option + ": expected a whole number >= 0, got \"" + text + "\"");
+  return value;
+}
+
 Result<std::pair<int, int>> parseSize(const std::string& text, const std::string& option) {
   const auto x = text.find('x');
   int width = 0, height = 0;
@@ -29,6 +36,9 @@ Result<std::pair<int, int>> parseSize(const std::string& text, const std::string
 Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option,
                                             std::size_t min_count, std::size_t max_count) {
   std::vector<double> values;
+  if (text.empty() || text.back() == ',') {
+    return badInput(option + ": expected comma-separated numbers, got \"" + text + "\"");
+  }
   std::stringstream stream(text);
   std::string item;
   while (std::getline(stream, item, ',')) {

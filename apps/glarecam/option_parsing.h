@@ -2,6 +2,7 @@
 // errors that name the option.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,6 +11,7 @@
 
 namespace glarecam::apps {
 
+Result<std::uint64_t> parseUnsigned(const std::string& text, const std::string& option);
 Result<std::pair<int, int>> parseSize(const std::string& text, const std::string& option);
 Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option,
                                             std::size_t min_count, std::size_t max_count);

@@ -16,6 +16,7 @@ struct SimulateArgs {
   std::string out;
   std::string size = "1224x1024";
   std::string distortion, offset;
+  std::string seed = "1";
   capture::SimulationOptions options;
 };
 
@@ -23,6 +24,9 @@ Status runSimulate(SimulateArgs& args) {
   auto size = parseSize(args.size, "--size");
   if (!size) return std::unexpected(size.error());
   std::tie(args.options.width, args.options.height) = *size;
+  auto seed = parseUnsigned(args.seed, "--seed");
+  if (!seed) return std::unexpected(seed.error());
+  args.options.seed = *seed;
   if (!args.distortion.empty()) {
     auto k = parseNumberList(args.distortion, "--distortion", 1, 5);
     if (!k) return std::unexpected(k.error());
@@ -58,8 +62,9 @@ void addSimulateCommand(CLI::App& app, Action& action) {
   sub->add_option("--module", args->options.module, "module glare model (" + modules + ")")
       ->capture_default_str();
   sub->add_option("--size", args->size, "frame size WIDTHxHEIGHT")->capture_default_str();
-  sub->add_option("--seed", args->options.seed, "noise seed; same seed, same stack")
-      ->capture_default_str();
+  sub->add_option("--seed", args->seed, "noise seed (whole number >= 0); same seed, same stack")
+      ->capture_default_str()
+      ->type_name("UINT");
   sub->add_option("--fov", args->options.horizontal_fov_deg, "horizontal field of view in degrees")
       ->capture_default_str();
   sub->add_option("--distortion", args->distortion,

@@ -1,5 +1,7 @@
 #include "capture/sim/simulated_stack.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +17,8 @@ namespace glarecam::capture {
 namespace {
 
 constexpr int kMinSide = 16, kMaxSide = 16384;
+constexpr double kMinFovDeg = 1.0, kMaxFovDeg = 150.0;  // a pinhole model's sensible range
+constexpr double kMaxOffsetDeg = 80.0;                  // the lobe stays in front of the lens
 constexpr std::string_view kTruthSchema = "glarecam.truth/1";
 
 Intrinsics pinholeIntrinsics(const SimulationOptions& options) {
@@ -103,18 +107,51 @@ Status SimulationOptions::validate() const {
   if (width < kMinSide || height < kMinSide || width > kMaxSide || height > kMaxSide) {
     return badInput("simulate: --size must be between 16x16 and 16384x16384");
   }
-  if (!(horizontal_fov_deg > 1 && horizontal_fov_deg < 150))
-    return badInput("simulate: field of view must be in (1, 150) degrees");
-  if (!(background_cd_m2 > 0 && peak_scale > 0 && luminance_factor > 0 && nd_transmission > 0 &&
-        nd_transmission <= 1 && f_number > 0)) {
-    return badInput("simulate: background, peak scale, K, ND and f-number must be positive");
+  if (!(horizontal_fov_deg > kMinFovDeg && horizontal_fov_deg < kMaxFovDeg)) {
+    return badInput("simulate: --fov must be between 1 and 150 degrees");
+  }
+  if (!(background_cd_m2 > 0 && std::isfinite(background_cd_m2))) {
+    return badInput("simulate: --background must be a positive luminance");
+  }
+  if (!(peak_scale > 0 && std::isfinite(peak_scale)))
+    return badInput("simulate: --peak-scale must be positive");
+  if (!std::isfinite(lobe_orientation_deg))
+    return badInput("simulate: --orientation must be finite");
+  const auto within = [](double deg) { return std::abs(deg) < kMaxOffsetDeg; };
+  if (!within(lobe_offset_deg[0]) || !within(lobe_offset_deg[1])) {
+    return badInput("simulate: --offset-deg must stay within 80 degrees of the optical axis");
   }
   if (!std::all_of(distortion.begin(), distortion.end(),
                    [](double k) { return std::isfinite(k); })) {
-    return badInput("simulate: distortion coefficients must be finite");
+    return badInput("simulate: --distortion coefficients must be finite");
+  }
+  if (!(luminance_factor > 0 && nd_transmission > 0 && nd_transmission <= 1 && f_number > 0)) {
+    return fail(ErrorCode::kInternal,
+                "simulate: the simulated camera's K, ND and f-number must be positive");
   }
   return bracket.validate();
 }
+
+namespace {
+
+// The lens model must be invertible over the frame: a distortion polynomial that folds over
+// (strong negative k1) maps two directions to one pixel and the scene would be drawn torn.
+Status checkLensInvertible(const calibration::CameraModel& camera, int width, int height) {
+  constexpr double kRoundTripTolerancePx = 0.01;
+  const double w = width - 1, h = height - 1;
+  const calibration::PixelPoint border[] = {{0, 0}, {w / 2, 0}, {w, 0}, {w, h / 2},
+                                            {w, h}, {w / 2, h}, {0, h}, {0, h / 2}};
+  for (const auto& pixel : border) {
+    const calibration::PixelPoint back = camera.project(camera.ray(pixel));
+    if (!(std::hypot(back.x - pixel.x, back.y - pixel.y) < kRoundTripTolerancePx)) {
+      return badInput(
+          "simulate: --distortion folds the image over inside the frame; use weaker coefficients");
+    }
+  }
+  return {};
+}
+
+}  // namespace
 
 nlohmann::json SimulatedStack::truthJson() const {
   return {{"schema", kTruthSchema},
@@ -136,6 +173,11 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   GLARECAM_ASSIGN(module, moduleModel(options.module));
   const double limit =
       pipeline::glareLimitCdM2(options.alpha_deg).value_or(pipeline::kConstantGlareLimitCdM2);
+  if (options.background_cd_m2 >= limit) {
+    return badInput(fmt::format(
+        "simulate: --background ({:g} cd/m²) must be below the glare limit at this α ({:g} cd/m²)",
+        options.background_cd_m2, limit));
+  }
   // The lobe's shape comes from the module's axes at the limit for its own peak; peak_scale
   // then changes only the brightness (a dimmer module glares less and over a smaller ellipse).
   const double model_peak = module.lmax_cd_m2(options.alpha_deg);
@@ -152,11 +194,16 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   Progress progress("simulate", 1 + options.bracket.min_frames, options.show_progress);
   const Calibration calibration = simulatedCalibration(options);
   const calibration::CameraModel camera(calibration.intrinsics);
+  GLARECAM_CHECK(checkLensInvertible(camera, options.width, options.height));
+  const auto centre = camera.project(scene->centreRay());
+  if (!(centre.x >= 0 && centre.y >= 0 && centre.x <= options.width - 1 &&
+        centre.y <= options.height - 1)) {
+    return badInput("simulate: --offset-deg puts the lobe centre outside the frame");
+  }
+  result.centre_pixel = {centre.x, centre.y};
   result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
   result.truth = scene->truth(limit);
   progress.advance("scene rendered");
-  const auto centre = camera.project(scene->centreRay());
-  result.centre_pixel = {centre.x, centre.y};
 
   // Signal rates at the reference exposure of 1 µs, from a unit-exposure frame's radiometry.
   FrameSpec unit;

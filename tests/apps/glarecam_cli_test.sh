@@ -47,6 +47,15 @@ expect "alpha error is one line" one_line_naming "--alpha"
 check "bad size" 2 "$GLARECAM" simulate --out "$WORK/x" --size 100by20
 check "unknown module" 2 "$GLARECAM" simulate --out "$WORK/x" --module bifacial
 expect "unknown module lists the known ones" one_line_naming "known: standard"
+check "unknown command named" 2 "$GLARECAM" frobnicate
+expect "unknown command is named" one_line_naming 'unknown command "frobnicate"'
+check "negative seed" 2 "$GLARECAM" simulate --out "$WORK/x" --seed -1
+check "trailing comma" 2 "$GLARECAM" simulate --out "$WORK/x" --distortion=0.1,
+check "folding distortion" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --distortion=-5
+check "lobe outside the frame" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --offset-deg 30,0
+check "background above the limit" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --background 30000
+check "empty --out" 2 "$GLARECAM" simulate --out "" --size 64x48
+check "global option after the command" 0 "$GLARECAM" simulate --out "$WORK/y" --size 64x48 -q
 expect "nothing written on bad input" test ! -e "$WORK/x"
 
 # The happy path.

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -31,6 +32,20 @@ constexpr std::uint8_t kTiffLittle[4] = {'I', 'I', 42, 0};
 constexpr std::uint8_t kTiffBig[4] = {'M', 'M', 0, 42};
 
 std::string describe(const fs::path& path) { return path.string(); }
+
+// A reason to refuse a header's size before allocating for it, or nothing.
+std::optional<std::string> implausibleSize(std::uint64_t width, std::uint64_t height,
+                                           std::uint64_t bytes_per_pixel,
+                                           std::uint64_t file_bytes) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width == 0 || height == 0) return "has an empty size (" + size + ")";
+  if (width * height > kMaxFramePixels) return "is too large (" + size + ")";
+  if (width * height * bytes_per_pixel > file_bytes * kMaxCompressionRatio) {
+    return "is truncated: its header announces " + size +
+           " pixels, far more than the file can hold";
+  }
+  return std::nullopt;
+}
 
 // ---------------------------------------------------------------- PNG
 
@@ -58,7 +73,7 @@ struct PngHeader {
 
 // Reads a PNG with libpng's setjmp error protocol. No object with a destructor lives in this
 // frame between setjmp and the last libpng call, so longjmp is safe.
-Result<DecodedFrame> readPng(const fs::path& path, std::FILE* file) {
+Result<DecodedFrame> readPng(const fs::path& path, std::FILE* file, std::uint64_t file_bytes) {
   PngErrorState state;
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -86,9 +101,9 @@ Result<DecodedFrame> readPng(const fs::path& path, std::FILE* file) {
   } else if (header.bit_depth != 8 && header.bit_depth != 16) {
     problem =
         "has " + std::to_string(header.bit_depth) + "-bit samples; frames must be 8- or 16-bit";
-  } else if (static_cast<std::uint64_t>(header.width) * header.height > kMaxFramePixels) {
-    problem =
-        "is too large (" + std::to_string(header.width) + "x" + std::to_string(header.height) + ")";
+  } else if (auto size =
+                 implausibleSize(header.width, header.height, header.bit_depth / 8, file_bytes)) {
+    problem = *size;
   }
   if (!problem.empty()) {
     png_destroy_read_struct(&png, &info, nullptr);
@@ -174,7 +189,7 @@ struct TiffCloser {
 };
 using TiffPtr = std::unique_ptr<TIFF, TiffCloser>;
 
-Result<DecodedFrame> readTiff(const fs::path& path) {
+Result<DecodedFrame> readTiff(const fs::path& path, std::uint64_t file_bytes) {
   installTiffHandlers();
   tiff_last_error.clear();
   TiffPtr tiff(TIFFOpen(path.c_str(), "r"));
@@ -200,10 +215,8 @@ Result<DecodedFrame> readTiff(const fs::path& path) {
     return badInput(describe(path) + ": has " + std::to_string(bits) +
                     "-bit samples; frames must be unsigned 8- or 16-bit");
   }
-  if (width == 0 || height == 0 || static_cast<std::uint64_t>(width) * height > kMaxFramePixels) {
-    return badInput(describe(path) + ": has an unusable size (" + std::to_string(width) + "x" +
-                    std::to_string(height) + ")");
-  }
+  if (auto size = implausibleSize(width, height, bits / 8, file_bytes))
+    return badInput(describe(path) + ": " + *size);
   if (TIFFIsTiled(tiff.get()))
     return badInput(describe(path) + ": tiled TIFF is not supported; write strips");
   DecodedFrame decoded{RawFrame(static_cast<int>(width), static_cast<int>(height)), bits};
@@ -252,8 +265,14 @@ Result<DecodedFrame> readRawFrame(const fs::path& path) {
   if (!file) return badInput(describe(path) + ": cannot open frame: " + std::strerror(errno));
   auto magic = readMagic(file.get());
   if (magic.empty()) return badInput(describe(path) + ": frame file is empty");
-  if (startsWith(magic, kPngSignature)) return readPng(path, file.get());
-  if (startsWith(magic, kTiffLittle) || startsWith(magic, kTiffBig)) return readTiff(path);
+  const std::uint64_t file_bytes = fs::file_size(path, ec);
+  try {
+    if (startsWith(magic, kPngSignature)) return readPng(path, file.get(), file_bytes);
+    if (startsWith(magic, kTiffLittle) || startsWith(magic, kTiffBig))
+      return readTiff(path, file_bytes);
+  } catch (const std::bad_alloc&) {
+    return ioError(describe(path) + ": not enough memory to decode the frame");
+  }
   return badInput(describe(path) + ": not a PNG or TIFF image");
 }
 

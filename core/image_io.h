@@ -25,7 +25,10 @@ struct DecodedFrame {
 
 // Largest frame accepted (pixels), far above any machine-vision sensor: protects against
 // headers that announce absurd sizes.
-inline constexpr std::uint64_t kMaxFramePixels = 1ull << 28;
+inline constexpr std::uint64_t kMaxFramePixels = 1ull << 27;
+// No PNG (deflate, at most ~1032:1) or TIFF (LZW, at most ~4096:1) holds more pixel bytes than
+// this many times its file size: a header promising more is a lie, refused before allocating.
+inline constexpr std::uint64_t kMaxCompressionRatio = 4096;
 
 Result<DecodedFrame> readRawFrame(const std::filesystem::path& path);
 

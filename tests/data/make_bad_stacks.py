@@ -103,6 +103,8 @@ def main():
          edit=write_frame(png(32, 24, 8, 4, [bytes(64)] * 24)))
     case("4-bit-png", "must be 8- or 16-bit", edit=write_frame(png(32, 24, 4, 0, [bytes(16)] * 24)))
     case("huge-png-header", "too large", edit=write_frame(png(100000, 100000, 16, 0, [])))
+    case("png-header-promises-too-much", "far more than the file can hold",
+         edit=write_frame(png(8000, 8000, 16, 0, [])))
     case("frame-size-mismatch", "must have the same size",
          edit=write_frame(png(16, 24, 16, 0, [bytes(32)] * 24)))
     case("exposure-zero", "exposure_us must be positive", edit=set_path(["frames", 1, "exposure_us"], 0))

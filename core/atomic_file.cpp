@@ -83,21 +83,37 @@ Status writeFileDurable(const fs::path& path, std::span<const std::byte> bytes) 
   return {};
 }
 
-Status writeFileAtomic(const fs::path& path, std::span<const std::byte> bytes) {
-  std::string temp = temporarySibling(path).string();
+Result<fs::path> createTemporarySibling(const fs::path& target) {
+  std::string temp = temporarySibling(target).string();
   FileDescriptor fd(::mkostemp(temp.data(), O_CLOEXEC));
-  if (fd.get() < 0) return systemError(path, "cannot create temporary file");
-  auto cleanup = [&](Status status) {
+  if (fd.get() < 0) return systemError(target, "cannot create temporary file");
+  if (::fchmod(fd.get(), 0644) != 0) {
+    auto error = systemError(temp, "cannot chmod");
+    ::unlink(temp.c_str());
+    return error;
+  }
+  return fs::path(temp);
+}
+
+Status commitTemporary(const fs::path& temp, const fs::path& target) {
+  auto fail_with = [&](Status status) {
     ::unlink(temp.c_str());
     return status;
   };
-  if (::fchmod(fd.get(), 0644) != 0) return cleanup(systemError(temp, "cannot chmod"));
-  if (auto status = writeAll(fd.get(), temp, bytes); !status) return cleanup(status);
-  if (::fsync(fd.get()) != 0) return cleanup(systemError(temp, "fsync failed"));
-  if (fd.release() != 0) return cleanup(systemError(temp, "close failed"));
-  if (::rename(temp.c_str(), path.c_str()) != 0)
-    return cleanup(systemError(path, "cannot rename into place"));
-  return fsyncPath(parentOf(path));
+  if (auto status = fsyncPath(temp); !status) return fail_with(status);
+  if (::rename(temp.c_str(), target.c_str()) != 0)
+    return fail_with(systemError(target, "cannot rename into place"));
+  return fsyncPath(parentOf(target));
+}
+
+Status writeFileAtomic(const fs::path& path, std::span<const std::byte> bytes) {
+  fs::path temp;
+  GLARECAM_ASSIGN(temp, createTemporarySibling(path));
+  if (auto status = writeFileDurable(temp, bytes); !status) {
+    ::unlink(temp.c_str());
+    return status;
+  }
+  return commitTemporary(temp, path);
 }
 
 Status writeFileAtomic(const fs::path& path, std::string_view text) {

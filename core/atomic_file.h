@@ -18,6 +18,12 @@ namespace glarecam {
 Status writeFileAtomic(const std::filesystem::path& path, std::span<const std::byte> bytes);
 Status writeFileAtomic(const std::filesystem::path& path, std::string_view text);
 
+// For writers that need a file name (libraries that open files themselves): a new empty
+// temporary sibling of `target`, and its commit (fsync, rename over target, fsync the parent;
+// the temporary is removed if that fails). Callers remove the temporary if they give up.
+Result<std::filesystem::path> createTemporarySibling(const std::filesystem::path& target);
+Status commitTemporary(const std::filesystem::path& temp, const std::filesystem::path& target);
+
 // Writes a file's contents durably in place (no rename): for files inside a staging directory.
 Status writeFileDurable(const std::filesystem::path& path, std::span<const std::byte> bytes);
 

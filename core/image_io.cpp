@@ -312,33 +312,41 @@ Status writePngRgb(const fs::path& path, int width, int height, std::span<const 
   return writeFileAtomic(path, *bytes);
 }
 
+namespace {
+
+bool writeTiffStrips(TIFF* tiff, const RawFrame& frame) {
+  constexpr std::uint32_t kRowsPerStrip = 64;
+  TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(frame.width()));
+  TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(frame.height()));
+  TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 1);
+  TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, 16);
+  TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+  TIFFSetField(tiff, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  TIFFSetField(tiff, TIFFTAG_ROWSPERSTRIP, kRowsPerStrip);
+  for (int y = 0; y < frame.height(); ++y) {
+    auto* row = const_cast<std::uint16_t*>(frame.row(y).data());
+    if (TIFFWriteScanline(tiff, row, static_cast<std::uint32_t>(y), 0) < 0) return false;
+  }
+  return TIFFFlush(tiff) == 1;  // TIFFClose cannot report a failed flush
+}
+
+}  // namespace
+
 Status writeTiffGray16(const fs::path& path, const RawFrame& frame) {
   installTiffHandlers();
-  std::string temp = path.string() + ".partial";
+  fs::path temp;
+  GLARECAM_ASSIGN(temp, createTemporarySibling(path));
+  bool written = false;
   {
     TiffPtr tiff(TIFFOpen(temp.c_str(), "w"));
-    if (!tiff) return ioError(describe(path) + ": cannot create TIFF (" + tiff_last_error + ")");
-    TIFFSetField(tiff.get(), TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(frame.width()));
-    TIFFSetField(tiff.get(), TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(frame.height()));
-    TIFFSetField(tiff.get(), TIFFTAG_SAMPLESPERPIXEL, 1);
-    TIFFSetField(tiff.get(), TIFFTAG_BITSPERSAMPLE, 16);
-    TIFFSetField(tiff.get(), TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
-    TIFFSetField(tiff.get(), TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
-    TIFFSetField(tiff.get(), TIFFTAG_ROWSPERSTRIP, 64);
-    for (int y = 0; y < frame.height(); ++y) {
-      auto row = frame.row(y);
-      if (TIFFWriteScanline(tiff.get(), const_cast<std::uint16_t*>(row.data()),
-                            static_cast<std::uint32_t>(y), 0) < 0) {
-        std::remove(temp.c_str());
-        return ioError(describe(path) + ": cannot write TIFF row (" + tiff_last_error + ")");
-      }
-    }
+    written = tiff && writeTiffStrips(tiff.get(), frame);
   }
-  if (auto status = fsyncPath(temp); !status) return status;
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) return ioError(describe(path) + ": cannot rename TIFF into place: " + ec.message());
-  return {};
+  if (!written) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    return ioError(describe(path) + ": cannot write TIFF (" + tiff_last_error + ")");
+  }
+  return commitTemporary(temp, path);
 }
 
 Status writeExr(const fs::path& path, std::span<const ExrChannel> channels) {

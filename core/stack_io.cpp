@@ -285,6 +285,11 @@ Status writeStack(const fs::path& requested_directory, const StackWriteRequest& 
   GLARECAM_CHECK(
       writeFileDurable(staging->path() / kManifestFileName,
                        std::as_bytes(std::span(manifest_text.data(), manifest_text.size()))));
+  // Subdirectories (frames/..., calib/...) hold entries of their own that must be durable too.
+  std::error_code ec;
+  for (const auto& entry : fs::recursive_directory_iterator(staging->path(), ec)) {
+    if (entry.is_directory()) GLARECAM_CHECK(fsyncPath(entry.path()));
+  }
   return staging->commit();
 }
 

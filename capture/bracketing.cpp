@@ -30,7 +30,8 @@ Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_
   BracketPlan plan;
   double shortest = options.peak_fraction * usable_range_dn / peak_dn_per_us;
   double longest = options.background_fraction * usable_range_dn / background_dn_per_us;
-  plan.peak_clipped = shortest < options.min_exposure_us;
+  // Clipped only if even the camera's shortest exposure saturates the peak.
+  plan.peak_clipped = peak_dn_per_us * options.min_exposure_us >= usable_range_dn;
   plan.background_underexposed = longest > options.max_exposure_us;
   shortest = std::clamp(shortest, options.min_exposure_us, options.max_exposure_us);
   longest = std::clamp(longest, shortest, options.max_exposure_us);

@@ -27,7 +27,7 @@ struct BracketOptions {
 
 struct BracketPlan {
   std::vector<double> exposures_us;      // ascending
-  bool peak_clipped = false;             // even the shortest exposure saturates the peak
+  bool peak_clipped = false;             // even the camera's shortest exposure saturates the peak
   bool background_underexposed = false;  // even the longest leaves the background dark
 };
 

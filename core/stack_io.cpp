@@ -59,7 +59,7 @@ Result<ResolvedCalibration> resolveCalibration(const fs::path& directory,
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
       return badInput(where + ": calibration file \"" + *manifest.calibration_path +
-                      "\" does not exist");
+                      "\" does not exist or is not a regular file");
     }
     auto calibration = readCalibrationFile(path);
     if (!calibration) return std::unexpected(calibration.error());

@@ -270,6 +270,10 @@ Result<json> parseJsonText(std::string_view text, const std::string& where) {
     std::string message = e.what();
     // "[json.exception.parse_error.101] parse error at line 3, ..." -> keep the readable part.
     if (auto pos = message.find("] "); pos != std::string::npos) message = message.substr(pos + 2);
+    // The parser quotes the offending bytes: keep the line printable when they are binary.
+    for (char& c : message) {
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) == 0x7f) c = '?';
+    }
     return badInput(where + ": invalid JSON: " + message);
   } catch (const std::length_error& e) {
     return badInput(where + ": invalid JSON: " + e.what());

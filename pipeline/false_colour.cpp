@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "core/parallel.h"
+#include "pipeline/luminance_stats.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -18,6 +19,15 @@ constexpr double kMaxDecades = 6.0;                   // the scale never spans m
 constexpr double kLowPercentile = 0.01;               // default bottom of the scale
 constexpr std::uint32_t kSaturatedArgb = 0xFFFFFFFF;  // white
 constexpr std::uint32_t kDarkArgb = 0xFF000000;       // black
+
+// Layout of the colour-bar panel, in units of the label font size (em), so that it reads the
+// same from thumbnails to 12 MP: the font is 1/40 of the image height within 11..48 px.
+constexpr double kFontFractionOfHeight = 1.0 / 40.0;
+constexpr double kMinFontPx = 11.0, kMaxFontPx = 48.0;
+constexpr double kPanelWidthEm = 9.5;      // bar, ticks and labels such as "100k" and "saturated"
+constexpr double kMinCanvasHeightEm = 16;  // room for title, bar and legend on short images
+constexpr double kBarMarginEm = 4.0;       // above the bar (title, unit) and below (legend)
+constexpr double kBarWidthEm = 1.5;
 
 struct SurfaceDeleter {
   void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
@@ -41,7 +51,7 @@ struct Scale {
 Scale chooseScale(const calibration::MergedImage& merged, const FalseColourOptions& options) {
   const FloatImage& luminance = merged.luminance_cd_m2;
   std::vector<float> sample;
-  const std::size_t step = std::max<std::size_t>(1, luminance.pixelCount() / 65536);
+  const std::size_t step = summarySampleStep(luminance.pixelCount());
   float max_value = 0;
   for (std::size_t i = 0; i < luminance.pixelCount(); ++i) {
     const float v = luminance.data()[i];
@@ -117,7 +127,7 @@ void drawText(cairo_t* cr, double x, double y, const std::string& text) {
 }
 
 void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
-                    const FalseColourOptions& options) {
+                    const FalseColourOptions& options, bool has_saturated) {
   cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, p.font_px);
   const int steps = static_cast<int>(p.bar_bottom - p.bar_top);
@@ -144,7 +154,12 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
   }
   drawText(cr, p.bar_x, p.bar_top - p.font_px * 0.8, "cd/m\u00b2");
   if (!options.title.empty()) drawText(cr, p.bar_x, p.font_px * 1.2, options.title);
-  if (options.limit_cd_m2 && *options.limit_cd_m2 > 0) {
+  // The limit is marked only where it lies on the scale: pinned to an end it would read as
+  // "the maximum is the limit".
+  const bool limit_on_scale = options.limit_cd_m2 && *options.limit_cd_m2 > 0 &&
+                              std::log10(*options.limit_cd_m2) >= scale.log_min &&
+                              std::log10(*options.limit_cd_m2) <= scale.log_max;
+  if (limit_on_scale) {
     const double y = yOf(*options.limit_cd_m2);
     cairo_set_source_rgb(cr, 1, 0, 1);
     cairo_move_to(cr, p.bar_x - p.font_px * 0.3, y);
@@ -152,11 +167,19 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
     cairo_stroke(cr);
     drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, y - p.font_px * 0.5, "limit");
   }
+  if (!has_saturated) return;
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, p.bar_x, p.bar_bottom + p.font_px * 0.8, p.bar_width, p.font_px);
   cairo_fill(cr);
   drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, p.bar_bottom + p.font_px * 1.7,
            "saturated");
+}
+
+bool hasSaturated(const calibration::MergedImage& merged) {
+  const std::uint8_t* bound = merged.bound.data();
+  return std::any_of(bound, bound + merged.bound.pixelCount(), [](std::uint8_t b) {
+    return b == static_cast<std::uint8_t>(calibration::PixelBound::kLowerBound);
+  });
 }
 
 RgbImage toRgb(cairo_surface_t* surface) {
@@ -207,9 +230,9 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
   const int height = merged.luminance_cd_m2.height();
   if (width <= 0 || height <= 0) return badInput("false colour: empty image");
   // The panel scales with the image so labels stay legible from thumbnails to 12 MP.
-  const double font_px = std::clamp(height / 40.0, 11.0, 48.0);
-  const int panel_width = static_cast<int>(font_px * 9.5);
-  const int canvas_height = std::max(height, static_cast<int>(font_px * 16));
+  const double font_px = std::clamp(height * kFontFractionOfHeight, kMinFontPx, kMaxFontPx);
+  const int panel_width = static_cast<int>(font_px * kPanelWidthEm);
+  const int canvas_height = std::max(height, static_cast<int>(font_px * kMinCanvasHeightEm));
   std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
       cairo_image_surface_create(CAIRO_FORMAT_RGB24, width + panel_width, canvas_height));
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
@@ -222,9 +245,9 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
   cairo_set_source_rgb(cr.get(), 0.12, 0.12, 0.12);
   cairo_paint(cr.get());
   paintImage(surface.get(), merged, scale);
-  const PanelLayout layout{font_px * 4.0, canvas_height - font_px * 4.0, width + font_px,
-                           font_px * 1.5, font_px};
-  paintColourBar(cr.get(), layout, scale, options);
+  const PanelLayout layout{font_px * kBarMarginEm, canvas_height - font_px * kBarMarginEm,
+                           width + font_px, font_px * kBarWidthEm, font_px};
+  paintColourBar(cr.get(), layout, scale, options, hasSaturated(merged));
   return toRgb(surface.get());
 }
 

@@ -6,12 +6,6 @@
 
 namespace glarecam::pipeline {
 
-namespace {
-// The median uncertainty is estimated from a regular subsample: exact enough for a summary
-// and independent of image size.
-constexpr std::size_t kUncertaintySamples = 1 << 16;
-}  // namespace
-
 LuminanceStats luminanceStats(const calibration::MergedImage& merged) {
   using calibration::PixelBound;
   LuminanceStats stats;
@@ -29,7 +23,7 @@ LuminanceStats luminanceStats(const calibration::MergedImage& merged) {
   stats.valid_fraction = static_cast<double>(measured) / static_cast<double>(count);
 
   std::vector<float> sample;
-  const std::size_t step = std::max<std::size_t>(1, count / kUncertaintySamples);
+  const std::size_t step = summarySampleStep(count);
   const float* relative = merged.relative_uncertainty.data();
   for (std::size_t i = 0; i < count; i += step) {
     if (std::isfinite(relative[i])) sample.push_back(relative[i]);

@@ -9,6 +9,14 @@
 
 namespace glarecam::pipeline {
 
+// Summaries over a whole image (median uncertainty, colour-scale percentiles) read a regular
+// subsample of about this many pixels: exact enough, and independent of the image size.
+inline constexpr std::size_t kSummarySamplePixels = 1 << 16;
+
+inline std::size_t summarySampleStep(std::size_t pixel_count) {
+  return pixel_count > kSummarySamplePixels ? pixel_count / kSummarySamplePixels : 1;
+}
+
 struct LuminanceStats {
   LuminancePeak max;                       // robust maximum (luminance_peak.h)
   double valid_fraction = 0;               // pixels with at least one valid frame

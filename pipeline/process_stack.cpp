@@ -39,7 +39,7 @@ Status writeQualityExr(const fs::path& path, const calibration::MergedImage& mer
 }
 
 std::string stackId(const Stack& stack) {
-  if (stack.manifest.id) return *stack.manifest.id;
+  if (stack.manifest.id && !stack.manifest.id->empty()) return *stack.manifest.id;
   return fs::absolute(stack.directory).lexically_normal().filename().string();
 }
 

@@ -1,7 +1,7 @@
 // A simulated machine-vision sensor: turns a true luminance image into the raw frame a linear
 // camera would record at a given exposure, through the same radiometric model the merge
 // inverts (calibration/radiometry.h), with Poisson shot noise, Gaussian read noise, a black
-// level, full-well clipping and ADC quantisation. Deterministic for a seed.
+// level, and ADC quantisation and clipping at full scale. Deterministic for a seed.
 #pragma once
 
 #include <cstdint>

@@ -131,19 +131,28 @@ struct KernelConstants {
   storeLanes(p.bound + offset, measured ? zero : (clipped ? one : one + one));
 }
 
+// Zero-padded copies of every frame's row tail, allocated once per worker.
+struct TailScratch {
+  explicit TailScratch(int frame_count)
+      : pixels(static_cast<std::size_t>(frame_count) * kLanes),
+        rows(static_cast<std::size_t>(frame_count)) {}
+  std::vector<std::uint16_t> pixels;
+  std::vector<const std::uint16_t*> rows;
+};
+
 // The last width % 8 pixels of a row, through zero-padded copies.
-void mergeTail(const KernelConstants& k, const LanePointers& p, int whole, int rest) {
-  std::vector<std::uint16_t> frame_tail(static_cast<std::size_t>(k.frame_count) * kLanes, 0);
-  std::vector<const std::uint16_t*> frame_rows(static_cast<std::size_t>(k.frame_count));
+void mergeTail(const KernelConstants& k, const LanePointers& p, int whole, int rest,
+               TailScratch& scratch) {
+  std::fill(scratch.pixels.begin(), scratch.pixels.end(), std::uint16_t{0});
   for (int i = 0; i < k.frame_count; ++i) {
-    std::uint16_t* tail = frame_tail.data() + static_cast<std::size_t>(i) * kLanes;
+    std::uint16_t* tail = scratch.pixels.data() + static_cast<std::size_t>(i) * kLanes;
     std::copy_n(p.frames[i] + whole, rest, tail);
-    frame_rows[static_cast<std::size_t>(i)] = tail;
+    scratch.rows[static_cast<std::size_t>(i)] = tail;
   }
   float flat[kLanes] = {}, luminance[kLanes], relative[kLanes], valid[kLanes], bound[kLanes],
         weight_sum[kLanes];
   std::copy_n(p.inverse_flat + whole, rest, flat);
-  mergeLanes(k, {frame_rows.data(), flat, luminance, relative, valid, bound, weight_sum}, 0);
+  mergeLanes(k, {scratch.rows.data(), flat, luminance, relative, valid, bound, weight_sum}, 0);
   std::copy_n(luminance, rest, p.luminance + whole);
   std::copy_n(relative, rest, p.relative + whole);
   std::copy_n(valid, rest, p.valid + whole);
@@ -155,10 +164,11 @@ void mergeTail(const KernelConstants& k, const LanePointers& p, int whole, int r
 // under-exposed, so padding never disturbs anything and is never stored). Then the counts and
 // flags are narrowed to bytes.
 GLARECAM_SIMD_CLONES void mergeRow(const KernelConstants& k, const LanePointers& p, int width,
-                                   std::uint8_t* __restrict valid, std::uint8_t* __restrict bound) {
+                                   std::uint8_t* __restrict valid, std::uint8_t* __restrict bound,
+                                   TailScratch& scratch) {
   const int whole = width - width % kLanes;
   for (int x = 0; x < whole; x += kLanes) mergeLanes(k, p, x);
-  if (whole < width) mergeTail(k, p, whole, width - whole);
+  if (whole < width) mergeTail(k, p, whole, width - whole, scratch);
   for (int x = 0; x < width; ++x) {
     p.relative[x] /= std::sqrt(p.weight_sum[x]);  // sigma / L = 1 / (sqrt(sum w) L)
     valid[x] = static_cast<std::uint8_t>(p.valid[x]);
@@ -181,6 +191,7 @@ class MergeKernel {
     std::vector<float> inverse_flat(static_cast<std::size_t>(width), 1.0f);
     std::vector<float> valid(static_cast<std::size_t>(width)), bound(valid.size()),
         weight_sum(valid.size());
+    TailScratch tail(static_cast<int>(frames_.size()));
     for (int y = begin; y < end; ++y) {
       for (std::size_t i = 0; i < frames_.size(); ++i) rows[i] = frames_[i].frame->row(y).data();
       if (flat_) {
@@ -191,7 +202,7 @@ class MergeKernel {
                {rows.data(), inverse_flat.data(), output_.luminance_cd_m2.row(y).data(),
                 output_.relative_uncertainty.row(y).data(), valid.data(), bound.data(),
                 weight_sum.data()},
-               width, output_.valid_frames.row(y).data(), output_.bound.row(y).data());
+               width, output_.valid_frames.row(y).data(), output_.bound.row(y).data(), tail);
     }
   }
 

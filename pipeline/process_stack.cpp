@@ -108,28 +108,60 @@ std::string ProcessSummary::briefReport() const {
   return line;
 }
 
-Result<ProcessSummary> processStack(const fs::path& stack_directory,
-                                    const ProcessOptions& options) {
-  Progress progress("process " + stack_directory.filename().string(), kProcessSteps,
-                    options.show_progress);
-  StackReadOptions read_options{.calibration_file = options.calibration_file,
-                                .threads = options.threads};
-  Stack stack;
-  GLARECAM_ASSIGN(stack, readStack(stack_directory, read_options));
-  progress.advance("read");
+namespace {
 
+// The radiometric checks, then the merge; the raw frames are freed once merged.
+Result<calibration::MergedImage> mergeStack(Stack& stack, unsigned threads) {
   const auto radiometry = calibration::frameRadiometry(stack.manifest.frames, stack.calibration);
   GLARECAM_CHECK(checkRadiometry(stack, radiometry));
   double saturation_dn = 0;
   GLARECAM_ASSIGN(saturation_dn, effectiveSaturationDn(stack));
+  if (!stack.calibration.noise) {
+    spdlog::warn("{}: calibration has no noise model; assuming a typical sensor", stackId(stack));
+  }
   calibration::MergeInput input{stack.frames, radiometry, stack.calibration.black_level_dn,
                                 saturation_dn, stack.flat_field ? &*stack.flat_field : nullptr};
+  auto merged = calibration::merge(input, {.threads = threads});
+  stack.frames.clear();
+  return merged;
+}
+
+std::string pictureTitle(const std::optional<double>& alpha_deg) {
+  return alpha_deg ? fmt::format("\u03b1 {:.0f}\u00b0", *alpha_deg) : std::string();
+}
+
+// luminance.exr, quality.exr, luminance.png, then result.json: each atomically, result last.
+Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
+                    const ProcessSummary& summary, const FalseColourOptions& picture_options,
+                    Progress& progress) {
+  GLARECAM_CHECK(prepareOutputDirectory(out));
+  GLARECAM_CHECK(writeExr(out / "luminance.exr", merged.luminance_cd_m2, "Y"));
+  progress.advance("luminance.exr");
+  GLARECAM_CHECK(writeQualityExr(out / "quality.exr", merged));
+  progress.advance("quality.exr");
+  RgbImage picture;
+  GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
+  GLARECAM_CHECK(writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb));
+  progress.advance("luminance.png");
+  GLARECAM_CHECK(writeFileAtomic(out / kResultFileName, summary.result.dump(2) + "\n"));
+  progress.advance("result.json");
+  return {};
+}
+
+}  // namespace
+
+Result<ProcessSummary> processStack(const fs::path& stack_directory,
+                                    const ProcessOptions& options) {
+  Progress progress("process " + stack_directory.filename().string(), kProcessSteps,
+                    options.show_progress);
+  Stack stack;
+  GLARECAM_ASSIGN(stack, readStack(stack_directory, {.calibration_file = options.calibration_file,
+                                                     .threads = options.threads}));
+  progress.advance("read");
   calibration::MergedImage merged;
-  GLARECAM_ASSIGN(merged, calibration::merge(input, {.threads = options.threads}));
-  stack.frames.clear();  // the raw frames are no longer needed: free them before the outputs
+  GLARECAM_ASSIGN(merged, mergeStack(stack, options.threads));
   progress.advance("merged");
 
-  const LuminanceStats stats = luminanceStats(merged);
   const std::optional<double> limit =
       stack.manifest.alpha_deg ? glareLimitCdM2(*stack.manifest.alpha_deg) : std::nullopt;
   ProcessSummary summary;
@@ -140,31 +172,13 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                .height = merged.luminance_cd_m2.height(),
                                .calibration_origin = stack.calibration_origin,
                                .noise_model_assumed = !stack.calibration.noise,
-                               .stats = stats,
+                               .stats = luminanceStats(merged),
                                .limit_cd_m2 = limit});
-  if (!stack.calibration.noise)
-    spdlog::warn("{}: calibration has no noise model; assuming a typical sensor", stackId(stack));
-
-  const fs::path& out = summary.output_directory;
-  GLARECAM_CHECK(prepareOutputDirectory(out));
-  GLARECAM_CHECK(writeExr(out / "luminance.exr", merged.luminance_cd_m2, "Y"));
-  progress.advance("luminance.exr");
-  GLARECAM_CHECK(writeQualityExr(out / "quality.exr", merged));
-  progress.advance("quality.exr");
-  std::string title =
-      stack.manifest.alpha_deg
-          ? "\u03b1 " + std::to_string(static_cast<int>(std::lround(*stack.manifest.alpha_deg))) +
-                "\u00b0"
-          : "";
   FalseColourOptions picture_options;
   picture_options.limit_cd_m2 = limit;
-  picture_options.title = title;
-  RgbImage picture;
-  GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
-  GLARECAM_CHECK(writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb));
-  progress.advance("luminance.png");
-  GLARECAM_CHECK(writeFileAtomic(out / kResultFileName, summary.result.dump(2) + "\n"));
-  progress.advance("result.json");
+  picture_options.title = pictureTitle(stack.manifest.alpha_deg);
+  GLARECAM_CHECK(
+      writeOutputs(summary.output_directory, merged, summary, picture_options, progress));
   return summary;
 }
 

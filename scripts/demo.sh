@@ -10,7 +10,7 @@ ALPHAS=(5 10 20 30 40 50 60 70 80)  # the paper's Table III angles
 mkdir -p "$OUT/stacks"
 summary="$OUT/summary.csv"
 echo "alpha_deg,limit_cd_m2,lmax_cd_m2,true_lmax_cd_m2,glare,valid_fraction,stack" >"$summary.tmp"
-printf "%-7s %-12s %-14s %-14s %-6s %s\n" "alpha" "limit" "Lmax" "true Lmax" "glare" "picture"
+table=$(printf "%-7s %-12s %-14s %-14s %-6s %s" "alpha" "limit" "Lmax" "true Lmax" "glare" "picture")
 for i in "${!ALPHAS[@]}"; do
   alpha=${ALPHAS[$i]}
   stack="$OUT/stacks/alpha-$(printf %02d "$alpha")"
@@ -26,7 +26,9 @@ for i in "${!ALPHAS[@]}"; do
   glare=$(value "$result" glare)
   valid=$(value "$result" valid_fraction)
   echo "$alpha,$limit,$lmax,$truth,$glare,$valid,$stack" >>"$summary.tmp"
-  printf "%-7s %-12.0f %-14.0f %-14.0f %-6s %s\n" "$alpha" "$limit" "$lmax" "$truth" "$glare" "$stack/result/luminance.png"
+  table+=$'\n'$(printf "%-7s %-12.0f %-14.0f %-14.0f %-6s %s" "$alpha" "$limit" "$lmax" "$truth" "$glare" \
+    "$stack/result/luminance.png")
 done
 mv "$summary.tmp" "$summary"
+echo "$table"
 echo "demo: wrote $summary and ${#ALPHAS[@]} processed stacks under $OUT/stacks/" >&2

@@ -7,20 +7,10 @@ namespace glarecam {
 void initLogging(Verbosity verbosity) {
   auto logger = spdlog::stderr_color_mt("glarecam");
   logger->set_pattern("%^%l%$: %v");
-  switch (verbosity) {
-    case Verbosity::kQuiet:
-      logger->set_level(spdlog::level::err);
-      break;
-    case Verbosity::kNormal:
-      logger->set_level(spdlog::level::warn);
-      break;
-    case Verbosity::kVerbose:
-      logger->set_level(spdlog::level::info);
-      break;
-    case Verbosity::kDebug:
-      logger->set_level(spdlog::level::debug);
-      break;
-  }
+  // Indexed by Verbosity: quiet, normal, verbose, debug.
+  constexpr spdlog::level::level_enum kLevels[] = {spdlog::level::err, spdlog::level::warn,
+                                                   spdlog::level::info, spdlog::level::debug};
+  logger->set_level(kLevels[static_cast<int>(verbosity)]);
   spdlog::set_default_logger(logger);
 }
 

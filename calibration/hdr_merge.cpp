@@ -18,8 +18,8 @@ namespace {
 struct FrameConstants {
   const RawFrame* frame;
   float scale;             // cd/m² per DN
-  float min_signal_dn;     // under-exposure threshold above black
   float saturated_cd_m2;   // luminance at the saturation DN (lower bound when clipped)
+  float dark_cd_m2;        // luminance at the under-exposure threshold
   float shot_coefficient;  // var(L_i) = shot_coefficient * L + read_coefficient
   float read_coefficient;
 };
@@ -32,8 +32,8 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
   for (std::size_t i = 0; i < input.frames.size(); ++i) {
     const FrameRadiometry& r = input.radiometry[i];
     constants.push_back({&input.frames[i], static_cast<float>(r.scale_cd_m2_per_dn),
-                         static_cast<float>(r.min_signal_dn),
                          static_cast<float>(full_range_dn * r.scale_cd_m2_per_dn),
+                         static_cast<float>(r.min_signal_dn * r.scale_cd_m2_per_dn),
                          static_cast<float>(r.scale_cd_m2_per_dn * r.dn_per_electron),
                          static_cast<float>(r.scale_cd_m2_per_dn * r.scale_cd_m2_per_dn *
                                             r.read_noise_dn * r.read_noise_dn)});
@@ -95,32 +95,88 @@ struct KernelConstants {
 // (the one with the most signal) becomes the pixel's reference luminance, at which every
 // frame's noise variance is evaluated, and each valid estimate is added with its inverse
 // variance as weight. Saturated frames raise the lower bound to their saturation luminance.
-[[gnu::always_inline]] inline void mergeLanes(const KernelConstants& k, const LanePointers& p,
-                                              int offset) {
+// One pass over the frames: each valid estimate added with its inverse variance at a reference.
+// `valid_in(frame, value, estimate)` decides which frame pixels count, `reference_for(valid,
+// estimate)` gives the luminance the variances are taken at. The callables must be always
+// inlined too: a real call passing vectors would cross the AVX2 clone's ABI.
+struct LaneSums {
+  FloatLanes weight_sum{}, weighted_sum{}, count{}, lower{};
+};
+
+template <typename Validity, typename Reference>
+[[gnu::always_inline]] inline LaneSums sumFrames(const KernelConstants& k, const LanePointers& p,
+                                                 int offset, Validity valid_in,
+                                                 Reference reference_for) {
   const FloatLanes zero{}, one = zero + 1.0f;
-  FloatLanes reference = zero, weight_sum = zero, weighted_sum = zero, count = zero, lower = zero;
+  LaneSums sums;
   for (int i = 0; i < k.frame_count; ++i) {
     const FrameConstants& f = k.frames[i];
     const FloatLanes value =
         __builtin_convertvector(loadLanes<WordLanes>(p.frames[i] + offset), FloatLanes);
-    const FloatLanes signal = value - k.black;
-    const FloatLanes estimate = signal * f.scale;
-    const IntLanes saturated = value >= k.saturation;
-    const IntLanes valid = (value < k.saturation) & (signal >= f.min_signal_dn);
-    reference = (valid & (reference == zero)) ? estimate : reference;
+    const FloatLanes estimate = (value - k.black) * f.scale;
+    const IntLanes valid = valid_in(f, value, estimate);
+    const FloatLanes reference = reference_for(valid, estimate);
     // The smallest normal float keeps 0/0 out of lanes with no reference and no read noise.
     const FloatLanes variance =
         f.shot_coefficient * reference + f.read_coefficient + std::numeric_limits<float>::min();
     const FloatLanes weight = valid ? one / variance : zero;
-    weight_sum += weight;
-    weighted_sum += weight * estimate;
-    count += valid ? one : zero;
-    lower = (saturated & (lower < f.saturated_cd_m2)) ? zero + f.saturated_cd_m2 : lower;
+    sums.weight_sum += weight;
+    sums.weighted_sum += weight * estimate;
+    sums.count += valid ? one : zero;
+    const IntLanes saturated = value >= k.saturation;
+    sums.lower =
+        (saturated & (sums.lower < f.saturated_cd_m2)) ? zero + f.saturated_cd_m2 : sums.lower;
   }
+  return sums;
+}
+
+// Two passes over the frames (long to short exposure), values reloaded from L1:
+//  1. pilot: a frame pixel counts when its own reading is below saturation and above the dark
+//     threshold; weights at the first (longest) valid estimate;
+//  2. final: a frame counts when the *pilot* predicts it within range: at least its dark
+//     threshold and at least kSaturationMarginSigmas of its noise below its saturation. A frame
+//     judged by its own reading keeps the readings noise pushed down and drops those it pushed
+//     up, and reads low just below saturation (high just above the dark threshold); judged by
+//     the pilot, dominated by the other frames, it is not truncated. Weights at the pilot.
+// Pixels the pilot could not measure, or that no frame passes in pass 2, keep pass 1's answer.
+[[gnu::always_inline]] inline void mergeLanes(const KernelConstants& k, const LanePointers& p,
+                                              int offset) {
+  constexpr float kSaturationMarginSigmas = 3.0f;
+  const FloatLanes zero{}, one = zero + 1.0f;
+  FloatLanes first_valid = zero;
+  const LaneSums pilot_sums = sumFrames(
+      k, p, offset,
+      [&](const FrameConstants& f, FloatLanes value, FloatLanes estimate)
+          __attribute__((always_inline))
+              ->IntLanes { return (value < k.saturation) & (estimate >= f.dark_cd_m2); },
+      [&](IntLanes valid, FloatLanes estimate) __attribute__((always_inline)) {
+        first_valid = (valid & (first_valid == zero)) ? estimate : first_valid;
+        return first_valid;
+      });
+  const IntLanes pilot_measured = pilot_sums.count > zero;
+  const FloatLanes pilot = pilot_sums.weighted_sum / (pilot_measured ? pilot_sums.weight_sum : one);
+  const LaneSums sums = sumFrames(
+      k, p, offset,
+      [&](const FrameConstants& f, FloatLanes value, FloatLanes) __attribute__((always_inline))
+          ->IntLanes {
+            const FloatLanes headroom = f.saturated_cd_m2 - pilot;
+            const FloatLanes noise_variance = f.shot_coefficient * pilot + f.read_coefficient;
+            const IntLanes below_saturation =
+                (headroom > zero) &
+                (headroom * headroom >
+                 kSaturationMarginSigmas * kSaturationMarginSigmas * noise_variance);
+            return pilot_measured & below_saturation & (pilot >= f.dark_cd_m2) &
+                   (value < k.saturation);
+          },
+      [&](IntLanes, FloatLanes) __attribute__((always_inline)) { return pilot; });
+
+  const IntLanes refined = sums.count > zero;
+  const FloatLanes weight_sum = refined ? sums.weight_sum : pilot_sums.weight_sum;
+  const FloatLanes count = refined ? sums.count : pilot_sums.count;
   const IntLanes measured = count > zero;
-  const IntLanes clipped = lower > zero;
-  const FloatLanes mean = weighted_sum / (measured ? weight_sum : one);
-  const FloatLanes unmeasured = clipped ? lower : zero + k.upper_bound;
+  const IntLanes clipped = pilot_sums.lower > zero;
+  const FloatLanes mean = refined ? sums.weighted_sum / (refined ? sums.weight_sum : one) : pilot;
+  const FloatLanes unmeasured = clipped ? pilot_sums.lower : zero + k.upper_bound;
   const FloatLanes nan = zero + std::numeric_limits<float>::quiet_NaN();
   storeLanes(p.luminance + offset,
              (measured ? mean : unmeasured) * loadLanes<FloatLanes>(p.inverse_flat + offset));
@@ -210,7 +266,7 @@ class MergeKernel {
   // The darkest luminance the longest frame can still detect: the bound of all-dark pixels.
   static float upperBound(const std::vector<FrameConstants>& frames) {
     float bound = std::numeric_limits<float>::max();
-    for (const auto& f : frames) bound = std::min(bound, f.min_signal_dn * f.scale);
+    for (const auto& f : frames) bound = std::min(bound, f.dark_cd_m2);
     return bound;
   }
 

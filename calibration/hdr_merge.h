@@ -1,13 +1,14 @@
 // Calibrated HDR merge: a bracketed stack of raw frames -> absolute luminance (cd/m²).
 // Each frame pixel that is below saturation and at least min_signal_dn above black gives an
 // estimate L_i (radiometry.h). The estimates are combined with inverse-variance weights
-// (Granados et al. 2010), the variances taken from the noise model at one reference luminance
-// per pixel, the estimate of its longest valid frame (weights from each frame's own value would
-// favour the frames that happened to read low and bias the mean down). Output per pixel: luminance,
-// relative standard uncertainty (shot + read noise), the number of valid frames, and a bound flag
-// for pixels valid in no frame: saturated everywhere gives a lower bound (the shortest frame's
-// saturation luminance), dark everywhere an upper bound (the longest frame's detection threshold).
-// One fused pass over the frames, bands of rows on all cores, no per-pixel allocation.
+// (Granados et al. 2010) from the noise model. Two passes per pixel: a pilot that judges each
+// frame by its own reading, then the final sum in which a frame counts when the pilot predicts
+// it within range (dark threshold .. saturation minus 3 sigma), so that no frame is truncated
+// by its own noise, with weights at the pilot. Output per pixel: luminance, relative standard
+// uncertainty (shot + read noise), the number of valid frames, and a bound flag for pixels
+// valid in no frame: saturated everywhere gives a lower bound (the shortest frame's saturation
+// luminance), dark everywhere an upper bound (the longest frame's detection threshold).
+// Eight pixels at a time in registers, bands of rows on all cores, no per-pixel allocation.
 #pragma once
 
 #include <cstdint>

@@ -71,8 +71,9 @@ struct PngHeader {
   int bit_depth = 0, color_type = 0, interlace = 0;
 };
 
-// Reads a PNG with libpng's setjmp error protocol. No object with a destructor lives in this
-// frame between setjmp and the last libpng call, so longjmp is safe.
+// Reads a PNG with libpng's setjmp error protocol. Every object with a destructor is declared
+// before setjmp, so a longjmp back into this frame skips no destructor, and values read after
+// it (the error message) are not modified between setjmp and the jump.
 Result<DecodedFrame> readPng(const fs::path& path, std::FILE* file, std::uint64_t file_bytes) {
   PngErrorState state;
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);

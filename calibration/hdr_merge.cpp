@@ -20,12 +20,12 @@ struct FrameConstants {
   float scale;             // cd/m² per DN
   float saturated_cd_m2;   // luminance at the saturation DN (lower bound when clipped)
   float dark_cd_m2;        // luminance at the under-exposure threshold
+  float exposure_weight;   // 1 / scale: the pilot's weight (inverse variance when shot-limited)
   float shot_coefficient;  // var(L_i) = shot_coefficient * L + read_coefficient
   float read_coefficient;
 };
 
-// Frames sorted from the longest effective exposure (smallest scale) to the shortest, so the
-// first valid estimate met for a pixel comes from the frame with the most signal.
+// Frames sorted from the longest effective exposure (smallest scale) to the shortest.
 std::vector<FrameConstants> frameConstants(const MergeInput& input) {
   std::vector<FrameConstants> constants;
   const double full_range_dn = input.saturation_dn - input.black_level_dn;
@@ -34,6 +34,7 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
     constants.push_back({&input.frames[i], static_cast<float>(r.scale_cd_m2_per_dn),
                          static_cast<float>(full_range_dn * r.scale_cd_m2_per_dn),
                          static_cast<float>(r.min_signal_dn * r.scale_cd_m2_per_dn),
+                         static_cast<float>(1.0 / r.scale_cd_m2_per_dn),
                          static_cast<float>(r.scale_cd_m2_per_dn * r.dn_per_electron),
                          static_cast<float>(r.scale_cd_m2_per_dn * r.scale_cd_m2_per_dn *
                                             r.read_noise_dn * r.read_noise_dn)});
@@ -95,18 +96,17 @@ struct KernelConstants {
 // (the one with the most signal) becomes the pixel's reference luminance, at which every
 // frame's noise variance is evaluated, and each valid estimate is added with its inverse
 // variance as weight. Saturated frames raise the lower bound to their saturation luminance.
-// One pass over the frames: each valid estimate added with its inverse variance at a reference.
-// `valid_in(frame, value, estimate)` decides which frame pixels count, `reference_for(valid,
-// estimate)` gives the luminance the variances are taken at. The callables must be always
-// inlined too: a real call passing vectors would cross the AVX2 clone's ABI.
+// One pass over the frames: each valid estimate added with its weight. `valid_in(frame, value,
+// estimate)` decides which frame pixels count, `weight_of(frame, valid)` weighs them. The
+// callables must be always inlined too: a real call passing vectors would cross the AVX2
+// clone's ABI.
 struct LaneSums {
   FloatLanes weight_sum{}, weighted_sum{}, count{}, lower{};
 };
 
-template <typename Validity, typename Reference>
+template <typename Validity, typename Weight>
 [[gnu::always_inline]] inline LaneSums sumFrames(const KernelConstants& k, const LanePointers& p,
-                                                 int offset, Validity valid_in,
-                                                 Reference reference_for) {
+                                                 int offset, Validity valid_in, Weight weight_of) {
   const FloatLanes zero{}, one = zero + 1.0f;
   LaneSums sums;
   for (int i = 0; i < k.frame_count; ++i) {
@@ -115,11 +115,7 @@ template <typename Validity, typename Reference>
         __builtin_convertvector(loadLanes<WordLanes>(p.frames[i] + offset), FloatLanes);
     const FloatLanes estimate = (value - k.black) * f.scale;
     const IntLanes valid = valid_in(f, value, estimate);
-    const FloatLanes reference = reference_for(valid, estimate);
-    // The smallest normal float keeps 0/0 out of lanes with no reference and no read noise.
-    const FloatLanes variance =
-        f.shot_coefficient * reference + f.read_coefficient + std::numeric_limits<float>::min();
-    const FloatLanes weight = valid ? one / variance : zero;
+    const FloatLanes weight = weight_of(f, valid);
     sums.weight_sum += weight;
     sums.weighted_sum += weight * estimate;
     sums.count += valid ? one : zero;
@@ -130,45 +126,48 @@ template <typename Validity, typename Reference>
   return sums;
 }
 
-// Two passes over the frames (long to short exposure), values reloaded from L1:
+// Two passes over the frames, values reloaded from L1:
 //  1. pilot: a frame pixel counts when its own reading is below saturation and above the dark
-//     threshold; weights at the first (longest) valid estimate;
+//     threshold, weighted by its exposure (1 / scale: the inverse variance where shot noise
+//     dominates, and independent of the readings, so unbiased and free of divisions);
 //  2. final: a frame counts when the *pilot* predicts it within range: at least its dark
 //     threshold and at least kSaturationMarginSigmas of its noise below its saturation. A frame
 //     judged by its own reading keeps the readings noise pushed down and drops those it pushed
 //     up, and reads low just below saturation (high just above the dark threshold); judged by
-//     the pilot, dominated by the other frames, it is not truncated. Weights at the pilot.
+//     the pilot it is not truncated. Weights: inverse variances from the noise model at the
+//     pilot.
 // Pixels the pilot could not measure, or that no frame passes in pass 2, keep pass 1's answer.
 [[gnu::always_inline]] inline void mergeLanes(const KernelConstants& k, const LanePointers& p,
                                               int offset) {
   constexpr float kSaturationMarginSigmas = 3.0f;
   const FloatLanes zero{}, one = zero + 1.0f;
-  FloatLanes first_valid = zero;
   const LaneSums pilot_sums = sumFrames(
       k, p, offset,
       [&](const FrameConstants& f, FloatLanes value, FloatLanes estimate)
           __attribute__((always_inline))
               ->IntLanes { return (value < k.saturation) & (estimate >= f.dark_cd_m2); },
-      [&](IntLanes valid, FloatLanes estimate) __attribute__((always_inline)) {
-        first_valid = (valid & (first_valid == zero)) ? estimate : first_valid;
-        return first_valid;
-      });
+      [&](const FrameConstants& f, IntLanes valid)
+          __attribute__((always_inline)) { return valid ? zero + f.exposure_weight : zero; });
   const IntLanes pilot_measured = pilot_sums.count > zero;
   const FloatLanes pilot = pilot_sums.weighted_sum / (pilot_measured ? pilot_sums.weight_sum : one);
+  // The smallest normal float keeps 0/0 out of lanes with no pilot and no read noise.
+  const auto variance = [&](const FrameConstants& f) __attribute__((always_inline)) {
+    return f.shot_coefficient * pilot + f.read_coefficient + std::numeric_limits<float>::min();
+  };
   const LaneSums sums = sumFrames(
       k, p, offset,
       [&](const FrameConstants& f, FloatLanes value, FloatLanes) __attribute__((always_inline))
           ->IntLanes {
             const FloatLanes headroom = f.saturated_cd_m2 - pilot;
-            const FloatLanes noise_variance = f.shot_coefficient * pilot + f.read_coefficient;
             const IntLanes below_saturation =
                 (headroom > zero) &
                 (headroom * headroom >
-                 kSaturationMarginSigmas * kSaturationMarginSigmas * noise_variance);
+                 kSaturationMarginSigmas * kSaturationMarginSigmas * variance(f));
             return pilot_measured & below_saturation & (pilot >= f.dark_cd_m2) &
                    (value < k.saturation);
           },
-      [&](IntLanes, FloatLanes) __attribute__((always_inline)) { return pilot; });
+      [&](const FrameConstants& f, IntLanes valid)
+          __attribute__((always_inline)) { return valid ? one / variance(f) : zero; });
 
   const IntLanes refined = sums.count > zero;
   const FloatLanes weight_sum = refined ? sums.weight_sum : pilot_sums.weight_sum;

@@ -110,13 +110,13 @@ TEST(HdrMerge, CombinesFramesWithInverseVarianceWeights) {
   d.add(1064, frame(100));  // 15000, scale 15
   d.add(2264, frame(200));  // 16500, scale 7.5: lower variance
   const MergedImage m = d.run();
-  // var(L_i) = s_i dnpe L + s_i² rn²; the pilot weights at the longest valid frame's estimate,
-  // the final weights at the pilot.
+  // The pilot weighs by exposure (1 / s_i); the final weights are inverse variances
+  // var(L_i) = s_i dnpe L + s_i² rn² at the pilot.
   const auto w1 = [](double L) { return 1.0 / (15.0 * 0.5 * L + 225.0 * 4.0); };
   const auto w2 = [](double L) { return 1.0 / (7.5 * 0.5 * L + 56.25 * 4.0); };
   const auto mean = [&](double L) { return (w1(L) * 15000.0 + w2(L) * 16500.0) / (w1(L) + w2(L)); };
-  const double pilot = mean(16500.0);
-  EXPECT_NEAR(m.luminance_cd_m2.at(0, 0), mean(pilot), 0.05);
+  const double pilot = (15000.0 / 15.0 + 16500.0 / 7.5) / (1.0 / 15.0 + 1.0 / 7.5);
+  EXPECT_NEAR(m.luminance_cd_m2.at(0, 0), mean(pilot), 0.01);
   EXPECT_NEAR(m.relative_uncertainty.at(0, 0),
               std::sqrt(1.0 / (w1(pilot) + w2(pilot))) / mean(pilot), 1e-5);
 }

@@ -108,6 +108,23 @@ TEST(ProcessStack, EightBitFramesSaturateAtTheirMaximum) {
   EXPECT_GT(summary->result["luminance"]["saturated_pixels"].get<int>(), 0);
 }
 
+TEST(ProcessStack, AFailedRunNeverLeavesAnOldResultBesideNewOutputs) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "a", testing::smallScene(20.0));
+  testing::writeSmallStack(dir / "b", testing::smallScene(70.0));
+  ProcessOptions options = quiet();
+  options.output_directory = dir / "out";
+  ASSERT_TRUE(processStack(dir / "a", options));
+  // Make the picture of the second run unwritable: it fails after writing its EXRs.
+  fs::remove(dir / "out" / "luminance.png");
+  fs::create_directories(dir / "out" / "luminance.png" / "blocker");
+  auto failed = processStack(dir / "b", options);
+  ASSERT_FALSE(failed);
+  EXPECT_EQ(failed.error().code, ErrorCode::kIo) << failed.error().message;
+  // a's result.json must not vouch for b's luminance.exr.
+  EXPECT_FALSE(fs::exists(dir / "out" / "result.json"));
+}
+
 TEST(ProcessStack, BadStackIsBadInput) {
   testing::TempDir dir;
   auto summary = processStack(dir / "nothing-here", quiet());

@@ -47,7 +47,7 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
 // The row loop is compiled twice on x86-64, for the baseline and for AVX2 (a feature test; an
 // "arch=" clone would match one CPU model only), and the loader picks the best the CPU has.
 // Sanitizer builds compile one plain kernel (ifunc resolvers run before the sanitizer runtime
-X
+// starts); the -O0 merge tests of the normal build run the clone the CPU selects.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(__SANITIZE_ADDRESS__)
 #define GLARECAM_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
@@ -55,9 +55,9 @@ X
 #define GLARECAM_SIMD_CLONES
 #endif
 
-    // Eight pixels at a time, in GCC's portable vector extensions (SSE2, AVX2 and NEON alike):
-    // each frame pixel is read once, every accumulator lives in registers, only outputs are stored.
-    constexpr int kLanes = 8;
+// Eight pixels at a time, in GCC's portable vector extensions (SSE2, AVX2 and NEON alike):
+// each frame pixel is read once, every accumulator lives in registers, only outputs are stored.
+constexpr int kLanes = 8;
 using FloatLanes = float __attribute__((vector_size(kLanes * sizeof(float))));
 using IntLanes = std::int32_t __attribute__((vector_size(kLanes * sizeof(std::int32_t))));
 using WordLanes = std::uint16_t __attribute__((vector_size(kLanes * sizeof(std::uint16_t))));

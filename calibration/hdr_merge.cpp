@@ -18,26 +18,37 @@ namespace {
 struct FrameConstants {
   const RawFrame* frame;
   float scale;             // cd/m² per DN
+  float saturation_dn;     // values at or above are saturated (the calibration's, or the frame
+                           // container's maximum when that is lower: 255 for 8-bit frames)
   float saturated_cd_m2;   // luminance at the saturation DN (lower bound when clipped)
   float dark_cd_m2;        // luminance at the under-exposure threshold
-  float exposure_weight;   // 1 / scale: the pilot's weight (inverse variance when shot-limited)
+  float exposure_weight;   // 1 / shot_coefficient: the pilot's weight
   float shot_coefficient;  // var(L_i) = shot_coefficient * L + read_coefficient
   float read_coefficient;
 };
 
+// A frame's saturation: the calibration's, unless the frame's container cannot hold it (an
+// 8-bit frame saturates at 255 whatever the calibration of the sensor says).
+double saturationOf(const MergeInput& input, std::size_t frame) {
+  const int bits = frame < input.bit_depths.size() ? input.bit_depths[frame] : 16;
+  return std::min(input.saturation_dn, static_cast<double>((1 << bits) - 1));
+}
+
 // Frames sorted from the longest effective exposure (smallest scale) to the shortest.
 std::vector<FrameConstants> frameConstants(const MergeInput& input) {
   std::vector<FrameConstants> constants;
-  const double full_range_dn = input.saturation_dn - input.black_level_dn;
   for (std::size_t i = 0; i < input.frames.size(); ++i) {
     const FrameRadiometry& r = input.radiometry[i];
-    constants.push_back({&input.frames[i], static_cast<float>(r.scale_cd_m2_per_dn),
-                         static_cast<float>(full_range_dn * r.scale_cd_m2_per_dn),
-                         static_cast<float>(r.min_signal_dn * r.scale_cd_m2_per_dn),
-                         static_cast<float>(1.0 / r.scale_cd_m2_per_dn),
-                         static_cast<float>(r.scale_cd_m2_per_dn * r.dn_per_electron),
-                         static_cast<float>(r.scale_cd_m2_per_dn * r.scale_cd_m2_per_dn *
-                                            r.read_noise_dn * r.read_noise_dn)});
+    const double saturation_dn = saturationOf(input, i);
+    const double shot_coefficient = r.scale_cd_m2_per_dn * r.dn_per_electron;
+    constants.push_back(
+        {&input.frames[i], static_cast<float>(r.scale_cd_m2_per_dn),
+         static_cast<float>(saturation_dn),
+         static_cast<float>((saturation_dn - input.black_level_dn) * r.scale_cd_m2_per_dn),
+         static_cast<float>(r.min_signal_dn * r.scale_cd_m2_per_dn),
+         static_cast<float>(1.0 / shot_coefficient), static_cast<float>(shot_coefficient),
+         static_cast<float>(r.scale_cd_m2_per_dn * r.scale_cd_m2_per_dn * r.read_noise_dn *
+                            r.read_noise_dn)});
   }
   std::stable_sort(constants.begin(), constants.end(),
                    [](const auto& a, const auto& b) { return a.scale < b.scale; });
@@ -90,99 +101,98 @@ struct LanePointers {
 struct KernelConstants {
   const FrameConstants* frames;  // from the longest effective exposure to the shortest
   int frame_count;
-  float black, saturation, upper_bound;
+  float black, upper_bound;
 };
 
 // Frames are met from the longest effective exposure to the shortest: the first valid estimate
 // (the one with the most signal) becomes the pixel's reference luminance, at which every
 // frame's noise variance is evaluated, and each valid estimate is added with its inverse
 // variance as weight. Saturated frames raise the lower bound to their saturation luminance.
-// One pass over the frames: each valid estimate added with its weight. `valid_in(frame, value,
-// estimate)` decides which frame pixels count, `weight_of(frame, valid)` weighs them. The
-// callables must be always inlined too: a real call passing vectors would cross the AVX2
-// clone's ABI.
-struct LaneSums {
-  FloatLanes weight_sum{}, weighted_sum{}, count{}, lower{};
+// One frame's eight pixels: raw values, and their luminance estimates.
+struct FrameLanes {
+  FloatLanes value, estimate;
 };
 
-template <typename Validity, typename Weight>
-[[gnu::always_inline]] inline LaneSums sumFrames(const KernelConstants& k, const LanePointers& p,
-                                                 int offset, Validity valid_in, Weight weight_of) {
-  const FloatLanes zero{}, one = zero + 1.0f;
-  LaneSums sums;
-  for (int i = 0; i < k.frame_count; ++i) {
-    const FrameConstants& f = k.frames[i];
-    const FloatLanes value =
-        __builtin_convertvector(loadLanes<WordLanes>(p.frames[i] + offset), FloatLanes);
-    const FloatLanes estimate = (value - k.black) * f.scale;
-    const IntLanes valid = valid_in(f, value, estimate);
-    const FloatLanes weight = weight_of(f, valid);
-    sums.weight_sum += weight;
-    sums.weighted_sum += weight * estimate;
-    sums.count += valid ? one : zero;
-    const IntLanes saturated = value >= k.saturation;
-    sums.lower =
-        (saturated & (sums.lower < f.saturated_cd_m2)) ? zero + f.saturated_cd_m2 : sums.lower;
-  }
-  return sums;
+[[gnu::always_inline]] inline FrameLanes loadFrame(const FrameConstants& f,
+                                                   const std::uint16_t* row, float black) {
+  const FloatLanes value = __builtin_convertvector(loadLanes<WordLanes>(row), FloatLanes);
+  return {value, (value - black) * f.scale};
 }
 
+// A frame pixel judged by its own reading: below the frame's saturation, above its dark threshold.
+[[gnu::always_inline]] inline IntLanes validByReading(const FrameConstants& f,
+                                                      const FrameLanes& x) {
+  return (x.value < f.saturation_dn) & (x.estimate >= f.dark_cd_m2);
+}
+
+struct LaneSums {
+  FloatLanes weight_sum{}, weighted_sum{}, count{};
+  [[gnu::always_inline]] void add(IntLanes valid, FloatLanes weight, FloatLanes estimate) {
+    const FloatLanes zero{};
+    const FloatLanes w = valid ? weight : zero;
+    weight_sum += w;
+    weighted_sum += w * estimate;
+    count += valid ? zero + 1.0f : zero;
+  }
+};
+
 // Two passes over the frames, values reloaded from L1:
-//  1. pilot: a frame pixel counts when its own reading is below saturation and above the dark
-//     threshold, weighted by its exposure (1 / scale: the inverse variance where shot noise
-//     dominates, and independent of the readings, so unbiased and free of divisions);
+//  1. pilot: a frame pixel counts when its own reading is valid, weighted by 1 / shot
+//     coefficient (its inverse variance where shot noise dominates; independent of the
+//     readings, so unbiased, and free of divisions);
 //  2. final: a frame counts when the *pilot* predicts it within range: at least its dark
 //     threshold and at least kSaturationMarginSigmas of its noise below its saturation. A frame
 //     judged by its own reading keeps the readings noise pushed down and drops those it pushed
 //     up, and reads low just below saturation (high just above the dark threshold); judged by
-//     the pilot it is not truncated. Weights: inverse variances from the noise model at the
-//     pilot.
-// Pixels the pilot could not measure, or that no frame passes in pass 2, keep pass 1's answer.
+//     the pilot it is not truncated. Weights: inverse variances at the pilot.
+// A pixel no frame passes in pass 2 (its best frame sits within 3 sigma of saturation) falls
+// back to the own-reading rule with the same inverse-variance weights.
 [[gnu::always_inline]] inline void mergeLanes(const KernelConstants& k, const LanePointers& p,
                                               int offset) {
   constexpr float kSaturationMarginSigmas = 3.0f;
   const FloatLanes zero{}, one = zero + 1.0f;
-  const LaneSums pilot_sums = sumFrames(
-      k, p, offset,
-      [&](const FrameConstants& f, FloatLanes value, FloatLanes estimate)
-          __attribute__((always_inline))
-              ->IntLanes { return (value < k.saturation) & (estimate >= f.dark_cd_m2); },
-      [&](const FrameConstants& f, IntLanes valid)
-          __attribute__((always_inline)) { return valid ? zero + f.exposure_weight : zero; });
+  LaneSums pilot_sums;
+  FloatLanes lower = zero;
+  for (int i = 0; i < k.frame_count; ++i) {
+    const FrameConstants& f = k.frames[i];
+    const FrameLanes x = loadFrame(f, p.frames[i] + offset, k.black);
+    pilot_sums.add(validByReading(f, x), zero + f.exposure_weight, x.estimate);
+    const IntLanes saturated = x.value >= f.saturation_dn;
+    lower = (saturated & (lower < f.saturated_cd_m2)) ? zero + f.saturated_cd_m2 : lower;
+  }
   const IntLanes pilot_measured = pilot_sums.count > zero;
   const FloatLanes pilot = pilot_sums.weighted_sum / (pilot_measured ? pilot_sums.weight_sum : one);
-  // The smallest normal float keeps 0/0 out of lanes with no pilot and no read noise.
-  const auto variance = [&](const FrameConstants& f) __attribute__((always_inline)) {
-    return f.shot_coefficient * pilot + f.read_coefficient + std::numeric_limits<float>::min();
-  };
-  const LaneSums sums = sumFrames(
-      k, p, offset,
-      [&](const FrameConstants& f, FloatLanes value, FloatLanes) __attribute__((always_inline))
-          ->IntLanes {
-            const FloatLanes headroom = f.saturated_cd_m2 - pilot;
-            const IntLanes below_saturation =
-                (headroom > zero) &
-                (headroom * headroom >
-                 kSaturationMarginSigmas * kSaturationMarginSigmas * variance(f));
-            return pilot_measured & below_saturation & (pilot >= f.dark_cd_m2) &
-                   (value < k.saturation);
-          },
-      [&](const FrameConstants& f, IntLanes valid)
-          __attribute__((always_inline)) { return valid ? one / variance(f) : zero; });
 
-  const IntLanes refined = sums.count > zero;
-  const FloatLanes weight_sum = refined ? sums.weight_sum : pilot_sums.weight_sum;
-  const FloatLanes count = refined ? sums.count : pilot_sums.count;
-  const IntLanes measured = count > zero;
-  const IntLanes clipped = pilot_sums.lower > zero;
-  const FloatLanes mean = refined ? sums.weighted_sum / (refined ? sums.weight_sum : one) : pilot;
-  const FloatLanes unmeasured = clipped ? pilot_sums.lower : zero + k.upper_bound;
+  LaneSums final_sums, fallback_sums;
+  for (int i = 0; i < k.frame_count; ++i) {
+    const FrameConstants& f = k.frames[i];
+    const FrameLanes x = loadFrame(f, p.frames[i] + offset, k.black);
+    // The smallest normal float keeps 0/0 out of lanes with no pilot and no read noise.
+    const FloatLanes variance =
+        f.shot_coefficient * pilot + f.read_coefficient + std::numeric_limits<float>::min();
+    const FloatLanes weight = one / variance;
+    const FloatLanes headroom = f.saturated_cd_m2 - pilot;
+    const IntLanes predicted_in_range =
+        pilot_measured & (pilot >= f.dark_cd_m2) & (headroom > zero) &
+        (headroom * headroom > kSaturationMarginSigmas * kSaturationMarginSigmas * variance);
+    final_sums.add(predicted_in_range & (x.value < f.saturation_dn), weight, x.estimate);
+    fallback_sums.add(validByReading(f, x), weight, x.estimate);
+  }
+
+  const IntLanes refined = final_sums.count > zero;
+  const LaneSums chosen{refined ? final_sums.weight_sum : fallback_sums.weight_sum,
+                        refined ? final_sums.weighted_sum : fallback_sums.weighted_sum,
+                        refined ? final_sums.count : fallback_sums.count};
+  const IntLanes measured = chosen.count > zero;
+  const IntLanes clipped = lower > zero;
+  const FloatLanes mean = chosen.weighted_sum / (measured ? chosen.weight_sum : one);
+  const FloatLanes unmeasured = clipped ? lower : zero + k.upper_bound;
   const FloatLanes nan = zero + std::numeric_limits<float>::quiet_NaN();
   storeLanes(p.luminance + offset,
              (measured ? mean : unmeasured) * loadLanes<FloatLanes>(p.inverse_flat + offset));
   storeLanes(p.relative + offset, measured ? one / mean : nan);  // / sqrt(weight_sum) per row
-  storeLanes(p.weight_sum + offset, weight_sum);
-  storeLanes(p.valid + offset, count);
+  storeLanes(p.weight_sum + offset, chosen.weight_sum);
+  storeLanes(p.valid + offset, chosen.count);
   // PixelBound: 0 measured, 1 lower bound (saturated), 2 upper bound (dark).
   storeLanes(p.bound + offset, measured ? zero : (clipped ? one : one + one));
 }
@@ -237,8 +247,7 @@ class MergeKernel {
   MergeKernel(const MergeInput& input, MergedImage& output)
       : output_(output), frames_(frameConstants(input)), flat_(input.flat_field) {
     constants_ = {frames_.data(), static_cast<int>(frames_.size()),
-                  static_cast<float>(input.black_level_dn), static_cast<float>(input.saturation_dn),
-                  upperBound(frames_)};
+                  static_cast<float>(input.black_level_dn), upperBound(frames_)};
   }
 
   void runRows(int begin, int end) const {
@@ -294,7 +303,16 @@ Status validate(const MergeInput& input) {
     return badInput("merge: black level must be below saturation");
   }
   const RawFrame& first = input.frames.front();
+  if (!input.bit_depths.empty() && input.bit_depths.size() != input.frames.size()) {
+    return fail(ErrorCode::kInternal, "merge: one bit depth per frame needed");
+  }
   for (std::size_t i = 0; i < input.frames.size(); ++i) {
+    if (saturationOf(input, i) <= input.black_level_dn) {
+      return badInput("merge: frame " + std::to_string(i) +
+                      " cannot hold values above the black level " +
+                      std::to_string(input.black_level_dn) + " DN (" +
+                      std::to_string(input.bit_depths[i]) + "-bit frame)");
+    }
     if (!input.frames[i].sameSize(first.width(), first.height()) || input.frames[i].empty()) {
       return badInput("merge: frame " + std::to_string(i) + " differs in size from frame 0");
     }

@@ -33,6 +33,8 @@ struct MergeInput {
   double black_level_dn = 0;
   double saturation_dn = 0;                // values at or above are saturated
   const FloatImage* flat_field = nullptr;  // optional, 1 at the principal point
+  std::span<const int> bit_depths =
+      {};  // per frame, optional (16): an 8-bit frame saturates at 255
 };
 
 struct MergeOptions {

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <string>
@@ -170,12 +171,25 @@ Status StagingDirectory::commit() {
   return synced;
 }
 
-std::size_t removeStaleTemporaries(const fs::path& directory, std::chrono::seconds min_age) {
+namespace {
+
+bool isTemporaryOf(const std::string& filename, std::span<const std::string_view> names) {
+  if (!filename.starts_with(kTemporaryPrefix)) return false;
+  if (names.empty()) return true;
+  return std::any_of(names.begin(), names.end(), [&](std::string_view name) {
+    return filename.starts_with(std::string(kTemporaryPrefix) + std::string(name) + "-");
+  });
+}
+
+}  // namespace
+
+std::size_t removeStaleTemporaries(const fs::path& directory, std::chrono::seconds min_age,
+                                   std::span<const std::string_view> names) {
   std::size_t removed = 0;
   std::error_code ec;
   const auto now = fs::file_time_type::clock::now();
   for (const auto& entry : fs::directory_iterator(directory, ec)) {
-    if (!entry.path().filename().string().starts_with(kTemporaryPrefix)) continue;
+    if (!isTemporaryOf(entry.path().filename().string(), names)) continue;
     std::error_code time_ec;
     const auto modified = fs::last_write_time(entry.path(), time_ec);
     if (time_ec || now - modified < min_age) continue;

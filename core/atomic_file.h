@@ -56,8 +56,10 @@ class StagingDirectory {
 };
 
 // Removes ".tmp-*" entries left in directory by an interrupted writer, those not modified for
-// at least `min_age` (a younger one may belong to a writer still running); returns how many.
+// at least `min_age` (a younger one may belong to a writer still running) and, when `names`
+// is not empty, only temporaries of those files (".tmp-<name>-*"); returns how many.
 std::size_t removeStaleTemporaries(const std::filesystem::path& directory,
-                                   std::chrono::seconds min_age = std::chrono::seconds(0));
+                                   std::chrono::seconds min_age = std::chrono::seconds(0),
+                                   std::span<const std::string_view> names = {});
 
 }  // namespace glarecam

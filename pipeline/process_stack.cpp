@@ -46,36 +46,46 @@ std::string stackId(const Stack& stack) {
 // A leftover temporary younger than this may belong to another process still writing.
 constexpr std::chrono::minutes kStaleTemporaryAge{10};
 
+// The files `process` writes; only their leftovers are ever cleaned up in the output directory.
+constexpr std::string_view kOutputNames[] = {"luminance.exr", "quality.exr", "luminance.png",
+                                             "result.json"};
+
 // Creates the output directory and withdraws an earlier result.json first, so that an
 // interrupted run never leaves old results beside new pictures under a complete-looking set.
+// A result.json that is not glarecam's is refused, not overwritten.
 Status prepareOutputDirectory(const fs::path& directory) {
   std::error_code ec;
   fs::create_directories(directory, ec);
   if (ec) return ioError(directory.string() + ": cannot create output directory: " + ec.message());
   if (!fs::is_directory(directory, ec))
     return badInput(directory.string() + ": output path is not a directory");
-  removeStaleTemporaries(directory, kStaleTemporaryAge);
-  fs::remove(directory / kResultFileName, ec);
+  removeStaleTemporaries(directory, kStaleTemporaryAge, kOutputNames);
+  const fs::path previous = directory / kResultFileName;
+  if (!fs::exists(fs::symlink_status(previous, ec))) return {};
+  auto document = readJsonFile(previous.string());
+  if (!document || !document->is_object() || document->value("schema", "") != kResultSchema) {
+    return badInput(previous.string() +
+                    ": exists and is not a glarecam result; refusing to overwrite it");
+  }
+  fs::remove(previous, ec);
   if (ec)
-    return ioError((directory / kResultFileName).string() +
-                   ": cannot remove the previous result: " + ec.message());
-  return {};
+    return ioError(previous.string() + ": cannot remove the previous result: " + ec.message());
+  return fsyncPath(directory);
 }
 
-// A frame cannot hold values above its container's maximum, so a value at that maximum is
-// clipped whatever the calibration says (an 8-bit frame under a 12-bit calibration).
-Result<double> effectiveSaturationDn(const Stack& stack) {
-  const int bits = *std::min_element(stack.bit_depths.begin(), stack.bit_depths.end());
-  const double container_max_dn = static_cast<double>((1 << bits) - 1);
-  if (stack.calibration.saturation_dn <= container_max_dn) return stack.calibration.saturation_dn;
-  if (stack.calibration.black_level_dn >= container_max_dn) {
-    return badInput((stack.directory / kManifestFileName).string() + ": black level " +
-                    std::to_string(stack.calibration.black_level_dn) + " DN does not fit " +
-                    std::to_string(bits) + "-bit frames");
+// A frame cannot hold values above its container's maximum: the merge treats that maximum as
+// saturation (an 8-bit frame under a 12-bit calibration); say so.
+void warnAboutNarrowFrames(const Stack& stack) {
+  for (std::size_t i = 0; i < stack.frames.size(); ++i) {
+    const double container_max_dn = static_cast<double>((1 << stack.bit_depths[i]) - 1);
+    if (stack.calibration.saturation_dn <= container_max_dn) continue;
+    spdlog::warn(
+        "{}: saturation_dn {} exceeds what {}-bit frames such as {} hold; treating {} DN as "
+        "saturated there",
+        stack.directory.string(), stack.calibration.saturation_dn, stack.bit_depths[i],
+        stack.manifest.frames[i].file, container_max_dn);
+    return;
   }
-  spdlog::warn("{}: saturation_dn {} exceeds what {}-bit frames hold; treating {} DN as saturated",
-               stack.directory.string(), stack.calibration.saturation_dn, bits, container_max_dn);
-  return container_max_dn;
 }
 
 // Refuses, naming the file and frame, manifests whose numbers are valid one by one but combine
@@ -114,13 +124,16 @@ namespace {
 Result<calibration::MergedImage> mergeStack(Stack& stack, unsigned threads) {
   const auto radiometry = calibration::frameRadiometry(stack.manifest.frames, stack.calibration);
   GLARECAM_CHECK(checkRadiometry(stack, radiometry));
-  double saturation_dn = 0;
-  GLARECAM_ASSIGN(saturation_dn, effectiveSaturationDn(stack));
+  warnAboutNarrowFrames(stack);
   if (!stack.calibration.noise) {
     spdlog::warn("{}: calibration has no noise model; assuming a typical sensor", stackId(stack));
   }
-  calibration::MergeInput input{stack.frames, radiometry, stack.calibration.black_level_dn,
-                                saturation_dn, stack.flat_field ? &*stack.flat_field : nullptr};
+  calibration::MergeInput input{stack.frames,
+                                radiometry,
+                                stack.calibration.black_level_dn,
+                                stack.calibration.saturation_dn,
+                                stack.flat_field ? &*stack.flat_field : nullptr,
+                                stack.bit_depths};
   auto merged = calibration::merge(input, {.threads = threads});
   stack.frames.clear();
   return merged;

@@ -141,6 +141,35 @@ TEST(HdrMerge, SaturatedEverywhereIsALowerBoundDarkEverywhereAnUpperBound) {
               1e-3);  // longest frame's 3-sigma threshold
 }
 
+TEST(HdrMerge, AFrameJustBelowSaturationKeepsAnHonestUncertainty) {
+  // 3900 DN is within 3 sigma of the 4000 DN saturation: no frame passes the final pass, and
+  // the fallback must still report the noise model's uncertainty, not the pilot's weights.
+  MergeCase c;
+  c.add(3900, frame(100));
+  const MergedImage merged = c.run();
+  const double scale = 15.0, L = scale * (3900 - 64);
+  EXPECT_NEAR(merged.luminance_cd_m2.at(2, 1), L, 0.05);
+  EXPECT_NEAR(merged.relative_uncertainty.at(2, 1),
+              std::sqrt(scale * 0.5 * L + scale * scale * 4.0) / L, 1e-6);
+}
+
+TEST(HdrMerge, EightBitFramesSaturateAt255WhateverTheCalibrationSays) {
+  MergeCase c;
+  c.add(255, frame(100));  // clipped 8-bit value under a 4000 DN calibration
+  c.add(1064, frame(1000));
+  const std::vector<int> bit_depths{8, 16};
+  MergeInput input{c.frames, c.radiometry, 64, 4000, nullptr, bit_depths};
+  auto merged = merge(input);
+  ASSERT_TRUE(merged) << merged.error().message;
+  EXPECT_EQ(merged->valid_frames.at(0, 0), 1);
+  EXPECT_NEAR(merged->luminance_cd_m2.at(0, 0), 1500.0, 1e-3);
+  const std::vector<int> all_eight{8, 8};
+  c.frames[1] = RawFrame(MergeCase::kWidth, MergeCase::kHeight, 255);
+  auto clipped = merge({c.frames, c.radiometry, 64, 4000, nullptr, all_eight});
+  ASSERT_TRUE(clipped);
+  EXPECT_EQ(static_cast<PixelBound>(clipped->bound.at(0, 0)), PixelBound::kLowerBound);
+}
+
 TEST(HdrMerge, DividesByTheFlatField) {
   MergeCase c;
   c.add(1064, frame(100));

@@ -125,6 +125,24 @@ TEST(ProcessStack, AFailedRunNeverLeavesAnOldResultBesideNewOutputs) {
   EXPECT_FALSE(fs::exists(dir / "out" / "result.json"));
 }
 
+TEST(ProcessStack, OutputDirectoryCleanupTouchesOnlyItsOwnFiles) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  fs::create_directories(dir / "out" / ".tmp-someone-elses");
+  testing::writeText(dir / "out" / ".tmp-someone-elses" / "file", "theirs");
+  const auto old_time = fs::file_time_type::clock::now() - std::chrono::hours(2);
+  fs::last_write_time(dir / "out" / ".tmp-someone-elses", old_time);
+  testing::writeText(dir / "out" / "result.json", "{\"my\": \"own results\"}");
+  ProcessOptions options = quiet();
+  options.output_directory = dir / "out";
+  auto refused = processStack(dir / "s", options);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(refused.error().message.find("not a glarecam result"), std::string::npos);
+  EXPECT_EQ(testing::readText(dir / "out" / "result.json"), "{\"my\": \"own results\"}");
+  EXPECT_TRUE(fs::exists(dir / "out" / ".tmp-someone-elses" / "file"));
+}
+
 TEST(ProcessStack, BadStackIsBadInput) {
   testing::TempDir dir;
   auto summary = processStack(dir / "nothing-here", quiet());

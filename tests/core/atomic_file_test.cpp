@@ -86,7 +86,14 @@ TEST(AtomicFile, ReaderNeverSeesHalfAStackWhileAnotherProcessRewritesIt) {
   int reads = 0;
   int status = 0;
   while (::waitpid(writer, &status, WNOHANG) == 0) {
-    expectConsistent(readStack(target));
+    auto stack = readStack(target);
+    // Under load a reader can lose the race several times in a row; it must then say so (an
+    // I/O error asking to try again), never return a mixture.
+    if (!stack && stack.error().code == ErrorCode::kIo &&
+        stack.error().message.find("try again") != std::string::npos) {
+      continue;
+    }
+    expectConsistent(stack);
     ++reads;
   }
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "writer failed";

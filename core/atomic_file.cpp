@@ -137,6 +137,7 @@ Result<StagingDirectory> StagingDirectory::create(const fs::path& target) {
 StagingDirectory::StagingDirectory(StagingDirectory&& other) noexcept
     : staging_(std::move(other.staging_)),
       target_(std::move(other.target_)),
+      may_replace_(std::move(other.may_replace_)),
       committed_(other.committed_) {
   other.committed_ = true;  // the moved-from object no longer owns the directory
 }
@@ -159,9 +160,16 @@ Status StagingDirectory::commit() {
       return systemError(target_, "cannot rename staging directory into place");
     }
   } else {
-    // Swap the complete new directory with the old one in one step, then drop the old one.
+    // Swap the complete new directory with the old one in one step, then drop the old one, but
+    // only if what was swapped out may be replaced: checked after the swap, so nothing put at
+    // the target since any earlier check can be deleted (it is swapped back instead).
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0) {
       return systemError(target_, "cannot exchange staging directory with existing one");
+    }
+    if (may_replace_ && !may_replace_(staging_)) {
+      ::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE);
+      return badInput(target_.string() +
+                      ": changed into something that may not be replaced; left untouched");
     }
   }
   committed_ = true;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string_view>
 
@@ -43,6 +44,11 @@ class StagingDirectory {
   ~StagingDirectory();
 
   const std::filesystem::path& path() const { return staging_; }
+  // commit() replaces an existing target only if this accepts it (checked on the swapped-out
+  // directory, after the atomic exchange, and undone if refused). Default: anything.
+  void setReplaceCheck(std::function<bool(const std::filesystem::path&)> may_replace) {
+    may_replace_ = std::move(may_replace);
+  }
   // fsyncs the directory, renames it to the target (atomically exchanging an existing target,
   // which is then removed) and fsyncs the parent.
   Status commit();
@@ -52,6 +58,7 @@ class StagingDirectory {
       : staging_(std::move(staging)), target_(std::move(target)) {}
   std::filesystem::path staging_;
   std::filesystem::path target_;
+  std::function<bool(const std::filesystem::path&)> may_replace_;
   bool committed_ = false;
 };
 

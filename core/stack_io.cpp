@@ -209,6 +209,14 @@ Result<Stack> readStack(const fs::path& directory, const StackReadOptions& optio
                  " times while being read; try again");
 }
 
+bool isStackDirectory(const fs::path& directory) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(directory, ec))) return false;
+  if (!fs::is_regular_file(directory / kManifestFileName, ec)) return false;
+  auto manifest = readJsonFile((directory / kManifestFileName).string());
+  return manifest && manifest->is_object() && manifest->value("schema", "") == kStackSchema;
+}
+
 Result<fs::path> stackTarget(const fs::path& requested) {
   if (requested.empty()) return badInput("stack directory: the path is empty");
   std::error_code ec;
@@ -219,10 +227,10 @@ Result<fs::path> stackTarget(const fs::path& requested) {
     return badInput(requested.string() + ": cannot write a stack over the root directory");
   if (!fs::exists(fs::symlink_status(target, ec))) return target;
   // Replacing deletes what was there: only ever another stack, never someone's files.
-  if (!fs::is_directory(fs::symlink_status(target, ec)) ||
-      !fs::is_regular_file(target / kManifestFileName, ec)) {
+  if (!isStackDirectory(target)) {
     return badInput(requested.string() + ": exists and is not a stack (no " +
-                    std::string(kManifestFileName) + "); refusing to replace it");
+                    std::string(kManifestFileName) + " of schema " + std::string(kStackSchema) +
+                    "); refusing to replace it");
   }
   return target;
 }
@@ -248,6 +256,7 @@ Status writeStack(const fs::path& requested_directory, const StackWriteRequest& 
   }
   auto staging = StagingDirectory::create(directory);
   if (!staging) return std::unexpected(staging.error());
+  staging->setReplaceCheck(isStackDirectory);
   std::vector<Status> written(specs.size());
   parallelRows(static_cast<int>(specs.size()), defaultThreadCount(), [&](int begin, int end) {
     for (int i = begin; i < end; ++i) {

@@ -59,6 +59,9 @@ struct StackWriteRequest {
 // replacing deletes the old contents, and those must only ever be an older stack.
 Status writeStack(const std::filesystem::path& directory, const StackWriteRequest& request);
 
+// True for a directory holding a stack.json of schema glarecam.stack/1.
+bool isStackDirectory(const std::filesystem::path& directory);
+
 // The absolute, normalised path a stack at `requested` would be written to, or the reason it
 // cannot be (see writeStack).
 Result<std::filesystem::path> stackTarget(const std::filesystem::path& requested);

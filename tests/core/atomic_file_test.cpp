@@ -71,6 +71,24 @@ TEST(AtomicFile, WriteIntoMissingDirectoryFailsClearly) {
   EXPECT_NE(status.error().message.find("a.json"), std::string::npos);
 }
 
+TEST(AtomicFile, ARefusedReplacementIsSwappedBackUntouched) {
+  testing::TempDir dir;
+  fs::create_directories(dir / "target");
+  testing::writeText(dir / "target" / "precious.txt", "keep");
+  {
+    auto staging = StagingDirectory::create(dir / "target");
+    ASSERT_TRUE(staging);
+    testing::writeText(staging->path() / "new.txt", "new");
+    staging->setReplaceCheck([](const fs::path&) { return false; });
+    auto status = staging->commit();
+    ASSERT_FALSE(status);
+    EXPECT_EQ(status.error().code, ErrorCode::kBadInput);
+  }
+  EXPECT_EQ(testing::readText(dir / "target" / "precious.txt"), "keep");
+  EXPECT_FALSE(fs::exists(dir / "target" / "new.txt"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
+}
+
 TEST(AtomicFile, ReaderNeverSeesHalfAStackWhileAnotherProcessRewritesIt) {
   testing::TempDir dir;
   const fs::path target = dir / "stack";

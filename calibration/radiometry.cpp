@@ -6,13 +6,13 @@
 namespace glarecam::calibration {
 
 bool isRepresentable(const FrameRadiometry& r) {
-  const auto inRange = [](double value, double lo, double hi) {
+  const auto within = [](double value, double lo, double hi) {
     return std::isfinite(value) && value >= lo && value <= hi;
   };
-  return inRange(r.scale_cd_m2_per_dn, kMinScaleCdM2PerDn, kMaxScaleCdM2PerDn) &&
-         inRange(r.dn_per_electron, kMinScaleCdM2PerDn, kMaxScaleCdM2PerDn) &&
-         inRange(r.read_noise_dn, 0.0, kMaxScaleCdM2PerDn) &&
-         inRange(r.min_signal_dn, 0.0, kMaxScaleCdM2PerDn);
+  return within(r.scale_cd_m2_per_dn, kMinScaleCdM2PerDn, kMaxScaleCdM2PerDn) &&
+         within(r.dn_per_electron, kMinDnPerElectron, kMaxDnPerElectron) &&
+         within(r.read_noise_dn, 0.0, kMaxReadNoiseDn) && r.min_signal_dn > 0 &&
+         within(r.min_signal_dn, 0.0, kMaxReadNoiseDn);
 }
 
 double linearGain(double gain_db) { return std::pow(10.0, gain_db / 20.0); }

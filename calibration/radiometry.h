@@ -28,11 +28,12 @@ struct FrameRadiometry {
   double min_signal_dn = 0;       // DN above black below which the pixel is under-exposed
 };
 
-// The merge computes in float: a frame's scale must stay well inside float's range once squared
-// (variances) and multiplied by a 16-bit DN. Scales outside come from nonsense manifests
-// (gain_db 1000, exposure_us 1e-30) and would give silently wrong luminance.
-inline constexpr double kMinScaleCdM2PerDn = 1e-15;
-inline constexpr double kMaxScaleCdM2PerDn = 1e15;
+// The merge computes in float: its constants must stay well inside float's range once
+// multiplied by a 16-bit DN and squared into variances. Values outside come from nonsense
+// manifests (gain_db 1000, exposure_us 1e-30) and would give silently wrong luminance.
+inline constexpr double kMinScaleCdM2PerDn = 1e-10, kMaxScaleCdM2PerDn = 1e10;
+inline constexpr double kMinDnPerElectron = 1e-6, kMaxDnPerElectron = 1e6;
+inline constexpr double kMaxReadNoiseDn = 1e6;
 bool isRepresentable(const FrameRadiometry& radiometry);
 
 double linearGain(double gain_db);

@@ -107,22 +107,27 @@ bool fitQuadraticCap(const calibration::MergedImage& merged, const FitWindow& w,
   return true;
 }
 
-// A top saturated in every frame: the true maximum is only known to exceed the largest lower
-// bound around it (measured neighbours of a clipped plateau may even read higher).
-bool saturatedTop(const calibration::MergedImage& merged, const FitWindow& w, LuminancePeak& peak) {
+// A top saturated in every frame: at least two lower-bound pixels in the 3x3 neighbourhood of
+// the located top (one alone, a stuck pixel, is an outlier like any other). The true maximum
+// is then only known to exceed the larger of the located value and those bounds' second
+// largest (measured neighbours of a clipped plateau may even read higher).
+bool saturatedTop(const calibration::MergedImage& merged, int cx, int cy, LuminancePeak& peak) {
   const FloatImage& image = merged.luminance_cd_m2;
-  bool saturated = false;
-  for (int y = std::max(0, w.cy - w.ry); y <= std::min(image.height() - 1, w.cy + w.ry); ++y) {
-    for (int x = std::max(0, w.cx - w.rx); x <= std::min(image.width() - 1, w.cx + w.rx); ++x) {
+  float first = 0, second = 0;
+  int clipped = 0;
+  for (int y = std::max(0, cy - 1); y <= std::min(image.height() - 1, cy + 1); ++y) {
+    for (int x = std::max(0, cx - 1); x <= std::min(image.width() - 1, cx + 1); ++x) {
       if (!isBound(merged, x, y, PixelBound::kLowerBound)) continue;
-      if (!saturated || image.at(x, y) > peak.value_cd_m2)
-        peak = {image.at(x, y), double(x), double(y), PeakMethod::kLowerBound};
-      saturated = true;
+      ++clipped;
+      const float v = image.at(x, y);
+      second = std::max(second, std::min(v, first));
+      first = std::max(first, v);
     }
   }
-  if (saturated)
-    peak.value_cd_m2 = std::max(peak.value_cd_m2, static_cast<double>(image.at(w.cx, w.cy)));
-  return saturated;
+  if (clipped < 2) return false;
+  peak = {std::max(static_cast<double>(second), peak.value_cd_m2), double(cx), double(cy),
+          PeakMethod::kLowerBound};
+  return true;
 }
 
 // An image under-exposed in every pixel: its maximum is at most the largest upper bound.
@@ -162,7 +167,7 @@ LuminancePeak findLuminancePeak(const calibration::MergedImage& merged) {
   const FitWindow window{cx, cy, capRadius(located, cx, cy, 1, 0, level),
                          capRadius(located, cx, cy, 0, 1, level)};
   LuminancePeak peak{*top, double(cx), double(cy), PeakMethod::kNeighbourhood3x3};
-  if (saturatedTop(merged, window, peak)) return peak;
+  if (saturatedTop(merged, cx, cy, peak)) return peak;
   fitQuadraticCap(merged, window, peak);
   return peak;
 }

@@ -70,18 +70,30 @@ TEST(LuminancePeak, IgnoresAHotPixelInTheBackground) {
 }
 
 TEST(LuminancePeak, SaturatedTopIsALowerBound) {
+  // Clipped pixels carry the shortest frame's saturation luminance: more than any pixel that
+  // frame could still measure, so the plateau is the top of the image.
   auto merged = gaussianLobe(5.0e5, 60.0, 45.0, 8.0, 0.0, 1);
-  for (int y = 43; y <= 47; ++y) {
-    for (int x = 58; x <= 62; ++x) {
-      merged.luminance_cd_m2.at(x, y) = 4.0e5f;
+  constexpr float kSaturationCdM2 = 4.9e5f;
+  for (int y = 0; y < merged.luminance_cd_m2.height(); ++y) {
+    for (int x = 0; x < merged.luminance_cd_m2.width(); ++x) {
+      if (merged.luminance_cd_m2.at(x, y) < kSaturationCdM2) continue;
+      merged.luminance_cd_m2.at(x, y) = kSaturationCdM2;
       merged.bound.at(x, y) = static_cast<std::uint8_t>(PixelBound::kLowerBound);
     }
   }
   const LuminancePeak peak = findLuminancePeak(merged);
   EXPECT_EQ(peak.method, PeakMethod::kLowerBound);
-  // A lower bound: at least the clipped plateau, at most the true peak.
-  EXPECT_GE(peak.value_cd_m2, 4.0e5);
-  EXPECT_LE(peak.value_cd_m2, 5.01e5);
+  EXPECT_EQ(peak.value_cd_m2, kSaturationCdM2);  // at least this much; the truth is 501 000
+  EXPECT_NEAR(peak.x_px, 60.0, 2.0);
+}
+
+TEST(LuminancePeak, OneStuckSaturatedPixelIsAnOutlierNotAClippedTop) {
+  auto merged = gaussianLobe(5.0e5, 60.0, 45.0, 8.0, 0.0, 1);
+  merged.luminance_cd_m2.at(63, 44) = 1.2e6f;  // stuck pixel near the top, "saturated everywhere"
+  merged.bound.at(63, 44) = static_cast<std::uint8_t>(PixelBound::kLowerBound);
+  const LuminancePeak peak = findLuminancePeak(merged);
+  EXPECT_NE(peak.method, PeakMethod::kLowerBound);
+  EXPECT_NEAR(peak.value_cd_m2 / 501000.0, 1.0, 0.01);
 }
 
 TEST(LuminancePeak, KeepsAPeakTwoPixelsWide) {

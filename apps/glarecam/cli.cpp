@@ -20,11 +20,13 @@ namespace {
 // CLI11 says "A subcommand is required" for a misspelt command too: name it instead.
 std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error, int argc,
                               char** argv) {
-  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+  if (!app.get_subcommands().empty()) return error.what();
+  for (int i = 1; i < argc; ++i) {
+    if (argv[i][0] == '-') continue;  // global options (-v, --debug) take no value
     std::string known;
     for (const CLI::App* sub : app.get_subcommands({}))
       known += (known.empty() ? "" : ", ") + sub->get_name();
-    return std::string("unknown command \"") + argv[1] + "\" (known: " + known + ")";
+    return std::string("unknown command \"") + argv[i] + "\" (known: " + known + ")";
   }
   return error.what();
 }

@@ -93,6 +93,12 @@ StackManifest makeManifest(const SimulationOptions& options, const Calibration& 
   return manifest;
 }
 
+// Each frame's own noise stream: distinct for every (seed, frame) over the whole uint64 range.
+std::uint64_t frameSeed(std::uint64_t seed, std::size_t frame) {
+  constexpr std::uint64_t kGoldenRatio64 = 0x9e3779b97f4a7c15ull;  // odd: a bijection per frame
+  return seed * kGoldenRatio64 + frame;
+}
+
 nlohmann::json axesJson(const std::optional<EllipseAxes>& axes) {
   if (!axes) return nullptr;
   return {{"vertical", axes->vertical_deg}, {"horizontal", axes->horizontal_deg}};
@@ -220,7 +226,7 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   progress.setTotal(1 + static_cast<int>(result.manifest.frames.size()));
   for (std::size_t i = 0; i < result.manifest.frames.size(); ++i) {
     result.frames.push_back(exposeFrame(result.true_luminance_cd_m2, result.manifest.frames[i],
-                                        calibration, options.sensor, options.seed * 1000 + i));
+                                        calibration, options.sensor, frameSeed(options.seed, i)));
     progress.advance("frame " + std::to_string(i + 1) + "/" +
                      std::to_string(result.manifest.frames.size()));
   }

@@ -235,70 +235,87 @@ Result<fs::path> stackTarget(const fs::path& requested) {
   return target;
 }
 
-Status writeStack(const fs::path& requested_directory, const StackWriteRequest& request) {
-  fs::path directory;
-  GLARECAM_ASSIGN(directory, stackTarget(requested_directory));
+namespace {
+
+// Everything the writer is given must be consistent and stay inside the stack.
+Status checkWriteRequest(const fs::path& directory, const StackWriteRequest& request) {
   const auto& specs = request.manifest.frames;
+  const auto internal = [&](const std::string& problem) {
+    return fail(ErrorCode::kInternal, directory.string() + ": " + problem);
+  };
   if (specs.empty() || specs.size() != request.frames.size()) {
-    return fail(ErrorCode::kInternal, directory.string() + ": manifest lists " +
-                                          std::to_string(specs.size()) + " frames but " +
-                                          std::to_string(request.frames.size()) + " were given");
+    return internal("manifest lists " + std::to_string(specs.size()) + " frames but " +
+                    std::to_string(request.frames.size()) + " were given");
   }
-  if (request.bit_depth != 8 && request.bit_depth != 16) {
-    return fail(ErrorCode::kInternal,
-                directory.string() + ": frames are written as 8- or 16-bit PNG");
+  if (request.bit_depth != 8 && request.bit_depth != 16)
+    return internal("frames are written as 8- or 16-bit PNG");
+  std::vector<std::string> paths;
+  for (const FrameSpec& spec : specs) paths.push_back(spec.file);
+  for (const StackAttachment& attachment : request.attachments)
+    paths.push_back(attachment.relative_path);
+  for (const auto& text : request.text_files) paths.push_back(text.first);
+  for (const std::string& path : paths) {
+    if (!isContainedRelativePath(path)) return internal("\"" + path + "\" escapes the stack");
   }
-  for (const FrameSpec& spec : specs) {
-    if (!isContainedRelativePath(spec.file)) {
-      return fail(ErrorCode::kInternal,
-                  directory.string() + ": frame file \"" + spec.file + "\" escapes the stack");
-    }
-  }
-  auto staging = StagingDirectory::create(directory);
-  if (!staging) return std::unexpected(staging.error());
-  staging->setReplaceCheck(isStackDirectory);
+  return {};
+}
+
+// Frames are encoded in parallel, one per task, each written and fsynced in place.
+Status writeFrames(const fs::path& staging, const StackWriteRequest& request) {
+  const auto& specs = request.manifest.frames;
   std::vector<Status> written(specs.size());
   parallelRows(static_cast<int>(specs.size()), defaultThreadCount(), [&](int begin, int end) {
     for (int i = begin; i < end; ++i) {
-      auto index = static_cast<std::size_t>(i);
-      auto bytes = encodePngGray(request.frames[index], request.bit_depth);
+      const auto index = static_cast<std::size_t>(i);
+      const fs::path target = staging / specs[index].file;
       std::error_code ec;
-      fs::create_directories((staging->path() / specs[index].file).parent_path(), ec);
-      written[index] = bytes ? writeFileDurable(staging->path() / specs[index].file, *bytes)
-                             : Status(std::unexpected(bytes.error()));
+      fs::create_directories(target.parent_path(), ec);
+      auto bytes = encodePngGray(request.frames[index], request.bit_depth);
+      written[index] =
+          bytes ? writeFileDurable(target, *bytes) : Status(std::unexpected(bytes.error()));
     }
   });
   for (const Status& status : written) GLARECAM_CHECK(status);
+  return {};
+}
+
+// Attachments, text files and the manifest, then every subdirectory fsynced.
+Status writeManifestAndExtras(const fs::path& staging, const StackWriteRequest& request) {
   for (const StackAttachment& attachment : request.attachments) {
-    if (!isContainedRelativePath(attachment.relative_path)) {
-      return fail(ErrorCode::kInternal,
-                  directory.string() + ": \"" + attachment.relative_path + "\" escapes the stack");
-    }
+    const fs::path target = staging / attachment.relative_path;
     std::error_code ec;
-    fs::path target = staging->path() / attachment.relative_path;
     fs::create_directories(target.parent_path(), ec);
     fs::copy_file(attachment.source, target, fs::copy_options::overwrite_existing, ec);
     if (ec)
       return ioError(attachment.source.string() + ": cannot copy into stack: " + ec.message());
     GLARECAM_CHECK(fsyncPath(target));
   }
+  const auto bytesOf = [](const std::string& text) {
+    return std::as_bytes(std::span(text.data(), text.size()));
+  };
   for (const auto& [relative_path, content] : request.text_files) {
-    if (!isContainedRelativePath(relative_path)) {
-      return fail(ErrorCode::kInternal,
-                  directory.string() + ": \"" + relative_path + "\" escapes the stack");
-    }
-    GLARECAM_CHECK(writeFileDurable(staging->path() / relative_path,
-                                    std::as_bytes(std::span(content.data(), content.size()))));
+    GLARECAM_CHECK(writeFileDurable(staging / relative_path, bytesOf(content)));
   }
   const std::string manifest_text = toJson(request.manifest).dump(2) + "\n";
-  GLARECAM_CHECK(
-      writeFileDurable(staging->path() / kManifestFileName,
-                       std::as_bytes(std::span(manifest_text.data(), manifest_text.size()))));
-  // Subdirectories (frames/..., calib/...) hold entries of their own that must be durable too.
+  GLARECAM_CHECK(writeFileDurable(staging / kManifestFileName, bytesOf(manifest_text)));
   std::error_code ec;
-  for (const auto& entry : fs::recursive_directory_iterator(staging->path(), ec)) {
+  for (const auto& entry : fs::recursive_directory_iterator(staging, ec)) {
     if (entry.is_directory()) GLARECAM_CHECK(fsyncPath(entry.path()));
   }
+  return {};
+}
+
+}  // namespace
+
+Status writeStack(const fs::path& requested_directory, const StackWriteRequest& request) {
+  fs::path directory;
+  GLARECAM_ASSIGN(directory, stackTarget(requested_directory));
+  GLARECAM_CHECK(checkWriteRequest(directory, request));
+  auto staging = StagingDirectory::create(directory);
+  if (!staging) return std::unexpected(staging.error());
+  staging->setReplaceCheck(isStackDirectory);
+  GLARECAM_CHECK(writeFrames(staging->path(), request));
+  GLARECAM_CHECK(writeManifestAndExtras(staging->path(), request));
   return staging->commit();
 }
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "apps/glarecam/commands.h"
@@ -29,6 +30,19 @@ std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
     return std::string("unknown command \"") + argv[i] + "\" (known: " + known + ")";
   }
   return error.what();
+}
+
+// Runs the chosen command; a library exception (out of memory, a bug) becomes a one-line
+// error and exit status 1 instead of an abort.
+Status runAction(const std::function<Status()>& action) {
+  if (!action) return badInput("no command given");
+  try {
+    return action();
+  } catch (const std::bad_alloc&) {
+    return fail(ErrorCode::kIo, "out of memory");
+  } catch (const std::exception& e) {
+    return fail(ErrorCode::kInternal, std::string("internal error: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -66,7 +80,7 @@ int runGlarecam(int argc, char** argv) {
               : verbose ? Verbosity::kVerbose
               : quiet   ? Verbosity::kQuiet
                         : Verbosity::kNormal);
-  Status status = action ? action() : badInput("no command given");
+  Status status = runAction(action);
   if (!status) {
     std::fprintf(stderr, "glarecam: %s\n", status.error().message.c_str());
     return exitStatus(status.error());

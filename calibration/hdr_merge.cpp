@@ -104,10 +104,6 @@ struct KernelConstants {
   float black, upper_bound;
 };
 
-// Frames are met from the longest effective exposure to the shortest: the first valid estimate
-// (the one with the most signal) becomes the pixel's reference luminance, at which every
-// frame's noise variance is evaluated, and each valid estimate is added with its inverse
-// variance as weight. Saturated frames raise the lower bound to their saturation luminance.
 // One frame's eight pixels: raw values, and their luminance estimates.
 struct FrameLanes {
   FloatLanes value, estimate;

@@ -16,7 +16,7 @@ using calibration::PixelBound;
 // kCapFraction of the peak) along the row and the column through the peak, up to 15 px: sharp
 // lobes get a small window, wide or elongated ones average many pixels along each axis, which
 // cuts the noise and dilutes the selection bias of having located the peak on noisy data.
-constexpr int kMinFitRadius = 3;
+constexpr int kMinFitRadius = 2;
 constexpr int kMaxFitRadius = 15;
 constexpr double kCapFraction = 0.8;
 constexpr int kMinFitSamples = 12;
@@ -101,9 +101,14 @@ bool fitQuadraticCap(const calibration::MergedImage& merged, const FitWindow& w,
   const double vx = (-2 * c5 * c1 + c4 * c2) / det;
   const double vy = (-2 * c3 * c2 + c4 * c1) / det;
   if (std::abs(vx) > w.rx || std::abs(vy) > w.ry) return false;
-  const double ln_peak =
-      c.at<double>(0) + c1 * vx + c2 * vy + c3 * vx * vx + c4 * vx * vy + c5 * vy * vy;
-  peak = {std::exp(ln_peak), w.cx + vx, w.cy + vy, PeakMethod::kQuadraticFit};
+  const cv::Mat at_vertex = (cv::Mat_<double>(6, 1) << 1, vx, vy, vx * vx, vx * vy, vy * vy);
+  const double ln_peak = at_vertex.dot(c);
+  // Var(ln peak) = s² g^T (A^T A)^-1 g with s² the residual variance (the vertex's own shift
+  // is second order: the surface's gradient vanishes there).
+  const double residual_variance = std::pow(cv::norm(a * c - b), 2) / (a.rows - a.cols);
+  const cv::Mat spread = at_vertex.t() * (a.t() * a).inv(cv::DECOMP_SVD) * at_vertex;
+  peak = {std::exp(ln_peak), w.cx + vx, w.cy + vy,
+          std::sqrt(residual_variance * spread.at<double>(0)), PeakMethod::kQuadraticFit};
   return true;
 }
 
@@ -126,7 +131,7 @@ bool saturatedTop(const calibration::MergedImage& merged, int cx, int cy, Lumina
   }
   if (clipped < 2) return false;
   peak = {std::max(static_cast<double>(second), peak.value_cd_m2), double(cx), double(cy),
-          PeakMethod::kLowerBound};
+          std::nan(""), PeakMethod::kLowerBound};
   return true;
 }
 
@@ -136,7 +141,8 @@ LuminancePeak darkImagePeak(const calibration::MergedImage& merged) {
   const float* top = std::max_element(image.data(), image.data() + image.pixelCount());
   const auto index = static_cast<std::size_t>(top - image.data());
   const auto width = static_cast<std::size_t>(image.width());
-  return {*top, double(index % width), double(index / width), PeakMethod::kUpperBound};
+  return {*top, double(index % width), double(index / width), std::nan(""),
+          PeakMethod::kUpperBound};
 }
 
 }  // namespace
@@ -166,7 +172,8 @@ LuminancePeak findLuminancePeak(const calibration::MergedImage& merged) {
   const double level = kCapFraction * *top;
   const FitWindow window{cx, cy, capRadius(located, cx, cy, 1, 0, level),
                          capRadius(located, cx, cy, 0, 1, level)};
-  LuminancePeak peak{*top, double(cx), double(cy), PeakMethod::kNeighbourhood3x3};
+  LuminancePeak peak{*top, double(cx), double(cy), merged.relative_uncertainty.at(cx, cy),
+                     PeakMethod::kNeighbourhood3x3};
   if (saturatedTop(merged, cx, cy, peak)) return peak;
   fitQuadraticCap(merged, window, peak);
   return peak;

@@ -19,6 +19,9 @@ enum class PeakMethod { kQuadraticFit, kNeighbourhood3x3, kLowerBound, kUpperBou
 struct LuminancePeak {
   double value_cd_m2 = 0;
   double x_px = 0, y_px = 0;  // sub-pixel position (pixel centres at integers)
+  // Standard uncertainty of value_cd_m2 relative to it: from the fit's residuals, or the
+  // located pixel's own uncertainty; NaN for bounds.
+  double relative_uncertainty = 0;
   PeakMethod method = PeakMethod::kNeighbourhood3x3;
 };
 

@@ -11,15 +11,6 @@ namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-calibration::Ray normalise(double x, double y, double z) {
-  const double n = std::sqrt(x * x + y * y + z * z);
-  return {x / n, y / n, z / n};
-}
-
-double dot(const calibration::Ray& a, const calibration::Ray& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
 // Radius (in units of sigma) of the contour at `level` of B + (P - B) exp(-r²/2).
 double contourRadius(double peak, double background, double level) {
   return std::sqrt(2.0 * std::log((peak - background) / (level - background)));
@@ -57,27 +48,18 @@ Result<GlareScene> GlareScene::create(const GlareLobe& lobe) {
   return GlareScene(lobe);
 }
 
-GlareScene::GlareScene(const GlareLobe& lobe) : lobe_(lobe) {
-  centre_ = normalise(std::tan(lobe.centre_direction_deg[0] * kDegToRad),
-                      std::tan(lobe.centre_direction_deg[1] * kDegToRad), 1.0);
-  // Tangent basis at the centre: image-horizontal and image-vertical directions, then rotated.
-  calibration::Ray h =
-      normalise(1.0 - centre_.x * centre_.x, -centre_.x * centre_.y, -centre_.x * centre_.z);
-  calibration::Ray v{centre_.y * h.z - centre_.z * h.y, centre_.z * h.x - centre_.x * h.z,
-                     centre_.x * h.y - centre_.y * h.x};
-  const double c = std::cos(lobe.orientation_deg * kDegToRad),
-               s = std::sin(lobe.orientation_deg * kDegToRad);
-  axis_h_ = {c * h.x + s * v.x, c * h.y + s * v.y, c * h.z + s * v.z};
-  axis_v_ = {-s * h.x + c * v.x, -s * h.y + c * v.y, -s * h.z + c * v.z};
-}
+GlareScene::GlareScene(const GlareLobe& lobe)
+    : lobe_(lobe),
+      plane_(calibration::rayFromDirection(
+          {lobe.centre_direction_deg[0], lobe.centre_direction_deg[1]})) {}
 
 double GlareScene::luminanceCdM2(const calibration::Ray& ray) const {
-  const double p = dot(ray, axis_h_), q = dot(ray, axis_v_);
-  const double sideways = std::hypot(p, q);
-  const double rho_deg =
-      std::atan2(sideways, dot(ray, centre_)) / kDegToRad;  // angle from the lobe centre
-  const double u = sideways > 0 ? rho_deg * p / sideways / lobe_.sigma_h_deg : 0.0;
-  const double w = sideways > 0 ? rho_deg * q / sideways / lobe_.sigma_v_deg : 0.0;
+  const calibration::PlanePointDeg point = plane_.toPlane(ray);
+  // Into the lobe's own axes, rotated by its orientation from the image horizontal.
+  const double c = std::cos(lobe_.orientation_deg * kDegToRad),
+               s = std::sin(lobe_.orientation_deg * kDegToRad);
+  const double u = (c * point.x_deg + s * point.y_deg) / lobe_.sigma_h_deg;
+  const double w = (-s * point.x_deg + c * point.y_deg) / lobe_.sigma_v_deg;
   return lobe_.background_cd_m2 +
          (lobe_.peak_cd_m2 - lobe_.background_cd_m2) * std::exp(-0.5 * (u * u + w * w));
 }

@@ -11,6 +11,7 @@
 #include <array>
 #include <optional>
 
+#include "calibration/angular_plane.h"
 #include "calibration/camera_model.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -51,7 +52,7 @@ class GlareScene {
   std::optional<EllipseAxes> axesAt(double level_cd_m2) const;
   SceneTruth truth(double limit_cd_m2) const;
   const GlareLobe& lobe() const { return lobe_; }
-  calibration::Ray centreRay() const { return centre_; }
+  calibration::Ray centreRay() const { return plane_.centre(); }
 
   // The true luminance seen by each pixel of a camera.
   FloatImage render(const calibration::CameraModel& camera, int width, int height) const;
@@ -60,7 +61,7 @@ class GlareScene {
   explicit GlareScene(const GlareLobe& lobe);
 
   GlareLobe lobe_;
-  calibration::Ray centre_, axis_h_, axis_v_;  // lobe centre and its tangent-plane basis
+  calibration::AngularPlane plane_;  // around the lobe centre
 };
 
 }  // namespace glarecam::capture

@@ -21,23 +21,14 @@ constexpr double kMinFovDeg = 1.0, kMaxFovDeg = 150.0;  // a pinhole model's sen
 constexpr double kMaxOffsetDeg = 80.0;                  // the lobe stays in front of the lens
 constexpr std::string_view kTruthSchema = "glarecam.truth/1";
 
-Intrinsics pinholeIntrinsics(const SimulationOptions& options) {
-  Intrinsics k;
-  k.fx = k.fy =
-      (options.width / 2.0) / std::tan(options.horizontal_fov_deg / 2.0 * std::numbers::pi / 180.0);
-  k.cx = (options.width - 1) / 2.0;
-  k.cy = (options.height - 1) / 2.0;
-  k.distortion = options.distortion;
-  return k;
-}
-
 Calibration simulatedCalibration(const SimulationOptions& options) {
   Calibration calibration;
   calibration.black_level_dn = options.sensor.black_level_dn;
   calibration.saturation_dn = options.sensor.saturation_dn;
   calibration.luminance_factor = options.luminance_factor;
   calibration.reference_f_number = options.f_number;
-  calibration.intrinsics = pinholeIntrinsics(options);
+  calibration.intrinsics = pinholeIntrinsics(options.width, options.height,
+                                             options.horizontal_fov_deg, options.distortion);
   calibration.noise = NoiseModel{options.sensor.read_noise_dn, options.sensor.dn_per_electron};
   calibration.source = nlohmann::json::object();
   return calibration;
@@ -105,6 +96,16 @@ nlohmann::json axesJson(const std::optional<EllipseAxes>& axes) {
 }
 
 }  // namespace
+
+Intrinsics pinholeIntrinsics(int width, int height, double horizontal_fov_deg,
+                             const std::array<double, 5>& distortion) {
+  Intrinsics k;
+  k.fx = k.fy = (width / 2.0) / std::tan(horizontal_fov_deg / 2.0 * std::numbers::pi / 180.0);
+  k.cx = (width - 1) / 2.0;
+  k.cy = (height - 1) / 2.0;
+  k.distortion = distortion;
+  return k;
+}
 
 Status SimulationOptions::validate() const {
   if (!(alpha_deg >= 0 && alpha_deg <= pipeline::kMaxLimitAlphaDeg)) {

@@ -48,6 +48,11 @@ struct SimulatedStack {
   nlohmann::json truthJson() const;
 };
 
+// The simulated camera's model: square pixels, principal point at the centre, focal length from
+// the horizontal field of view.
+Intrinsics pinholeIntrinsics(int width, int height, double horizontal_fov_deg,
+                             const std::array<double, 5>& distortion = {});
+
 Result<SimulatedStack> simulateStack(const SimulationOptions& options);
 
 // Writes the stack atomically with truth.json inside it, beside stack.json.

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include <fstream>
+#include <random>
 #include <sstream>
 
 namespace glarecam::testing {
@@ -40,6 +41,39 @@ capture::SimulatedStack writeSmallStack(const fs::path& directory,
   auto status = capture::writeSimulatedStack(directory, *stack);
   EXPECT_TRUE(status.has_value()) << (status ? "" : status.error().message);
   return std::move(*stack);
+}
+
+capture::GlareLobe lobeAtLimit(double limit_cd_m2, double peak_cd_m2, double vertical_deg,
+                               double horizontal_deg, double background_cd_m2) {
+  auto lobe = capture::lobeWithAxesAt(limit_cd_m2, peak_cd_m2, background_cd_m2, vertical_deg,
+                                      horizontal_deg);
+  EXPECT_TRUE(lobe.has_value()) << (lobe ? "" : lobe.error().message);
+  return lobe.value_or(capture::GlareLobe{});
+}
+
+RenderedScene renderScene(const SceneSpec& spec) {
+  RenderedScene result;
+  result.intrinsics =
+      capture::pinholeIntrinsics(spec.width, spec.height, spec.horizontal_fov_deg, spec.distortion);
+  const calibration::CameraModel camera(result.intrinsics);
+  auto scene = capture::GlareScene::create(spec.lobe);
+  EXPECT_TRUE(scene.has_value()) << (scene ? "" : scene.error().message);
+  if (!scene) return result;
+  result.truth = scene->truth(spec.limit_cd_m2);
+  result.centre_px = camera.project(scene->centreRay());
+  auto& merged = result.merged;
+  merged.luminance_cd_m2 = scene->render(camera, spec.width, spec.height);
+  merged.relative_uncertainty =
+      FloatImage(spec.width, spec.height, static_cast<float>(spec.relative_noise));
+  merged.valid_frames = ByteImage(spec.width, spec.height, 1);
+  merged.bound = ByteImage(spec.width, spec.height, 0);
+  std::mt19937 rng(spec.seed);
+  std::normal_distribution<double> gauss(0.0, spec.relative_noise);
+  if (spec.relative_noise > 0) {
+    for (std::size_t i = 0; i < merged.luminance_cd_m2.pixelCount(); ++i)
+      merged.luminance_cd_m2.data()[i] *= static_cast<float>(1.0 + gauss(rng));
+  }
+  return result;
 }
 
 std::string readText(const fs::path& path) {

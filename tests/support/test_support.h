@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "calibration/hdr_merge.h"
 #include "capture/sim/simulated_stack.h"
 #include "core/error.h"
 
@@ -32,6 +33,31 @@ capture::SimulationOptions smallScene(double alpha_deg = 40.0, int width = 160, 
 // Simulates and writes a stack; fails the calling test on error.
 capture::SimulatedStack writeSmallStack(const std::filesystem::path& directory,
                                         const capture::SimulationOptions& options = smallScene());
+
+// A glare lobe rendered straight into a merged luminance image (no sensor, no bracketing), with
+// optional Gaussian noise of a given relative sigma, which is also the per-pixel relative
+// uncertainty the merge would report. Ground truth comes from the scene (glare_scene.h).
+struct SceneSpec {
+  int width = 640, height = 512;
+  double horizontal_fov_deg = 40.0;
+  std::array<double, 5> distortion{};
+  capture::GlareLobe lobe;
+  double limit_cd_m2 = 30'000.0;
+  double relative_noise = 0.0;
+  unsigned seed = 1;
+};
+
+struct RenderedScene {
+  calibration::MergedImage merged;
+  Intrinsics intrinsics;
+  capture::SceneTruth truth;
+  calibration::PixelPoint centre_px;
+};
+
+// The lobe whose limit contour has the given axes, like the simulator's modules.
+capture::GlareLobe lobeAtLimit(double limit_cd_m2, double peak_cd_m2, double vertical_deg,
+                               double horizontal_deg, double background_cd_m2 = 3000.0);
+RenderedScene renderScene(const SceneSpec& spec);
 
 std::string readText(const std::filesystem::path& path);
 void writeText(const std::filesystem::path& path, const std::string& text);

@@ -1,0 +1,230 @@
+#include "pipeline/ellipse_fit.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <numbers>
+
+namespace glarecam::pipeline {
+namespace {
+
+constexpr std::size_t kMinPoints = 5;  // an ellipse has five parameters
+constexpr int kMaxIterations = 100;
+constexpr double kInitialDamping = 1e-3, kMaxDamping = 1e12;
+// Relative step below which the geometric fit has converged (far below any contour's noise).
+constexpr double kConvergedStep = 1e-12;
+// Eigenvalues of the normal matrix below this fraction of the largest are treated as zero:
+// the orientation of a circle is undetermined and must not feed the axes' sensitivities.
+constexpr double kRelativeRankTolerance = 1e-10;
+
+using Vector5 = Eigen::Matrix<double, 5, 1>;
+using Matrix5 = Eigen::Matrix<double, 5, 5>;
+enum Parameter { kCx, kCy, kA, kB, kAngle };
+
+double wrapHalfTurn(double angle_rad) {
+  constexpr double kPi = std::numbers::pi;
+  angle_rad = std::remainder(angle_rad, kPi);  // (-pi/2, pi/2]
+  return angle_rad <= -kPi / 2 ? angle_rad + kPi : angle_rad;
+}
+
+// Conic A x² + B xy + C y² + D x + E y + F = 0 to centre, semi-axes and angle.
+std::optional<Ellipse> conicToEllipse(const Eigen::Matrix<double, 6, 1>& conic) {
+  const double a = conic[0], b = conic[1], c = conic[2], d = conic[3], e = conic[4], f = conic[5];
+  Eigen::Matrix2d quadratic;
+  quadratic << a, b / 2, b / 2, c;
+  if (!(quadratic.determinant() > 0)) return std::nullopt;
+  const Eigen::Vector2d centre = quadratic.ldlt().solve(Eigen::Vector2d(-d / 2, -e / 2));
+  const double at_centre = f + (d * centre.x() + e * centre.y()) / 2;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(quadratic);
+  const Eigen::Vector2d lambda = eigen.eigenvalues();  // ascending: major axis first
+  const double major2 = -at_centre / lambda[0], minor2 = -at_centre / lambda[1];
+  if (!(major2 > 0 && minor2 > 0)) return std::nullopt;
+  const Eigen::Vector2d major_direction = eigen.eigenvectors().col(0);
+  return Ellipse{{centre.x(), centre.y()},
+                 std::sqrt(major2),
+                 std::sqrt(minor2),
+                 wrapHalfTurn(std::atan2(major_direction.y(), major_direction.x()))};
+}
+
+// One point's signed orthogonal distance to the ellipse, its gradient with respect to the
+// parameters (envelope theorem: the foot point's parameter t is stationary) and the outward
+// unit normal at the foot point, which is also the distance's gradient with respect to the point.
+struct PointResidual {
+  double distance = 0;
+  Vector5 gradient;
+  Eigen::Vector2d normal;
+};
+
+PointResidual pointResidual(const Vector5& p, const Point2& point) {
+  const double cos_phi = std::cos(p[kAngle]), sin_phi = std::sin(p[kAngle]);
+  const double dx = point.x - p[kCx], dy = point.y - p[kCy];
+  const double u = cos_phi * dx + sin_phi * dy, v = -sin_phi * dx + cos_phi * dy;
+  const double a = p[kA], b = p[kB];
+  // Foot point: Newton on the stationarity condition of the squared distance in t.
+  double t = std::atan2(a * v, b * u);
+  for (int i = 0; i < 20; ++i) {
+    const double st = std::sin(t), ct = std::cos(t);
+    const double g = u * a * st - v * b * ct - (a * a - b * b) * st * ct;
+    const double dg = u * a * ct + v * b * st - (a * a - b * b) * (ct * ct - st * st);
+    if (!(dg > 0)) break;
+    const double step = g / dg;
+    t -= step;
+    if (std::abs(step) < 1e-14) break;
+  }
+  const double st = std::sin(t), ct = std::cos(t);
+  Eigen::Vector2d n(ct / a, st / b);
+  n.normalize();
+  PointResidual r;
+  r.distance = n.x() * (u - a * ct) + n.y() * (v - b * st);
+  r.normal = {cos_phi * n.x() - sin_phi * n.y(), sin_phi * n.x() + cos_phi * n.y()};
+  r.gradient << -r.normal.x(), -r.normal.y(), -n.x() * ct, -n.y() * st,
+      -(n.x() * -b * st + n.y() * a * ct);
+  return r;
+}
+
+double sumOfSquares(const Vector5& p, std::span<const Point2> points) {
+  double sum = 0;
+  for (const Point2& point : points) sum += std::pow(pointResidual(p, point).distance, 2);
+  return sum;
+}
+
+// Levenberg–Marquardt on the orthogonal distances.
+Vector5 refineGeometric(Vector5 p, std::span<const Point2> points) {
+  double cost = sumOfSquares(p, points);
+  double damping = kInitialDamping;
+  for (int iteration = 0; iteration < kMaxIterations && damping < kMaxDamping; ++iteration) {
+    Matrix5 normal = Matrix5::Zero();
+    Vector5 gradient = Vector5::Zero();
+    for (const Point2& point : points) {
+      const PointResidual r = pointResidual(p, point);
+      normal += r.gradient * r.gradient.transpose();
+      gradient += r.gradient * r.distance;
+    }
+    Matrix5 damped = normal;
+    damped.diagonal() += damping * (normal.diagonal().array() + 1e-12).matrix();
+    const Vector5 step = damped.ldlt().solve(-gradient);
+    const Vector5 candidate = p + step;
+    const double candidate_cost = candidate[kA] > 0 && candidate[kB] > 0
+                                      ? sumOfSquares(candidate, points)
+                                      : std::numeric_limits<double>::infinity();
+    if (candidate_cost <= cost) {
+      p = candidate;
+      const bool converged = step.norm() <= kConvergedStep * (p[kA] + p[kB]) || cost == 0;
+      cost = candidate_cost;
+      damping = std::max(damping / 10, 1e-15);
+      if (converged) break;
+    } else {
+      damping *= 10;
+    }
+  }
+  return p;
+}
+
+Vector5 toParameters(const Ellipse& e) {
+  Vector5 p;
+  p << e.centre.x, e.centre.y, e.semi_major, e.semi_minor, e.angle_rad;
+  return p;
+}
+
+Ellipse toEllipse(Vector5 p) {
+  if (p[kB] > p[kA]) {
+    std::swap(p[kA], p[kB]);
+    p[kAngle] += std::numbers::pi / 2;
+  }
+  return {{p[kCx], p[kCy]}, p[kA], p[kB], wrapHalfTurn(p[kAngle])};
+}
+
+// Pseudo-inverse of the (symmetric, positive semi-definite) normal matrix.
+Matrix5 pseudoInverse(const Matrix5& normal) {
+  const Eigen::SelfAdjointEigenSolver<Matrix5> eigen(normal);
+  const double largest = eigen.eigenvalues().maxCoeff();
+  Vector5 inverse = Vector5::Zero();
+  for (int i = 0; i < 5; ++i) {
+    if (eigen.eigenvalues()[i] > kRelativeRankTolerance * largest)
+      inverse[i] = 1.0 / eigen.eigenvalues()[i];
+  }
+  return eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+}  // namespace
+
+Point2 Ellipse::pointAt(double t) const {
+  const double u = semi_major * std::cos(t), v = semi_minor * std::sin(t);
+  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  return {centre.x + c * u - s * v, centre.y + s * u + c * v};
+}
+
+std::optional<Ellipse> fitEllipseDirect(std::span<const Point2> points) {
+  if (points.size() < kMinPoints) return std::nullopt;
+  // Centre and scale the data so that the scatter matrices are well conditioned.
+  double mx = 0, my = 0;
+  for (const Point2& p : points) mx += p.x, my += p.y;
+  mx /= static_cast<double>(points.size());
+  my /= static_cast<double>(points.size());
+  double spread = 0;
+  for (const Point2& p : points) spread += (p.x - mx) * (p.x - mx) + (p.y - my) * (p.y - my);
+  const double scale = std::sqrt(spread / static_cast<double>(points.size()));
+  if (!(scale > 0)) return std::nullopt;
+  Eigen::MatrixXd quadratic(static_cast<Eigen::Index>(points.size()), 3);
+  Eigen::MatrixXd linear(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double x = (points[i].x - mx) / scale, y = (points[i].y - my) / scale;
+    const auto row = static_cast<Eigen::Index>(i);
+    quadratic.row(row) << x * x, x * y, y * y;
+    linear.row(row) << x, y, 1.0;
+  }
+  const Eigen::Matrix3d s1 = quadratic.transpose() * quadratic;
+  const Eigen::Matrix3d s2 = quadratic.transpose() * linear;
+  const Eigen::Matrix3d s3 = linear.transpose() * linear;
+  const Eigen::FullPivLU<Eigen::Matrix3d> s3_lu(s3);
+  if (!s3_lu.isInvertible()) return std::nullopt;
+  const Eigen::Matrix3d t = -s3_lu.solve(s2.transpose());
+  const Eigen::Matrix3d m = s1 + s2 * t;
+  Eigen::Matrix3d reduced;  // C1^-1 M for the ellipse constraint 4ac - b² = 1
+  reduced.row(0) = m.row(2) / 2;
+  reduced.row(1) = -m.row(1);
+  reduced.row(2) = m.row(0) / 2;
+  const Eigen::EigenSolver<Eigen::Matrix3d> eigen(reduced);
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d a1 = eigen.eigenvectors().col(i).real();
+    if (!(4 * a1[0] * a1[2] - a1[1] * a1[1] > 0)) continue;
+    Eigen::Matrix<double, 6, 1> conic;
+    conic << a1, t * a1;
+    auto ellipse = conicToEllipse(conic);
+    if (!ellipse) continue;
+    ellipse->centre = {ellipse->centre.x * scale + mx, ellipse->centre.y * scale + my};
+    ellipse->semi_major *= scale;
+    ellipse->semi_minor *= scale;
+    return ellipse;
+  }
+  return std::nullopt;
+}
+
+std::optional<EllipseFit> fitEllipse(std::span<const Point2> points) {
+  const auto start = fitEllipseDirect(points);
+  if (!start) return std::nullopt;
+  EllipseFit fit;
+  fit.ellipse = toEllipse(refineGeometric(toParameters(*start), points));
+  const Vector5 p = toParameters(fit.ellipse);
+  Matrix5 normal = Matrix5::Zero();
+  std::vector<PointResidual> residuals;
+  residuals.reserve(points.size());
+  double sum_squares = 0;
+  for (const Point2& point : points) {
+    residuals.push_back(pointResidual(p, point));
+    normal += residuals.back().gradient * residuals.back().gradient.transpose();
+    fit.residuals.push_back(residuals.back().distance);
+    fit.normals.push_back({residuals.back().normal.x(), residuals.back().normal.y()});
+    sum_squares += residuals.back().distance * residuals.back().distance;
+  }
+  fit.rms_residual = std::sqrt(sum_squares / static_cast<double>(points.size()));
+  // d theta / d point_i = -(J^T J)^+ J_i^T n_i^T; keep the rows of the two semi-axes.
+  const Matrix5 inverse = pseudoInverse(normal);
+  for (const PointResidual& r : residuals) {
+    const double da = -inverse.row(kA).dot(r.gradient), db = -inverse.row(kB).dot(r.gradient);
+    fit.axis_sensitivity.push_back(
+        {da * r.normal.x(), da * r.normal.y(), db * r.normal.x(), db * r.normal.y()});
+  }
+  return fit;
+}
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,275 @@
+#include "pipeline/glare_ellipse.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <tuple>
+
+#include "pipeline/iso_contour.h"
+
+namespace glarecam::pipeline {
+namespace {
+
+using calibration::AngularPlane;
+using calibration::PixelPoint;
+using calibration::Ray;
+
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+// Fewer observed contour points than this cannot tell an ellipse's five parameters from noise.
+constexpr std::size_t kMinContourPoints = 8;
+// Re-centring the angular plane on the fitted centre converges in two or three rounds; stop
+// when the centre moves less than this (far below any axis's uncertainty).
+constexpr int kMaxRecentring = 6;
+constexpr double kRecentredDeg = 1e-7;
+// Step along a contour point's pixel segment for the numerical d(plane position)/d(position).
+constexpr double kDerivativeStepPx = 1e-3;
+// A camera model whose undistortion does not map back onto the pixel within this is not
+// invertible there (a distortion polynomial that folds over).
+constexpr double kMaxRoundTripPx = 0.01;
+constexpr int kSolidAngleSteps = 720;
+
+std::optional<PixelIndex> seedPixel(const FloatImage& image, const LuminancePeak& peak,
+                                    double level) {
+  const int cx = std::clamp(static_cast<int>(std::lround(peak.x_px)), 0, image.width() - 1);
+  const int cy = std::clamp(static_cast<int>(std::lround(peak.y_px)), 0, image.height() - 1);
+  std::optional<PixelIndex> best;
+  float best_value = 0;
+  for (int y = std::max(0, cy - 1); y <= std::min(image.height() - 1, cy + 1); ++y) {
+    for (int x = std::max(0, cx - 1); x <= std::min(image.width() - 1, cx + 1); ++x) {
+      const float v = image.at(x, y);
+      if (!(v >= level) || (best && v <= best_value)) continue;
+      best = PixelIndex{x, y};
+      best_value = v;
+    }
+  }
+  return best;
+}
+
+// The observed contour points (not on the image border), their rays, and the rays of the
+// points moved a little along their pixel segments (for derivatives).
+struct ContourRays {
+  std::vector<const ContourPoint*> points;
+  std::vector<PixelPoint> pixels;
+  std::vector<Ray> rays, stepped_rays;
+};
+
+Result<ContourRays> contourRays(const RegionContour& contour,
+                                const calibration::CameraModel& camera) {
+  ContourRays result;
+  std::vector<PixelPoint> stepped;
+  for (const ContourPoint& point : contour.points) {
+    if (point.on_border) continue;
+    result.points.push_back(&point);
+    result.pixels.push_back({point.x_px, point.y_px});
+    stepped.push_back({point.x_px + kDerivativeStepPx * point.step_x,
+                       point.y_px + kDerivativeStepPx * point.step_y});
+  }
+  result.rays = camera.rays(result.pixels);
+  result.stepped_rays = camera.rays(stepped);
+  for (std::size_t i = 0; i < result.rays.size(); ++i) {
+    const PixelPoint back = camera.project(result.rays[i]);
+    const PixelPoint& pixel = result.pixels[i];
+    if (!(std::hypot(back.x - pixel.x, back.y - pixel.y) <= kMaxRoundTripPx)) {
+      return badInput("camera model: the distortion coefficients cannot be inverted at pixel (" +
+                      std::to_string(std::lround(pixel.x)) + ", " +
+                      std::to_string(std::lround(pixel.y)) + "); check the calibration");
+    }
+  }
+  return result;
+}
+
+Point2 toPoint(const calibration::PlanePointDeg& p) { return {p.x_deg, p.y_deg}; }
+calibration::PlanePointDeg toPlanePoint(const Point2& p) { return {p.x, p.y}; }
+
+struct PlaneFit {
+  AngularPlane plane;
+  std::vector<Point2> points;
+  EllipseFit fit;
+};
+
+std::optional<EllipseFit> fitInPlane(const AngularPlane& plane, const std::vector<Ray>& rays,
+                                     std::vector<Point2>& points) {
+  points.clear();
+  for (const Ray& ray : rays) points.push_back(toPoint(plane.toPlane(ray)));
+  return fitEllipse(points);
+}
+
+// Fit in the plane around the contour's mean direction, then re-centre on the fitted centre
+// (the plane is exact only about its own origin) until the centre stays put.
+std::optional<PlaneFit> fitRecentred(const ContourRays& contour,
+                                     const calibration::CameraModel& camera) {
+  PixelPoint mean;
+  for (const PixelPoint& p : contour.pixels) mean = {mean.x + p.x, mean.y + p.y};
+  const auto n = static_cast<double>(contour.pixels.size());
+  PlaneFit result{AngularPlane(camera.ray({mean.x / n, mean.y / n})), {}, {}};
+  for (int round = 0; round < kMaxRecentring; ++round) {
+    auto fit = fitInPlane(result.plane, contour.rays, result.points);
+    if (!fit) return std::nullopt;
+    result.fit = std::move(*fit);
+    const Ray centre = result.plane.toRay(toPlanePoint(result.fit.ellipse.centre));
+    const bool settled =
+        calibration::angleBetweenDeg(centre, result.plane.centre()) < kRecentredDeg;
+    if (settled) break;
+    result.plane = AngularPlane(centre);
+  }
+  return result;
+}
+
+double distancePx(const PixelPoint& a, const PixelPoint& b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
+
+// Axes as angles between the rays through their end points, orientation, and pixel sizes.
+void measureAxes(const PlaneFit& fitted, const calibration::CameraModel& camera,
+                 GlareEllipse& out) {
+  const Ellipse& e = fitted.fit.ellipse;
+  const auto end = [&](double t) { return fitted.plane.toRay(toPlanePoint(e.pointAt(t))); };
+  const Ray major_a = end(0), major_b = end(std::numbers::pi);
+  const Ray minor_a = end(std::numbers::pi / 2), minor_b = end(-std::numbers::pi / 2);
+  out.major_deg = calibration::angleBetweenDeg(major_a, major_b);
+  out.minor_deg = calibration::angleBetweenDeg(minor_a, minor_b);
+  out.orientation_deg = e.angle_rad * kDegPerRad;
+  const bool major_is_vertical = std::abs(out.orientation_deg) >= 45.0;
+  out.vertical_deg = major_is_vertical ? out.major_deg : out.minor_deg;
+  out.horizontal_deg = major_is_vertical ? out.minor_deg : out.major_deg;
+  const Ray centre = fitted.plane.toRay(toPlanePoint(e.centre));
+  out.centre_px = camera.project(centre);
+  out.centre_direction = calibration::directionFromAxis(centre);
+  out.semi_major_px = distancePx(camera.project(major_a), camera.project(major_b)) / 2;
+  out.semi_minor_px = distancePx(camera.project(minor_a), camera.project(minor_b)) / 2;
+  out.solid_angle_sr = ellipseSolidAngleSr(e.semi_major, e.semi_minor);
+  out.fit_rms_deg = fitted.fit.rms_residual;
+  const double px_per_deg = (out.semi_major_px + out.semi_minor_px) / (e.semi_major + e.semi_minor);
+  out.fit_rms_px = out.fit_rms_deg * px_per_deg;
+  out.plane_centre = fitted.plane.centre();
+  out.plane_ellipse = e;
+  out.plane_ellipse.centre = {0, 0};  // within kRecentredDeg of the plane's origin
+}
+
+// Linear propagation of the pixels' and the level's noise into the semi-axes (see header),
+// and the residual the contour's noise alone would leave, to judge the shape by the rest.
+void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
+                          const calibration::MergedImage& merged, double level_sigma_cd_m2,
+                          GlareEllipse& out) {
+  const auto sigma = [&](std::size_t pixel) {
+    return static_cast<double>(merged.relative_uncertainty.data()[pixel]) *
+           merged.luminance_cd_m2.data()[pixel];
+  };
+  std::vector<std::tuple<std::size_t, double, double>> per_pixel;  // pixel, da/dL, db/dL
+  double level_a = 0, level_b = 0, expected_variance = 0;
+  for (std::size_t i = 0; i < contour.points.size(); ++i) {
+    const ContourPoint& point = *contour.points[i];
+    const Point2 stepped = toPoint(fitted.plane.toPlane(contour.stepped_rays[i]));
+    const Point2 dq{(stepped.x - fitted.points[i].x) / kDerivativeStepPx,
+                    (stepped.y - fitted.points[i].y) / kDerivativeStepPx};
+    const auto& s = fitted.fit.axis_sensitivity[i];
+    const double ga = s[0] * dq.x + s[1] * dq.y, gb = s[2] * dq.x + s[3] * dq.y;
+    double t_variance = 0;
+    for (std::size_t k = 0; k < point.pixels.size(); ++k) {
+      if (point.dt_dvalue[k] == 0) continue;
+      per_pixel.emplace_back(point.pixels[k], ga * point.dt_dvalue[k], gb * point.dt_dvalue[k]);
+      t_variance += std::pow(point.dt_dvalue[k] * sigma(point.pixels[k]), 2);
+    }
+    level_a += ga * point.dt_dlevel;
+    level_b += gb * point.dt_dlevel;
+    const double along_normal = fitted.fit.normals[i].x * dq.x + fitted.fit.normals[i].y * dq.y;
+    if (std::isfinite(t_variance)) {
+      expected_variance += along_normal * along_normal * t_variance;
+    } else {
+      ++out.unweighted_contour_pixels;
+    }
+  }
+  std::sort(per_pixel.begin(), per_pixel.end());
+  double var_a = std::pow(level_a * level_sigma_cd_m2, 2);
+  double var_b = std::pow(level_b * level_sigma_cd_m2, 2);
+  for (std::size_t i = 0; i < per_pixel.size();) {
+    const std::size_t pixel = std::get<0>(per_pixel[i]);
+    double sa = 0, sb = 0;
+    for (; i < per_pixel.size() && std::get<0>(per_pixel[i]) == pixel; ++i) {
+      sa += std::get<1>(per_pixel[i]);
+      sb += std::get<2>(per_pixel[i]);
+    }
+    const double s = sigma(pixel);
+    if (!std::isfinite(s)) continue;
+    var_a += s * s * sa * sa;
+    var_b += s * s * sb * sb;
+  }
+  const bool major_is_vertical = out.vertical_deg == out.major_deg;
+  const double major_sigma = 2 * std::sqrt(var_a), minor_sigma = 2 * std::sqrt(var_b);
+  out.vertical_uncertainty_deg = major_is_vertical ? major_sigma : minor_sigma;
+  out.horizontal_uncertainty_deg = major_is_vertical ? minor_sigma : major_sigma;
+  const double rms = fitted.fit.rms_residual;
+  const double noise_ms = expected_variance / static_cast<double>(contour.points.size());
+  out.shape_residual_fraction =
+      std::sqrt(std::max(0.0, rms * rms - noise_ms)) / fitted.fit.ellipse.semi_minor;
+}
+
+}  // namespace
+
+const char* toString(EllipseStatus status) {
+  switch (status) {
+    case EllipseStatus::kMeasured:
+      return "measured";
+    case EllipseStatus::kBelowLevel:
+      return "below_level";
+    case EllipseStatus::kPeakIsBound:
+      return "peak_is_bound";
+    case EllipseStatus::kTooSmall:
+      return "too_small";
+    case EllipseStatus::kNotAnEllipse:
+      return "not_an_ellipse";
+  }
+  return "unknown";
+}
+
+double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg) {
+  // Omega = integral over psi of (1 - cos R(psi)), R the ellipse's radius in direction psi: the
+  // plane's radius is the angle from its centre. Periodic trapezoid rule: spectrally accurate.
+  const double a = semi_major_deg / kDegPerRad, b = semi_minor_deg / kDegPerRad;
+  double sum = 0;
+  for (int i = 0; i < kSolidAngleSteps; ++i) {
+    const double psi = 2 * std::numbers::pi * i / kSolidAngleSteps;
+    const double radius = a * b / std::hypot(b * std::cos(psi), a * std::sin(psi));
+    sum += 1 - std::cos(radius);
+  }
+  return sum * 2 * std::numbers::pi / kSolidAngleSteps;
+}
+
+Result<EllipseMeasurement> measureGlareEllipse(const calibration::MergedImage& merged,
+                                               const calibration::CameraModel& camera,
+                                               const LuminancePeak& peak, double level_cd_m2,
+                                               double level_relative_uncertainty) {
+  EllipseMeasurement measurement{level_cd_m2, EllipseStatus::kBelowLevel, std::nullopt};
+  const FloatImage& image = merged.luminance_cd_m2;
+  if (image.empty() || !(peak.value_cd_m2 >= level_cd_m2) || !(level_cd_m2 > 0)) return measurement;
+  const auto seed = seedPixel(image, peak, level_cd_m2);
+  measurement.status = EllipseStatus::kTooSmall;
+  if (!seed) return measurement;
+  const auto contour = traceRegionContour(image, level_cd_m2, *seed);
+  if (!contour) return measurement;
+  ContourRays rays;
+  GLARECAM_ASSIGN(rays, contourRays(*contour, camera));
+  if (rays.points.size() < kMinContourPoints) return measurement;
+  const auto fitted = fitRecentred(rays, camera);
+  measurement.status = EllipseStatus::kNotAnEllipse;
+  if (!fitted) return measurement;
+
+  GlareEllipse ellipse;
+  ellipse.level_cd_m2 = level_cd_m2;
+  measureAxes(*fitted, camera, ellipse);
+  propagateUncertainty(*fitted, rays, merged, level_relative_uncertainty * level_cd_m2, ellipse);
+  ellipse.ellipticity_ok = ellipse.shape_residual_fraction <= kMaxEllipticalResidualFraction;
+  ellipse.truncated = contour->touches_border;
+  // The measured region counts even when it is smaller than the noise-speck size.
+  ellipse.regions = countRegions(image, level_cd_m2, kMinRegionPixels) +
+                    (contour->region_pixels < kMinRegionPixels ? 1 : 0);
+  ellipse.contour_points = rays.points.size();
+  ellipse.region_pixels = contour->region_pixels;
+  for (const ContourPoint& p : contour->points) ellipse.contour_px.push_back({p.x_px, p.y_px});
+  measurement.status = EllipseStatus::kMeasured;
+  measurement.ellipse = std::move(ellipse);
+  return measurement;
+}
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,87 @@
+// The glare ellipse at one luminance level (docs/method.md, "The glare ellipse"): the
+// sub-pixel iso-contour (iso_contour.h) of the region holding the luminance maximum, its points
+// turned into viewing rays through the camera model, an ellipse fitted (ellipse_fit.h) in the
+// angular plane around the region's centre direction (calibration/angular_plane.h, re-centred
+// on the fitted centre until it stays put), and each full axis measured as the angle between
+// the rays through its two end points. So neither lens distortion nor an off-centre spot biases
+// the axes. The vertical axis is the one closer to the image vertical (at exactly 45° the
+// major one); orientation is the major axis's angle from the image horizontal toward image +y
+// (down), in (-90°, 90°], like OpenCV's RotatedRect.
+//
+// Uncertainty: each contour point depends on two pixels and on the level (iso_contour.h); the
+// fit says how each point moves the semi-axes (ellipse_fit.h). Summing per pixel, then over
+// pixels with their merged standard uncertainty (hdr_merge.h), and adding the level's own
+// uncertainty (FWHM: the peak's), gives the axes' standard uncertainties by linear propagation.
+// Pure function of the merged image, the camera model and the peak; no I/O.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "calibration/angular_plane.h"
+#include "calibration/camera_model.h"
+#include "calibration/hdr_merge.h"
+#include "core/error.h"
+#include "pipeline/ellipse_fit.h"
+#include "pipeline/luminance_peak.h"
+
+namespace glarecam::pipeline {
+
+// Regions smaller than this are not counted as separate glare regions: a hot pixel or a noise
+// speck just above the level (a real glare spot covers far more pixels at any usable scale).
+inline constexpr std::size_t kMinRegionPixels = 9;
+// The fit's shape residual (noise removed) above this fraction of the semi-minor axis flags a
+// region as not elliptical: a square region gives about 11 %, a noisy true ellipse well under 1 %.
+inline constexpr double kMaxEllipticalResidualFraction = 0.05;
+
+struct GlareEllipse {
+  double level_cd_m2 = 0;
+  double vertical_deg = 0, horizontal_deg = 0;  // full axes
+  double major_deg = 0, minor_deg = 0;
+  double orientation_deg = 0;
+  calibration::PixelPoint centre_px;
+  calibration::DirectionDeg centre_direction;
+  double semi_major_px = 0, semi_minor_px = 0;
+  double solid_angle_sr = 0;
+  double fit_rms_deg = 0, fit_rms_px = 0;
+  double shape_residual_fraction = 0;  // noise-corrected fit RMS / semi-minor axis
+  bool ellipticity_ok = false;
+  bool truncated = false;  // the region touches the image border: fitted on its visible part
+  int regions = 0;         // separate regions at or above the level (kMinRegionPixels or more)
+  std::size_t contour_points = 0, region_pixels = 0;
+  double vertical_uncertainty_deg = 0, horizontal_uncertainty_deg = 0;
+  std::size_t unweighted_contour_pixels = 0;  // bound pixels on the contour (no noise figure)
+  // Geometry for pictures: the contour in pixels, and the fitted ellipse (degrees) in the
+  // angular plane around `plane_centre`.
+  std::vector<calibration::PixelPoint> contour_px;
+  calibration::Ray plane_centre;
+  Ellipse plane_ellipse;
+};
+
+enum class EllipseStatus {
+  kMeasured,
+  kBelowLevel,    // the maximum does not reach the level
+  kPeakIsBound,   // the maximum is only a bound, so half of it is no FWHM level
+  kTooSmall,      // too few contour points to fit
+  kNotAnEllipse,  // the contour determines no ellipse
+};
+const char* toString(EllipseStatus status);
+
+struct EllipseMeasurement {
+  double level_cd_m2 = 0;
+  EllipseStatus status = EllipseStatus::kBelowLevel;
+  std::optional<GlareEllipse> ellipse;  // when measured
+};
+
+// The ellipse of the region at `level_cd_m2` that holds `peak`. `level_relative_uncertainty`
+// is the level's own standard uncertainty relative to it (0 for a fixed threshold). Fails only
+// when the camera model cannot be inverted where the contour lies.
+Result<EllipseMeasurement> measureGlareEllipse(const calibration::MergedImage& merged,
+                                               const calibration::CameraModel& camera,
+                                               const LuminancePeak& peak, double level_cd_m2,
+                                               double level_relative_uncertainty = 0);
+
+// Solid angle (sr) of an ellipse in an angular plane, centred on the plane's origin.
+double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg);
+
+}  // namespace glarecam::pipeline

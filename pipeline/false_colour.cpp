@@ -245,6 +245,13 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
   cairo_set_source_rgb(cr.get(), 0.12, 0.12, 0.12);
   cairo_paint(cr.get());
   paintImage(surface.get(), merged, scale);
+  if (options.overlay) {
+    cairo_save(cr.get());
+    cairo_rectangle(cr.get(), 0, 0, width, height);
+    cairo_clip(cr.get());
+    options.overlay(cr.get(), font_px);
+    cairo_restore(cr.get());
+  }
   const PanelLayout layout{font_px * kBarMarginEm, canvas_height - font_px * kBarMarginEm,
                            width + font_px, font_px * kBarWidthEm, font_px};
   paintColourBar(cr.get(), layout, scale, options, hasSaturated(merged));

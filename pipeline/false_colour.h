@@ -1,10 +1,12 @@
 // False-colour picture of a luminance image for people: log-scaled luminance in the Turbo
 // colour map, with a labelled colour bar in cd/m² to the right, the glare limit marked on the
-// bar, saturated pixels (lower bounds) in white and under-exposed ones in black.
+// bar, saturated pixels (lower bounds) in white and under-exposed ones in black, and an
+// optional overlay (the glare ellipses of glare_picture.h) drawn over the image.
 // Pure function: returns an 8-bit RGB raster; writing it is the caller's business.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,7 +14,13 @@
 #include "calibration/hdr_merge.h"
 #include "core/error.h"
 
+typedef struct _cairo cairo_t;  // as <cairo.h> declares it
+
 namespace glarecam::pipeline {
+
+// A drawing over the image part of the picture (glare_picture.h), clipped to it: gets the
+// Cairo context and the label font size in pixels.
+using PictureOverlay = std::function<void(cairo_t* cairo, double font_px)>;
 
 struct FalseColourOptions {
   std::optional<double>
@@ -20,6 +28,7 @@ struct FalseColourOptions {
   std::optional<double> max_cd_m2;    // top of the scale; default: the image maximum
   std::optional<double> limit_cd_m2;  // marked on the colour bar when given
   std::string title;                  // drawn above the colour bar (e.g. "α 40°")
+  PictureOverlay overlay;             // optional
 };
 
 struct RgbImage {

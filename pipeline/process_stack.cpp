@@ -13,6 +13,8 @@
 #include "core/progress.h"
 #include "core/stack_io.h"
 #include "pipeline/false_colour.h"
+#include "pipeline/glare_analysis.h"
+#include "pipeline/glare_picture.h"
 #include "pipeline/limit_curve.h"
 #include "pipeline/luminance_stats.h"
 #include "pipeline/result.h"
@@ -22,7 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kProcessSteps = 6;
+constexpr int kProcessSteps = 7;
 constexpr const char* kResultFileName = "result.json";
 
 Status writeQualityExr(const fs::path& path, const calibration::MergedImage& merged) {
@@ -161,10 +163,30 @@ Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
   return {};
 }
 
+// --threshold, else the α curve, else none.
+std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& options) {
+  if (options.threshold_cd_m2) return options.threshold_cd_m2;
+  if (!stack.manifest.alpha_deg) return std::nullopt;
+  return glareLimitCdM2(*stack.manifest.alpha_deg);
+}
+
 }  // namespace
+
+Status ProcessOptions::validate() const {
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
+  if (threshold_cd_m2 && !positive(*threshold_cd_m2))
+    return badInput("process: --threshold must be a positive luminance in cd/m²");
+  if (thresholds_cd_m2.size() > kMaxThresholds)
+    return badInput("process: --thresholds takes at most " + std::to_string(kMaxThresholds) +
+                    " levels");
+  if (!std::all_of(thresholds_cd_m2.begin(), thresholds_cd_m2.end(), positive))
+    return badInput("process: --thresholds must be positive luminances in cd/m²");
+  return {};
+}
 
 Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                     const ProcessOptions& options) {
+  GLARECAM_CHECK(options.validate());
   Progress progress("process " + stack_directory.filename().string(), kProcessSteps,
                     options.show_progress);
   Stack stack;
@@ -175,8 +197,14 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   GLARECAM_ASSIGN(merged, mergeStack(stack, options.threads));
   progress.advance("merged");
 
-  const std::optional<double> limit =
-      stack.manifest.alpha_deg ? glareLimitCdM2(*stack.manifest.alpha_deg) : std::nullopt;
+  const std::optional<double> limit = glareLimit(stack, options);
+  const LuminanceStats stats = luminanceStats(merged);
+  GlareAnalysis glare;
+  const calibration::CameraModel camera(stack.calibration.intrinsics);
+  GLARECAM_ASSIGN(
+      glare, analyseGlare(merged, camera, stats.max,
+                          {.limit_cd_m2 = limit, .thresholds_cd_m2 = options.thresholds_cd_m2}));
+  progress.advance("analysed");
   ProcessSummary summary;
   summary.output_directory = options.output_directory.value_or(stack_directory / "result");
   summary.result = makeResult({.stack_id = stackId(stack),
@@ -185,11 +213,14 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                .height = merged.luminance_cd_m2.height(),
                                .calibration_origin = stack.calibration_origin,
                                .noise_model_assumed = !stack.calibration.noise,
-                               .stats = luminanceStats(merged),
-                               .limit_cd_m2 = limit});
+                               .stats = stats,
+                               .limit_cd_m2 = limit,
+                               .constant_limit = options.threshold_cd_m2.has_value(),
+                               .glare = glare});
   FalseColourOptions picture_options;
   picture_options.limit_cd_m2 = limit;
   picture_options.title = pictureTitle(stack.manifest.alpha_deg);
+  picture_options.overlay = glareOverlay(glare, camera, stats.max);
   GLARECAM_CHECK(
       writeOutputs(summary.output_directory, merged, summary, picture_options, progress));
   return summary;

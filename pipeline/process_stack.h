@@ -2,13 +2,15 @@
 // Reads the stack (stack_io.h), merges it (hdr_merge.h), summarises it, and writes into the
 // output directory (default STACK/result/): luminance.exr (float cd/m², channel Y),
 // quality.exr (relative uncertainty, valid frame count, bound flags), luminance.png (false
-// colour) and result.json (glarecam.result/1), each file atomically, result.json last.
+// colour with the glare ellipses drawn over it) and result.json (glarecam.result/1, with the
+// limit, FWHM and threshold ellipses of glare_analysis.h), each file atomically, result.json last.
 #pragma once
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -17,9 +19,15 @@ namespace glarecam::pipeline {
 struct ProcessOptions {
   std::optional<std::filesystem::path> calibration_file;  // overrides the stack's calibration
   std::optional<std::filesystem::path> output_directory;  // default: STACK/result
-  unsigned threads = 0;                                   // 0: all cores
+  // A constant glare limit instead of the α curve (the method's 30 000 cd/m² mode).
+  std::optional<double> threshold_cd_m2;
+  std::vector<double> thresholds_cd_m2;  // extra ellipses, one per level (threshold sweep)
+  unsigned threads = 0;                  // 0: all cores
   bool show_progress = true;
+  Status validate() const;  // thresholds positive and finite, at most kMaxThresholds
 };
+
+inline constexpr std::size_t kMaxThresholds = 32;
 
 struct ProcessSummary {
   std::filesystem::path output_directory;

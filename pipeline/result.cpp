@@ -19,7 +19,38 @@ nlohmann::json glareVerdict(const LuminancePeak& max, const std::optional<double
   return reaches;
 }
 
+nlohmann::json pair(double a, double b) { return nlohmann::json::array({a, b}); }
+
 }  // namespace
+
+nlohmann::json ellipseJson(const EllipseMeasurement& measurement) {
+  if (!measurement.ellipse) return nullptr;
+  const GlareEllipse& e = *measurement.ellipse;
+  return {
+      {"vertical_deg", e.vertical_deg},
+      {"horizontal_deg", e.horizontal_deg},
+      {"major_deg", e.major_deg},
+      {"minor_deg", e.minor_deg},
+      {"orientation_deg", e.orientation_deg},
+      {"center_px", pair(e.centre_px.x, e.centre_px.y)},
+      {"center_direction_deg",
+       pair(e.centre_direction.horizontal_deg, e.centre_direction.vertical_deg)},
+      {"semi_axes_px", pair(e.semi_major_px, e.semi_minor_px)},
+      {"solid_angle_sr", e.solid_angle_sr},
+      {"fit_rms_px", e.fit_rms_px},
+      {"fit_rms_deg", e.fit_rms_deg},
+      {"shape_residual", e.shape_residual_fraction},
+      {"ellipticity_ok", e.ellipticity_ok},
+      {"truncated", e.truncated},
+      {"regions", e.regions},
+      {"contour_points", e.contour_points},
+      {"region_pixels", e.region_pixels},
+      {"uncertainty",
+       {{"vertical_deg", e.vertical_uncertainty_deg},
+        {"horizontal_deg", e.horizontal_uncertainty_deg},
+        {"unweighted_contour_points", e.unweighted_contour_pixels}}},
+  };
+}
 
 nlohmann::json makeResult(const ResultInputs& in) {
   using nlohmann::json;
@@ -41,8 +72,21 @@ nlohmann::json makeResult(const ResultInputs& in) {
                          {"saturated_pixels", s.saturated_pixels},
                          {"dark_pixels", s.dark_pixels},
                          {"median_relative_uncertainty", s.median_relative_uncertainty}};
-  result["limit"] = {{"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
-                     {"mode", "alpha_curve"}};
+  const auto& limit = in.glare.limit;
+  result["limit"] = {
+      {"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
+      {"mode", in.constant_limit ? "constant" : (in.limit_cd_m2 ? "alpha_curve" : "none")},
+      {"status", limit ? toString(limit->status) : "no_limit"},
+      {"ellipse", limit ? ellipseJson(*limit) : json(nullptr)}};
+  result["fwhm"] = {{"level_cd_m2", in.glare.fwhm.level_cd_m2},
+                    {"status", toString(in.glare.fwhm.status)},
+                    {"ellipse", ellipseJson(in.glare.fwhm)}};
+  result["thresholds"] = json::array();
+  for (const EllipseMeasurement& m : in.glare.thresholds) {
+    result["thresholds"].push_back({{"threshold_cd_m2", m.level_cd_m2},
+                                    {"status", toString(m.status)},
+                                    {"ellipse", ellipseJson(m)}});
+  }
   result["glare"] = glareVerdict(s.max, in.limit_cd_m2);
   result["outputs"] = {{"luminance_exr", "luminance.exr"},
                        {"quality_exr", "quality.exr"},

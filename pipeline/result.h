@@ -1,11 +1,13 @@
 // The result document of one processed stack (schema glarecam.result/1, docs/process.md).
-// Built from plain values; later stages (glare ellipse, FWHM) add their own keys.
+// Built from plain values: identity, calibration origin, luminance statistics, the limit and
+// FWHM ellipses (null where there is none, with a status saying why) and the glare verdict.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
+#include "pipeline/glare_analysis.h"
 #include "pipeline/luminance_stats.h"
 
 namespace glarecam::pipeline {
@@ -20,7 +22,11 @@ struct ResultInputs {
   bool noise_model_assumed = false;
   LuminanceStats stats;
   std::optional<double> limit_cd_m2;
+  bool constant_limit = false;  // --threshold rather than the α curve
+  GlareAnalysis glare;
 };
+
+nlohmann::json ellipseJson(const EllipseMeasurement& measurement);
 
 nlohmann::json makeResult(const ResultInputs& inputs);
 

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "apps/glarecam/commands.h"
+#include "apps/glarecam/option_parsing.h"
 #include "pipeline/process_stack.h"
 
 namespace glarecam::apps {
@@ -12,7 +13,7 @@ namespace {
 
 struct ProcessArgs {
   std::string stack;
-  std::string calibration, out;
+  std::string calibration, out, threshold, thresholds;
   bool json = false, no_progress = false;
   unsigned threads = 0;
 };
@@ -22,6 +23,16 @@ Status runProcess(const ProcessArgs& args) {
   if (!args.calibration.empty()) options.calibration_file = args.calibration;
   if (!args.out.empty()) options.output_directory = args.out;
   options.threads = args.threads;
+  if (!args.threshold.empty()) {
+    auto threshold = parseNumberList(args.threshold, "--threshold", 1, 1);
+    if (!threshold) return std::unexpected(threshold.error());
+    options.threshold_cd_m2 = threshold->front();
+  }
+  if (!args.thresholds.empty()) {
+    auto thresholds = parseNumberList(args.thresholds, "--thresholds", 1, pipeline::kMaxThresholds);
+    if (!thresholds) return std::unexpected(thresholds.error());
+    options.thresholds_cd_m2 = *thresholds;
+  }
   options.show_progress = !args.no_progress;
   auto summary = pipeline::processStack(args.stack, options);
   if (!summary) return std::unexpected(summary.error());
@@ -44,6 +55,10 @@ void addProcessCommand(CLI::App& app, Action& action) {
   sub->add_option("--calibration", args->calibration,
                   "calibration JSON file; overrides the stack's");
   sub->add_option("--out", args->out, "output directory (default STACK/result)");
+  sub->add_option("--threshold", args->threshold,
+                  "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
+  sub->add_option("--thresholds", args->thresholds,
+                  "extra ellipse levels in cd/m², comma-separated (threshold sweep)");
   sub->add_flag("--json", args->json, "print result.json on stdout");
   sub->add_option("--threads", args->threads, "worker threads (default: all cores)");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");

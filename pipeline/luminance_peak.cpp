@@ -12,10 +12,12 @@ namespace {
 
 using calibration::PixelBound;
 
-// The fit window's half-widths grow from 3 px while the lobe stays on its cap (above
+// The fit window's half-widths grow from 2 px while the lobe stays on its cap (above
 // kCapFraction of the peak) along the row and the column through the peak, up to 15 px: sharp
-// lobes get a small window, wide or elongated ones average many pixels along each axis, which
-// cuts the noise and dilutes the selection bias of having located the peak on noisy data.
+// lobes get a small window (5x5 suits a lobe 4 px wide at half maximum; a wider minimum would
+// reach where the background bends ln L off a quadratic), wide or elongated ones average many
+// pixels along each axis, which cuts the noise and dilutes the selection bias of having
+// located the peak on noisy data.
 constexpr int kMinFitRadius = 2;
 constexpr int kMaxFitRadius = 15;
 constexpr double kCapFraction = 0.8;

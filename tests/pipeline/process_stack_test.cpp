@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/image_io.h"
 #include "pipeline/limit_curve.h"
 #include "support/test_support.h"
@@ -73,6 +75,110 @@ TEST(ProcessStack, BelowTheLimitDoesNotGlare) {
   ASSERT_TRUE(summary) << summary.error().message;
   EXPECT_EQ(summary->result["glare"], false);
   EXPECT_LT(summary->result["luminance"]["max_cd_m2"].get<double>(), 30'000.0);
+  EXPECT_TRUE(summary->result["limit"]["ellipse"].is_null());
+  EXPECT_EQ(summary->result["limit"]["status"], "below_level");
+  EXPECT_EQ(summary->result["fwhm"]["status"], "measured");
+  EXPECT_TRUE(summary->result["fwhm"]["ellipse"].is_object());
+}
+
+// The whole chain (simulated sensor noise, bracketing, merge, analysis) against the scene's
+// truth at three angles of incidence: 16 px per degree, axes 35..130 px.
+TEST(ProcessStack, EllipsesMatchTheTruthThroughTheWholeChain) {
+  for (const double alpha : {5.0, 40.0, 70.0}) {
+    testing::TempDir dir;
+    capture::SimulationOptions options = testing::smallScene(alpha, 320, 256);
+    options.horizontal_fov_deg = 20;
+    options.seed = 7;
+    const auto simulated = testing::writeSmallStack(dir / "s", options);
+    auto summary = processStack(dir / "s", quiet());
+    ASSERT_TRUE(summary) << summary.error().message;
+    const json& result = summary->result;
+    // The tolerances: axes and maximum within 1 % of the truth. The merged image has
+    // about 1 % noise per pixel; each axis averages hundreds of contour points (its scatter is
+    // ~0.1 % at the limit, ~0.3 % at half maximum, which also carries the maximum's error).
+    EXPECT_NEAR(result["luminance"]["max_cd_m2"].get<double>() / simulated.truth.peak_cd_m2, 1,
+                0.01)
+        << alpha;
+    const auto expect_axes = [&](const json& ellipse, const capture::EllipseAxes& truth) {
+      ASSERT_TRUE(ellipse.is_object()) << alpha;
+      EXPECT_NEAR(ellipse["vertical_deg"].get<double>() / truth.vertical_deg, 1, 0.01) << alpha;
+      EXPECT_NEAR(ellipse["horizontal_deg"].get<double>() / truth.horizontal_deg, 1, 0.01) << alpha;
+      EXPECT_GT(ellipse["uncertainty"]["vertical_deg"].get<double>(), 0) << alpha;
+      EXPECT_TRUE(ellipse["ellipticity_ok"].get<bool>()) << alpha;
+      EXPECT_EQ(ellipse["regions"], 1) << alpha;
+    };
+    expect_axes(result["limit"]["ellipse"], *simulated.truth.limit_axes);
+    expect_axes(result["fwhm"]["ellipse"], *simulated.truth.fwhm_axes);
+    EXPECT_EQ(result["glare"], true);
+  }
+}
+
+TEST(ProcessStack, EllipseCarriesEveryDocumentedKey) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  auto summary = processStack(dir / "s", quiet());
+  ASSERT_TRUE(summary) << summary.error().message;
+  const json& ellipse = summary->result["limit"]["ellipse"];
+  for (const char* key :
+       {"vertical_deg", "horizontal_deg", "major_deg", "minor_deg", "orientation_deg", "center_px",
+        "center_direction_deg", "semi_axes_px", "solid_angle_sr", "fit_rms_px", "ellipticity_ok",
+        "regions", "uncertainty", "truncated", "shape_residual", "contour_points"}) {
+    EXPECT_TRUE(ellipse.contains(key)) << key;
+  }
+  EXPECT_TRUE(ellipse["uncertainty"].contains("vertical_deg"));
+  EXPECT_TRUE(ellipse["uncertainty"].contains("horizontal_deg"));
+  EXPECT_EQ(summary->result["limit"]["mode"], "alpha_curve");
+  EXPECT_EQ(summary->result["limit"]["status"], "measured");
+  EXPECT_TRUE(summary->result["thresholds"].empty());
+}
+
+TEST(ProcessStack, ConstantThresholdReplacesTheAlphaCurve) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s", testing::smallScene(70.0));
+  ProcessOptions options = quiet();
+  auto curve = processStack(dir / "s", options);
+  ASSERT_TRUE(curve) << curve.error().message;
+  options.threshold_cd_m2 = kConstantGlareLimitCdM2;
+  auto constant = processStack(dir / "s", options);
+  ASSERT_TRUE(constant) << constant.error().message;
+  EXPECT_EQ(constant->result["limit"]["mode"], "constant");
+  EXPECT_EQ(constant->result["limit"]["limit_cd_m2"], 30'000.0);
+  // At α 70 the curve's limit is 100 000: the constant 30 000 contour is wider.
+  EXPECT_GT(constant->result["limit"]["ellipse"]["vertical_deg"].get<double>(),
+            curve->result["limit"]["ellipse"]["vertical_deg"].get<double>());
+}
+
+TEST(ProcessStack, ThresholdSweepReportsOneEllipsePerLevel) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s", testing::smallScene(60.0));
+  ProcessOptions options = quiet();
+  options.thresholds_cd_m2 = {50'000, 200'000, 1e12};
+  auto summary = processStack(dir / "s", options);
+  ASSERT_TRUE(summary) << summary.error().message;
+  const json& sweep = summary->result["thresholds"];
+  ASSERT_EQ(sweep.size(), 3u);
+  EXPECT_EQ(sweep[0]["threshold_cd_m2"], 50'000.0);
+  EXPECT_GT(sweep[0]["ellipse"]["major_deg"].get<double>(),
+            sweep[1]["ellipse"]["major_deg"].get<double>());
+  EXPECT_EQ(sweep[2]["status"], "below_level");
+  EXPECT_TRUE(sweep[2]["ellipse"].is_null());
+}
+
+TEST(ProcessStack, InvalidThresholdsAreBadInput) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  ProcessOptions options = quiet();
+  for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    options.threshold_cd_m2 = bad;
+    auto summary = processStack(dir / "s", options);
+    ASSERT_FALSE(summary);
+    EXPECT_EQ(summary.error().code, ErrorCode::kBadInput);
+  }
+  options.threshold_cd_m2.reset();
+  options.thresholds_cd_m2 = {1000, -5};
+  EXPECT_FALSE(processStack(dir / "s", options));
+  options.thresholds_cd_m2.assign(kMaxThresholds + 1, 1000.0);
+  EXPECT_FALSE(processStack(dir / "s", options));
 }
 
 TEST(ProcessStack, SaturatedPeakIsReportedAsALowerBound) {
@@ -88,6 +194,9 @@ TEST(ProcessStack, SaturatedPeakIsReportedAsALowerBound) {
   EXPECT_GT(summary->result["luminance"]["saturated_pixels"].get<int>(), 0);
   EXPECT_TRUE(summary->result["luminance"]["max_is_lower_bound"].get<bool>());
   EXPECT_LT(summary->result["luminance"]["max_cd_m2"].get<double>(), simulated.truth.peak_cd_m2);
+  // Half of a lower bound is no FWHM level.
+  EXPECT_EQ(summary->result["fwhm"]["status"], "peak_is_bound");
+  EXPECT_TRUE(summary->result["fwhm"]["ellipse"].is_null());
 }
 
 TEST(ProcessStack, EightBitFramesSaturateAtTheirMaximum) {

@@ -70,6 +70,25 @@ check "process --json" 0 "$GLARECAM" process --no-progress --json --out "$WORK/r
 expect "--json prints the result" grep -q '"schema": "glarecam.result/1"' "$WORK/out"
 expect "--json result has glare" grep -q '"glare": true' "$WORK/out"
 expect "--out is honoured" test -s "$WORK/r2/result.json"
+expect "--json has the limit ellipse" grep -q '"vertical_deg"' "$WORK/out"
+expect "--json has both ellipses with uncertainties" \
+  test "$(grep -c '"uncertainty": {' "$WORK/out")" -eq 2
+
+# Glare-limit options.
+check "--threshold" 0 "$GLARECAM" process --no-progress --json --out "$WORK/r3" --threshold 30000 "$WORK/s"
+expect "--threshold is the constant mode" grep -q '"mode": "constant"' "$WORK/out"
+check "--thresholds" 0 "$GLARECAM" process --no-progress --json --out "$WORK/r3" --thresholds 5e4,2e5 "$WORK/s"
+expect "--thresholds gives one ellipse each" \
+  test "$(grep -c '"threshold_cd_m2"' "$WORK/out")" -eq 2 -a "$(grep -c '"uncertainty": {' "$WORK/out")" -eq 4
+for bad in abc -5 0 nan 1e400 "30000,40000"; do
+  check "bad --threshold $bad" 2 "$GLARECAM" process --no-progress --out "$WORK/r4" --threshold="$bad" "$WORK/s"
+  expect "bad --threshold $bad is one line naming the option" one_line_naming "--threshold"
+done
+for bad in "1e5," "1e5,,2e5" "1e5,x" "-1"; do
+  check "bad --thresholds $bad" 2 "$GLARECAM" process --no-progress --out "$WORK/r4" --thresholds="$bad" "$WORK/s"
+  expect "bad --thresholds $bad is one line" one_line_naming "--thresholds"
+done
+expect "nothing written on bad thresholds" test ! -e "$WORK/r4"
 
 # Calibration override from the command line.
 check "process with missing --calibration" 2 "$GLARECAM" process "$WORK/s" --calibration "$WORK/none.json"

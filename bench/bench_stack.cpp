@@ -77,6 +77,24 @@ const Result<BenchStack>& benchStack() {
   return stack;
 }
 
+const BenchStack* benchStackOrSkip(benchmark::State& state) {
+  const Result<BenchStack>& stack = benchStack();
+  if (!stack) {
+    state.SkipWithError(stack.error().message.c_str());
+    return nullptr;
+  }
+  return &*stack;
+}
+
+const Result<calibration::MergedImage>& benchMergedImage() {
+  static const Result<calibration::MergedImage> merged = []() -> Result<calibration::MergedImage> {
+    const Result<BenchStack>& stack = benchStack();
+    if (!stack) return std::unexpected(stack.error());
+    return calibration::merge(stack->mergeInput());
+  }();
+  return merged;
+}
+
 const std::filesystem::path& scratchDirectory() {
   static const ScratchDirectory directory;
   return directory.path();

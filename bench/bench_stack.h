@@ -47,6 +47,12 @@ void setStackCounters(benchmark::State& state, const BenchStack& stack);
 // The cached stack; an error when the simulation failed (reported by every benchmark).
 const Result<BenchStack>& benchStack();
 
+// The cached stack, or nullptr after reporting its error on `state` (the benchmark then skips).
+const BenchStack* benchStackOrSkip(benchmark::State& state);
+
+// The cached stack merged once (all cores), as processStack merges it.
+const Result<calibration::MergedImage>& benchMergedImage();
+
 // The cached stack written once as a recorded stack directory (PNG frames + stack.json).
 const Result<std::filesystem::path>& benchStackDirectory();
 

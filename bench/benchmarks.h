@@ -11,10 +11,13 @@ namespace glarecam::bench {
 inline constexpr const char* kMergeGlarecam = "merge/glarecam";
 inline constexpr const char* kMergeMemoryFloor = "merge/memory_floor";
 inline constexpr const char* kMergeOpenCvDebevec = "merge/opencv_debevec";
+inline constexpr const char* kAnalysisGlarecam = "analysis/glarecam";
+inline constexpr const char* kAnalysisOpenCvFitEllipse = "analysis/opencv_fitellipse";
 inline constexpr const char* kProcessEndToEnd = "process/end_to_end";
 
 // Each returns the names it registered.
-std::vector<std::string> registerMergeBenchmarks();    // merge/*
-std::vector<std::string> registerProcessBenchmarks();  // process/end_to_end
+std::vector<std::string> registerMergeBenchmarks();     // merge/*
+std::vector<std::string> registerAnalysisBenchmarks();  // analysis/*
+std::vector<std::string> registerProcessBenchmarks();   // process/end_to_end
 
 }  // namespace glarecam::bench

@@ -1,8 +1,10 @@
 // glarecam-bench: runs the benchmarks (benchmarks.h) with Google Benchmark's usual flags, then
-// prints the two ratios the merge kernel is held to, from the real times of this same run:
-//   merge/opencv_debevec ÷ merge/glarecam   (target >= 40x: far faster than the off-the-shelf
-//   merge) merge/glarecam ÷ merge/memory_floor     (target <= 2x: close to what memory bandwidth
-//   allows)
+// prints the ratios the kernels are held to, from the real times of this same run:
+//   merge/opencv_debevec ÷ merge/glarecam        target >= 40x: far faster than the usual merge
+//   merge/glarecam ÷ merge/memory_floor          target <= 2x: close to memory bandwidth
+//   analysis/glarecam ÷ merge/glarecam           target <= 3x: analysis no bottleneck
+//   analysis/glarecam ÷ analysis/opencv_fitellipse   (no target: the price of sub-pixel
+//                                                      contours, angles and uncertainties)
 // A ratio is printed only when both of its benchmarks ran (--benchmark_filter may skip some).
 // The console report is always used (it records the times); for machine-readable results add
 // --benchmark_out=FILE --benchmark_out_format=json.
@@ -26,6 +28,7 @@ namespace {
 
 constexpr double kDebevecTargetRatio = 40.0;
 constexpr double kMemoryFloorTargetRatio = 2.0;
+constexpr double kAnalysisTargetRatio = 3.0;
 // Room after a name for an aggregate's suffix ("_median", "_stddev") with --benchmark_repetitions.
 constexpr std::size_t kAggregateSuffixWidth = 7;
 
@@ -73,7 +76,7 @@ class RecordingReporter : public benchmark::ConsoleReporter {
   std::map<std::string, Timing> timings_;
 };
 
-enum class Target { kAtLeast, kAtMost };
+enum class Target { kAtLeast, kAtMost, kNone };
 
 // One line "ratio A ÷ B = N.Nx (target >= Tx)", when both benchmarks ran.
 void printRatio(const RecordingReporter& reporter, const std::string& numerator,
@@ -81,10 +84,14 @@ void printRatio(const RecordingReporter& reporter, const std::string& numerator,
   const std::optional<double> top = reporter.realTimeSeconds(numerator);
   const std::optional<double> bottom = reporter.realTimeSeconds(denominator);
   if (!top || !bottom || !(*bottom > 0)) return;
+  char target_text[64] = "";
+  if (target != Target::kNone) {
+    std::snprintf(target_text, sizeof target_text, " (target %s %gx)",
+                  target == Target::kAtLeast ? ">=" : "<=", target_ratio);
+  }
   char line[256];
-  std::snprintf(line, sizeof line, "ratio %s \u00f7 %s = %.*fx (target %s %gx)\n",
-                numerator.c_str(), denominator.c_str(), decimals, *top / *bottom,
-                target == Target::kAtLeast ? ">=" : "<=", target_ratio);
+  std::snprintf(line, sizeof line, "ratio %s \u00f7 %s = %.*fx%s\n", numerator.c_str(),
+                denominator.c_str(), decimals, *top / *bottom, target_text);
   reporter.GetOutputStream() << line << std::flush;
 }
 
@@ -96,6 +103,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   std::vector<std::string> names = registerMergeBenchmarks();
+  for (std::string& name : registerAnalysisBenchmarks()) names.push_back(std::move(name));
   for (std::string& name : registerProcessBenchmarks()) names.push_back(std::move(name));
   std::size_t longest_name = 0;
   for (const std::string& name : names) longest_name = std::max(longest_name, name.size());
@@ -111,6 +119,8 @@ int main(int argc, char** argv) {
              kDebevecTargetRatio);
   printRatio(reporter, kMergeGlarecam, kMergeMemoryFloor, 2, Target::kAtMost,
              kMemoryFloorTargetRatio);
+  printRatio(reporter, kAnalysisGlarecam, kMergeGlarecam, 2, Target::kAtMost, kAnalysisTargetRatio);
+  printRatio(reporter, kAnalysisGlarecam, kAnalysisOpenCvFitEllipse, 2, Target::kNone, 0);
   benchmark::Shutdown();
   return 0;
 }

@@ -25,18 +25,8 @@ constexpr double kMicrosecondsPerSecond = 1.0e6;
 // cv::MergeDebevec takes seconds per iteration on a 5 MP stack: two are enough.
 constexpr benchmark::IterationCount kDebevecIterations = 2;
 
-// Returns the cached stack, or reports its error on `state` and returns nullptr.
-const BenchStack* stackOrSkip(benchmark::State& state) {
-  const Result<BenchStack>& stack = benchStack();
-  if (!stack) {
-    state.SkipWithError(stack.error().message.c_str());
-    return nullptr;
-  }
-  return &*stack;
-}
-
 void mergeGlarecam(benchmark::State& state) {
-  const BenchStack* stack = stackOrSkip(state);
+  const BenchStack* stack = benchStackOrSkip(state);
   if (!stack) return;
   const calibration::MergeInput input = stack->mergeInput();
   const calibration::MergeOptions options;  // threads = 0: all cores
@@ -77,7 +67,7 @@ void sumFrames(const std::vector<RawFrame>& frames, FloatImage& sum, unsigned th
 }
 
 void mergeMemoryFloor(benchmark::State& state) {
-  const BenchStack* stack = stackOrSkip(state);
+  const BenchStack* stack = benchStackOrSkip(state);
   if (!stack) return;
   const std::vector<RawFrame>& frames = stack->simulated.frames;
   FloatImage sum(frames.front().width(), frames.front().height());
@@ -118,7 +108,7 @@ DebevecInput makeDebevecInput(const BenchStack& stack) {
 }
 
 void mergeOpenCvDebevec(benchmark::State& state) {
-  const BenchStack* stack = stackOrSkip(state);
+  const BenchStack* stack = benchStackOrSkip(state);
   if (!stack) return;
   static const DebevecInput input = makeDebevecInput(*stack);
   const cv::Ptr<cv::MergeDebevec> merge = cv::createMergeDebevec();

@@ -9,9 +9,12 @@ namespace {
 
 constexpr std::size_t kMinPoints = 5;  // an ellipse has five parameters
 constexpr int kMaxIterations = 100;
-constexpr double kInitialDamping = 1e-3, kMaxDamping = 1e12;
-// Relative step below which the geometric fit has converged (far below any contour's noise).
-constexpr double kConvergedStep = 1e-12;
+constexpr double kInitialDamping = 1e-3, kMinDamping = 1e-15, kMaxDamping = 1e12;
+// The geometric fit has converged when a step moves the parameters by less than this fraction
+// of the axes (far below any contour's noise or interpolation error) or lowers the cost by less
+// than this fraction of it.
+constexpr double kConvergedStep = 1e-10;
+constexpr double kConvergedCost = 1e-12;
 // Eigenvalues of the normal matrix below this fraction of the largest are treated as zero:
 // the orientation of a circle is undetermined and must not feed the axes' sensitivities.
 constexpr double kRelativeRankTolerance = 1e-10;
@@ -27,7 +30,8 @@ double wrapHalfTurn(double angle_rad) {
 }
 
 // Conic A x² + B xy + C y² + D x + E y + F = 0 to centre, semi-axes and angle.
-std::optional<Ellipse> conicToEllipse(const Eigen::Matrix<double, 6, 1>& conic) {
+std::optional<Ellipse> conicToEllipse(Eigen::Matrix<double, 6, 1> conic) {
+  if (conic[0] + conic[2] < 0) conic = -conic;  // an eigenvector's sign is arbitrary
   const double a = conic[0], b = conic[1], c = conic[2], d = conic[3], e = conic[4], f = conic[5];
   Eigen::Matrix2d quadratic;
   quadratic << a, b / 2, b / 2, c;
@@ -81,40 +85,49 @@ PointResidual pointResidual(const Vector5& p, const Point2& point) {
   return r;
 }
 
-double sumOfSquares(const Vector5& p, std::span<const Point2> points) {
-  double sum = 0;
-  for (const Point2& point : points) sum += std::pow(pointResidual(p, point).distance, 2);
-  return sum;
+// The cost and the Gauss-Newton normal equations at p, in one pass over the points.
+struct NormalEquations {
+  double cost = 0;
+  Matrix5 normal = Matrix5::Zero();
+  Vector5 gradient = Vector5::Zero();
+};
+
+NormalEquations normalEquations(const Vector5& p, std::span<const Point2> points) {
+  NormalEquations e;
+  for (const Point2& point : points) {
+    const PointResidual r = pointResidual(p, point);
+    e.cost += r.distance * r.distance;
+    e.normal.selfadjointView<Eigen::Upper>().rankUpdate(r.gradient);
+    e.gradient += r.gradient * r.distance;
+  }
+  e.normal = e.normal.selfadjointView<Eigen::Upper>();
+  return e;
 }
 
 // Levenberg–Marquardt on the orthogonal distances.
 Vector5 refineGeometric(Vector5 p, std::span<const Point2> points) {
-  double cost = sumOfSquares(p, points);
+  NormalEquations at_p = normalEquations(p, points);
   double damping = kInitialDamping;
   for (int iteration = 0; iteration < kMaxIterations && damping < kMaxDamping; ++iteration) {
-    Matrix5 normal = Matrix5::Zero();
-    Vector5 gradient = Vector5::Zero();
-    for (const Point2& point : points) {
-      const PointResidual r = pointResidual(p, point);
-      normal += r.gradient * r.gradient.transpose();
-      gradient += r.gradient * r.distance;
-    }
-    Matrix5 damped = normal;
-    damped.diagonal() += damping * (normal.diagonal().array() + 1e-12).matrix();
-    const Vector5 step = damped.ldlt().solve(-gradient);
+    Matrix5 damped = at_p.normal;
+    damped.diagonal() += damping * (at_p.normal.diagonal().array() + 1e-12).matrix();
+    const Vector5 step = damped.ldlt().solve(-at_p.gradient);
     const Vector5 candidate = p + step;
-    const double candidate_cost = candidate[kA] > 0 && candidate[kB] > 0
-                                      ? sumOfSquares(candidate, points)
-                                      : std::numeric_limits<double>::infinity();
-    if (candidate_cost <= cost) {
-      p = candidate;
-      const bool converged = step.norm() <= kConvergedStep * (p[kA] + p[kB]) || cost == 0;
-      cost = candidate_cost;
-      damping = std::max(damping / 10, 1e-15);
-      if (converged) break;
-    } else {
+    if (!(candidate[kA] > 0 && candidate[kB] > 0)) {
       damping *= 10;
+      continue;
     }
+    NormalEquations at_candidate = normalEquations(candidate, points);
+    if (!(at_candidate.cost <= at_p.cost)) {
+      damping *= 10;
+      continue;
+    }
+    const bool converged = step.norm() <= kConvergedStep * (candidate[kA] + candidate[kB]) ||
+                           at_p.cost - at_candidate.cost <= kConvergedCost * at_p.cost;
+    p = candidate;
+    at_p = std::move(at_candidate);
+    damping = std::max(damping / 10, kMinDamping);
+    if (converged) break;
   }
   return p;
 }
@@ -199,9 +212,10 @@ std::optional<Ellipse> fitEllipseDirect(std::span<const Point2> points) {
   return std::nullopt;
 }
 
-std::optional<EllipseFit> fitEllipse(std::span<const Point2> points) {
-  const auto start = fitEllipseDirect(points);
-  if (!start) return std::nullopt;
+std::optional<EllipseFit> fitEllipse(std::span<const Point2> points,
+                                     const std::optional<Ellipse>& initial) {
+  const auto start = initial ? initial : fitEllipseDirect(points);
+  if (!start || points.size() < kMinPoints) return std::nullopt;
   EllipseFit fit;
   fit.ellipse = toEllipse(refineGeometric(toParameters(*start), points));
   const Vector5 p = toParameters(fit.ellipse);

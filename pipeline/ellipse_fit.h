@@ -38,7 +38,9 @@ struct EllipseFit {
 // collinear, or the best conic is a hyperbola or parabola).
 std::optional<Ellipse> fitEllipseDirect(std::span<const Point2> points);
 
-// Direct start, then the geometric fit.
-std::optional<EllipseFit> fitEllipse(std::span<const Point2> points);
+// The geometric fit, started from `initial` (e.g. the fit of nearly the same points) or else
+// from the direct fit.
+std::optional<EllipseFit> fitEllipse(std::span<const Point2> points,
+                                     const std::optional<Ellipse>& initial = std::nullopt);
 
 }  // namespace glarecam::pipeline

@@ -89,10 +89,11 @@ struct PlaneFit {
 };
 
 std::optional<EllipseFit> fitInPlane(const AngularPlane& plane, const std::vector<Ray>& rays,
-                                     std::vector<Point2>& points) {
+                                     std::vector<Point2>& points,
+                                     const std::optional<Ellipse>& initial) {
   points.clear();
   for (const Ray& ray : rays) points.push_back(toPoint(plane.toPlane(ray)));
-  return fitEllipse(points);
+  return fitEllipse(points, initial);
 }
 
 // Fit in the plane around the contour's mean direction, then re-centre on the fitted centre
@@ -103,9 +104,12 @@ std::optional<PlaneFit> fitRecentred(const ContourRays& contour,
   for (const PixelPoint& p : contour.pixels) mean = {mean.x + p.x, mean.y + p.y};
   const auto n = static_cast<double>(contour.pixels.size());
   PlaneFit result{AngularPlane(camera.ray({mean.x / n, mean.y / n})), {}, {}};
+  std::optional<Ellipse> previous;  // re-centred on the origin: the start of the next round
   for (int round = 0; round < kMaxRecentring; ++round) {
-    auto fit = fitInPlane(result.plane, contour.rays, result.points);
+    auto fit = fitInPlane(result.plane, contour.rays, result.points, previous);
     if (!fit) return std::nullopt;
+    previous = fit->ellipse;
+    previous->centre = {0, 0};
     result.fit = std::move(*fit);
     const Ray centre = result.plane.toRay(toPlanePoint(result.fit.ellipse.centre));
     const bool settled =

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "core/parallel.h"
+
 namespace glarecam::pipeline {
 namespace {
 
@@ -305,9 +307,20 @@ std::optional<RegionContour> traceRegionContour(const FloatImage& luminance, dou
 }
 
 int countRegions(const FloatImage& luminance, double level, std::size_t min_pixels) {
+  // Rows holding any pixel at or above the level, found on all cores: on a glare image they
+  // are few, and only they are labelled.
+  std::vector<std::uint8_t> bright_row(static_cast<std::size_t>(luminance.height()), 0);
+  parallelRows(luminance.height(), defaultThreadCount(), [&](int begin, int end) {
+    for (int y = begin; y < end; ++y) {
+      const auto row = luminance.row(y);
+      bright_row[static_cast<std::size_t>(y)] =
+          std::any_of(row.begin(), row.end(), [&](float v) { return reaches(v, level); });
+    }
+  });
   ByteImage mask(luminance.width(), luminance.height());
   int regions = 0;
   for (int y = 0; y < luminance.height(); ++y) {
+    if (!bright_row[static_cast<std::size_t>(y)]) continue;
     const auto row = luminance.row(y);
     for (int x = 0; x < luminance.width(); ++x) {
       if (!reaches(row[static_cast<std::size_t>(x)], level) || mask.at(x, y)) continue;

@@ -30,39 +30,89 @@ bool isBound(const calibration::MergedImage& merged, int x, int y, PixelBound bo
   return merged.bound.at(x, y) == static_cast<std::uint8_t>(bound);
 }
 
-// Second-largest of each pixel's 3x3 neighbourhood (outside the image counts as 0), over the
+// Second-largest of a pixel's 3x3 neighbourhood (outside the image counts as 0), over the
 // pixels that are measurements or lower bounds: upper bounds are not bright pixels.
-FloatImage secondLargest3x3(const calibration::MergedImage& merged) {
+float secondLargestAt(const calibration::MergedImage& merged, int x, int y) {
   const FloatImage& image = merged.luminance_cd_m2;
-  const int width = image.width(), height = image.height();
-  FloatImage result(width, height);
-  parallelRows(height, defaultThreadCount(), [&](int begin, int end) {
-    for (int y = begin; y < end; ++y) {
-      for (int x = 0; x < width; ++x) {
-        float first = 0, second = 0;
-        for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy) {
-          for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx) {
-            const float v = image.at(xx, yy);
-            if (!(v > second) || isBound(merged, xx, yy, PixelBound::kUpperBound)) continue;
-            second = std::min(v, first);
-            first = std::max(v, first);
-          }
-        }
-        result.at(x, y) = second;
-      }
+  float first = 0, second = 0;
+  for (int yy = std::max(0, y - 1); yy <= std::min(image.height() - 1, y + 1); ++yy) {
+    for (int xx = std::max(0, x - 1); xx <= std::min(image.width() - 1, x + 1); ++xx) {
+      const float v = image.at(xx, yy);
+      if (!(v > second) || isBound(merged, xx, yy, PixelBound::kUpperBound)) continue;
+      second = std::min(v, first);
+      first = std::max(v, first);
     }
-  });
-  return result;
+  }
+  return second;
 }
 
-// How far along one axis the located image stays above `level`, within the radius limits.
-int capRadius(const FloatImage& located, int x, int y, int dx, int dy, double level) {
+struct Located {
+  std::size_t index = 0;
+  float value = 0;
+};
+
+// The brightest pixel that is not an upper bound (first in raster order on ties).
+Located brightestPixel(const calibration::MergedImage& merged) {
+  const FloatImage& image = merged.luminance_cd_m2;
+  std::vector<Located> band_best(static_cast<std::size_t>(image.height()));
+  parallelRows(image.height(), defaultThreadCount(), [&](int begin, int end) {
+    for (int y = begin; y < end; ++y) {
+      Located best{static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width()), 0};
+      const auto row = image.row(y);
+      const auto bound = merged.bound.row(y);
+      for (std::size_t x = 0; x < row.size(); ++x) {
+        if (!(row[x] > best.value) || bound[x] == std::uint8_t(PixelBound::kUpperBound)) continue;
+        best = {static_cast<std::size_t>(y) * row.size() + x, row[x]};
+      }
+      band_best[static_cast<std::size_t>(y)] = best;
+    }
+  });
+  Located best;
+  for (const Located& row_best : band_best)
+    if (row_best.value > best.value) best = row_best;
+  return best;
+}
+
+// The maximum of secondLargestAt over the image, without computing it everywhere: it can only
+// exceed its value t at the brightest pixel where two pixels of a neighbourhood exceed t, so
+// only the neighbourhoods of pixels brighter than t are searched (the lobe's top, not 5 MP).
+Located locatePeak(const calibration::MergedImage& merged) {
+  const FloatImage& image = merged.luminance_cd_m2;
+  const int width = image.width();
+  const Located brightest = brightestPixel(merged);
+  const int bx = static_cast<int>(brightest.index % static_cast<std::size_t>(width));
+  const int by = static_cast<int>(brightest.index / static_cast<std::size_t>(width));
+  Located best{brightest.index, secondLargestAt(merged, bx, by)};
+  ByteImage visited(width, image.height());
+  for (int y = 0; y < image.height(); ++y) {
+    const auto row = image.row(y);
+    for (int x = 0; x < width; ++x) {
+      if (!(row[static_cast<std::size_t>(x)] > best.value)) continue;
+      for (int yy = std::max(0, y - 1); yy <= std::min(image.height() - 1, y + 1); ++yy) {
+        for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx) {
+          if (visited.at(xx, yy)) continue;
+          visited.at(xx, yy) = 1;
+          const float v = secondLargestAt(merged, xx, yy);
+          const std::size_t index = static_cast<std::size_t>(yy) * width + xx;
+          if (v > best.value || (v == best.value && index < best.index)) best = {index, v};
+        }
+      }
+    }
+  }
+  return best;
+}
+
+// How far along one axis the located values stay above `level`, within the radius limits.
+int capRadius(const calibration::MergedImage& merged, int x, int y, int dx, int dy, double level) {
+  const FloatImage& image = merged.luminance_cd_m2;
   int radius = kMinFitRadius;
   while (radius < kMaxFitRadius) {
     const int next = radius + 1;
     const int x1 = x - next * dx, y1 = y - next * dy, x2 = x + next * dx, y2 = y + next * dy;
-    const bool inside = x1 >= 0 && y1 >= 0 && x2 < located.width() && y2 < located.height();
-    if (!inside || located.at(x1, y1) < level || located.at(x2, y2) < level) break;
+    const bool inside = x1 >= 0 && y1 >= 0 && x2 < image.width() && y2 < image.height();
+    if (!inside || secondLargestAt(merged, x1, y1) < level ||
+        secondLargestAt(merged, x2, y2) < level)
+      break;
     radius = next;
   }
   return radius;
@@ -165,16 +215,16 @@ const char* toString(PeakMethod method) {
 
 LuminancePeak findLuminancePeak(const calibration::MergedImage& merged) {
   if (merged.luminance_cd_m2.empty()) return {};
-  const FloatImage located = secondLargest3x3(merged);
-  const float* top = std::max_element(located.data(), located.data() + located.pixelCount());
-  if (!(*top > 0)) return darkImagePeak(merged);
-  const auto index = static_cast<std::size_t>(top - located.data());
-  const int cx = static_cast<int>(index % static_cast<std::size_t>(located.width()));
-  const int cy = static_cast<int>(index / static_cast<std::size_t>(located.width()));
-  const double level = kCapFraction * *top;
-  const FitWindow window{cx, cy, capRadius(located, cx, cy, 1, 0, level),
-                         capRadius(located, cx, cy, 0, 1, level)};
-  LuminancePeak peak{*top, double(cx), double(cy), merged.relative_uncertainty.at(cx, cy),
+  const Located top = locatePeak(merged);
+  if (!(top.value > 0)) return darkImagePeak(merged);
+  const int cx =
+      static_cast<int>(top.index % static_cast<std::size_t>(merged.luminance_cd_m2.width()));
+  const int cy =
+      static_cast<int>(top.index / static_cast<std::size_t>(merged.luminance_cd_m2.width()));
+  const double level = kCapFraction * top.value;
+  const FitWindow window{cx, cy, capRadius(merged, cx, cy, 1, 0, level),
+                         capRadius(merged, cx, cy, 0, 1, level)};
+  LuminancePeak peak{top.value, double(cx), double(cy), merged.relative_uncertainty.at(cx, cy),
                      PeakMethod::kNeighbourhood3x3};
   if (saturatedTop(merged, cx, cy, peak)) return peak;
   fitQuadraticCap(merged, window, peak);

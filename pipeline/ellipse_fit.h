@@ -34,8 +34,9 @@ struct EllipseFit {
   std::vector<std::array<double, 4>> axis_sensitivity;
 };
 
-// The conic fit alone; nothing when the points do not determine an ellipse (fewer than 5,
-// collinear, or the best conic is a hyperbola or parabola).
+// The conic fit alone. It is ellipse-specific: points on a hyperbola or a parabola still get
+// their closest ellipse (judge the shape by the residuals). Nothing when the points determine
+// no conic (fewer than 5, all on one line) or only an imaginary one.
 std::optional<Ellipse> fitEllipseDirect(std::span<const Point2> points);
 
 // The geometric fit, started from `initial` (e.g. the fit of nearly the same points) or else

@@ -181,7 +181,7 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
     if (std::isfinite(t_variance)) {
       expected_variance += along_normal * along_normal * t_variance;
     } else {
-      ++out.unweighted_contour_pixels;
+      ++out.unweighted_contour_points;
     }
   }
   std::sort(per_pixel.begin(), per_pixel.end());

@@ -50,7 +50,7 @@ struct GlareEllipse {
   int regions = 0;         // separate regions at or above the level (kMinRegionPixels or more)
   std::size_t contour_points = 0, region_pixels = 0;
   double vertical_uncertainty_deg = 0, horizontal_uncertainty_deg = 0;
-  std::size_t unweighted_contour_pixels = 0;  // bound pixels on the contour (no noise figure)
+  std::size_t unweighted_contour_points = 0;  // points next to bound pixels (no noise figure)
   // Geometry for pictures: the contour in pixels, and the fitted ellipse (degrees) in the
   // angular plane around `plane_centre`.
   std::vector<calibration::PixelPoint> contour_px;

@@ -48,7 +48,7 @@ nlohmann::json ellipseJson(const EllipseMeasurement& measurement) {
       {"uncertainty",
        {{"vertical_deg", e.vertical_uncertainty_deg},
         {"horizontal_deg", e.horizontal_uncertainty_deg},
-        {"unweighted_contour_points", e.unweighted_contour_pixels}}},
+        {"unweighted_contour_points", e.unweighted_contour_points}}},
   };
 }
 

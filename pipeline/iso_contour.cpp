@@ -216,16 +216,25 @@ bool cubicCrossing(const std::array<double, 4>& values, double level, ContourPoi
     }
     return value;
   };
+  // Converged when the value vanishes, the bracket closes, or a Newton step no longer moves t
+  // (tested before bisecting: a step below rounding lands on the bracket's end).
+  constexpr double kTolerance = 1e-13;
   double lo = 0, hi = 1, slope = 0;
-  for (int iteration = 0; iteration < 40; ++iteration) {
+  for (int iteration = 0; iteration < 60; ++iteration) {
     const double value = eval(t, slope);
-    (value >= 0 ? lo : hi) = t;
-    const double newton = slope < 0 ? t - value / slope : -1;
+    if (value == 0) break;
+    (value > 0 ? lo : hi) = t;
+    const double newton = slope < 0 ? t - value / slope : lo - 1;
+    if (std::abs(newton - t) <= kTolerance) {
+      t = std::clamp(newton, lo, hi);
+      break;
+    }
     t = newton > lo && newton < hi ? newton : (lo + hi) / 2;
-    if (hi - lo < 1e-12 || std::abs(value) < 1e-14) break;
+    if (hi - lo <= kTolerance) break;
   }
   eval(t, slope);
-  // A crossing where the cubic is much flatter than the chord is noise, not a lobe's flank.
+  // A crossing where the cubic is much flatter than the chord is noise (or a contour grazing
+  // the pixel line), not a lobe's flank: the linear crossing is safer there.
   constexpr double kMinSlopeFractionOfChord = 0.5;
   if (!(slope < kMinSlopeFractionOfChord * (f[kOutside] - f[kInside]))) return false;
   const CubicBasis basis(t);

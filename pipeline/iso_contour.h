@@ -8,8 +8,10 @@
 // through four pixels along that line: glare lobes are close to Gaussian, so ln L is close to
 // quadratic, which the cubic reproduces exactly (linear interpolation is biased inward by up to
 // 1/(8 r) px at contour radius r, 2 % on a 5 px FWHM; a binary mask by about half a pixel).
-// Where the outer pixels are missing or the cubic is not monotonic (noise), ln L is
-// interpolated linearly between the two, and L itself where the outside value is not positive.
+// Where the outer pixels are missing or the cubic is much flatter at the crossing than the chord
+// between the two pixels (noise, or a contour grazing the pixel line: about 0.1 % of points on
+// noise-free lobes), ln L is interpolated linearly between the two; L itself where the outside
+// value is not positive. Non-finite pixels (NaN, inf) count as outside.
 //
 // Each point records its pixels and the derivatives of its position with respect to their
 // values and to the level, so that pixel noise can be propagated into anything fitted to it.

@@ -163,6 +163,14 @@ Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
   return {};
 }
 
+// The file the calibration came from: --calibration, the manifest's calibration path, or the
+// manifest itself for an inline block.
+fs::path calibrationSource(const Stack& stack, const ProcessOptions& options) {
+  if (options.calibration_file) return *options.calibration_file;
+  if (stack.calibration_origin == "inline") return stack.directory / kManifestFileName;
+  return stack.directory / stack.calibration_origin;
+}
+
 // --threshold, else the α curve, else none.
 std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& options) {
   if (options.threshold_cd_m2) return options.threshold_cd_m2;
@@ -199,11 +207,13 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
 
   const std::optional<double> limit = glareLimit(stack, options);
   const LuminanceStats stats = luminanceStats(merged);
-  GlareAnalysis glare;
   const calibration::CameraModel camera(stack.calibration.intrinsics);
-  GLARECAM_ASSIGN(
-      glare, analyseGlare(merged, camera, stats.max,
-                          {.limit_cd_m2 = limit, .thresholds_cd_m2 = options.thresholds_cd_m2}));
+  auto glare = analyseGlare(merged, camera, stats.max,
+                            {.limit_cd_m2 = limit, .thresholds_cd_m2 = options.thresholds_cd_m2});
+  if (!glare) {  // the camera model failed: name the file it came from
+    return std::unexpected(Error{glare.error().code, calibrationSource(stack, options).string() +
+                                                         ": " + glare.error().message});
+  }
   progress.advance("analysed");
   ProcessSummary summary;
   summary.output_directory = options.output_directory.value_or(stack_directory / "result");
@@ -216,11 +226,11 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                .stats = stats,
                                .limit_cd_m2 = limit,
                                .constant_limit = options.threshold_cd_m2.has_value(),
-                               .glare = glare});
+                               .glare = *glare});
   FalseColourOptions picture_options;
   picture_options.limit_cd_m2 = limit;
   picture_options.title = pictureTitle(stack.manifest.alpha_deg);
-  picture_options.overlay = glareOverlay(glare, camera, stats.max);
+  picture_options.overlay = glareOverlay(*glare, camera, stats.max);
   GLARECAM_CHECK(
       writeOutputs(summary.output_directory, merged, summary, picture_options, progress));
   return summary;

@@ -164,6 +164,22 @@ TEST(ProcessStack, ThresholdSweepReportsOneEllipsePerLevel) {
   EXPECT_TRUE(sweep[2]["ellipse"].is_null());
 }
 
+TEST(ProcessStack, DistortionThatCannotBeInvertedAtTheSpotIsBadInputNamingTheFile) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  // The small scene's focal length is ~570 px: k1 = -300 folds the lens over (1 + k1 r² = 0)
+  // about 33 px from the centre, inside the glare spot's contour.
+  manifest["calibration"]["intrinsics"]["distortion"] = {-300.0, 0.0, 0.0, 0.0, 0.0};
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto summary = processStack(dir / "s", quiet());
+  ASSERT_FALSE(summary);
+  EXPECT_EQ(summary.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(summary.error().message.find("stack.json"), std::string::npos)
+      << summary.error().message;
+  EXPECT_NE(summary.error().message.find("distortion"), std::string::npos);
+}
+
 TEST(ProcessStack, InvalidThresholdsAreBadInput) {
   testing::TempDir dir;
   testing::writeSmallStack(dir / "s");

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <opencv2/imgproc.hpp>
 
 #include "pipeline/glare_analysis.h"
 #include "support/test_support.h"
@@ -125,6 +126,34 @@ TEST(GlareEllipse, TinyLobe) {
   ASSERT_TRUE(m.analysis.limit.has_value());
   expectAxes(m.analysis.limit->ellipse, m.scene.truth.limit_axes, kAxisTolerance, "limit-tiny");
   expectAxes(m.analysis.fwhm.ellipse, m.scene.truth.fwhm_axes, kHardAxisTolerance, "fwhm-tiny");
+}
+
+// The baseline: a binary mask + findContours + fitEllipse runs its contour through the
+// centres of the region's edge pixels, half a pixel inside the true iso-line on each side: about
+// one pixel short on a full axis, 10 % of a 10 px axis. The sub-pixel contour is not.
+TEST(GlareEllipse, BinaryMaskBaselineIsBiasedWhereTheSubPixelContourIsNot) {
+  SceneSpec spec;
+  spec.lobe = lobeAtLimit(30'000, 594'000, 0.6, 0.65);  // about 10 px at 15.4 px/deg
+  const Measured m = analyse(spec);
+  ASSERT_TRUE(m.analysis.limit && m.analysis.limit->ellipse);
+  const FloatImage& image = m.scene.merged.luminance_cd_m2;
+  const cv::Mat luminance(image.height(), image.width(), CV_32F, const_cast<float*>(image.data()));
+  cv::Mat mask;
+  cv::threshold(luminance, mask, spec.limit_cd_m2, 255, cv::THRESH_BINARY);
+  mask.convertTo(mask, CV_8U);
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  ASSERT_EQ(contours.size(), 1u);
+  const cv::RotatedRect binary = cv::fitEllipse(contours.front());
+  // Pixels per degree at the image centre, where the lobe is: fx in px per radian.
+  const double px_per_deg = m.scene.intrinsics.fx * M_PI / 180.0;
+  const double truth_major_px = m.scene.truth.limit_axes->horizontal_deg * px_per_deg;
+  const double binary_error =
+      std::max(binary.size.width, binary.size.height) / truth_major_px - 1.0;
+  const double our_error =
+      m.analysis.limit->ellipse->horizontal_deg / m.scene.truth.limit_axes->horizontal_deg - 1.0;
+  EXPECT_LT(binary_error, -0.05) << "binary " << binary_error;
+  EXPECT_LT(std::abs(our_error), 0.01) << "sub-pixel " << our_error;
 }
 
 TEST(GlareEllipse, NoisyLobe) {

@@ -20,6 +20,7 @@ TEST(LimitCurve, InterpolatesLogLinearly) {
   // Halfway between 70° and 80° is the geometric mean of 100 000 and 400 000.
   EXPECT_NEAR(*glareLimitCdM2(75.0), 200'000.0, 1e-6);
   EXPECT_NEAR(*glareLimitCdM2(55.0), std::sqrt(30'000.0 * 40'000.0), 1e-6);
+  EXPECT_NEAR(*glareLimitCdM2(65.0), std::sqrt(40'000.0 * 100'000.0), 1e-6);
 }
 
 TEST(LimitCurve, IsUndefinedOutsideTheMethodsRange) {

@@ -134,7 +134,7 @@ void measureAxes(const PlaneFit& fitted, const calibration::CameraModel& camera,
   out.major_deg = calibration::angleBetweenDeg(major_a, major_b);
   out.minor_deg = calibration::angleBetweenDeg(minor_a, minor_b);
   out.orientation_deg = e.angle_rad * kDegPerRad;
-  const bool major_is_vertical = std::abs(out.orientation_deg) >= 45.0;
+  const bool major_is_vertical = out.majorIsVertical();
   out.vertical_deg = major_is_vertical ? out.major_deg : out.minor_deg;
   out.horizontal_deg = major_is_vertical ? out.minor_deg : out.major_deg;
   const Ray centre = fitted.plane.toRay(toPlanePoint(e.centre));
@@ -199,7 +199,7 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
     var_a += s * s * sa * sa;
     var_b += s * s * sb * sb;
   }
-  const bool major_is_vertical = out.vertical_deg == out.major_deg;
+  const bool major_is_vertical = out.majorIsVertical();
   const double major_sigma = 2 * std::sqrt(var_a), minor_sigma = 2 * std::sqrt(var_b);
   out.vertical_uncertainty_deg = major_is_vertical ? major_sigma : minor_sigma;
   out.horizontal_uncertainty_deg = major_is_vertical ? minor_sigma : major_sigma;

@@ -56,6 +56,9 @@ struct GlareEllipse {
   std::vector<calibration::PixelPoint> contour_px;
   calibration::Ray plane_centre;
   Ellipse plane_ellipse;
+
+  // The vertical axis is the one closer to the image vertical; at exactly 45° the major one.
+  bool majorIsVertical() const { return orientation_deg >= 45.0 || orientation_deg <= -45.0; }
 };
 
 enum class EllipseStatus {

@@ -122,7 +122,7 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const ClipBo
     const auto pieces = project(o.camera, planeCurve(plane, chord, 0, 1, kAxisPoints), box);
     stroke(cr, pieces, kAxisStyle, font_px);
     const bool is_major = t_end == 0.0;
-    const bool vertical = (e.vertical_deg == e.major_deg) == is_major;
+    const bool vertical = e.majorIsVertical() == is_major;
     const double length_deg = vertical ? e.vertical_deg : e.horizontal_deg;
     // Vertical axis labelled at its upper end, horizontal at its right end.
     const PixelPoint pa = o.camera.project(plane.toRay({a.x, a.y}));

@@ -38,8 +38,8 @@ void analysisGlarecam(benchmark::State& state) {
       .limit_cd_m2 = pipeline::glareLimitCdM2(stack->options.alpha_deg), .thresholds_cd_m2 = {}};
   for (auto _ : state) {
     const pipeline::LuminancePeak peak = pipeline::findLuminancePeak(*merged);
-    auto analysis = pipeline::analyseGlare(*merged, camera, peak, options);
-    if (!analysis || !analysis->limit || !analysis->limit->ellipse || !analysis->fwhm.ellipse) {
+    const pipeline::GlareAnalysis analysis = pipeline::analyseGlare(*merged, camera, peak, options);
+    if (!analysis.limit || !analysis.limit->ellipse || !analysis.fwhm.ellipse) {
       state.SkipWithError("analysis/glarecam: no limit or FWHM ellipse on the bench stack");
       break;
     }

@@ -36,6 +36,7 @@ bool CameraModel::hasDistortion() const {
 
 std::vector<Ray> CameraModel::rays(std::span<const PixelPoint> pixels) const {
   std::vector<Ray> result(pixels.size());
+  if (pixels.empty()) return result;  // cv::undistortPoints throws on an empty input
   const auto& k = intrinsics_;
   if (!hasDistortion()) {
     for (std::size_t i = 0; i < pixels.size(); ++i) {

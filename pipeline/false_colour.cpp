@@ -249,6 +249,8 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
     cairo_save(cr.get());
     cairo_rectangle(cr.get(), 0, 0, width, height);
     cairo_clip(cr.get());
+    // Pixel (x, y) covers [x, x + 1] on the canvas; overlays draw in pixel-centre coordinates.
+    cairo_translate(cr.get(), 0.5, 0.5);
     options.overlay(cr.get(), font_px);
     cairo_restore(cr.get());
   }

@@ -18,8 +18,9 @@ typedef struct _cairo cairo_t;  // as <cairo.h> declares it
 
 namespace glarecam::pipeline {
 
-// A drawing over the image part of the picture (glare_picture.h), clipped to it: gets the
-// Cairo context and the label font size in pixels.
+// A drawing over the image part of the picture (glare_picture.h), clipped to it, in pixel-centre
+// coordinates (core/image.h: the centre of pixel (x, y) is at (x, y)): gets the Cairo context
+// and the label font size in pixels.
 using PictureOverlay = std::function<void(cairo_t* cairo, double font_px)>;
 
 struct FalseColourOptions {

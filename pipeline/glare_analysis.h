@@ -22,8 +22,8 @@ struct GlareAnalysis {
   std::vector<EllipseMeasurement> thresholds;  // in the order asked
 };
 
-Result<GlareAnalysis> analyseGlare(const calibration::MergedImage& merged,
-                                   const calibration::CameraModel& camera,
-                                   const LuminancePeak& peak, const GlareAnalysisOptions& options);
+GlareAnalysis analyseGlare(const calibration::MergedImage& merged,
+                           const calibration::CameraModel& camera, const LuminancePeak& peak,
+                           const GlareAnalysisOptions& options);
 
 }  // namespace glarecam::pipeline

@@ -28,6 +28,9 @@ constexpr double kDerivativeStepPx = 1e-3;
 // invertible there (a distortion polynomial that folds over).
 constexpr double kMaxRoundTripPx = 0.01;
 constexpr int kSolidAngleSteps = 720;
+// An ellipse whose semi-major axis reaches a quarter turn covers a hemisphere: the angular plane
+// (and the method) mean nothing there.
+constexpr double kMaxSemiAxisDeg = 90.0;
 
 std::optional<PixelIndex> seedPixel(const FloatImage& image, const LuminancePeak& peak,
                                     double level) {
@@ -38,7 +41,7 @@ std::optional<PixelIndex> seedPixel(const FloatImage& image, const LuminancePeak
   for (int y = std::max(0, cy - 1); y <= std::min(image.height() - 1, cy + 1); ++y) {
     for (int x = std::max(0, cx - 1); x <= std::min(image.width() - 1, cx + 1); ++x) {
       const float v = image.at(x, y);
-      if (!(v >= level) || (best && v <= best_value)) continue;
+      if (!std::isfinite(v) || !(v >= level) || (best && v <= best_value)) continue;
       best = PixelIndex{x, y};
       best_value = v;
     }
@@ -54,8 +57,10 @@ struct ContourRays {
   std::vector<Ray> rays, stepped_rays;
 };
 
-Result<ContourRays> contourRays(const RegionContour& contour,
-                                const calibration::CameraModel& camera) {
+// The observed contour points and their rays; nothing when the camera model cannot be inverted
+// at one of them.
+std::optional<ContourRays> contourRays(const RegionContour& contour,
+                                       const calibration::CameraModel& camera) {
   ContourRays result;
   std::vector<PixelPoint> stepped;
   for (const ContourPoint& point : contour.points) {
@@ -70,11 +75,7 @@ Result<ContourRays> contourRays(const RegionContour& contour,
   for (std::size_t i = 0; i < result.rays.size(); ++i) {
     const PixelPoint back = camera.project(result.rays[i]);
     const PixelPoint& pixel = result.pixels[i];
-    if (!(std::hypot(back.x - pixel.x, back.y - pixel.y) <= kMaxRoundTripPx)) {
-      return badInput("camera model: the distortion coefficients cannot be inverted at pixel (" +
-                      std::to_string(std::lround(pixel.x)) + ", " +
-                      std::to_string(std::lround(pixel.y)) + "); check the calibration");
-    }
+    if (!(std::hypot(back.x - pixel.x, back.y - pixel.y) <= kMaxRoundTripPx)) return std::nullopt;
   }
   return result;
 }
@@ -105,17 +106,18 @@ std::optional<PlaneFit> fitRecentred(const ContourRays& contour,
   const auto n = static_cast<double>(contour.pixels.size());
   PlaneFit result{AngularPlane(camera.ray({mean.x / n, mean.y / n})), {}, {}};
   std::optional<Ellipse> previous;  // re-centred on the origin: the start of the next round
-  for (int round = 0; round < kMaxRecentring; ++round) {
+  for (int round = 0;; ++round) {
     auto fit = fitInPlane(result.plane, contour.rays, result.points, previous);
     if (!fit) return std::nullopt;
-    previous = fit->ellipse;
-    previous->centre = {0, 0};
     result.fit = std::move(*fit);
     const Ray centre = result.plane.toRay(toPlanePoint(result.fit.ellipse.centre));
     const bool settled =
         calibration::angleBetweenDeg(centre, result.plane.centre()) < kRecentredDeg;
-    if (settled) break;
+    // The plane moves only when another round fits in it: points, fit and plane stay together.
+    if (settled || round + 1 == kMaxRecentring) break;
     result.plane = AngularPlane(centre);
+    previous = result.fit.ellipse;
+    previous->centre = {0, 0};
   }
   return result;
 }
@@ -148,7 +150,6 @@ void measureAxes(const PlaneFit& fitted, const calibration::CameraModel& camera,
   out.fit_rms_px = out.fit_rms_deg * px_per_deg;
   out.plane_centre = fitted.plane.centre();
   out.plane_ellipse = e;
-  out.plane_ellipse.centre = {0, 0};  // within kRecentredDeg of the plane's origin
 }
 
 // Linear propagation of the pixels' and the level's noise into the semi-axes (see header),
@@ -219,8 +220,14 @@ const char* toString(EllipseStatus status) {
       return "below_level";
     case EllipseStatus::kPeakIsBound:
       return "peak_is_bound";
+    case EllipseStatus::kNoPixelAtLevel:
+      return "no_pixel_at_level";
     case EllipseStatus::kTooSmall:
       return "too_small";
+    case EllipseStatus::kFillsImage:
+      return "fills_image";
+    case EllipseStatus::kCameraModelNotInvertible:
+      return "camera_model_not_invertible";
     case EllipseStatus::kNotAnEllipse:
       return "not_an_ellipse";
   }
@@ -240,38 +247,49 @@ double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg) {
   return sum * 2 * std::numbers::pi / kSolidAngleSteps;
 }
 
-Result<EllipseMeasurement> measureGlareEllipse(const calibration::MergedImage& merged,
-                                               const calibration::CameraModel& camera,
-                                               const LuminancePeak& peak, double level_cd_m2,
-                                               double level_relative_uncertainty) {
-  EllipseMeasurement measurement{level_cd_m2, EllipseStatus::kBelowLevel, std::nullopt};
+EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
+                                       const calibration::CameraModel& camera,
+                                       const LuminancePeak& peak, double level_cd_m2,
+                                       double level_relative_uncertainty) {
+  const auto outcome = [&](EllipseStatus status) {
+    return EllipseMeasurement{level_cd_m2, status, std::nullopt};
+  };
   const FloatImage& image = merged.luminance_cd_m2;
-  if (image.empty() || !(peak.value_cd_m2 >= level_cd_m2) || !(level_cd_m2 > 0)) return measurement;
+  if (image.empty() || !(level_cd_m2 > 0)) return outcome(EllipseStatus::kBelowLevel);
+  const bool reaches = peak.value_cd_m2 >= level_cd_m2;
+  // A dark maximum decides nothing; a clipped one decides only the levels it reaches.
+  if (peak.method == PeakMethod::kUpperBound ||
+      (peak.method == PeakMethod::kLowerBound && !reaches))
+    return outcome(EllipseStatus::kPeakIsBound);
+  if (!reaches) return outcome(EllipseStatus::kBelowLevel);
   const auto seed = seedPixel(image, peak, level_cd_m2);
-  measurement.status = EllipseStatus::kTooSmall;
-  if (!seed) return measurement;
-  const auto contour = traceRegionContour(image, level_cd_m2, *seed);
-  if (!contour) return measurement;
-  ContourRays rays;
-  GLARECAM_ASSIGN(rays, contourRays(*contour, camera));
-  if (rays.points.size() < kMinContourPoints) return measurement;
-  const auto fitted = fitRecentred(rays, camera);
-  measurement.status = EllipseStatus::kNotAnEllipse;
-  if (!fitted) return measurement;
+  const auto contour = seed ? traceRegionContour(image, level_cd_m2, *seed) : std::nullopt;
+  if (!contour) return outcome(EllipseStatus::kNoPixelAtLevel);
+  if (contour->touches_all_borders) return outcome(EllipseStatus::kFillsImage);
+  const std::size_t observed = static_cast<std::size_t>(std::count_if(
+      contour->points.begin(), contour->points.end(), [](const auto& p) { return !p.on_border; }));
+  if (observed < kMinContourPoints) return outcome(EllipseStatus::kTooSmall);
+  const auto rays = contourRays(*contour, camera);
+  if (!rays) return outcome(EllipseStatus::kCameraModelNotInvertible);
+  const auto fitted = fitRecentred(*rays, camera);
+  if (!fitted || !(fitted->fit.ellipse.semi_major < kMaxSemiAxisDeg))
+    return outcome(EllipseStatus::kNotAnEllipse);
 
   GlareEllipse ellipse;
   ellipse.level_cd_m2 = level_cd_m2;
   measureAxes(*fitted, camera, ellipse);
-  propagateUncertainty(*fitted, rays, merged, level_relative_uncertainty * level_cd_m2, ellipse);
+  const double level_sigma_cd_m2 =
+      std::isfinite(level_relative_uncertainty) ? level_relative_uncertainty * level_cd_m2 : 0.0;
+  propagateUncertainty(*fitted, *rays, merged, level_sigma_cd_m2, ellipse);
   ellipse.ellipticity_ok = ellipse.shape_residual_fraction <= kMaxEllipticalResidualFraction;
   ellipse.truncated = contour->touches_border;
   // The measured region counts even when it is smaller than the noise-speck size.
   ellipse.regions = countRegions(image, level_cd_m2, kMinRegionPixels) +
-                    (contour->region_pixels < kMinRegionPixels ? 1 : 0);
-  ellipse.contour_points = rays.points.size();
+                    (contour->connected_pixels < kMinRegionPixels ? 1 : 0);
+  ellipse.contour_points = observed;
   ellipse.region_pixels = contour->region_pixels;
   for (const ContourPoint& p : contour->points) ellipse.contour_px.push_back({p.x_px, p.y_px});
-  measurement.status = EllipseStatus::kMeasured;
+  EllipseMeasurement measurement = outcome(EllipseStatus::kMeasured);
   measurement.ellipse = std::move(ellipse);
   return measurement;
 }

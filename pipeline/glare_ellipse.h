@@ -4,12 +4,19 @@
 // angular plane around the region's centre direction (calibration/angular_plane.h, re-centred
 // on the fitted centre until it stays put), and each full axis measured as the angle between
 // the rays through its two end points. So neither lens distortion nor an off-centre spot biases
-// the axes. The vertical axis is the one closer to the image vertical (at exactly 45° the
-// major one); orientation is the major axis's angle from the image horizontal toward image +y
-// (down), in (-90°, 90°], like OpenCV's RotatedRect.
+// the axes.
 //
-// Uncertainty: each contour point depends on two pixels and on the level (iso_contour.h); the
-// fit says how each point moves the semi-axes (ellipse_fit.h). Summing per pixel, then over
+// Directions are the camera's, not the distorted pixel grid's: horizontal is the camera's x axis
+// (the undistorted image horizontal) made perpendicular to the ellipse's centre ray, vertical is
+// perpendicular to both (toward image +y). The vertical axis is the ellipse axis closer to that
+// vertical (at exactly 45° the major one); orientation is the major axis's angle from that
+// horizontal toward +y, in (-90°, 90°], like OpenCV's RotatedRect. On the optical axis these
+// are the image's own directions; off-axis they differ from the local pixel grid by the
+// perspective shear and the distortion (a few degrees at 25° off-axis), which is the point:
+// vertical means the camera's vertical plane (the plane of incidence on a level rig).
+//
+// Uncertainty: each contour point depends on up to four pixels and on the level (iso_contour.h);
+// the fit says how each point moves the semi-axes (ellipse_fit.h). Summing per pixel, then over
 // pixels with their merged standard uncertainty (hdr_merge.h), and adding the level's own
 // uncertainty (FWHM: the peak's), gives the axes' standard uncertainties by linear propagation.
 // Pure function of the merged image, the camera model and the peak; no I/O.
@@ -21,7 +28,6 @@
 #include "calibration/angular_plane.h"
 #include "calibration/camera_model.h"
 #include "calibration/hdr_merge.h"
-#include "core/error.h"
 #include "pipeline/ellipse_fit.h"
 #include "pipeline/luminance_peak.h"
 
@@ -63,10 +69,14 @@ struct GlareEllipse {
 
 enum class EllipseStatus {
   kMeasured,
-  kBelowLevel,    // the maximum does not reach the level
-  kPeakIsBound,   // the maximum is only a bound, so half of it is no FWHM level
-  kTooSmall,      // too few contour points to fit
-  kNotAnEllipse,  // the contour determines no ellipse
+  kBelowLevel,                // the maximum does not reach the level
+  kPeakIsBound,               // the maximum is only a bound that cannot decide (dark everywhere, or
+                              // clipped below the level), or half of a bound is no FWHM level
+  kNoPixelAtLevel,            // the fitted maximum reaches the level, no pixel beside it does
+  kTooSmall,                  // too few observed contour points to fit
+  kFillsImage,                // the region reaches all four image borders: larger than the view
+  kCameraModelNotInvertible,  // the distortion cannot be undone where the contour lies
+  kNotAnEllipse,              // the contour determines no ellipse (or one beyond a hemisphere)
 };
 const char* toString(EllipseStatus status);
 
@@ -77,12 +87,12 @@ struct EllipseMeasurement {
 };
 
 // The ellipse of the region at `level_cd_m2` that holds `peak`. `level_relative_uncertainty`
-// is the level's own standard uncertainty relative to it (0 for a fixed threshold). Fails only
-// when the camera model cannot be inverted where the contour lies.
-Result<EllipseMeasurement> measureGlareEllipse(const calibration::MergedImage& merged,
-                                               const calibration::CameraModel& camera,
-                                               const LuminancePeak& peak, double level_cd_m2,
-                                               double level_relative_uncertainty = 0);
+// is the level's own standard uncertainty relative to it (0 for a fixed threshold; a
+// non-finite value counts as 0). Every outcome is a status; nothing here fails.
+EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
+                                       const calibration::CameraModel& camera,
+                                       const LuminancePeak& peak, double level_cd_m2,
+                                       double level_relative_uncertainty = 0);
 
 // Solid angle (sr) of an ellipse in an angular plane, centred on the plane's origin.
 double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg);

@@ -303,11 +303,12 @@ std::optional<RegionContour> traceRegionContour(const FloatImage& luminance, dou
     return std::nullopt;
   }
   ByteImage mask(luminance.width(), luminance.height());
-  std::size_t ignored = 0;
-  const Box box = floodRegion(luminance, level, seed, mask, ignored);
-  const RegionGrid grid(mask, box);
   RegionContour contour;
+  const Box box = floodRegion(luminance, level, seed, mask, contour.connected_pixels);
+  const RegionGrid grid(mask, box);
   contour.region_pixels = grid.count();
+  contour.touches_all_borders = box.x0 == 0 && box.y0 == 0 && box.x1 == luminance.width() - 1 &&
+                                box.y1 == luminance.height() - 1;
   for (const EdgeId edge : linkBoundaryEdges(grid).longestLoop()) {
     contour.points.push_back(crossingPoint(luminance, grid, edge, level));
     contour.touches_border = contour.touches_border || contour.points.back().on_border;

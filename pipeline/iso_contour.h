@@ -49,8 +49,10 @@ struct ContourPoint {
 
 struct RegionContour {
   std::vector<ContourPoint> points;  // a closed loop (last point joins the first)
-  std::size_t region_pixels = 0;     // after filling holes
+  std::size_t connected_pixels = 0;  // at or above the level, 8-connected to the seed
+  std::size_t region_pixels = 0;     // the same after filling holes
   bool touches_border = false;
+  bool touches_all_borders = false;  // left, top, right and bottom: the region fills the view
 };
 
 // The contour at `level` (> 0) of the region holding `seed`, or nothing when the seed pixel is

@@ -27,6 +27,8 @@ struct LuminancePeak {
 
 const char* toString(PeakMethod method);
 
+// Reads the merged image's luminance, bound flags and relative uncertainty (for the
+// uncertainty of a located, unfitted maximum).
 LuminancePeak findLuminancePeak(const calibration::MergedImage& merged);
 
 }  // namespace glarecam::pipeline

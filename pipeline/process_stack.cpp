@@ -171,6 +171,21 @@ fs::path calibrationSource(const Stack& stack, const ProcessOptions& options) {
   return stack.directory / stack.calibration_origin;
 }
 
+// An ellipse lost to a camera model that cannot be inverted is the calibration's fault: say
+// which file to fix (the luminance results stand).
+void warnAboutCameraModel(const GlareAnalysis& glare, const fs::path& calibration_file) {
+  std::vector<const EllipseMeasurement*> all{&glare.fwhm};
+  if (glare.limit) all.push_back(&*glare.limit);
+  for (const EllipseMeasurement& m : glare.thresholds) all.push_back(&m);
+  for (const EllipseMeasurement* m : all) {
+    if (m->status != EllipseStatus::kCameraModelNotInvertible) continue;
+    spdlog::warn(
+        "{}: the distortion coefficients cannot be inverted where the contour at {:.6g} cd/m² "
+        "lies; that ellipse is missing (status camera_model_not_invertible)",
+        calibration_file.string(), m->level_cd_m2);
+  }
+}
+
 // --threshold, else the α curve, else none.
 std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& options) {
   if (options.threshold_cd_m2) return options.threshold_cd_m2;
@@ -208,12 +223,10 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   const std::optional<double> limit = glareLimit(stack, options);
   const LuminanceStats stats = luminanceStats(merged);
   const calibration::CameraModel camera(stack.calibration.intrinsics);
-  auto glare = analyseGlare(merged, camera, stats.max,
-                            {.limit_cd_m2 = limit, .thresholds_cd_m2 = options.thresholds_cd_m2});
-  if (!glare) {  // the camera model failed: name the file it came from
-    return std::unexpected(Error{glare.error().code, calibrationSource(stack, options).string() +
-                                                         ": " + glare.error().message});
-  }
+  const GlareAnalysis glare =
+      analyseGlare(merged, camera, stats.max,
+                   {.limit_cd_m2 = limit, .thresholds_cd_m2 = options.thresholds_cd_m2});
+  warnAboutCameraModel(glare, calibrationSource(stack, options));
   progress.advance("analysed");
   ProcessSummary summary;
   summary.output_directory = options.output_directory.value_or(stack_directory / "result");
@@ -226,11 +239,11 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                .stats = stats,
                                .limit_cd_m2 = limit,
                                .constant_limit = options.threshold_cd_m2.has_value(),
-                               .glare = *glare});
+                               .glare = glare});
   FalseColourOptions picture_options;
   picture_options.limit_cd_m2 = limit;
   picture_options.title = pictureTitle(stack.manifest.alpha_deg);
-  picture_options.overlay = glareOverlay(*glare, camera, stats.max);
+  picture_options.overlay = glareOverlay(glare, camera, stats.max);
   GLARECAM_CHECK(
       writeOutputs(summary.output_directory, merged, summary, picture_options, progress));
   return summary;

@@ -12,13 +12,15 @@ summary="$OUT/summary.csv"
 echo "alpha_deg,limit_cd_m2,lmax_cd_m2,true_lmax_cd_m2,vertical_deg,horizontal_deg,true_vertical_deg,true_horizontal_deg,fwhm_vertical_deg,fwhm_horizontal_deg,glare,valid_fraction,stack" >"$summary.tmp"
 
 # result.json and truth.json are pretty-printed with two spaces per level, one key per line:
-# field FILE KEY [OBJECT [INDENT]] prints KEY's value, the first one at INDENT spaces (default 2)
-# after the line opening the top-level OBJECT (or anywhere, without OBJECT).
+# field FILE KEY [OBJECT [INDENT]] prints KEY's value at INDENT spaces (default 2) within the
+# top-level OBJECT (or at the top level, without OBJECT); nothing when it is not there (e.g. an
+# ellipse that is null).
 field() {
   awk -v key="\"$2\":" -v object="${3:-}" -v indent="${4:-2}" '
     BEGIN { pad = sprintf("%" indent "s", ""); inside = (object == "") }
     !inside && $0 ~ "^  \"" object "\": " { inside = 1; next }
-    inside && index($0, pad key) == 1 && substr($0, indent + 1, 1) == "\"" {
+    inside && object != "" && $0 ~ /^  [^ ]/ { exit }  # the object ended
+    inside && index($0, pad key) == 1 {
       sub(/^[^:]*: */, ""); sub(/,$/, ""); print; exit
     }' "$1"
 }

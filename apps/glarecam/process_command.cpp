@@ -58,7 +58,7 @@ void addProcessCommand(CLI::App& app, Action& action) {
   sub->add_option("--threshold", args->threshold,
                   "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
   sub->add_option("--thresholds", args->thresholds,
-                  "extra ellipse levels in cd/m², comma-separated (threshold sweep)");
+                  "extra ellipse levels in cd/m², comma-separated, at most 32 (threshold sweep)");
   sub->add_flag("--json", args->json, "print result.json on stdout");
   sub->add_option("--threads", args->threads, "worker threads (default: all cores)");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");

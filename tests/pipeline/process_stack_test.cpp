@@ -164,7 +164,7 @@ TEST(ProcessStack, ThresholdSweepReportsOneEllipsePerLevel) {
   EXPECT_TRUE(sweep[2]["ellipse"].is_null());
 }
 
-TEST(ProcessStack, DistortionThatCannotBeInvertedAtTheSpotIsBadInputNamingTheFile) {
+TEST(ProcessStack, DistortionThatCannotBeInvertedAtTheSpotLosesOnlyTheEllipses) {
   testing::TempDir dir;
   testing::writeSmallStack(dir / "s");
   json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
@@ -173,11 +173,26 @@ TEST(ProcessStack, DistortionThatCannotBeInvertedAtTheSpotIsBadInputNamingTheFil
   manifest["calibration"]["intrinsics"]["distortion"] = {-300.0, 0.0, 0.0, 0.0, 0.0};
   testing::writeText(dir / "s" / "stack.json", manifest.dump());
   auto summary = processStack(dir / "s", quiet());
-  ASSERT_FALSE(summary);
-  EXPECT_EQ(summary.error().code, ErrorCode::kBadInput);
-  EXPECT_NE(summary.error().message.find("stack.json"), std::string::npos)
-      << summary.error().message;
-  EXPECT_NE(summary.error().message.find("distortion"), std::string::npos);
+  ASSERT_TRUE(summary) << summary.error().message;
+  EXPECT_EQ(summary->result["limit"]["status"], "camera_model_not_invertible");
+  EXPECT_TRUE(summary->result["limit"]["ellipse"].is_null());
+  EXPECT_EQ(summary->result["glare"], true);  // the luminance verdict does not need the lens
+  EXPECT_TRUE(fs::exists(dir / "s" / "result" / "luminance.png"));
+}
+
+// A lens with distortion (undistortPoints throws on an empty input) and a level below the
+// background: the region is the whole image, with no observed contour point.
+TEST(ProcessStack, LevelBelowTheBackgroundWithDistortionFillsTheImage) {
+  testing::TempDir dir;
+  capture::SimulationOptions options = testing::smallScene(40.0);
+  options.distortion = {-0.05, 0, 0, 0, 0};
+  testing::writeSmallStack(dir / "s", options);
+  ProcessOptions process = quiet();
+  process.thresholds_cd_m2 = {1000.0};  // the simulated background is 3000 cd/m²
+  auto summary = processStack(dir / "s", process);
+  ASSERT_TRUE(summary) << summary.error().message;
+  EXPECT_EQ(summary->result["thresholds"][0]["status"], "fills_image");
+  EXPECT_EQ(summary->result["limit"]["status"], "measured");
 }
 
 TEST(ProcessStack, InvalidThresholdsAreBadInput) {

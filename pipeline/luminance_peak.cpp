@@ -49,55 +49,85 @@ float secondLargestAt(const calibration::MergedImage& merged, int x, int y) {
 struct Located {
   std::size_t index = 0;
   float value = 0;
+  bool beats(const Located& other) const {  // larger; the first in raster order on ties
+    return value > other.value || (value == other.value && index < other.index);
+  }
 };
 
-// The brightest pixel that is not an upper bound (first in raster order on ties).
-Located brightestPixel(const calibration::MergedImage& merged) {
+// Each row's best value of secondLargestAt, computed at every pixel (`everywhere`) or only at
+// the row's brightest pixel that is not an upper bound. On all cores.
+std::vector<Located> rowBests(const calibration::MergedImage& merged, bool everywhere) {
   const FloatImage& image = merged.luminance_cd_m2;
-  std::vector<Located> band_best(static_cast<std::size_t>(image.height()));
+  const auto width = static_cast<std::size_t>(image.width());
+  std::vector<Located> bests(static_cast<std::size_t>(image.height()));
   parallelRows(image.height(), defaultThreadCount(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
-      Located best{static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width()), 0};
+      const std::size_t first = static_cast<std::size_t>(y) * width;
+      Located best{first, 0};
       const auto row = image.row(y);
       const auto bound = merged.bound.row(y);
-      for (std::size_t x = 0; x < row.size(); ++x) {
-        if (!(row[x] > best.value) || bound[x] == std::uint8_t(PixelBound::kUpperBound)) continue;
-        best = {static_cast<std::size_t>(y) * row.size() + x, row[x]};
+      for (std::size_t x = 0; x < width; ++x) {
+        if (everywhere) {
+          const Located here{first + x, secondLargestAt(merged, static_cast<int>(x), y)};
+          if (here.beats(best)) best = here;
+        } else if (row[x] > best.value && bound[x] != std::uint8_t(PixelBound::kUpperBound)) {
+          best = {first + x, row[x]};
+        }
       }
-      band_best[static_cast<std::size_t>(y)] = best;
+      if (!everywhere)
+        best.value = secondLargestAt(merged, static_cast<int>(best.index - first), y);
+      bests[static_cast<std::size_t>(y)] = best;
     }
   });
+  return bests;
+}
+
+Located bestOf(const std::vector<Located>& candidates) {
   Located best;
-  for (const Located& row_best : band_best)
-    if (row_best.value > best.value) best = row_best;
+  for (const Located& c : candidates)
+    if (c.beats(best)) best = c;
   return best;
 }
 
-// The maximum of secondLargestAt over the image, without computing it everywhere: it can only
-// exceed its value t at the brightest pixel where two pixels of a neighbourhood exceed t, so
-// only the neighbourhoods of pixels brighter than t are searched (the lobe's top, not 5 MP).
+// Beyond this share of the image, searching around bright pixels costs more than computing the
+// statistic everywhere (an image of hot pixels on a dark field).
+constexpr std::size_t kMaxSearchShare = 64;
+
+// The maximum of secondLargestAt over the image, without computing it everywhere. Start from
+// its best value t at the rows' brightest pixels; it can only exceed t where two pixels of a
+// neighbourhood exceed t, so only the neighbourhoods of pixels brighter than t are searched
+// (the lobe's top, not 5 MP).
 Located locatePeak(const calibration::MergedImage& merged) {
   const FloatImage& image = merged.luminance_cd_m2;
-  const int width = image.width();
-  const Located brightest = brightestPixel(merged);
-  const int bx = static_cast<int>(brightest.index % static_cast<std::size_t>(width));
-  const int by = static_cast<int>(brightest.index / static_cast<std::size_t>(width));
-  Located best{brightest.index, secondLargestAt(merged, bx, by)};
-  ByteImage visited(width, image.height());
-  for (int y = 0; y < image.height(); ++y) {
-    const auto row = image.row(y);
-    for (int x = 0; x < width; ++x) {
-      if (!(row[static_cast<std::size_t>(x)] > best.value)) continue;
-      for (int yy = std::max(0, y - 1); yy <= std::min(image.height() - 1, y + 1); ++yy) {
-        for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx) {
-          if (visited.at(xx, yy)) continue;
-          visited.at(xx, yy) = 1;
-          const float v = secondLargestAt(merged, xx, yy);
-          const std::size_t index = static_cast<std::size_t>(yy) * width + xx;
-          if (v > best.value || (v == best.value && index < best.index)) best = {index, v};
-        }
-      }
+  const int width = image.width(), height = image.height();
+  Located best = bestOf(rowBests(merged, false));
+  std::vector<std::vector<std::size_t>> bright(static_cast<std::size_t>(height));
+  parallelRows(height, defaultThreadCount(), [&](int begin, int end) {
+    for (int y = begin; y < end; ++y) {
+      const auto row = image.row(y);
+      for (std::size_t x = 0; x < row.size(); ++x)
+        if (row[x] > best.value) bright[static_cast<std::size_t>(y)].push_back(x);
     }
+  });
+  std::vector<std::size_t> candidates;
+  for (int y = 0; y < height; ++y) {
+    for (const std::size_t bx : bright[static_cast<std::size_t>(y)]) {
+      const int x = static_cast<int>(bx);
+      for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy)
+        for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx)
+          candidates.push_back(static_cast<std::size_t>(yy) * static_cast<std::size_t>(width) +
+                               static_cast<std::size_t>(xx));
+    }
+    if (candidates.size() > image.pixelCount() / kMaxSearchShare)
+      return bestOf(rowBests(merged, true));
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  for (const std::size_t index : candidates) {
+    const int x = static_cast<int>(index % static_cast<std::size_t>(width));
+    const int y = static_cast<int>(index / static_cast<std::size_t>(width));
+    const Located here{index, secondLargestAt(merged, x, y)};
+    if (here.beats(best)) best = here;
   }
   return best;
 }
@@ -213,14 +243,18 @@ const char* toString(PeakMethod method) {
   return "unknown";
 }
 
-LuminancePeak findLuminancePeak(const calibration::MergedImage& merged) {
+LocatedPeak locateLuminancePeak(const calibration::MergedImage& merged) {
   if (merged.luminance_cd_m2.empty()) return {};
   const Located top = locatePeak(merged);
+  const auto width = static_cast<std::size_t>(merged.luminance_cd_m2.width());
+  return {static_cast<int>(top.index % width), static_cast<int>(top.index / width), top.value};
+}
+
+LuminancePeak findLuminancePeak(const calibration::MergedImage& merged) {
+  if (merged.luminance_cd_m2.empty()) return {};
+  const LocatedPeak top = locateLuminancePeak(merged);
   if (!(top.value > 0)) return darkImagePeak(merged);
-  const int cx =
-      static_cast<int>(top.index % static_cast<std::size_t>(merged.luminance_cd_m2.width()));
-  const int cy =
-      static_cast<int>(top.index / static_cast<std::size_t>(merged.luminance_cd_m2.width()));
+  const int cx = top.x, cy = top.y;
   const double level = kCapFraction * top.value;
   const FitWindow window{cx, cy, capRadius(merged, cx, cy, 1, 0, level),
                          capRadius(merged, cx, cy, 0, 1, level)};

@@ -27,6 +27,16 @@ struct LuminancePeak {
 
 const char* toString(PeakMethod method);
 
+struct LocatedPeak {
+  int x = 0, y = 0;
+  float value = 0;
+};
+
+// Step 1 alone: the pixel with the largest second-largest value of its 3x3 neighbourhood (upper
+// bounds ignored, outside the image counting as 0) and that value. Computed around the image's
+// bright pixels only, not at all 5 million; exact all the same (ties may resolve differently).
+LocatedPeak locateLuminancePeak(const calibration::MergedImage& merged);
+
 // Reads the merged image's luminance, bound flags and relative uncertainty (for the
 // uncertainty of a located, unfitted maximum).
 LuminancePeak findLuminancePeak(const calibration::MergedImage& merged);

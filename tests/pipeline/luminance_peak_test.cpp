@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 
 namespace glarecam::pipeline {
@@ -157,6 +159,74 @@ TEST(LuminancePeak, ReportsItsOwnUncertainty) {
   // 2 % per pixel averaged over a 31x31 window's cap: a few tenths of a percent.
   EXPECT_GT(peak.relative_uncertainty, 0.0005);
   EXPECT_LT(peak.relative_uncertainty, 0.005);
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline
+
+namespace glarecam::pipeline {
+namespace {
+
+// The definition of step 1, computed the slow way at every pixel.
+float bruteSecondLargest(const calibration::MergedImage& m, int x, int y) {
+  std::vector<float> values;
+  for (int yy = y - 1; yy <= y + 1; ++yy) {
+    for (int xx = x - 1; xx <= x + 1; ++xx) {
+      const bool inside =
+          xx >= 0 && yy >= 0 && xx < m.luminance_cd_m2.width() && yy < m.luminance_cd_m2.height();
+      const bool upper =
+          inside && m.bound.at(xx, yy) == static_cast<std::uint8_t>(PixelBound::kUpperBound);
+      values.push_back(inside && !upper ? m.luminance_cd_m2.at(xx, yy) : 0.0f);
+    }
+  }
+  std::sort(values.begin(), values.end(), std::greater<>());
+  return values[1];
+}
+
+// The fast search (around bright pixels only, with its fallback for images full of hot
+// pixels) must find exactly the brute-force maximum on images built to break it: hot pixels,
+// upper bounds brighter than everything, plateaus of ties, one-pixel-wide images.
+TEST(LuminancePeak, LocatingMatchesTheBruteForceDefinition) {
+  std::mt19937 rng(42);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int width = 1 + static_cast<int>(rng() % 40), height = 1 + static_cast<int>(rng() % 40);
+    calibration::MergedImage m;
+    m.luminance_cd_m2 = FloatImage(width, height);
+    m.relative_uncertainty = FloatImage(width, height, 0.01f);
+    m.valid_frames = ByteImage(width, height, 1);
+    m.bound = ByteImage(width, height, 0);
+    const int kind = trial % 4;
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        float v = static_cast<float>(rng() % 1000);
+        if (kind == 1) v = static_cast<float>(rng() % 4);               // many ties
+        if (kind == 2) v = rng() % 3 == 0 ? 1e6f + (rng() % 5) : 1.0f;  // hot pixels everywhere
+        if (kind == 3) v = rng() % 17 == 0 ? 1e6f : static_cast<float>(rng() % 10);
+        m.luminance_cd_m2.at(x, y) = v;
+        if (rng() % 11 == 0) {
+          m.bound.at(x, y) = static_cast<std::uint8_t>(PixelBound::kUpperBound);
+          m.luminance_cd_m2.at(x, y) = 5e6f;  // a bright upper bound must be ignored
+        }
+      }
+    }
+    // Kind 3: isolated hot pixels make every row's brightest pixel a poor start, and the
+    // maximum sits on a dark pixel between two moderately bright ones (found only by searching
+    // the bright pixels' neighbourhoods, not at the bright pixels themselves).
+    if (kind == 3 && width >= 3) {
+      const int y = static_cast<int>(rng() % static_cast<unsigned>(height));
+      const int x = static_cast<int>(rng() % static_cast<unsigned>(width - 2));
+      for (int xx = x; xx <= x + 2; ++xx) m.bound.at(xx, y) = 0;
+      m.luminance_cd_m2.at(x, y) = 500.0f + static_cast<float>(rng() % 100);
+      m.luminance_cd_m2.at(x + 1, y) = 0.0f;
+      m.luminance_cd_m2.at(x + 2, y) = 500.0f + static_cast<float>(rng() % 100);
+    }
+    float expected = 0;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) expected = std::max(expected, bruteSecondLargest(m, x, y));
+    const LocatedPeak located = locateLuminancePeak(m);
+    EXPECT_EQ(located.value, expected) << "trial " << trial;
+    EXPECT_EQ(bruteSecondLargest(m, located.x, located.y), expected) << "trial " << trial;
+  }
 }
 
 }  // namespace

@@ -91,7 +91,7 @@ Located bestOf(const std::vector<Located>& candidates) {
 
 // Beyond this share of the image, searching around bright pixels costs more than computing the
 // statistic everywhere (an image of hot pixels on a dark field).
-constexpr std::size_t kMaxSearchShare = 64;
+constexpr std::size_t kMaxSearchShare = 8;
 
 // The maximum of secondLargestAt over the image, without computing it everywhere. Start from
 // its best value t at the rows' brightest pixels; it can only exceed t where two pixels of a

@@ -89,6 +89,11 @@ for bad in "1e5," "1e5,,2e5" "1e5,x" "-1"; do
   expect "bad --thresholds $bad is one line" one_line_naming "--thresholds"
 done
 expect "nothing written on bad thresholds" test ! -e "$WORK/r4"
+# A lens with distortion and levels whose region is the whole view or none: statuses, exit 0.
+check "simulate with distortion" 0 "$GLARECAM" simulate --out "$WORK/sd" --size 160x128 --fov 16 --distortion=-0.05 -q
+check "thresholds below the background and above the maximum" 0 "$GLARECAM" process --no-progress --json --thresholds 1000,1e12 "$WORK/sd"
+expect "a level below the background fills the image" grep -q '"status": "fills_image"' "$WORK/out"
+expect "a level above the maximum is below_level" grep -q '"status": "below_level"' "$WORK/out"
 
 # Calibration override from the command line.
 check "process with missing --calibration" 2 "$GLARECAM" process "$WORK/s" --calibration "$WORK/none.json"

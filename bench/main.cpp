@@ -35,7 +35,8 @@ constexpr std::size_t kAggregateSuffixWidth = 7;
 // The console reporter, plus:
 //  - it prints the names as registered: Google Benchmark appends "/iterations:N" and
 //    "/real_time" to the names of benchmarks set up with Iterations() and UseRealTime();
-//  - it records each benchmark's mean real time per iteration (seconds, over repetitions).
+//  - it records each benchmark's mean real time per iteration (seconds, over repetitions, or
+//    the "mean" aggregate with --benchmark_report_aggregates_only).
 class RecordingReporter : public benchmark::ConsoleReporter {
  public:
   RecordingReporter(OutputOptions options, std::size_t longest_name)
@@ -53,24 +54,32 @@ class RecordingReporter : public benchmark::ConsoleReporter {
       run.run_name.min_time.clear();
       run.run_name.iterations.clear();
       run.run_name.time_type.clear();
-      if (run.run_type != Run::RT_Iteration || run.error_occurred) continue;
+      if (run.error_occurred) continue;
+      const double seconds =
+          run.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(run.time_unit);
       Timing& timing = timings_[run.run_name.function_name];
-      timing.total_s += run.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(run.time_unit);
-      ++timing.runs;
+      if (run.run_type == Run::RT_Iteration) {
+        timing.total_s += seconds;
+        ++timing.runs;
+      } else if (run.aggregate_name == "mean") {  // --benchmark_report_aggregates_only
+        timing.mean_s = seconds;
+      }
     }
     ConsoleReporter::ReportRuns(renamed);
   }
 
   std::optional<double> realTimeSeconds(const std::string& name) const {
     const auto it = timings_.find(name);
-    if (it == timings_.end() || it->second.runs == 0) return std::nullopt;
-    return it->second.total_s / it->second.runs;
+    if (it == timings_.end()) return std::nullopt;
+    if (it->second.runs > 0) return it->second.total_s / it->second.runs;
+    return it->second.mean_s;
   }
 
  private:
   struct Timing {
     double total_s = 0;
     int runs = 0;
+    std::optional<double> mean_s;  // the "mean" aggregate, when only aggregates are reported
   };
   std::size_t name_width_;
   std::map<std::string, Timing> timings_;

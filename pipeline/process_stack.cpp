@@ -198,12 +198,11 @@ std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& optio
 Status ProcessOptions::validate() const {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   if (threshold_cd_m2 && !positive(*threshold_cd_m2))
-    return badInput("process: --threshold must be a positive luminance in cd/m²");
+    return badInput("--threshold: must be a positive luminance in cd/m²");
   if (thresholds_cd_m2.size() > kMaxThresholds)
-    return badInput("process: --thresholds takes at most " + std::to_string(kMaxThresholds) +
-                    " levels");
+    return badInput("--thresholds: at most " + std::to_string(kMaxThresholds) + " levels");
   if (!std::all_of(thresholds_cd_m2.begin(), thresholds_cd_m2.end(), positive))
-    return badInput("process: --thresholds must be positive luminances in cd/m²");
+    return badInput("--thresholds: must be positive luminances in cd/m²");
   return {};
 }
 

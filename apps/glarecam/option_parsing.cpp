@@ -36,8 +36,10 @@ Result<std::pair<int, int>> parseSize(const std::string& text, const std::string
 Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option,
                                             std::size_t min_count, std::size_t max_count) {
   std::vector<double> values;
+  const std::string expected =
+      max_count == 1 ? "one number" : "comma-separated numbers (no thousands separators)";
   if (text.empty() || text.back() == ',') {
-    return badInput(option + ": expected comma-separated numbers, got \"" + text + "\"");
+    return badInput(option + ": expected " + expected + ", got \"" + text + "\"");
   }
   std::stringstream stream(text);
   std::string item;
@@ -49,9 +51,10 @@ Result<std::vector<double>> parseNumberList(const std::string& text, const std::
     values.push_back(value);
   }
   if (values.size() < min_count || values.size() > max_count) {
+    if (max_count == 1) return badInput(option + ": expected one number, got \"" + text + "\"");
     return badInput(option + ": expected " + std::to_string(min_count) +
                     (max_count != min_count ? " to " + std::to_string(max_count) : "") +
-                    " comma-separated numbers");
+                    " comma-separated numbers, got " + std::to_string(values.size()));
   }
   return values;
 }

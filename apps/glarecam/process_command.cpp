@@ -3,6 +3,9 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
@@ -13,23 +16,30 @@ namespace {
 
 struct ProcessArgs {
   std::string stack;
-  std::string calibration, out, threshold, thresholds;
+  // Optional, so that a given but empty value ("--threshold $UNSET") is an error, not a default.
+  std::optional<std::string> calibration, out, threshold, thresholds;
   bool json = false, no_progress = false;
   unsigned threads = 0;
 };
 
 Status runProcess(const ProcessArgs& args) {
   pipeline::ProcessOptions options;
-  if (!args.calibration.empty()) options.calibration_file = args.calibration;
-  if (!args.out.empty()) options.output_directory = args.out;
+  for (const auto& [value, name] :
+       {std::pair{&args.calibration, "--calibration"}, std::pair{&args.out, "--out"}}) {
+    if (value->has_value() && (*value)->empty())
+      return badInput(std::string(name) + ": expected a path, got an empty string");
+  }
+  if (args.calibration) options.calibration_file = *args.calibration;
+  if (args.out) options.output_directory = *args.out;
   options.threads = args.threads;
-  if (!args.threshold.empty()) {
-    auto threshold = parseNumberList(args.threshold, "--threshold", 1, 1);
+  if (args.threshold) {
+    auto threshold = parseNumberList(*args.threshold, "--threshold", 1, 1);
     if (!threshold) return std::unexpected(threshold.error());
     options.threshold_cd_m2 = threshold->front();
   }
-  if (!args.thresholds.empty()) {
-    auto thresholds = parseNumberList(args.thresholds, "--thresholds", 1, pipeline::kMaxThresholds);
+  if (args.thresholds) {
+    auto thresholds =
+        parseNumberList(*args.thresholds, "--thresholds", 1, pipeline::kMaxThresholds);
     if (!thresholds) return std::unexpected(thresholds.error());
     options.thresholds_cd_m2 = *thresholds;
   }

@@ -68,7 +68,18 @@ std::optional<EllipseAxes> GlareScene::axesAt(double level_cd_m2) const {
   if (!(lobe_.peak_cd_m2 > level_cd_m2 && level_cd_m2 > lobe_.background_cd_m2))
     return std::nullopt;
   const double radius = contourRadius(lobe_.peak_cd_m2, lobe_.background_cd_m2, level_cd_m2);
-  return EllipseAxes{2.0 * lobe_.sigma_v_deg * radius, 2.0 * lobe_.sigma_h_deg * radius};
+  const double own_vertical = 2.0 * lobe_.sigma_v_deg * radius;
+  const double own_horizontal = 2.0 * lobe_.sigma_h_deg * radius;
+  // Named as the measurement names them (pipeline/glare_ellipse.h): vertical is the axis closer
+  // to the vertical, at exactly 45° the major one. The lobe's own horizontal axis lies at its
+  // orientation from the horizontal, its major axis 90° further when the vertical one is longer.
+  const double major_deg =
+      lobe_.orientation_deg + (lobe_.sigma_v_deg > lobe_.sigma_h_deg ? 90.0 : 0.0);
+  const double wrapped = std::abs(std::remainder(major_deg, 180.0));  // [0, 90]
+  const bool major_is_vertical = wrapped >= 45.0;
+  const double major = std::max(own_vertical, own_horizontal);
+  const double minor = std::min(own_vertical, own_horizontal);
+  return major_is_vertical ? EllipseAxes{major, minor} : EllipseAxes{minor, major};
 }
 
 SceneTruth GlareScene::truth(double limit_cd_m2) const {

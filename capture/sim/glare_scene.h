@@ -48,7 +48,9 @@ class GlareScene {
   static Result<GlareScene> create(const GlareLobe& lobe);
 
   double luminanceCdM2(const calibration::Ray& ray) const;
-  // Full axes of the iso-contour at `level_cd_m2`, when the lobe reaches it.
+  // Full axes of the iso-contour at `level_cd_m2`, when the lobe reaches it, named vertical and
+  // horizontal as the measurement names them (the axis closer to the vertical is vertical,
+  // whatever the lobe's orientation), so that truth and result compare key by key.
   std::optional<EllipseAxes> axesAt(double level_cd_m2) const;
   SceneTruth truth(double limit_cd_m2) const;
   const GlareLobe& lobe() const { return lobe_; }

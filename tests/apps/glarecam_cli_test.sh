@@ -88,6 +88,12 @@ for bad in "1e5," "1e5,,2e5" "1e5,x" "-1"; do
   check "bad --thresholds $bad" 2 "$GLARECAM" process --no-progress --out "$WORK/r4" --thresholds="$bad" "$WORK/s"
   expect "bad --thresholds $bad is one line" one_line_naming "--thresholds"
 done
+for option in --threshold --thresholds --out --calibration; do  # e.g. an unset shell variable
+  check "empty $option" 2 "$GLARECAM" process --no-progress "$WORK/s" "$option" ""
+  expect "empty $option is named" one_line_naming "$option"
+done
+check "thousands separator" 2 "$GLARECAM" process --no-progress --out "$WORK/r4" --threshold 30,000 "$WORK/s"
+expect "thousands separator error says one number" one_line_naming "expected one number"
 expect "nothing written on bad thresholds" test ! -e "$WORK/r4"
 # A lens with distortion and levels whose region is the whole view or none: statuses, exit 0.
 check "simulate with distortion" 0 "$GLARECAM" simulate --out "$WORK/sd" --size 160x128 --fov 16 --distortion=-0.05 -q

@@ -65,6 +65,26 @@ TEST(GlareScene, ContoursHaveTheRequestedAxesOnTheSphere) {
       300000.0, 1e-6);
 }
 
+// Truth names the axes as the measurement does: the axis closer to the vertical is vertical,
+// so a lobe turned by 90° swaps them, one turned by 30° does not, and at exactly 45° the major
+// axis is the vertical one.
+TEST(GlareScene, TruthNamesAxesLikeTheMeasurement) {
+  const auto truthAt = [](double orientation_deg) {
+    auto lobe = lobeWithAxesAt(30000, 600000, 3000, 6.0, 4.0);  // vertical 6, horizontal 4
+    lobe->orientation_deg = orientation_deg;
+    return *GlareScene::create(*lobe)->truth(30000).limit_axes;
+  };
+  for (const double orientation : {0.0, 30.0, -30.0, 180.0, 44.0}) {
+    EXPECT_NEAR(truthAt(orientation).vertical_deg, 6.0, 1e-12) << orientation;
+    EXPECT_NEAR(truthAt(orientation).horizontal_deg, 4.0, 1e-12) << orientation;
+  }
+  for (const double orientation : {90.0, -90.0, 60.0, 270.0}) {
+    EXPECT_NEAR(truthAt(orientation).vertical_deg, 4.0, 1e-12) << orientation;
+    EXPECT_NEAR(truthAt(orientation).horizontal_deg, 6.0, 1e-12) << orientation;
+  }
+  EXPECT_NEAR(truthAt(45.0).vertical_deg, 6.0, 1e-12);  // the major axis lies at 135° = -45°
+}
+
 TEST(GlareScene, OffAxisLobeKeepsItsAngularSize) {
   auto lobe = lobeWithAxesAt(30000, 600000, 3000, 5.0, 5.0);  // circular: any direction is an axis
   ASSERT_TRUE(lobe);

@@ -102,6 +102,20 @@ TEST(GlareEllipse, RotatedOffCentreLobeAtHighAlpha) {
   EXPECT_NEAR(e.centre_direction.vertical_deg, -7.0, 0.01);
 }
 
+// Turned by 60°, the module's long (vertical) axis lies closer to the horizontal: measurement
+// and truth both call it horizontal.
+TEST(GlareEllipse, LobeTurnedPast45DegreesSwapsItsAxesNames) {
+  SceneSpec spec;
+  spec.limit_cd_m2 = 100'000;
+  spec.lobe = lobeAtLimit(100'000, 11.9e6, 8.2, 3.6);
+  spec.lobe.orientation_deg = 60;
+  const Measured m = analyse(spec);
+  ASSERT_TRUE(m.analysis.limit && m.analysis.limit->ellipse);
+  EXPECT_NEAR(m.scene.truth.limit_axes->horizontal_deg, 8.2, 1e-9);
+  expectAxes(m.analysis.limit->ellipse, m.scene.truth.limit_axes, kAxisTolerance, "turned 60");
+  EXPECT_NEAR(m.analysis.limit->ellipse->orientation_deg, -30.0, 0.5);
+}
+
 TEST(GlareEllipse, StrongBarrelDistortionFarOffAxis) {
   SceneSpec spec;
   spec.horizontal_fov_deg = 70;

@@ -28,6 +28,7 @@ constexpr double kPanelWidthEm = 9.5;      // bar, ticks and labels such as "100
 constexpr double kMinCanvasHeightEm = 16;  // room for title, bar and legend on short images
 constexpr double kBarMarginEm = 4.0;       // above the bar (title, unit) and below (legend)
 constexpr double kBarWidthEm = 1.5;
+constexpr double kFineTickDecades = 2.0;
 
 struct SurfaceDeleter {
   void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
@@ -143,14 +144,22 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
   };
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_set_line_width(cr, std::max(1.0, p.font_px / 10));
-  for (int decade = static_cast<int>(std::ceil(scale.log_min));
+  // Ticks at each decade; on a scale under kFineTickDecades also at 2 and 5 times each, so
+  // that a dim, low-contrast image still has values to read.
+  const bool fine = scale.log_max - scale.log_min < kFineTickDecades;
+  for (int decade = static_cast<int>(std::floor(scale.log_min));
        decade <= static_cast<int>(std::floor(scale.log_max)); ++decade) {
-    const double value = std::pow(10.0, decade);
-    const double y = yOf(value);
-    cairo_move_to(cr, p.bar_x + p.bar_width, y);
-    cairo_line_to(cr, p.bar_x + p.bar_width + p.font_px * 0.4, y);
-    cairo_stroke(cr);
-    drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, y + p.font_px * 0.35, tickLabel(value));
+    for (const double step : {1.0, 2.0, 5.0}) {
+      const double value = step * std::pow(10.0, decade);
+      if ((step != 1.0 && !fine) || std::log10(value) < scale.log_min ||
+          std::log10(value) > scale.log_max)
+        continue;
+      const double y = yOf(value);
+      cairo_move_to(cr, p.bar_x + p.bar_width, y);
+      cairo_line_to(cr, p.bar_x + p.bar_width + p.font_px * 0.4, y);
+      cairo_stroke(cr);
+      drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, y + p.font_px * 0.35, tickLabel(value));
+    }
   }
   drawText(cr, p.bar_x, p.bar_top - p.font_px * 0.8, "cd/m\u00b2");
   if (!options.title.empty()) drawText(cr, p.bar_x, p.font_px * 1.2, options.title);

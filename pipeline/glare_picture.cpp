@@ -3,6 +3,7 @@
 #include <cairo.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -110,8 +111,8 @@ std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, co
 }
 
 // The two axes of an ellipse as arcs, each labelled at its upper or right end.
-void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const ClipBox& box,
-              double font_px) {
+void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::string& prefix,
+              const ClipBox& box, double font_px) {
   const AngularPlane plane(e.plane_centre);
   const Ellipse& ellipse = e.plane_ellipse;
   for (const double t_end : {0.0, std::numbers::pi / 2}) {
@@ -128,10 +129,18 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const ClipBo
     const PixelPoint pa = o.camera.project(plane.toRay({a.x, a.y}));
     const PixelPoint pb = o.camera.project(plane.toRay({b.x, b.y}));
     const PixelPoint end = vertical ? (pa.y < pb.y ? pa : pb) : (pa.x > pb.x ? pa : pb);
-    const std::string text = fmt::format("{} {:.2f}\u00b0", vertical ? "V" : "H", length_deg);
+    const std::string text =
+        fmt::format("{}{} {:.2f}\u00b0", prefix, vertical ? "V" : "H", length_deg);
     const double dx = vertical ? font_px * 0.3 : font_px * 0.4;
     const double dy = vertical ? -font_px * 0.4 : font_px * 0.35;
-    label(cr, end.x + dx, end.y + dy, text, font_px);
+    // Kept inside the picture when the axis ends beyond it (a truncated ellipse).
+    cairo_text_extents_t extents;
+    cairo_set_font_size(cr, font_px);
+    cairo_text_extents(cr, text.c_str(), &extents);
+    const double x = std::clamp(end.x + dx, box.x0 + font_px * 0.2,
+                                std::max(box.x0, box.x1 - extents.x_advance - font_px * 0.2));
+    const double y = std::clamp(end.y + dy, box.y0 + font_px * 1.1, box.y1 - font_px * 0.3);
+    label(cr, x, y, text, font_px);
   }
 }
 
@@ -150,7 +159,7 @@ void drawCircles(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_
     const Ray ray = plane.toRay({at.x, at.y});
     if (ray.z <= 0) continue;
     const PixelPoint p = o.camera.project(ray);
-    const std::string text = fmt::format("{:g}\u00b0", radius_deg);
+    const std::string text = fmt::format("r {:g}\u00b0", radius_deg);
     cairo_set_font_size(cr, font_px * 0.8);
     cairo_text_extents_t extents;
     cairo_text_extents(cr, text.c_str(), &extents);
@@ -161,12 +170,24 @@ void drawCircles(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_
   }
 }
 
+// The legend only where it fits beside the spot: not on thumbnails.
+constexpr double kMinLegendWidthEm = 30, kMinLegendHeightEm = 12;
+
 void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_px) {
+  if (box.x1 - box.x0 < kMinLegendWidthEm * font_px ||
+      box.y1 - box.y0 < kMinLegendHeightEm * font_px)
+    return;
   std::vector<std::string> lines;
-  if (o.limit) lines.push_back("limit contour (solid), fitted ellipse (dashed)");
-  if (o.fwhm) lines.push_back("FWHM ellipse (grey dashed)");
-  lines.push_back("circles: 1\u00b0, 5\u00b0, 10\u00b0, 20\u00b0 around the maximum");
-  double y = box.y1 - font_px * 0.6 - font_px * 1.2 * static_cast<double>(lines.size() - 1);
+  if (o.limit) {
+    lines.push_back(o.limit->truncated
+                        ? "limit contour (solid), fitted ellipse (dashed), cut by the frame"
+                        : "limit contour (solid), fitted ellipse (dashed)");
+  }
+  if (o.fwhm)
+    lines.push_back(o.limit ? "FWHM ellipse (grey dashed)"
+                            : "no glare: FWHM ellipse (grey dashed)");
+  lines.push_back("circles: radius 1\u00b0, 5\u00b0, 10\u00b0, 20\u00b0 around the maximum");
+  double y = box.y0 + font_px * 1.2;
   for (const std::string& line : lines) {
     label(cr, box.x0 + font_px * 0.6, y, line, font_px * 0.8);
     y += font_px * 1.2;
@@ -187,8 +208,11 @@ void drawOverlay(cairo_t* cr, const Overlay& o, double font_px) {
     stroke(cr, ellipseOutline(o, *o.limit, box), kLimitFitStyle, font_px);
   }
   // Axes of the limit ellipse, or of the FWHM ellipse when the module does not glare.
-  const std::optional<GlareEllipse>& labelled = o.limit ? o.limit : o.fwhm;
-  if (labelled) drawAxes(cr, o, *labelled, box, font_px);
+  if (o.limit) {
+    drawAxes(cr, o, *o.limit, "", box, font_px);
+  } else if (o.fwhm) {
+    drawAxes(cr, o, *o.fwhm, "FWHM ", box, font_px);
+  }
   drawLegend(cr, o, box, font_px);
 }
 

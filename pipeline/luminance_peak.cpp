@@ -194,6 +194,32 @@ bool fitQuadraticCap(const calibration::MergedImage& merged, const FitWindow& w,
   return true;
 }
 
+// The centroid of the saturated plateau (8-connected lower-bound pixels) next to (cx, cy): where
+// the clipped top is, rather than the plateau's first pixel in raster order.
+std::pair<double, double> clippedCentroid(const calibration::MergedImage& merged, int cx, int cy) {
+  const int width = merged.bound.width(), height = merged.bound.height();
+  std::vector<std::uint8_t> seen(merged.bound.pixelCount(), 0);
+  std::vector<std::pair<int, int>> stack;
+  for (int y = std::max(0, cy - 1); y <= std::min(height - 1, cy + 1); ++y)
+    for (int x = std::max(0, cx - 1); x <= std::min(width - 1, cx + 1); ++x)
+      if (isBound(merged, x, y, PixelBound::kLowerBound)) stack.emplace_back(x, y);
+  double sum_x = 0, sum_y = 0, count = 0;
+  while (!stack.empty()) {
+    const auto [x, y] = stack.back();
+    stack.pop_back();
+    const std::size_t index = static_cast<std::size_t>(y) * width + x;
+    if (seen[index]) continue;
+    seen[index] = 1;
+    sum_x += x, sum_y += y, count += 1;
+    for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy)
+      for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx)
+        if (isBound(merged, xx, yy, PixelBound::kLowerBound) &&
+            !seen[static_cast<std::size_t>(yy) * width + xx])
+          stack.emplace_back(xx, yy);
+  }
+  return {sum_x / count, sum_y / count};
+}
+
 // A top saturated in every frame: at least two lower-bound pixels in the 3x3 neighbourhood of
 // the located top (one alone, a stuck pixel, is an outlier like any other). The true maximum
 // is then only known to exceed the larger of the located value and those bounds' second
@@ -212,7 +238,8 @@ bool saturatedTop(const calibration::MergedImage& merged, int cx, int cy, Lumina
     }
   }
   if (clipped < 2) return false;
-  peak = {std::max(static_cast<double>(second), peak.value_cd_m2), double(cx), double(cy),
+  const auto centre = clippedCentroid(merged, cx, cy);
+  peak = {std::max(static_cast<double>(second), peak.value_cd_m2), centre.first, centre.second,
           std::nan(""), PeakMethod::kLowerBound};
   return true;
 }

@@ -112,9 +112,13 @@ std::string ProcessSummary::briefReport() const {
   const auto& limit = result.at("limit").at("limit_cd_m2");
   char line[256];
   std::snprintf(
-      line, sizeof line, "%s: Lmax %.4g cd/m² at (%d, %d), limit %s, glare %s",
-      result.at("stack").get<std::string>().c_str(), lum.at("max_cd_m2").get<double>(),
-      lum.at("max_pixel")[0].get<int>(), lum.at("max_pixel")[1].get<int>(),
+      line, sizeof line, "%s: Lmax %s%.4g cd/m² at (%d, %d), limit %s, glare %s",
+      result.at("stack").get<std::string>().c_str(),
+      lum.at("max_is_lower_bound").get<bool>()   ? ">= "
+      : lum.at("max_is_upper_bound").get<bool>() ? "<= "
+                                                 : "",
+      lum.at("max_cd_m2").get<double>(), lum.at("max_pixel")[0].get<int>(),
+      lum.at("max_pixel")[1].get<int>(),
       limit.is_null() ? "none" : std::to_string(std::lround(limit.get<double>())).c_str(),
       result.at("glare").is_null() ? "n/a" : (result.at("glare").get<bool>() ? "yes" : "no"));
   return line;
@@ -190,7 +194,15 @@ void warnAboutCameraModel(const GlareAnalysis& glare, const fs::path& calibratio
 std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& options) {
   if (options.threshold_cd_m2) return options.threshold_cd_m2;
   if (!stack.manifest.alpha_deg) return std::nullopt;
-  return glareLimitCdM2(*stack.manifest.alpha_deg);
+  const auto limit = glareLimitCdM2(*stack.manifest.alpha_deg);
+  if (!limit) {
+    spdlog::warn(
+        "{}: alpha_deg {:g} is beyond the method's {:g}°: no glare limit and no verdict (give "
+        "--threshold for a constant limit)",
+        (stack.directory / kManifestFileName).string(), *stack.manifest.alpha_deg,
+        kMaxLimitAlphaDeg);
+  }
+  return limit;
 }
 
 }  // namespace

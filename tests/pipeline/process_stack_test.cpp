@@ -225,6 +225,11 @@ TEST(ProcessStack, SaturatedPeakIsReportedAsALowerBound) {
   EXPECT_GT(summary->result["luminance"]["saturated_pixels"].get<int>(), 0);
   EXPECT_TRUE(summary->result["luminance"]["max_is_lower_bound"].get<bool>());
   EXPECT_LT(summary->result["luminance"]["max_cd_m2"].get<double>(), simulated.truth.peak_cd_m2);
+  // The clipped top's position is the plateau's centroid, on the lobe's centre (not its edge).
+  EXPECT_NEAR(summary->result["luminance"]["max_position_px"][0].get<double>(),
+              simulated.centre_pixel[0], 1.0);
+  EXPECT_NEAR(summary->result["luminance"]["max_position_px"][1].get<double>(),
+              simulated.centre_pixel[1], 1.0);
   // Half of a lower bound is no FWHM level.
   EXPECT_EQ(summary->result["fwhm"]["status"], "peak_is_bound");
   EXPECT_TRUE(summary->result["fwhm"]["ellipse"].is_null());

@@ -50,7 +50,7 @@ Status runAction(const std::function<Status()>& action) {
 int runGlarecam(int argc, char** argv) {
   CLI::App app{
       "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
-      "Docs: docs/process.md, docs/stack-format.md, docs/method.md"};
+      "Docs: docs/process.md, docs/simulate.md, docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
   app.fallthrough();  // global options (-v, -q) also after the subcommand

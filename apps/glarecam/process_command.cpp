@@ -60,7 +60,8 @@ Status runProcess(const ProcessArgs& args) {
 void addProcessCommand(CLI::App& app, Action& action) {
   auto args = std::make_shared<ProcessArgs>();
   CLI::App* sub = app.add_subcommand(
-      "process", "Turn a stack into a luminance image and result.json (docs/process.md)");
+      "process",
+      "Turn a stack into a luminance image, glare ellipses and result.json (docs/process.md)");
   sub->add_option("STACK", args->stack, "stack directory (holding stack.json)")->required();
   sub->add_option("--calibration", args->calibration,
                   "calibration JSON file; overrides the stack's");

@@ -55,7 +55,8 @@ void addSimulateCommand(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand(
       "simulate", "Write a stack of the simulated rig, with truth.json (docs/simulate.md)");
   sub->add_option("--out", args->out,
-                  "stack directory to create (replaced atomically if it exists)")
+                  "stack directory to create; an existing stack there is replaced atomically, "
+                  "anything else is refused")
       ->required();
   sub->add_option("--alpha", args->options.alpha_deg, "angle of incidence in degrees, 0..80")
       ->capture_default_str();

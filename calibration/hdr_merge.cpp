@@ -27,19 +27,12 @@ struct FrameConstants {
   float read_coefficient;
 };
 
-// A frame's saturation: the calibration's, unless the frame's container cannot hold it (an
-// 8-bit frame saturates at 255 whatever the calibration of the sensor says).
-double saturationOf(const MergeInput& input, std::size_t frame) {
-  const int bits = frame < input.bit_depths.size() ? input.bit_depths[frame] : 16;
-  return std::min(input.saturation_dn, static_cast<double>((1 << bits) - 1));
-}
-
 // Frames sorted from the longest effective exposure (smallest scale) to the shortest.
 std::vector<FrameConstants> frameConstants(const MergeInput& input) {
   std::vector<FrameConstants> constants;
   for (std::size_t i = 0; i < input.frames.size(); ++i) {
     const FrameRadiometry& r = input.radiometry[i];
-    const double saturation_dn = saturationOf(input, i);
+    const double saturation_dn = frameSaturationDn(input, i);
     const double shot_coefficient = r.scale_cd_m2_per_dn * r.dn_per_electron;
     constants.push_back(
         {&input.frames[i], static_cast<float>(r.scale_cd_m2_per_dn),
@@ -288,6 +281,11 @@ void ensureSize(Image<T>& image, int width, int height) {
 
 }  // namespace
 
+double frameSaturationDn(const MergeInput& input, std::size_t frame) {
+  const int bits = frame < input.bit_depths.size() ? input.bit_depths[frame] : 16;
+  return std::min(input.saturation_dn, static_cast<double>((1 << bits) - 1));
+}
+
 Status validate(const MergeInput& input) {
   if (input.frames.empty()) return badInput("merge: no frames");
   if (input.frames.size() != input.radiometry.size())
@@ -303,7 +301,7 @@ Status validate(const MergeInput& input) {
     return fail(ErrorCode::kInternal, "merge: one bit depth per frame needed");
   }
   for (std::size_t i = 0; i < input.frames.size(); ++i) {
-    if (saturationOf(input, i) <= input.black_level_dn) {
+    if (frameSaturationDn(input, i) <= input.black_level_dn) {
       return badInput("merge: frame " + std::to_string(i) +
                       " cannot hold values above the black level " +
                       std::to_string(input.black_level_dn) + " DN (" +

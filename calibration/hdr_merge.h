@@ -48,6 +48,10 @@ struct MergedImage {
   ByteImage bound;  // PixelBound values
 };
 
+// A frame's saturation: the calibration's, unless the frame's container cannot hold it (an
+// 8-bit frame saturates at 255 whatever the calibration of the sensor says).
+double frameSaturationDn(const MergeInput& input, std::size_t frame);
+
 // Checks that the input is consistent (sizes, counts, finite constants).
 Status validate(const MergeInput& input);
 

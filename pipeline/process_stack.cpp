@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "calibration/frame_consistency.h"
 #include "calibration/hdr_merge.h"
 #include "core/atomic_file.h"
 #include "core/image_io.h"
@@ -126,8 +127,33 @@ std::string ProcessSummary::briefReport() const {
 
 namespace {
 
-// The radiometric checks, then the merge; the raw frames are freed once merged.
-Result<calibration::MergedImage> mergeStack(Stack& stack, unsigned threads) {
+struct MergedStack {
+  calibration::MergedImage image;
+  std::vector<FrameCheck> frames;  // each frame's agreement with the merge
+};
+
+// Frames whose luminance disagrees with the merge make every number wrong without any other
+// symptom: say which, and by how much.
+std::vector<FrameCheck> checkFrames(const Stack& stack, const calibration::MergeInput& input,
+                                    const calibration::MergedImage& merged) {
+  std::vector<FrameCheck> checks;
+  const auto agreement = calibration::frameAgreement(input, merged);
+  for (std::size_t i = 0; i < agreement.size(); ++i) {
+    checks.push_back({stack.manifest.frames[i].file, agreement[i]});
+    if (agreement[i].agrees()) continue;
+    spdlog::warn(
+        "{}: frames[{}] ({}) reads {:+.0f} % against the merge of the other frames (median of {} "
+        "pixels): swapped files, or a wrong exposure_us, gain_db or nd_transmission? Every "
+        "luminance and ellipse of this stack is suspect",
+        (stack.directory / kManifestFileName).string(), i, stack.manifest.frames[i].file,
+        100.0 * (agreement[i].median_ratio - 1.0), agreement[i].samples);
+  }
+  return checks;
+}
+
+// The radiometric checks, the merge and the frames' agreement with it; the raw frames are
+// freed once merged.
+Result<MergedStack> mergeStack(Stack& stack, unsigned threads) {
   const auto radiometry = calibration::frameRadiometry(stack.manifest.frames, stack.calibration);
   GLARECAM_CHECK(checkRadiometry(stack, radiometry));
   warnAboutNarrowFrames(stack);
@@ -140,9 +166,11 @@ Result<calibration::MergedImage> mergeStack(Stack& stack, unsigned threads) {
                                 stack.calibration.saturation_dn,
                                 stack.flat_field ? &*stack.flat_field : nullptr,
                                 stack.bit_depths};
-  auto merged = calibration::merge(input, {.threads = threads});
+  MergedStack result;
+  GLARECAM_ASSIGN(result.image, calibration::merge(input, {.threads = threads}));
+  result.frames = checkFrames(stack, input, result.image);
   stack.frames.clear();
-  return merged;
+  return result;
 }
 
 std::string pictureTitle(const std::optional<double>& alpha_deg) {
@@ -227,8 +255,9 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   GLARECAM_ASSIGN(stack, readStack(stack_directory, {.calibration_file = options.calibration_file,
                                                      .threads = options.threads}));
   progress.advance("read");
-  calibration::MergedImage merged;
-  GLARECAM_ASSIGN(merged, mergeStack(stack, options.threads));
+  MergedStack merged_stack;
+  GLARECAM_ASSIGN(merged_stack, mergeStack(stack, options.threads));
+  const calibration::MergedImage& merged = merged_stack.image;
   progress.advance("merged");
 
   const std::optional<double> limit = glareLimit(stack, options);
@@ -248,6 +277,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                .calibration_origin = stack.calibration_origin,
                                .noise_model_assumed = !stack.calibration.noise,
                                .stats = stats,
+                               .frames = merged_stack.frames,
                                .limit_cd_m2 = limit,
                                .constant_limit = options.threshold_cd_m2.has_value(),
                                .glare = glare});

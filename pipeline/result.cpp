@@ -73,6 +73,18 @@ nlohmann::json makeResult(const ResultInputs& in) {
                          {"dark_pixels", s.dark_pixels},
                          {"median_relative_uncertainty", s.median_relative_uncertainty}};
   const auto& limit = in.glare.limit;
+  result["frames"] = json::array();
+  bool consistent = true;
+  for (const FrameCheck& f : in.frames) {
+    const double ratio = f.agreement.median_ratio;
+    result["frames"].push_back(
+        {{"file", f.file},
+         {"median_ratio", std::isfinite(ratio) ? json(ratio) : json(nullptr)},
+         {"samples", f.agreement.samples},
+         {"agrees", f.agreement.agrees()}});
+    consistent = consistent && f.agreement.agrees();
+  }
+  result["luminance"]["frames_consistent"] = consistent;
   result["limit"] = {
       {"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
       {"mode", in.constant_limit ? "constant" : (in.limit_cd_m2 ? "alpha_curve" : "none")},

@@ -6,13 +6,20 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "calibration/frame_consistency.h"
 #include "pipeline/glare_analysis.h"
 #include "pipeline/luminance_stats.h"
 
 namespace glarecam::pipeline {
 
 inline constexpr std::string_view kResultSchema = "glarecam.result/1";
+
+struct FrameCheck {
+  std::string file;
+  calibration::FrameAgreement agreement;
+};
 
 struct ResultInputs {
   std::string stack_id;
@@ -21,6 +28,7 @@ struct ResultInputs {
   std::string calibration_origin;  // "inline", a path
   bool noise_model_assumed = false;
   LuminanceStats stats;
+  std::vector<FrameCheck> frames;
   std::optional<double> limit_cd_m2;
   bool constant_limit = false;  // --threshold rather than the α curve
   GlareAnalysis glare;

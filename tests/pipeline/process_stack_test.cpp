@@ -113,6 +113,29 @@ TEST(ProcessStack, EllipsesMatchTheTruthThroughTheWholeChain) {
   }
 }
 
+// Swapped frame files merge "successfully" into wrong luminance; the frames' agreement with the
+// merge catches it (and a correct stack passes).
+TEST(ProcessStack, SwappedFramesAreFlaggedAsInconsistent) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  auto good = processStack(dir / "s", quiet());
+  ASSERT_TRUE(good) << good.error().message;
+  EXPECT_TRUE(good->result["luminance"]["frames_consistent"].get<bool>());
+  for (const json& frame : good->result["frames"]) {
+    if (frame["median_ratio"].is_null()) continue;  // too few well-exposed pixels to judge
+    // Noise and the merge's weighting leave a well-exposed frame within 1 % of the merge.
+    EXPECT_NEAR(frame["median_ratio"].get<double>(), 1.0, 0.01) << frame;
+  }
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  std::swap(manifest["frames"][2]["file"], manifest["frames"][3]["file"]);
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto swapped = processStack(dir / "s", quiet());
+  ASSERT_TRUE(swapped) << swapped.error().message;
+  EXPECT_FALSE(swapped->result["luminance"]["frames_consistent"].get<bool>());
+  EXPECT_FALSE(swapped->result["frames"][2]["agrees"].get<bool>());
+  EXPECT_FALSE(swapped->result["frames"][3]["agrees"].get<bool>());
+}
+
 TEST(ProcessStack, EllipseCarriesEveryDocumentedKey) {
   testing::TempDir dir;
   testing::writeSmallStack(dir / "s");

@@ -1,0 +1,52 @@
+#include "calibration/frame_consistency.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace glarecam::calibration {
+namespace {
+
+// About this many pixels are sampled, on a regular grid: enough for a stable median.
+constexpr std::size_t kSamplePixels = 1 << 16;
+// "Well exposed": far above the dark threshold (where truncation biases a single reading
+// high) and below this fraction of the range to saturation (where it biases it low).
+constexpr double kDarkMarginFactor = 4.0;
+constexpr double kSaturationMarginFraction = 0.9;
+
+}  // namespace
+
+bool FrameAgreement::agrees() const {
+  return !std::isfinite(median_ratio) || std::abs(median_ratio - 1.0) <= kMaxFrameDisagreement;
+}
+
+std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const MergedImage& merged) {
+  const std::size_t pixels = merged.luminance_cd_m2.pixelCount();
+  const std::size_t step = std::max<std::size_t>(1, pixels / kSamplePixels);
+  std::vector<FrameAgreement> result;
+  for (std::size_t f = 0; f < input.frames.size(); ++f) {
+    const FrameRadiometry& r = input.radiometry[f];
+    const double low_dn = input.black_level_dn + kDarkMarginFactor * r.min_signal_dn;
+    const double high_dn =
+        input.black_level_dn +
+        kSaturationMarginFraction * (frameSaturationDn(input, f) - input.black_level_dn);
+    std::vector<double> ratios;
+    for (std::size_t i = 0; i < pixels; i += step) {
+      const double dn = input.frames[f].data()[i];
+      const double merged_cd_m2 = merged.luminance_cd_m2.data()[i];
+      if (dn < low_dn || dn > high_dn || merged.valid_frames.data()[i] < 2 || !(merged_cd_m2 > 0))
+        continue;
+      const double flat = input.flat_field ? input.flat_field->data()[i] : 1.0;
+      ratios.push_back(r.scale_cd_m2_per_dn * (dn - input.black_level_dn) / flat / merged_cd_m2);
+    }
+    FrameAgreement agreement{std::nan(""), ratios.size()};
+    if (ratios.size() >= kMinAgreementSamples) {
+      auto middle = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2);
+      std::nth_element(ratios.begin(), middle, ratios.end());
+      agreement.median_ratio = *middle;
+    }
+    result.push_back(agreement);
+  }
+  return result;
+}
+
+}  // namespace glarecam::calibration

@@ -49,4 +49,18 @@ std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const Merged
   return result;
 }
 
+std::optional<ClippingBelowSaturation> clippingBelowSaturation(const MergeInput& input) {
+  for (std::size_t f = 0; f < input.frames.size(); ++f) {
+    const RawFrame& frame = input.frames[f];
+    const std::uint16_t* begin = frame.data();
+    const std::uint16_t* end = begin + frame.pixelCount();
+    const std::uint16_t top = begin == end ? 0 : *std::max_element(begin, end);
+    if (!(top < frameSaturationDn(input, f))) continue;
+    const auto pixels = static_cast<std::size_t>(std::count(begin, end, top));
+    const auto share = static_cast<double>(pixels) / static_cast<double>(frame.pixelCount());
+    if (pixels >= kMinClippedPixels && share >= kMinClippedShare) return {{f, double(top), pixels}};
+  }
+  return std::nullopt;
+}
+
 }  // namespace glarecam::calibration

@@ -4,9 +4,11 @@
 // the median; what remains is a frame whose radiometry is wrong: files swapped in the manifest,
 // a wrong exposure_us, gain or ND, a frame from another scene. Such a stack's luminance (and
 // every ellipse) is wrong with no other symptom, so processStack warns and records the ratios.
+// Also: a sensor clipping below the calibration's saturation_dn (a wrong saturation_dn).
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "calibration/hdr_merge.h"
@@ -27,5 +29,20 @@ struct FrameAgreement {
 };
 
 std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const MergedImage& merged);
+
+// A sensor that clips below the calibration's saturation_dn piles its brightest pixels up on
+// one value: the frame's maximum, below saturation, held by at least kMinClippedShare of its
+// pixels (and kMinClippedPixels). The merge would take those clipped readings as valid.
+inline constexpr double kMinClippedShare = 1e-3;
+inline constexpr std::size_t kMinClippedPixels = 50;
+
+struct ClippingBelowSaturation {
+  std::size_t frame = 0;
+  double dn = 0;  // the value the pixels pile up on
+  std::size_t pixels = 0;
+};
+
+// The first such frame, if any.
+std::optional<ClippingBelowSaturation> clippingBelowSaturation(const MergeInput& input);
 
 }  // namespace glarecam::calibration

@@ -91,6 +91,26 @@ void warnAboutNarrowFrames(const Stack& stack) {
   }
 }
 
+// The file the calibration came from: --calibration, the manifest's calibration path, or the
+// manifest itself for an inline block.
+fs::path calibrationSource(const Stack& stack, const ProcessOptions& options) {
+  if (options.calibration_file) return *options.calibration_file;
+  if (stack.calibration_origin == "inline") return stack.directory / kManifestFileName;
+  return stack.directory / stack.calibration_origin;
+}
+
+// A wrong (too high) saturation_dn lets clipped readings into the merge as valid ones.
+void warnAboutClipping(const Stack& stack, const calibration::MergeInput& input,
+                       const ProcessOptions& options) {
+  const auto clipped = calibration::clippingBelowSaturation(input);
+  if (!clipped) return;
+  spdlog::warn(
+      "{}: {} pixels of {} sit at {:g} DN, its maximum, below saturation_dn {:g}: the sensor "
+      "seems to clip there, and the merge takes those readings as valid; check saturation_dn",
+      calibrationSource(stack, options).string(), clipped->pixels,
+      stack.manifest.frames[clipped->frame].file, clipped->dn, stack.calibration.saturation_dn);
+}
+
 // Refuses, naming the file and frame, manifests whose numbers are valid one by one but combine
 // into a scale the merge cannot compute with (gain_db 1000, exposure_us 1e-30).
 Status checkRadiometry(const Stack& stack,
@@ -142,8 +162,9 @@ std::vector<FrameCheck> checkFrames(const Stack& stack, const calibration::Merge
     checks.push_back({stack.manifest.frames[i].file, agreement[i]});
     if (agreement[i].agrees()) continue;
     spdlog::warn(
-        "{}: frames[{}] ({}) reads {:+.0f} % against the merge of the other frames (median of {} "
-        "pixels): swapped files, or a wrong exposure_us, gain_db or nd_transmission? Every "
+        "{}: frames[{}] ({}) reads {:+.0f} % against the merged luminance (median of {} "
+        "pixels): swapped files, a wrong exposure_us, gain_db or nd_transmission, or a wrong "
+        "saturation_dn? Every "
         "luminance and ellipse of this stack is suspect",
         (stack.directory / kManifestFileName).string(), i, stack.manifest.frames[i].file,
         100.0 * (agreement[i].median_ratio - 1.0), agreement[i].samples);
@@ -153,7 +174,7 @@ std::vector<FrameCheck> checkFrames(const Stack& stack, const calibration::Merge
 
 // The radiometric checks, the merge and the frames' agreement with it; the raw frames are
 // freed once merged.
-Result<MergedStack> mergeStack(Stack& stack, unsigned threads) {
+Result<MergedStack> mergeStack(Stack& stack, const ProcessOptions& options) {
   const auto radiometry = calibration::frameRadiometry(stack.manifest.frames, stack.calibration);
   GLARECAM_CHECK(checkRadiometry(stack, radiometry));
   warnAboutNarrowFrames(stack);
@@ -166,8 +187,9 @@ Result<MergedStack> mergeStack(Stack& stack, unsigned threads) {
                                 stack.calibration.saturation_dn,
                                 stack.flat_field ? &*stack.flat_field : nullptr,
                                 stack.bit_depths};
+  warnAboutClipping(stack, input, options);
   MergedStack result;
-  GLARECAM_ASSIGN(result.image, calibration::merge(input, {.threads = threads}));
+  GLARECAM_ASSIGN(result.image, calibration::merge(input, {.threads = options.threads}));
   result.frames = checkFrames(stack, input, result.image);
   stack.frames.clear();
   return result;
@@ -193,14 +215,6 @@ Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
   GLARECAM_CHECK(writeFileAtomic(out / kResultFileName, summary.result.dump(2) + "\n"));
   progress.advance("result.json");
   return {};
-}
-
-// The file the calibration came from: --calibration, the manifest's calibration path, or the
-// manifest itself for an inline block.
-fs::path calibrationSource(const Stack& stack, const ProcessOptions& options) {
-  if (options.calibration_file) return *options.calibration_file;
-  if (stack.calibration_origin == "inline") return stack.directory / kManifestFileName;
-  return stack.directory / stack.calibration_origin;
 }
 
 // An ellipse lost to a camera model that cannot be inverted is the calibration's fault: say
@@ -256,7 +270,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                                      .threads = options.threads}));
   progress.advance("read");
   MergedStack merged_stack;
-  GLARECAM_ASSIGN(merged_stack, mergeStack(stack, options.threads));
+  GLARECAM_ASSIGN(merged_stack, mergeStack(stack, options));
   const calibration::MergedImage& merged = merged_stack.image;
   progress.advance("merged");
 

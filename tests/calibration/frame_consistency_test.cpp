@@ -1,0 +1,92 @@
+#include "calibration/frame_consistency.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace glarecam::calibration {
+namespace {
+
+// Two frames of a smooth ramp scene, the second exposed 4x longer; `mislabel` multiplies the
+// second frame's declared scale (a wrong exposure_us in the manifest).
+struct TwoFrames {
+  std::vector<RawFrame> frames;
+  std::vector<FrameRadiometry> radiometry;
+  MergeInput input() const { return {frames, radiometry, 64.0, 4000.0, nullptr, {}}; }
+};
+
+TwoFrames twoFrames(double mislabel) {
+  constexpr int kWidth = 200, kHeight = 100;
+  TwoFrames t;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  for (const double exposure : {1.0, 4.0}) {
+    RawFrame frame(kWidth, kHeight);
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        const double signal = exposure * (20.0 + 5.0 * x);  // 20 .. 1015 DN at exposure 1
+        frame.at(x, y) =
+            static_cast<std::uint16_t>(std::clamp(64.0 + signal + noise(rng), 0.0, 4095.0));
+      }
+    t.frames.push_back(std::move(frame));
+    t.radiometry.push_back({.scale_cd_m2_per_dn = 10.0 / exposure,
+                            .dn_per_electron = 0.5,
+                            .read_noise_dn = 2.0,
+                            .min_signal_dn = 6.0});
+  }
+  t.radiometry[1].scale_cd_m2_per_dn *= mislabel;
+  return t;
+}
+
+TEST(FrameConsistency, ConsistentFramesAgree) {
+  const TwoFrames t = twoFrames(1.0);
+  const auto merged = merge(t.input());
+  ASSERT_TRUE(merged);
+  const auto agreement = frameAgreement(t.input(), *merged);
+  ASSERT_EQ(agreement.size(), 2u);
+  for (const FrameAgreement& a : agreement) {
+    EXPECT_TRUE(a.agrees());
+    // 2 DN noise on hundreds of DN, median over thousands of pixels: well under 1 %.
+    EXPECT_NEAR(a.median_ratio, 1.0, 0.01);
+    EXPECT_GT(a.samples, kMinAgreementSamples);
+  }
+}
+
+TEST(FrameConsistency, AMislabelledExposureDisagrees) {
+  const TwoFrames t = twoFrames(1.3);  // 30 % off: far beyond the 5 % tolerance
+  const auto merged = merge(t.input());
+  ASSERT_TRUE(merged);
+  const auto agreement = frameAgreement(t.input(), *merged);
+  EXPECT_FALSE(agreement[1].agrees());
+  EXPECT_FALSE(agreement[0].agrees());  // the merge sits between them: both read off
+  EXPECT_GT(agreement[1].median_ratio, 1.05);
+}
+
+TEST(FrameConsistency, TooFewWellExposedPixelsJudgeNothing) {
+  TwoFrames t = twoFrames(1.0);
+  for (RawFrame& frame : t.frames)
+    for (std::size_t i = 0; i < frame.pixelCount(); ++i) frame.data()[i] = 64;  // all black
+  const auto merged = merge(t.input());
+  ASSERT_TRUE(merged);
+  for (const FrameAgreement& a : frameAgreement(t.input(), *merged)) {
+    EXPECT_TRUE(std::isnan(a.median_ratio));
+    EXPECT_TRUE(a.agrees());
+  }
+}
+
+TEST(FrameConsistency, ClippingBelowSaturationIsFound) {
+  TwoFrames t = twoFrames(1.0);  // the long frame clips at 4095 over the ramp's bright end
+  MergeInput input = t.input();
+  EXPECT_FALSE(clippingBelowSaturation(input));  // 4095 is above saturation_dn 4000
+  input.saturation_dn = 50000;                   // a calibration for another sensor
+  const auto clipped = clippingBelowSaturation(input);
+  ASSERT_TRUE(clipped);
+  EXPECT_EQ(clipped->frame, 1u);
+  EXPECT_EQ(clipped->dn, 4095.0);
+  EXPECT_GE(clipped->pixels, kMinClippedPixels);
+}
+
+}  // namespace
+}  // namespace glarecam::calibration

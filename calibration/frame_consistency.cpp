@@ -8,9 +8,9 @@ namespace {
 
 // About this many pixels are sampled, on a regular grid: enough for a stable median.
 constexpr std::size_t kSamplePixels = 1 << 16;
-// "Well exposed": far above the dark threshold (where truncation biases a single reading
-// high) and below this fraction of the range to saturation (where it biases it low).
-constexpr double kDarkMarginFactor = 4.0;
+// "Well exposed": predicted far above the dark threshold (where the merge truncates readings)
+// and below this fraction of the range to saturation.
+constexpr double kDarkMarginFactor = 10.0;
 constexpr double kSaturationMarginFraction = 0.9;
 
 }  // namespace
@@ -31,11 +31,14 @@ std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const Merged
         kSaturationMarginFraction * (frameSaturationDn(input, f) - input.black_level_dn);
     std::vector<double> ratios;
     for (std::size_t i = 0; i < pixels; i += step) {
-      const double dn = input.frames[f].data()[i];
       const double merged_cd_m2 = merged.luminance_cd_m2.data()[i];
-      if (dn < low_dn || dn > high_dn || merged.valid_frames.data()[i] < 2 || !(merged_cd_m2 > 0))
-        continue;
+      if (merged.valid_frames.data()[i] < 2 || !(merged_cd_m2 > 0)) continue;
       const double flat = input.flat_field ? input.flat_field->data()[i] : 1.0;
+      // Pixels chosen by what the merge predicts for this frame, not by the frame's own
+      // reading: choosing by the reading keeps the readings noise pushed up near the bound.
+      const double predicted_dn = input.black_level_dn + merged_cd_m2 * flat / r.scale_cd_m2_per_dn;
+      if (!(predicted_dn >= low_dn && predicted_dn <= high_dn)) continue;
+      const double dn = input.frames[f].data()[i];
       ratios.push_back(r.scale_cd_m2_per_dn * (dn - input.black_level_dn) / flat / merged_cd_m2);
     }
     FrameAgreement agreement{std::nan(""), ratios.size()};

@@ -98,6 +98,21 @@ void label(cairo_t* cr, double x, double y, const std::string& text, double font
   cairo_fill(cr);
 }
 
+// A label at `at`, moved inside the picture when it would stick out (an ellipse cut by the
+// frame); nothing when `at` is not a point (an axis end behind the camera).
+void labelInside(cairo_t* cr, const PixelPoint& at, const std::string& text, const ClipBox& box,
+                 double font_px) {
+  if (!std::isfinite(at.x) || !std::isfinite(at.y)) return;
+  cairo_text_extents_t extents;
+  cairo_set_font_size(cr, font_px);
+  cairo_text_extents(cr, text.c_str(), &extents);
+  // min(max(...)): defined even on pictures too small for the label (unlike std::clamp).
+  const double x =
+      std::min(std::max(at.x, box.x0 + font_px * 0.2), box.x1 - extents.x_advance - font_px * 0.2);
+  const double y = std::min(std::max(at.y, box.y0 + font_px * 1.1), box.y1 - font_px * 0.3);
+  label(cr, x, y, text, font_px);
+}
+
 struct Overlay {
   calibration::CameraModel camera;
   Ray peak_ray;
@@ -133,14 +148,7 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::s
         fmt::format("{}{} {:.2f}\u00b0", prefix, vertical ? "V" : "H", length_deg);
     const double dx = vertical ? font_px * 0.3 : font_px * 0.4;
     const double dy = vertical ? -font_px * 0.4 : font_px * 0.35;
-    // Kept inside the picture when the axis ends beyond it (a truncated ellipse).
-    cairo_text_extents_t extents;
-    cairo_set_font_size(cr, font_px);
-    cairo_text_extents(cr, text.c_str(), &extents);
-    const double x = std::clamp(end.x + dx, box.x0 + font_px * 0.2,
-                                std::max(box.x0, box.x1 - extents.x_advance - font_px * 0.2));
-    const double y = std::clamp(end.y + dy, box.y0 + font_px * 1.1, box.y1 - font_px * 0.3);
-    label(cr, x, y, text, font_px);
+    labelInside(cr, {end.x + dx, end.y + dy}, text, box, font_px);
   }
 }
 

@@ -283,6 +283,21 @@ EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
   const double level_sigma_cd_m2 =
       std::isfinite(level_relative_uncertainty) ? level_relative_uncertainty * level_cd_m2 : 0.0;
   propagateUncertainty(*fitted, *rays, merged, level_sigma_cd_m2, ellipse);
+  const double numbers[] = {ellipse.major_deg,
+                            ellipse.minor_deg,
+                            ellipse.orientation_deg,
+                            ellipse.centre_px.x,
+                            ellipse.centre_px.y,
+                            ellipse.semi_major_px,
+                            ellipse.semi_minor_px,
+                            ellipse.solid_angle_sr,
+                            ellipse.fit_rms_px,
+                            ellipse.shape_residual_fraction,
+                            ellipse.vertical_uncertainty_deg,
+                            ellipse.horizontal_uncertainty_deg};
+  if (!std::all_of(std::begin(numbers), std::end(numbers),
+                   [](double v) { return std::isfinite(v); }))
+    return outcome(EllipseStatus::kNotAnEllipse);  // result.json promises numbers
   ellipse.ellipticity_ok = ellipse.shape_residual_fraction <= kMaxEllipticalResidualFraction;
   ellipse.truncated = contour->touches_border;
   // The measured region counts even when it is smaller than the noise-speck size.

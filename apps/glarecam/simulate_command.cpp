@@ -12,7 +12,7 @@ namespace glarecam::apps {
 namespace {
 
 struct SimulateArgs {
-  SimulateArgs() { options.show_progress = true; }
+  bool no_progress = false;
   std::string out;
   std::string size = "1224x1024";
   std::string distortion, offset;
@@ -37,6 +37,7 @@ Status runSimulate(SimulateArgs& args) {
     if (!offset) return std::unexpected(offset.error());
     args.options.lobe_offset_deg = {(*offset)[0], (*offset)[1]};
   }
+  args.options.show_progress = !args.no_progress;
   // Refuse a bad --out before spending seconds on the simulation.
   if (auto target = stackTarget(args.out); !target) return std::unexpected(target.error());
   auto stack = capture::simulateStack(args.options);
@@ -77,7 +78,7 @@ void addSimulateCommand(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_option("--peak-scale", args->options.peak_scale, "scale the module's luminance maximum")
       ->capture_default_str();
-  sub->add_flag("!--no-progress", args->options.show_progress, "no progress on stderr");
+  sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSimulate(*args); }; });
 }
 

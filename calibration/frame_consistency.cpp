@@ -13,6 +13,15 @@ constexpr std::size_t kSamplePixels = 1 << 16;
 constexpr double kDarkMarginFactor = 10.0;
 constexpr double kSaturationMarginFraction = 0.9;
 
+std::vector<std::size_t> gridSamples(int width, int height, int stride) {
+  std::vector<std::size_t> samples;
+  for (int y = stride / 2; y < height; y += stride)
+    for (int x = stride / 2; x < width; x += stride)
+      samples.push_back(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                        static_cast<std::size_t>(x));
+  return samples;
+}
+
 }  // namespace
 
 bool FrameAgreement::agrees() const {
@@ -20,8 +29,10 @@ bool FrameAgreement::agrees() const {
 }
 
 std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const MergedImage& merged) {
-  const std::size_t pixels = merged.luminance_cd_m2.pixelCount();
-  const std::size_t step = std::max<std::size_t>(1, pixels / kSamplePixels);
+  const int width = merged.luminance_cd_m2.width(), height = merged.luminance_cd_m2.height();
+  // A regular grid of rows and columns (one stride along a row would alias with the width).
+  const int stride = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(width) * height /
+                                                            static_cast<double>(kSamplePixels))));
   std::vector<FrameAgreement> result;
   for (std::size_t f = 0; f < input.frames.size(); ++f) {
     const FrameRadiometry& r = input.radiometry[f];
@@ -30,7 +41,7 @@ std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const Merged
         input.black_level_dn +
         kSaturationMarginFraction * (frameSaturationDn(input, f) - input.black_level_dn);
     std::vector<double> ratios;
-    for (std::size_t i = 0; i < pixels; i += step) {
+    for (std::size_t i : gridSamples(width, height, stride)) {
       const double merged_cd_m2 = merged.luminance_cd_m2.data()[i];
       if (merged.valid_frames.data()[i] < 2 || !(merged_cd_m2 > 0)) continue;
       const double flat = input.flat_field ? input.flat_field->data()[i] : 1.0;
@@ -58,10 +69,17 @@ std::optional<ClippingBelowSaturation> clippingBelowSaturation(const MergeInput&
     const std::uint16_t* begin = frame.data();
     const std::uint16_t* end = begin + frame.pixelCount();
     const std::uint16_t top = begin == end ? 0 : *std::max_element(begin, end);
-    if (!(top < frameSaturationDn(input, f))) continue;
+    // Only a bright value can be a clipping level (a black frame piles up on black), and only
+    // a spike is one (a flat field's brightest values are many, but so are the next ones).
+    const double black = input.black_level_dn, saturation = frameSaturationDn(input, f);
+    const double bright = black + kMinClippingSignal * input.radiometry[f].min_signal_dn;
+    if (!(top < saturation) || top < bright) continue;
     const auto pixels = static_cast<std::size_t>(std::count(begin, end, top));
+    const auto below = static_cast<std::size_t>(std::count(begin, end, top - 1));
     const auto share = static_cast<double>(pixels) / static_cast<double>(frame.pixelCount());
-    if (pixels >= kMinClippedPixels && share >= kMinClippedShare) return {{f, double(top), pixels}};
+    if (pixels >= kMinClippedPixels && share >= kMinClippedShare &&
+        pixels >= kMinSpikeFactor * below)
+      return {{f, double(top), pixels}};
   }
   return std::nullopt;
 }

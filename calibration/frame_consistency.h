@@ -15,6 +15,9 @@
 
 namespace glarecam::calibration {
 
+// The merge leans on the longest frames, so a wrong long frame shows mostly as the other frames
+// reading off: a disagreement says the stack is wrong, not which frame (a leave-one-out
+// reference would; not done yet).
 // A frame's median ratio further than this from 1 is a radiometric error, not noise: the
 // median over hundreds of pixels of ~1 % noise moves by far less, while the smallest real
 // error (one bracket step swapped, a missing ND factor) is tens of percent.
@@ -35,6 +38,11 @@ std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const Merged
 // pixels (and kMinClippedPixels). The merge would take those clipped readings as valid.
 inline constexpr double kMinClippedShare = 1e-3;
 inline constexpr std::size_t kMinClippedPixels = 50;
+// ...at a value at least this many dark thresholds above black (a black frame piles up on
+// black), held at least this many times as often as the value just below it (a spike, not a
+// flat field's top).
+inline constexpr double kMinClippingSignal = 20;
+inline constexpr std::size_t kMinSpikeFactor = 4;
 
 struct ClippingBelowSaturation {
   std::size_t frame = 0;

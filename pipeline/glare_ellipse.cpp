@@ -259,8 +259,9 @@ EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
   const FloatImage& image = merged.luminance_cd_m2;
   if (image.empty() || !(level_cd_m2 > 0)) return outcome(EllipseStatus::kBelowLevel);
   const bool reaches = peak.value_cd_m2 >= level_cd_m2;
-  // A dark maximum decides nothing; a clipped one decides only the levels it reaches.
-  if (peak.method == PeakMethod::kUpperBound ||
+  // A dark maximum (at most its value) decides only the levels above it, a clipped one (at
+  // least its value) only the levels below it.
+  if ((peak.method == PeakMethod::kUpperBound && reaches) ||
       (peak.method == PeakMethod::kLowerBound && !reaches))
     return outcome(EllipseStatus::kPeakIsBound);
   if (!reaches) return outcome(EllipseStatus::kBelowLevel);

@@ -63,15 +63,15 @@ struct GlareEllipse {
   calibration::Ray plane_centre;
   Ellipse plane_ellipse;
 
-  // The vertical axis is the one closer to the image vertical; at exactly 45° the major one.
+  // The vertical axis is the one closer to the camera's vertical; at exactly 45° the major one.
   bool majorIsVertical() const { return orientation_deg >= 45.0 || orientation_deg <= -45.0; }
 };
 
 enum class EllipseStatus {
   kMeasured,
   kBelowLevel,                // the maximum does not reach the level
-  kPeakIsBound,               // the maximum is only a bound that cannot decide (dark everywhere, or
-                              // clipped below the level), or half of a bound is no FWHM level
+  kPeakIsBound,               // the maximum is only a bound that cannot decide (dark but above the
+                              // level, or clipped below it), or half of a bound is no FWHM level
   kNoPixelAtLevel,            // the fitted maximum reaches the level, no pixel beside it does
   kTooSmall,                  // too few observed contour points to fit
   kFillsImage,                // the region reaches all four image borders: larger than the view

@@ -117,6 +117,7 @@ struct Overlay {
   calibration::CameraModel camera;
   Ray peak_ray;
   std::optional<GlareEllipse> limit, fwhm;
+  bool below_limit = false;  // the maximum does not reach the limit: no glare
 };
 
 std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, const ClipBox& box) {
@@ -141,8 +142,11 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::s
     const bool vertical = e.majorIsVertical() == is_major;
     const double length_deg = vertical ? e.vertical_deg : e.horizontal_deg;
     // Vertical axis labelled at its upper end, horizontal at its right end.
-    const PixelPoint pa = o.camera.project(plane.toRay({a.x, a.y}));
-    const PixelPoint pb = o.camera.project(plane.toRay({b.x, b.y}));
+    // Only ends in front of the camera count (behind it, project() mirrors them).
+    const Ray ra = plane.toRay({a.x, a.y}), rb = plane.toRay({b.x, b.y});
+    if (ra.z <= 0 && rb.z <= 0) continue;
+    const PixelPoint pa = o.camera.project(ra.z > 0 ? ra : rb);
+    const PixelPoint pb = o.camera.project(rb.z > 0 ? rb : ra);
     const PixelPoint end = vertical ? (pa.y < pb.y ? pa : pb) : (pa.x > pb.x ? pa : pb);
     const std::string text =
         fmt::format("{}{} {:.2f}\u00b0", prefix, vertical ? "V" : "H", length_deg);
@@ -191,9 +195,10 @@ void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_p
                         ? "limit contour (solid), fitted ellipse (dashed), cut by the frame"
                         : "limit contour (solid), fitted ellipse (dashed)");
   }
-  if (o.fwhm)
-    lines.push_back(o.limit ? "FWHM ellipse (grey dashed)"
-                            : "no glare: FWHM ellipse (grey dashed)");
+  if (o.fwhm) {
+    lines.push_back(o.limit || !o.below_limit ? "FWHM ellipse (grey dashed)"
+                                              : "no glare: FWHM ellipse (grey dashed)");
+  }
   lines.push_back("circles: radius 1\u00b0, 5\u00b0, 10\u00b0, 20\u00b0 around the maximum");
   double y = box.y0 + font_px * 1.2;
   for (const std::string& line : lines) {
@@ -228,7 +233,8 @@ void drawOverlay(cairo_t* cr, const Overlay& o, double font_px) {
 
 PictureOverlay glareOverlay(const GlareAnalysis& analysis, const calibration::CameraModel& camera,
                             const LuminancePeak& peak) {
-  Overlay overlay{camera, camera.ray({peak.x_px, peak.y_px}), std::nullopt, analysis.fwhm.ellipse};
+  Overlay overlay{camera, camera.ray({peak.x_px, peak.y_px}), std::nullopt, analysis.fwhm.ellipse,
+                  analysis.limit && analysis.limit->status == EllipseStatus::kBelowLevel};
   if (analysis.limit) overlay.limit = analysis.limit->ellipse;
   return [overlay](cairo_t* cr, double font_px) { drawOverlay(cr, overlay, font_px); };
 }

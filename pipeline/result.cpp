@@ -73,18 +73,22 @@ nlohmann::json makeResult(const ResultInputs& in) {
                          {"dark_pixels", s.dark_pixels},
                          {"median_relative_uncertainty", s.median_relative_uncertainty}};
   const auto& limit = in.glare.limit;
+  // true: every frame checked and agreeing; false: one disagrees; null: some frame had too few
+  // well-exposed pixels to be checked (and none disagrees).
   result["frames"] = json::array();
-  bool consistent = true;
+  bool disagreement = false, unchecked = in.frames.empty();
   for (const FrameCheck& f : in.frames) {
     const double ratio = f.agreement.median_ratio;
     result["frames"].push_back(
         {{"file", f.file},
          {"median_ratio", std::isfinite(ratio) ? json(ratio) : json(nullptr)},
          {"samples", f.agreement.samples},
-         {"agrees", f.agreement.agrees()}});
-    consistent = consistent && f.agreement.agrees();
+         {"agrees", std::isfinite(ratio) ? json(f.agreement.agrees()) : json(nullptr)}});
+    disagreement = disagreement || !f.agreement.agrees();
+    unchecked = unchecked || !std::isfinite(ratio);
   }
-  result["luminance"]["frames_consistent"] = consistent;
+  result["luminance"]["frames_consistent"] =
+      disagreement ? json(false) : (unchecked ? json(nullptr) : json(true));
   result["limit"] = {
       {"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
       {"mode", in.constant_limit ? "constant" : (in.limit_cd_m2 ? "alpha_curve" : "none")},

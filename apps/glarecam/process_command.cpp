@@ -23,6 +23,7 @@ struct ProcessArgs {
 };
 
 Status runProcess(const ProcessArgs& args) {
+  if (args.stack.empty()) return badInput("STACK: expected a stack directory, got an empty string");
   pipeline::ProcessOptions options;
   for (const auto& [value, name] :
        {std::pair{&args.calibration, "--calibration"}, std::pair{&args.out, "--out"}}) {

@@ -1,6 +1,7 @@
 // glarecam simulate: writes a stack of the simulated rig (capture/sim/simulated_stack.h).
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
@@ -15,7 +16,7 @@ struct SimulateArgs {
   bool no_progress = false;
   std::string out;
   std::string size = "1224x1024";
-  std::string distortion, offset;
+  std::optional<std::string> distortion, offset;  // given but empty is an error
   std::string seed = "1";
   capture::SimulationOptions options;
 };
@@ -27,13 +28,13 @@ Status runSimulate(SimulateArgs& args) {
   auto seed = parseUnsigned(args.seed, "--seed");
   if (!seed) return std::unexpected(seed.error());
   args.options.seed = *seed;
-  if (!args.distortion.empty()) {
-    auto k = parseNumberList(args.distortion, "--distortion", 1, 5);
+  if (args.distortion) {
+    auto k = parseNumberList(*args.distortion, "--distortion", 1, 5);
     if (!k) return std::unexpected(k.error());
     std::copy(k->begin(), k->end(), args.options.distortion.begin());
   }
-  if (!args.offset.empty()) {
-    auto offset = parseNumberList(args.offset, "--offset-deg", 2, 2);
+  if (args.offset) {
+    auto offset = parseNumberList(*args.offset, "--offset-deg", 2, 2);
     if (!offset) return std::unexpected(offset.error());
     args.options.lobe_offset_deg = {(*offset)[0], (*offset)[1]};
   }

@@ -327,6 +327,9 @@ TEST(GlareEllipse, DarkImageHasNoEllipses) {
   ASSERT_TRUE(analysis.limit.has_value());
   EXPECT_EQ(analysis.limit->status, EllipseStatus::kPeakIsBound);
   EXPECT_FALSE(analysis.limit->ellipse);
+  // ...but an upper bound below a level settles it: the true maximum is lower still.
+  const GlareAnalysis high = analyseMerged(scene.merged, scene.intrinsics, 1e7);
+  EXPECT_EQ(high.limit->status, EllipseStatus::kBelowLevel);
 }
 
 TEST(GlareEllipse, SolidAngleOfAConeIsExact) {

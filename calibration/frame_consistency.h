@@ -1,9 +1,11 @@
-// Whether each frame of a merged stack agrees with the merge: the median, over a regular
-// subsample of pixels where the frame is well exposed and the merge used at least two frames,
-// of the frame's own luminance estimate divided by the merged luminance. Noise averages out of
-// the median; what remains is a frame whose radiometry is wrong: files swapped in the manifest,
-// a wrong exposure_us, gain or ND, a frame from another scene. Such a stack's luminance (and
-// every ellipse) is wrong with no other symptom, so processStack warns and records the ratios.
+// Whether the frames of a merged stack agree with each other. Exposure-adjacent frames are
+// compared where the merge predicts both well exposed: the median ratio of their estimates
+// links them, a chain of links gives each frame's scale relative to the rest, and anchoring on
+// the median frame makes a single wrong frame read its own error while the others read 1 (two
+// frames alone cannot tell which is right: both read half the disagreement). Noise averages out
+// of the medians; what remains is wrong radiometry: files swapped in the manifest, a wrong
+// exposure_us, gain or ND, a frame from another scene. Such a stack's luminance (and every
+// ellipse) is wrong with no other symptom, so processStack warns and records the ratios.
 // Also: a sensor clipping below the calibration's saturation_dn (a wrong saturation_dn).
 #pragma once
 
@@ -15,9 +17,6 @@
 
 namespace glarecam::calibration {
 
-// The merge leans on the longest frames, so a wrong long frame shows mostly as the other frames
-// reading off: a disagreement says the stack is wrong, not which frame (a leave-one-out
-// reference would; not done yet).
 // A frame's median ratio further than this from 1 is a radiometric error, not noise: the
 // median over hundreds of pixels of ~1 % noise moves by far less, while the smallest real
 // error (one bracket step swapped, a missing ND factor) is tens of percent.
@@ -26,9 +25,9 @@ inline constexpr double kMaxFrameDisagreement = 0.05;
 inline constexpr std::size_t kMinAgreementSamples = 100;
 
 struct FrameAgreement {
-  double median_ratio = 0;  // NaN when the frame has too few well-exposed samples
-  std::size_t samples = 0;
-  bool agrees() const;  // within kMaxFrameDisagreement, or not judged
+  double median_ratio = 0;  // NaN when the frame is linked to no other (too few samples)
+  std::size_t samples = 0;  // pixel pairs in its links
+  bool agrees() const;      // within kMaxFrameDisagreement, or not judged
 };
 
 std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const MergedImage& merged);

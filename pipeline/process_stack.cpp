@@ -162,11 +162,10 @@ std::vector<FrameCheck> checkFrames(const Stack& stack, const calibration::Merge
     checks.push_back({stack.manifest.frames[i].file, agreement[i]});
     if (agreement[i].agrees()) continue;
     spdlog::warn(
-        "{}: frames[{}] ({}) reads {:+.0f} % against the merged luminance (median of {} "
-        "pixels): the frames disagree, and the one at fault may be another (the merge leans on "
-        "the longest frames). Swapped files, a wrong exposure_us, gain_db, nd_transmission or "
-        "saturation_dn, or a scene that changed during the bracket? Every luminance and ellipse "
-        "of this stack is suspect",
+        "{}: frames[{}] ({}) reads {:+.0f} % against the other frames (median of {} pixel "
+        "pairs): swapped files, a wrong exposure_us, gain_db, nd_transmission or saturation_dn, "
+        "or a scene that changed during the bracket? Every luminance and ellipse of this stack "
+        "is suspect",
         (stack.directory / kManifestFileName).string(), i, stack.manifest.frames[i].file,
         100.0 * (agreement[i].median_ratio - 1.0), agreement[i].samples);
   }

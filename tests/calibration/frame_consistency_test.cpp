@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -61,9 +62,35 @@ TEST(FrameConsistency, AMislabelledExposureDisagrees) {
   const auto merged = merge(t.input());
   ASSERT_TRUE(merged);
   const auto agreement = frameAgreement(t.input(), *merged);
+  // Two frames cannot tell which is right: both read off by half the disagreement.
   EXPECT_FALSE(agreement[1].agrees());
-  EXPECT_FALSE(agreement[0].agrees());  // the merge sits between them: both read off
-  EXPECT_GT(agreement[1].median_ratio, 1.05);
+  EXPECT_FALSE(agreement[0].agrees());
+  EXPECT_NEAR(agreement[1].median_ratio * agreement[1].median_ratio, 1.3, 0.02);
+}
+
+// Three frames, the longest declared 10 % too long (a wrong exposure_us): only it reads off,
+// by its own error; the two right frames read 1 (a merge-based check blamed the right ones).
+TEST(FrameConsistency, AWrongLongFrameIsTheOneNamed) {
+  TwoFrames t = twoFrames(1.0);
+  RawFrame longest(t.frames[0].width(), t.frames[0].height());
+  for (int y = 0; y < longest.height(); ++y)
+    for (int x = 0; x < longest.width(); ++x)
+      longest.at(x, y) =
+          static_cast<std::uint16_t>(std::clamp(64.0 + 16.0 * (20.0 + 5.0 * x), 0.0, 4095.0));
+  t.frames.push_back(std::move(longest));
+  t.radiometry.push_back({.scale_cd_m2_per_dn = 10.0 / 16.0 / 1.1,
+                          .dn_per_electron = 0.5,
+                          .read_noise_dn = 2.0,
+                          .min_signal_dn = 6.0});
+  const auto merged = merge(t.input());
+  ASSERT_TRUE(merged);
+  const auto agreement = frameAgreement(t.input(), *merged);
+  ASSERT_EQ(agreement.size(), 3u);
+  EXPECT_TRUE(agreement[0].agrees()) << agreement[0].median_ratio;
+  EXPECT_TRUE(agreement[1].agrees()) << agreement[1].median_ratio;
+  EXPECT_FALSE(agreement[2].agrees());
+  // Its own error, 1 / 1.1, to well within the noise of the medians (1 %).
+  EXPECT_NEAR(agreement[2].median_ratio, 1.0 / 1.1, 0.01);
 }
 
 TEST(FrameConsistency, TooFewWellExposedPixelsJudgeNothing) {

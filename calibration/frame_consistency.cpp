@@ -30,10 +30,10 @@ bool FrameAgreement::agrees() const {
 
 namespace {
 
-// One sampled pixel as every frame sees it: its estimate, its inverse-variance weight at the
-// merged luminance, and whether the merge predicts it well exposed there.
+// One sampled pixel as every frame sees it: its estimate, and whether the merge predicts it
+// well exposed there.
 struct FrameView {
-  double estimate_cd_m2 = 0, weight = 0;
+  double estimate_cd_m2 = 0;
   bool in_range = false;
 };
 
@@ -49,10 +49,7 @@ std::vector<FrameView> frameViews(const MergeInput& input, std::size_t pixel, do
     const double low_dn = black + kDarkMarginFactor * r.min_signal_dn;
     const double high_dn =
         black + kSaturationMarginFraction * (frameSaturationDn(input, f) - black);
-    const double variance = r.scale_cd_m2_per_dn * r.dn_per_electron * merged_cd_m2 +
-                            std::pow(r.scale_cd_m2_per_dn * r.read_noise_dn, 2);
     views[f] = {r.scale_cd_m2_per_dn * (input.frames[f].data()[pixel] - black) / flat,
-                variance > 0 ? 1.0 / variance : 0.0,
                 predicted_dn >= low_dn && predicted_dn <= high_dn && flat > 0};
   }
   return views;

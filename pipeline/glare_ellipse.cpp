@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/neighbourhood.h"
 #include "pipeline/iso_contour.h"
 
 namespace glarecam::pipeline {
@@ -40,14 +41,12 @@ std::optional<PixelIndex> seedPixel(const FloatImage& image, const LuminancePeak
   const int cy = std::clamp(static_cast<int>(std::lround(peak.y_px)), 0, image.height() - 1);
   std::optional<PixelIndex> best;
   float best_value = 0;
-  for (int y = std::max(0, cy - 1); y <= std::min(image.height() - 1, cy + 1); ++y) {
-    for (int x = std::max(0, cx - 1); x <= std::min(image.width() - 1, cx + 1); ++x) {
-      const float v = image.at(x, y);
-      if (!std::isfinite(v) || !(v >= level) || (best && v <= best_value)) continue;
-      best = PixelIndex{x, y};
-      best_value = v;
-    }
-  }
+  forEach3x3(image.width(), image.height(), cx, cy, [&](int x, int y) {
+    const float v = image.at(x, y);
+    if (!std::isfinite(v) || !(v >= level) || (best && v <= best_value)) return;
+    best = PixelIndex{x, y};
+    best_value = v;
+  });
   return best;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "core/neighbourhood.h"
 #include "core/parallel.h"
 
 namespace glarecam::pipeline {
@@ -20,23 +21,11 @@ struct Box {
 Box floodRegion(const FloatImage& image, double level, PixelIndex seed, ByteImage& mask,
                 std::size_t& count) {
   Box box{seed.x, seed.y, seed.x, seed.y};
-  std::vector<PixelIndex> stack{seed};
-  mask.at(seed.x, seed.y) = 1;
-  count = 0;
-  while (!stack.empty()) {
-    const PixelIndex p = stack.back();
-    stack.pop_back();
-    ++count;
-    box = {std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x),
-           std::max(box.y1, p.y)};
-    for (int y = std::max(0, p.y - 1); y <= std::min(image.height() - 1, p.y + 1); ++y) {
-      for (int x = std::max(0, p.x - 1); x <= std::min(image.width() - 1, p.x + 1); ++x) {
-        if (mask.at(x, y) || !reaches(image.at(x, y), level)) continue;
-        mask.at(x, y) = 1;
-        stack.push_back({x, y});
-      }
-    }
-  }
+  count = floodFill8(
+      mask, seed.x, seed.y, [&](int x, int y) { return reaches(image.at(x, y), level); },
+      [&](int x, int y) {
+        box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x), std::max(box.y1, y)};
+      });
   return box;
 }
 

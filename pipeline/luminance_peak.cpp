@@ -5,6 +5,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
+#include "core/neighbourhood.h"
 #include "core/parallel.h"
 
 namespace glarecam::pipeline {
@@ -35,14 +36,12 @@ bool isBound(const calibration::MergedImage& merged, int x, int y, PixelBound bo
 float secondLargestAt(const calibration::MergedImage& merged, int x, int y) {
   const FloatImage& image = merged.luminance_cd_m2;
   float first = 0, second = 0;
-  for (int yy = std::max(0, y - 1); yy <= std::min(image.height() - 1, y + 1); ++yy) {
-    for (int xx = std::max(0, x - 1); xx <= std::min(image.width() - 1, x + 1); ++xx) {
-      const float v = image.at(xx, yy);
-      if (!(v > second) || isBound(merged, xx, yy, PixelBound::kUpperBound)) continue;
-      second = std::min(v, first);
-      first = std::max(v, first);
-    }
-  }
+  forEach3x3(image.width(), image.height(), x, y, [&](int xx, int yy) {
+    const float v = image.at(xx, yy);
+    if (!(v > second) || isBound(merged, xx, yy, PixelBound::kUpperBound)) return;
+    second = std::min(v, first);
+    first = std::max(v, first);
+  });
   return second;
 }
 
@@ -112,11 +111,10 @@ Located locatePeak(const calibration::MergedImage& merged) {
   std::vector<std::size_t> candidates;
   for (int y = 0; y < height; ++y) {
     for (const std::size_t bx : bright[static_cast<std::size_t>(y)]) {
-      const int x = static_cast<int>(bx);
-      for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy)
-        for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx)
-          candidates.push_back(static_cast<std::size_t>(yy) * static_cast<std::size_t>(width) +
-                               static_cast<std::size_t>(xx));
+      forEach3x3(width, height, static_cast<int>(bx), y, [&](int xx, int yy) {
+        candidates.push_back(static_cast<std::size_t>(yy) * static_cast<std::size_t>(width) +
+                             static_cast<std::size_t>(xx));
+      });
     }
     if (candidates.size() > image.pixelCount() / kMaxSearchShare)
       return bestOf(rowBests(merged, true));
@@ -198,25 +196,16 @@ bool fitQuadraticCap(const calibration::MergedImage& merged, const FitWindow& w,
 // the clipped top is, rather than the plateau's first pixel in raster order.
 std::pair<double, double> clippedCentroid(const calibration::MergedImage& merged, int cx, int cy) {
   const int width = merged.bound.width(), height = merged.bound.height();
-  std::vector<std::uint8_t> seen(merged.bound.pixelCount(), 0);
-  std::vector<std::pair<int, int>> stack;
-  for (int y = std::max(0, cy - 1); y <= std::min(height - 1, cy + 1); ++y)
-    for (int x = std::max(0, cx - 1); x <= std::min(width - 1, cx + 1); ++x)
-      if (isBound(merged, x, y, PixelBound::kLowerBound)) stack.emplace_back(x, y);
+  const auto clipped = [&](int x, int y) { return isBound(merged, x, y, PixelBound::kLowerBound); };
+  ByteImage seen(width, height);
   double sum_x = 0, sum_y = 0, count = 0;
-  while (!stack.empty()) {
-    const auto [x, y] = stack.back();
-    stack.pop_back();
-    const std::size_t index = static_cast<std::size_t>(y) * width + x;
-    if (seen[index]) continue;
-    seen[index] = 1;
-    sum_x += x, sum_y += y, count += 1;
-    for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy)
-      for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx)
-        if (isBound(merged, xx, yy, PixelBound::kLowerBound) &&
-            !seen[static_cast<std::size_t>(yy) * width + xx])
-          stack.emplace_back(xx, yy);
-  }
+  forEach3x3(width, height, cx, cy, [&](int x, int y) {
+    if (!clipped(x, y)) return;
+    count += static_cast<double>(floodFill8(seen, x, y, clipped, [&](int px, int py) {
+      sum_x += px;
+      sum_y += py;
+    }));
+  });
   return {sum_x / count, sum_y / count};
 }
 
@@ -228,15 +217,13 @@ bool saturatedTop(const calibration::MergedImage& merged, int cx, int cy, Lumina
   const FloatImage& image = merged.luminance_cd_m2;
   float first = 0, second = 0;
   int clipped = 0;
-  for (int y = std::max(0, cy - 1); y <= std::min(image.height() - 1, cy + 1); ++y) {
-    for (int x = std::max(0, cx - 1); x <= std::min(image.width() - 1, cx + 1); ++x) {
-      if (!isBound(merged, x, y, PixelBound::kLowerBound)) continue;
-      ++clipped;
-      const float v = image.at(x, y);
-      second = std::max(second, std::min(v, first));
-      first = std::max(first, v);
-    }
-  }
+  forEach3x3(image.width(), image.height(), cx, cy, [&](int x, int y) {
+    if (!isBound(merged, x, y, PixelBound::kLowerBound)) return;
+    ++clipped;
+    const float v = image.at(x, y);
+    second = std::max(second, std::min(v, first));
+    first = std::max(first, v);
+  });
   if (clipped < 2) return false;
   const auto centre = clippedCentroid(merged, cx, cy);
   peak = {std::max(static_cast<double>(second), peak.value_cd_m2), centre.first, centre.second,

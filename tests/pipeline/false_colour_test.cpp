@@ -2,15 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include "support/test_support.h"
+
 namespace glarecam::pipeline {
 namespace {
 
 calibration::MergedImage gradient(int width, int height) {
-  calibration::MergedImage merged;
-  merged.luminance_cd_m2 = FloatImage(width, height);
-  merged.relative_uncertainty = FloatImage(width, height, 0.01f);
-  merged.valid_frames = ByteImage(width, height, 1);
-  merged.bound = ByteImage(width, height, 0);
+  calibration::MergedImage merged = testing::measuredImage(width, height, 0.01f);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x)
       merged.luminance_cd_m2.at(x, y) = std::pow(10.0f, 2.0f + 4.0f * x / (width - 1));

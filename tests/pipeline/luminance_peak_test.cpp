@@ -7,6 +7,8 @@
 #include <functional>
 #include <random>
 
+#include "support/test_support.h"
+
 namespace glarecam::pipeline {
 namespace {
 
@@ -17,11 +19,8 @@ calibration::MergedImage gaussianLobe(double peak, double cx, double cy, double 
                                       unsigned seed, double sigma_y = 0) {
   if (sigma_y == 0) sigma_y = sigma;
   constexpr int kWidth = 120, kHeight = 90;
-  calibration::MergedImage merged;
-  merged.luminance_cd_m2 = FloatImage(kWidth, kHeight);
-  merged.relative_uncertainty = FloatImage(kWidth, kHeight, static_cast<float>(noise));
-  merged.valid_frames = ByteImage(kWidth, kHeight, 1);
-  merged.bound = ByteImage(kWidth, kHeight, 0);
+  calibration::MergedImage merged =
+      testing::measuredImage(kWidth, kHeight, static_cast<float>(noise));
   std::mt19937 rng(seed);
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (int y = 0; y < kHeight; ++y) {
@@ -195,11 +194,7 @@ TEST(LuminancePeak, LocatingMatchesTheBruteForceDefinition) {
     const int side = kind == 3 ? 200 : 40;
     const int width = 1 + static_cast<int>(rng() % side);
     const int height = 1 + static_cast<int>(rng() % side);
-    calibration::MergedImage m;
-    m.luminance_cd_m2 = FloatImage(width, height);
-    m.relative_uncertainty = FloatImage(width, height, 0.01f);
-    m.valid_frames = ByteImage(width, height, 1);
-    m.bound = ByteImage(width, height, 0);
+    calibration::MergedImage m = testing::measuredImage(width, height, 0.01f);
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
         float v = static_cast<float>(rng() % 1000);

@@ -43,6 +43,15 @@ capture::SimulatedStack writeSmallStack(const fs::path& directory,
   return std::move(*stack);
 }
 
+calibration::MergedImage measuredImage(int width, int height, float relative_uncertainty) {
+  calibration::MergedImage merged;
+  merged.luminance_cd_m2 = FloatImage(width, height);
+  merged.relative_uncertainty = FloatImage(width, height, relative_uncertainty);
+  merged.valid_frames = ByteImage(width, height, 1);
+  merged.bound = ByteImage(width, height, 0);
+  return merged;
+}
+
 capture::GlareLobe lobeAtLimit(double limit_cd_m2, double peak_cd_m2, double vertical_deg,
                                double horizontal_deg, double background_cd_m2) {
   auto lobe = capture::lobeWithAxesAt(limit_cd_m2, peak_cd_m2, background_cd_m2, vertical_deg,
@@ -61,12 +70,9 @@ RenderedScene renderScene(const SceneSpec& spec) {
   if (!scene) return result;
   result.truth = scene->truth(spec.limit_cd_m2);
   result.centre_px = camera.project(scene->centreRay());
+  result.merged = measuredImage(spec.width, spec.height, static_cast<float>(spec.relative_noise));
   auto& merged = result.merged;
   merged.luminance_cd_m2 = scene->render(camera, spec.width, spec.height);
-  merged.relative_uncertainty =
-      FloatImage(spec.width, spec.height, static_cast<float>(spec.relative_noise));
-  merged.valid_frames = ByteImage(spec.width, spec.height, 1);
-  merged.bound = ByteImage(spec.width, spec.height, 0);
   std::mt19937 rng(spec.seed);
   std::normal_distribution<double> gauss(0.0, spec.relative_noise);
   if (spec.relative_noise > 0) {

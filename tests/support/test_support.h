@@ -34,6 +34,10 @@ capture::SimulationOptions smallScene(double alpha_deg = 40.0, int width = 160, 
 capture::SimulatedStack writeSmallStack(const std::filesystem::path& directory,
                                         const capture::SimulationOptions& options = smallScene());
 
+// A merged image in which every pixel is measured (one valid frame, no bounds), luminance 0, with
+// the given relative uncertainty: tests then fill in the luminance they need.
+calibration::MergedImage measuredImage(int width, int height, float relative_uncertainty);
+
 // A glare lobe rendered straight into a merged luminance image (no sensor, no bracketing), with
 // optional Gaussian noise of a given relative sigma, which is also the per-pixel relative
 // uncertainty the merge would report. Ground truth comes from the scene (glare_scene.h).

@@ -37,10 +37,12 @@ struct FrameView {
   bool in_range = false;
 };
 
-std::vector<FrameView> frameViews(const MergeInput& input, std::size_t pixel, double merged_cd_m2) {
+// Fills `views` (one per frame, reused across pixels: no allocation per sample).
+void frameViews(const MergeInput& input, std::size_t pixel, double merged_cd_m2,
+                std::vector<FrameView>& views) {
   const double flat = input.flat_field ? input.flat_field->data()[pixel] : 1.0;
   const double black = input.black_level_dn;
-  std::vector<FrameView> views(input.frames.size());
+  views.resize(input.frames.size());
   for (std::size_t f = 0; f < input.frames.size(); ++f) {
     const FrameRadiometry& r = input.radiometry[f];
     // Chosen by what the merge predicts for this frame, not by the frame's own reading:
@@ -52,7 +54,6 @@ std::vector<FrameView> frameViews(const MergeInput& input, std::size_t pixel, do
     views[f] = {r.scale_cd_m2_per_dn * (input.frames[f].data()[pixel] - black) / flat,
                 predicted_dn >= low_dn && predicted_dn <= high_dn && flat > 0};
   }
-  return views;
 }
 
 }  // namespace
@@ -105,10 +106,11 @@ std::vector<FrameAgreement> frameAgreement(const MergeInput& input, const Merged
   const std::vector<std::size_t> order = exposureOrder(input);
   const std::size_t links = order.empty() ? 0 : order.size() - 1;
   std::vector<std::vector<double>> link_ratios(links);
+  std::vector<FrameView> views;
   for (std::size_t i : gridSamples(width, height, stride)) {
     const double merged_cd_m2 = merged.luminance_cd_m2.data()[i];
     if (merged.valid_frames.data()[i] < 2 || !(merged_cd_m2 > 0)) continue;
-    const std::vector<FrameView> views = frameViews(input, i, merged_cd_m2);
+    frameViews(input, i, merged_cd_m2, views);
     for (std::size_t l = 0; l < links; ++l) {
       const FrameView &a = views[order[l]], &b = views[order[l + 1]];
       if (a.in_range && b.in_range && b.estimate_cd_m2 > 0)

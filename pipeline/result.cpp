@@ -66,6 +66,9 @@ nlohmann::json makeResult(const ResultInputs& in) {
                          {"max_pixel", {std::lround(s.max.x_px), std::lround(s.max.y_px)}},
                          {"max_position_px", {s.max.x_px, s.max.y_px}},
                          {"max_method", toString(s.max.method)},
+                         {"max_relative_uncertainty", std::isfinite(s.max.relative_uncertainty)
+                                                          ? json(s.max.relative_uncertainty)
+                                                          : json(nullptr)},
                          {"max_is_lower_bound", s.max.method == PeakMethod::kLowerBound},
                          {"max_is_upper_bound", s.max.method == PeakMethod::kUpperBound},
                          {"valid_fraction", s.valid_fraction},

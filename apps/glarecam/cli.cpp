@@ -50,7 +50,8 @@ Status runAction(const std::function<Status()>& action) {
 int runGlarecam(int argc, char** argv) {
   CLI::App app{
       "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
-      "Docs: docs/process.md, docs/simulate.md, docs/stack-format.md, docs/method.md"};
+      "Docs: docs/process.md, docs/sweep.md, docs/datasheet.md, docs/simulate.md,\n"
+      "docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
   app.fallthrough();  // global options (-v, -q) also after the subcommand
@@ -62,6 +63,10 @@ int runGlarecam(int argc, char** argv) {
   std::function<Status()> action;
   addSimulateCommand(app, action);
   addProcessCommand(app, action);
+  addSweepCommand(app, action);
+  addFitCommand(app, action);
+  addDatasheetCommand(app, action);
+  addModelCommand(app, action);
 
   try {
     app.parse(argc, argv);

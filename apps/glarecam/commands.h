@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "pipeline/glare_fits.h"
 
 namespace glarecam::apps {
 
@@ -13,5 +14,13 @@ using Action = std::function<Status()>;
 
 void addSimulateCommand(CLI::App& app, Action& action);
 void addProcessCommand(CLI::App& app, Action& action);
+void addSweepCommand(CLI::App& app, Action& action);
+void addFitCommand(CLI::App& app, Action& action);
+void addDatasheetCommand(CLI::App& app, Action& action);
+void addModelCommand(CLI::App& app, Action& action);
+
+// Shared by fit and datasheet: reads the sweep table at `path` into `table` and fits it, logging
+// the fits' warnings; errors name the file.
+Result<pipeline::SweepFits> readAndFitSweep(const std::string& path, pipeline::SweepTable& table);
 
 }  // namespace glarecam::apps

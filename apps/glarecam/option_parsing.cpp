@@ -23,6 +23,11 @@ Result<std::uint64_t> parseUnsigned(const std::string& text, const std::string& 
   return value;
 }
 
+Status requireNonEmptyPath(const std::optional<std::string>& value, const std::string& option) {
+  if (value && value->empty()) return badInput(option + ": expected a path, got an empty string");
+  return {};
+}
+
 Result<std::pair<int, int>> parseSize(const std::string& text, const std::string& option) {
   const auto x = text.find('x');
   int width = 0, height = 0;
@@ -57,6 +62,14 @@ Result<std::vector<double>> parseNumberList(const std::string& text, const std::
                     " comma-separated numbers, got " + std::to_string(values.size()));
   }
   return values;
+}
+
+Result<std::optional<double>> parseOptionalNumber(const std::optional<std::string>& text,
+                                                  const std::string& option) {
+  if (!text) return std::nullopt;
+  auto values = parseNumberList(*text, option, 1, 1);
+  if (!values) return std::unexpected(values.error());
+  return values->front();
 }
 
 }  // namespace glarecam::apps

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +14,13 @@ namespace glarecam::apps {
 
 Result<std::uint64_t> parseUnsigned(const std::string& text, const std::string& option);
 Result<std::pair<int, int>> parseSize(const std::string& text, const std::string& option);
+// A path option that was given must not be empty ("--out $UNSET" is a mistake, not a default).
+Status requireNonEmptyPath(const std::optional<std::string>& value, const std::string& option);
+
+// The number of an option that was given (nullopt when it was not).
+Result<std::optional<double>> parseOptionalNumber(const std::optional<std::string>& text,
+                                                  const std::string& option);
+
 Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option,
                                             std::size_t min_count, std::size_t max_count);
 

@@ -25,19 +25,12 @@ struct ProcessArgs {
 Status runProcess(const ProcessArgs& args) {
   if (args.stack.empty()) return badInput("STACK: expected a stack directory, got an empty string");
   pipeline::ProcessOptions options;
-  for (const auto& [value, name] :
-       {std::pair{&args.calibration, "--calibration"}, std::pair{&args.out, "--out"}}) {
-    if (value->has_value() && (*value)->empty())
-      return badInput(std::string(name) + ": expected a path, got an empty string");
-  }
+  GLARECAM_CHECK(requireNonEmptyPath(args.calibration, "--calibration"));
+  GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
   if (args.calibration) options.calibration_file = *args.calibration;
   if (args.out) options.output_directory = *args.out;
   options.threads = args.threads;
-  if (args.threshold) {
-    auto threshold = parseNumberList(*args.threshold, "--threshold", 1, 1);
-    if (!threshold) return std::unexpected(threshold.error());
-    options.threshold_cd_m2 = threshold->front();
-  }
+  GLARECAM_ASSIGN(options.threshold_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
   if (args.thresholds) {
     auto thresholds =
         parseNumberList(*args.thresholds, "--thresholds", 1, pipeline::kMaxThresholds);

@@ -1,17 +1,6 @@
 #include "capture/sim/module_model.h"
 
-#include <cmath>
-
 namespace glarecam::capture {
-
-double LogisticCurve::operator()(double alpha_deg) const {
-  return a / (1.0 + std::exp(-(alpha_deg - b) * d)) + c;
-}
-
-double BiquadraticLnCurve::operator()(double alpha_deg) const {
-  const double a2 = alpha_deg * alpha_deg;
-  return std::exp(a * a2 * a2 + b * a2 + c);
-}
 
 namespace {
 

@@ -8,20 +8,12 @@
 #include <vector>
 
 #include "core/error.h"
+#include "pipeline/glare_functions.h"
 
 namespace glarecam::capture {
 
-// y = a / (1 + exp(-(alpha - b) d)) + c
-struct LogisticCurve {
-  double a = 0, b = 0, c = 0, d = 0;
-  double operator()(double alpha_deg) const;
-};
-
-// ln L = a alpha^4 + b alpha^2 + c
-struct BiquadraticLnCurve {
-  double a = 0, b = 0, c = 0;
-  double operator()(double alpha_deg) const;  // L in cd/m²
-};
+using pipeline::BiquadraticLnCurve;
+using pipeline::LogisticCurve;
 
 struct ModuleGlareModel {
   std::string name;

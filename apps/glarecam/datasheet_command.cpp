@@ -1,0 +1,108 @@
+// glarecam datasheet: a sweep table -> datasheet.pdf/.svg/.png and glare-profile.json
+// (docs/datasheet.md, docs/glare-profile.md).
+#include <fmt/chrono.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "apps/glarecam/commands.h"
+#include "apps/glarecam/option_parsing.h"
+#include "core/atomic_file.h"
+#include "pipeline/datasheet.h"
+#include "pipeline/facet_model.h"
+#include "pipeline/glare_profile.h"
+
+namespace glarecam::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+inline constexpr const char* kProfileFileName = "glare-profile.json";
+
+struct DatasheetArgs {
+  std::string sweep;
+  std::optional<std::string> out, date;
+  std::string module = "unnamed module";
+  std::optional<double> model_beta_deg;
+};
+
+// The sheet's date: --date, else SOURCE_DATE_EPOCH (reproducible builds), else today (UTC).
+Result<std::string> sheetDate(const std::optional<std::string>& date) {
+  if (date) {
+    int year = 0;
+    unsigned month = 0, day = 0;
+    char tail = 0;
+    const bool parsed =
+        std::sscanf(date->c_str(), "%4d-%2u-%2u%c", &year, &month, &day, &tail) == 3;
+    if (!parsed || date->size() != 10 ||
+        !std::chrono::year_month_day(std::chrono::year(year), std::chrono::month(month),
+                                     std::chrono::day(day))
+             .ok())
+      return badInput("--date: expected a date YYYY-MM-DD, got \"" + *date + "\"");
+    return *date;
+  }
+  std::time_t seconds = std::time(nullptr);
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
+    auto parsed = parseUnsigned(epoch, "SOURCE_DATE_EPOCH");
+    if (!parsed) return std::unexpected(parsed.error());
+    seconds = static_cast<std::time_t>(*parsed);
+  }
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  return fmt::format("{:%F}", utc);
+}
+
+Status runDatasheet(const DatasheetArgs& args) {
+  GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
+  if (args.model_beta_deg &&
+      !(*args.model_beta_deg > 0 && *args.model_beta_deg <= pipeline::kMaxFacetTiltDeg))
+    return badInput("--model-beta: expected a facet tilt in (0, 45] degrees");
+  std::string date;
+  GLARECAM_ASSIGN(date, sheetDate(args.date));
+  pipeline::SweepTable table;
+  pipeline::SweepFits fits;
+  GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));
+  const fs::path out = args.out ? fs::path(*args.out) : fs::path(args.sweep).parent_path();
+  std::error_code ec;
+  if (!out.empty()) fs::create_directories(out, ec);
+  if (ec) return ioError(out.string() + ": cannot create: " + ec.message());
+  GLARECAM_CHECK(pipeline::writeDatasheet({.module = args.module,
+                                           .date = date,
+                                           .table = &table,
+                                           .fits = &fits,
+                                           .model_beta_deg = args.model_beta_deg},
+                                          out));
+  const auto profile = pipeline::glareProfileJson(
+      {.module = args.module, .date = date, .source = args.sweep}, table, fits);
+  GLARECAM_CHECK(writeFileAtomic(out / kProfileFileName, profile.dump(2) + "\n"));
+  std::printf("%s\n", (out / pipeline::kDatasheetPdf).c_str());
+  return {};
+}
+
+}  // namespace
+
+void addDatasheetCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<DatasheetArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "datasheet",
+      "Write the module glare data sheet (PDF, SVG, PNG) and glare-profile.json from a sweep "
+      "table (docs/datasheet.md)");
+  sub->add_option("SWEEP", args->sweep, "sweep table CSV (glarecam sweep's sweep.csv)")->required();
+  sub->add_option("--out", args->out, "output directory (default: the sweep table's directory)");
+  sub->add_option("--module", args->module, "module name printed on the sheet")
+      ->capture_default_str();
+  sub->add_option("--date", args->date,
+                  "date printed on the sheet, YYYY-MM-DD (default: SOURCE_DATE_EPOCH or today)");
+  sub->add_option("--model-beta", args->model_beta_deg,
+                  "overlay the five-facet model with facet tilt β in degrees (glarecam model)");
+  sub->callback([args, &action] { action = [args] { return runDatasheet(*args); }; });
+}
+
+}  // namespace glarecam::apps

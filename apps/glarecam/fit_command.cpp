@@ -1,0 +1,53 @@
+// glarecam fit: the empirical functions of docs/method.md fitted to a sweep table
+// (docs/sweep.md).
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "apps/glarecam/commands.h"
+#include "pipeline/glare_fits.h"
+
+namespace glarecam::apps {
+
+Result<pipeline::SweepFits> readAndFitSweep(const std::string& path, pipeline::SweepTable& table) {
+  if (path.empty()) return badInput("SWEEP: expected a sweep table (CSV), got an empty string");
+  GLARECAM_ASSIGN(table, pipeline::readSweepTable(path));
+  auto fits = pipeline::fitSweep(table);
+  if (!fits) return std::unexpected(withContext(fits.error(), path));
+  for (const std::string& warning : fits->warnings) spdlog::warn("{}: {}", path, warning);
+  return fits;
+}
+
+namespace {
+
+struct FitArgs {
+  std::string sweep;
+  bool json = false;
+};
+
+Status runFit(const FitArgs& args) {
+  pipeline::SweepTable table;
+  pipeline::SweepFits fits;
+  GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));
+  if (args.json) {
+    std::printf("%s\n", pipeline::fitsJson(fits).dump(2).c_str());
+  } else {
+    std::printf("%s", pipeline::fitsReport(fits).c_str());
+  }
+  return {};
+}
+
+}  // namespace
+
+void addFitCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<FitArgs>();
+  CLI::App* sub =
+      app.add_subcommand("fit", "Fit the method's functions of α to a sweep table (docs/sweep.md)");
+  sub->add_option("SWEEP", args->sweep, "sweep table CSV (glarecam sweep's sweep.csv)")->required();
+  sub->add_flag("--json", args->json, "print the fits as JSON (keys in docs/sweep.md)");
+  sub->callback([args, &action] { action = [args] { return runFit(*args); }; });
+}
+
+}  // namespace glarecam::apps

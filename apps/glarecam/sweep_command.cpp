@@ -1,0 +1,79 @@
+// glarecam sweep: stacks over α -> sweep.csv and each stack's result (docs/sweep.md).
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/glarecam/commands.h"
+#include "apps/glarecam/option_parsing.h"
+#include "pipeline/process_stack.h"
+#include "pipeline/sweep.h"
+
+namespace glarecam::apps {
+namespace {
+
+struct SweepArgs {
+  std::vector<std::string> inputs;
+  std::optional<std::string> out, calibration, threshold;
+  unsigned jobs = 0;
+  bool no_progress = false, strict = false;
+};
+
+Status runSweep(const SweepArgs& args) {
+  GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
+  GLARECAM_CHECK(requireNonEmptyPath(args.calibration, "--calibration"));
+  pipeline::SweepOptions options;
+  if (args.out) options.output_directory = *args.out;
+  if (args.calibration) options.calibration_file = *args.calibration;
+  GLARECAM_ASSIGN(options.threshold_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
+  if (options.threshold_cd_m2 && !(*options.threshold_cd_m2 > 0))
+    return badInput("--threshold: expected a positive luminance in cd/m²");
+  options.jobs = args.jobs;
+  options.show_progress = !args.no_progress;
+  std::vector<std::filesystem::path> inputs;
+  for (const std::string& input : args.inputs) {
+    if (input.empty()) return badInput("STACKS: expected a path, got an empty string");
+    inputs.emplace_back(input);
+  }
+  pipeline::SweepSummary summary;
+  GLARECAM_ASSIGN(summary, pipeline::runSweep(pipeline::findStacks(inputs), options));
+  spdlog::info("sweep: {} stacks processed, {} skipped; results under {}",
+               summary.table.rows.size(), summary.skipped.size(),
+               (options.output_directory / pipeline::kSweepResultsDirectory).string());
+  std::printf("%s\n", summary.sweep_csv.c_str());
+  if (args.strict && !summary.skipped.empty()) {
+    const auto& first = summary.skipped.front();
+    return std::unexpected(
+        withContext(first.error, "--strict: " + std::to_string(summary.skipped.size()) +
+                                     " stack(s) skipped, the first " + first.stack.string()));
+  }
+  return {};
+}
+
+}  // namespace
+
+void addSweepCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<SweepArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "sweep", "Process stacks over α in parallel into sweep.csv (docs/sweep.md)");
+  sub->add_option("STACKS", args->inputs,
+                  "stack directories, or directories holding stacks (one level down)")
+      ->required();
+  sub->add_option("--out", args->out,
+                  "output directory for sweep.csv and results/<stack>/ (default ./sweep)");
+  sub->add_option("--jobs", args->jobs, "stacks processed at once (default: one per core)")
+      ->check(CLI::Range(1u, 1024u));
+  sub->add_option("--calibration", args->calibration,
+                  "calibration JSON file for every stack; overrides the stacks' own");
+  sub->add_option("--threshold", args->threshold,
+                  "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
+  sub->add_flag("--strict", args->strict,
+                "exit non-zero when any stack was skipped (the table is still written)");
+  sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
+  sub->callback([args, &action] { action = [args] { return runSweep(*args); }; });
+}
+
+}  // namespace glarecam::apps

@@ -1,0 +1,477 @@
+#include "pipeline/glare_fits.h"
+
+#include <ceres/ceres.h>
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <set>
+
+namespace glarecam::pipeline {
+
+namespace {
+
+using Vector = Eigen::VectorXd;
+using Matrix = Eigen::MatrixXd;
+
+// A scaled-Jacobian condition number above this means some combination of parameters moves the
+// curve by less than 1e-4 of what the best-determined one does: the parameters trade off
+// against each other (the horizontal logistic of the paper's Table III is the textbook case).
+// Belsley, Kuh & Welsch (1980) call condition indices above 30-100 strong dependence; we flag
+// only what makes individual parameters meaningless.
+constexpr double kIllConditionedNumber = 1e4;
+
+// Multi-start: the shape parameters of a separable model are gridded, the linear ones solved
+// exactly at each grid point, and the best distinct grid points refined.
+constexpr int kRefinedStarts = 8;
+constexpr int kGridSteps = 48;
+// The logistic's centre b is searched this many measured α spans beyond the data on each side
+// (the paper's horizontal fit has b = 190.5° for data up to 80°: a logistic tail).
+constexpr double kCentreSearchSpans = 3.0;
+// |d| (1/°) and |c| of the cosine function are gridded log-uniformly over these decades.
+constexpr double kSteepnessMin = 1e-3, kSteepnessMax = 3.0;
+constexpr double kCosinePowerMin = 1e-3, kCosinePowerMax = 10.0;
+constexpr int kSolverIterations = 1000;
+constexpr double kSolverTolerance = 1e-14;
+
+struct Samples {
+  std::span<const double> alpha_deg, y;
+  int size() const { return static_cast<int>(alpha_deg.size()); }
+};
+
+// ---- quality of a fit -------------------------------------------------------------------------
+
+FitQuality assessFit(const Samples& s, const Vector& residuals, const Matrix& jacobian,
+                     std::vector<double> parameters) {
+  FitQuality q;
+  q.parameters = std::move(parameters);
+  q.points = s.size();
+  const int p = static_cast<int>(q.parameters.size());
+  const double mean = Eigen::Map<const Vector>(s.y.data(), s.size()).mean();
+  double total = 0;
+  for (double y : s.y) total += (y - mean) * (y - mean);
+  const double sse = residuals.squaredNorm();
+  q.r2 = total > 0 ? 1.0 - sse / total : std::numeric_limits<double>::quiet_NaN();
+  q.rmse = std::sqrt(sse / q.points);
+  q.under_determined = q.points <= p;
+
+  Vector scale = jacobian.colwise().norm().transpose();
+  for (double& v : scale) v = v > 0 ? v : 1.0;
+  const Matrix scaled = jacobian * scale.cwiseInverse().asDiagonal();
+  Eigen::JacobiSVD<Matrix> svd(scaled, Eigen::ComputeThinV);
+  const Vector sigma = svd.singularValues();
+  q.condition_number = sigma(sigma.size() - 1) > 0 ? sigma(0) / sigma(sigma.size() - 1)
+                                                   : std::numeric_limits<double>::infinity();
+  q.ill_conditioned = !(q.condition_number < kIllConditionedNumber);
+  q.standard_errors.assign(p, std::nullopt);
+  if (q.under_determined || !std::isfinite(q.condition_number)) return q;
+  // Covariance s² (JᵀJ)⁻¹, via the SVD of the scaled Jacobian.
+  const double variance = sse / (q.points - p);
+  const Matrix v_over_sigma = svd.matrixV() * sigma.cwiseInverse().asDiagonal();
+  for (int i = 0; i < p; ++i) {
+    q.standard_errors[i] = std::sqrt(variance * v_over_sigma.row(i).squaredNorm()) / scale(i);
+  }
+  return q;
+}
+
+// ---- linear least squares ---------------------------------------------------------------------
+
+// Coefficients minimising |X β - y|, columns scaled to unit norm first (α⁴ and 1 differ by 1e7).
+Vector solveLinear(const Matrix& x, const Vector& y) {
+  Vector scale = x.colwise().norm().transpose();
+  for (double& v : scale) v = v > 0 ? v : 1.0;
+  const Matrix scaled = x * scale.cwiseInverse().asDiagonal();
+  return scaled.colPivHouseholderQr().solve(y).cwiseQuotient(scale);
+}
+
+// ---- separable models: shape grid, linear solve, Ceres refinement ---------------------------
+
+// A model y = lin0 * basis(α; shape) + lin1 [+ lin2 * ...]: the shape parameters are gridded;
+// for each, the linear parameters follow by least squares.
+struct GridPoint {
+  std::vector<double> parameters;  // all of them, in the model's order
+  double sse = std::numeric_limits<double>::infinity();
+  std::array<int, 2> cell{};  // the shape parameters' grid indices
+};
+
+// A grid axis: values and, for each, a signed index in which neighbours differ by 1.
+struct GridAxis {
+  std::vector<double> values;
+  std::vector<int> index;
+};
+
+// ±lo ... ±hi, log-uniform; the index runs -steps..-1, 1..steps so that +lo and -lo are apart.
+GridAxis logSpacedBothSigns(double lo, double hi, int steps) {
+  GridAxis axis;
+  for (int i = 0; i < steps; ++i) {
+    const double v = lo * std::pow(hi / lo, static_cast<double>(i) / (steps - 1));
+    for (int sign : {1, -1}) {
+      axis.values.push_back(sign * v);
+      axis.index.push_back(sign * (i + 1));
+    }
+  }
+  return axis;
+}
+
+GridAxis linSpaced(double lo, double hi, int steps) {
+  GridAxis axis;
+  for (int i = 0; i < steps; ++i) {
+    axis.values.push_back(lo + (hi - lo) * i / (steps - 1));
+    axis.index.push_back(i);
+  }
+  return axis;
+}
+
+bool neighbours(const GridPoint& a, const GridPoint& b) {
+  return std::abs(a.cell[0] - b.cell[0]) <= 1 && std::abs(a.cell[1] - b.cell[1]) <= 1;
+}
+
+// The best grid points, none a grid neighbour of a better one chosen before it (neighbouring
+// starts converge to the same minimum).
+std::vector<GridPoint> bestDistinct(std::vector<GridPoint> grid, int count) {
+  std::sort(grid.begin(), grid.end(),
+            [](const GridPoint& a, const GridPoint& b) { return a.sse < b.sse; });
+  std::vector<GridPoint> chosen;
+  for (const GridPoint& g : grid) {
+    if (!std::isfinite(g.sse) || static_cast<int>(chosen.size()) == count) break;
+    if (std::none_of(chosen.begin(), chosen.end(),
+                     [&](const GridPoint& c) { return neighbours(c, g); }))
+      chosen.push_back(g);
+  }
+  return chosen;
+}
+
+// Residual y_i - f(α_i; p) of a model given as a functor Model::operator()(alpha, const T* p).
+template <typename Model, int kParameters>
+struct Residual {
+  double alpha, y;
+  template <typename T>
+  bool operator()(const T* p, T* residual) const {
+    residual[0] = T(y) - Model::evaluate(alpha, p);
+    return true;
+  }
+};
+
+template <typename Model, int kParameters>
+std::unique_ptr<ceres::Problem> makeProblem(const Samples& s, double* parameters) {
+  auto problem = std::make_unique<ceres::Problem>();
+  for (int i = 0; i < s.size(); ++i) {
+    using Cost = Residual<Model, kParameters>;
+    problem->AddResidualBlock(
+        new ceres::AutoDiffCostFunction<Cost, 1, kParameters>(new Cost{s.alpha_deg[i], s.y[i]}),
+        nullptr, parameters);
+  }
+  return problem;
+}
+
+// Levenberg–Marquardt from `start`; the fit's quality from the Jacobian at the optimum.
+template <typename Model, int kParameters>
+FitQuality refine(const Samples& s, const std::vector<double>& start) {
+  std::array<double, kParameters> p{};
+  std::copy(start.begin(), start.end(), p.begin());
+  auto problem = makeProblem<Model, kParameters>(s, p.data());
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = kSolverIterations;
+  options.function_tolerance = kSolverTolerance;
+  options.parameter_tolerance = kSolverTolerance;
+  options.gradient_tolerance = kSolverTolerance;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, problem.get(), &summary);
+
+  double cost = 0;
+  std::vector<double> residuals;
+  ceres::CRSMatrix crs;
+  problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, &residuals, nullptr, &crs);
+  Matrix jacobian = Matrix::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r) {
+    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) jacobian(r, crs.cols[k]) = crs.values[k];
+  }
+  // Ceres's residual is y - f, so its Jacobian is -∂f/∂p: the sign does not matter below.
+  return assessFit(s, Eigen::Map<Vector>(residuals.data(), residuals.size()), jacobian,
+                   std::vector<double>(p.begin(), p.end()));
+}
+
+// Refines every start and keeps the best, recording what each start reached.
+template <typename Model, int kParameters>
+FitQuality multiStart(const Samples& s, const std::vector<GridPoint>& starts) {
+  FitQuality best;
+  best.r2 = -std::numeric_limits<double>::infinity();
+  std::vector<double> reached;
+  for (const GridPoint& start : starts) {
+    FitQuality q = refine<Model, kParameters>(s, start.parameters);
+    reached.push_back(q.r2);
+    if (q.r2 > best.r2 || best.parameters.empty()) best = std::move(q);
+  }
+  best.start_r2 = std::move(reached);
+  return best;
+}
+
+double sumOfSquares(const Vector& v) { return v.allFinite() ? v.squaredNorm() : INFINITY; }
+
+// ---- the three models -------------------------------------------------------------------------
+
+struct CosineModel {  // p = (a, b, c)
+  template <typename T>
+  static T evaluate(double alpha, const T* p) {
+    return cosineLnL(alpha, p[0], p[1], p[2]);
+  }
+};
+
+struct LogisticModel {  // p = (a, b, c, d)
+  template <typename T>
+  static T evaluate(double alpha, const T* p) {
+    return logistic(alpha, p[0], p[1], p[2], p[3]);
+  }
+};
+
+// For each shape value, the linear parameters (the basis' coefficient and the constant) by
+// least squares; `basis(alpha, shape...)` is the model's nonlinear part.
+template <typename Basis>
+GridPoint solveSeparable(const Samples& s, const Basis& basis) {
+  Matrix x(s.size(), 2);
+  for (int i = 0; i < s.size(); ++i) x.row(i) << basis(s.alpha_deg[i]), 1.0;
+  const Vector y = Eigen::Map<const Vector>(s.y.data(), s.size());
+  const Vector beta = solveLinear(x, y);
+  GridPoint g;
+  g.parameters = {beta(0), beta(1)};
+  g.sse = sumOfSquares(x * beta - y);
+  return g;
+}
+
+Status requirePoints(const Samples& s, int parameters, const char* what) {
+  std::set<double> distinct(s.alpha_deg.begin(), s.alpha_deg.end());
+  if (static_cast<int>(distinct.size()) < parameters)
+    return badInput(fmt::format("{}: {} distinct α values, but the function has {} parameters",
+                                what, distinct.size(), parameters));
+  return {};
+}
+
+std::pair<double, double> alphaRange(const Samples& s) {
+  const auto [lo, hi] = std::minmax_element(s.alpha_deg.begin(), s.alpha_deg.end());
+  return {*lo, *hi};
+}
+
+}  // namespace
+
+Result<BiquadraticFit> fitBiquadratic(std::span<const double> alpha_deg,
+                                      std::span<const double> ln_l) {
+  const Samples s{alpha_deg, ln_l};
+  GLARECAM_CHECK(requirePoints(s, kBiquadraticParameters, "biquadratic fit"));
+  Matrix x(s.size(), kBiquadraticParameters);
+  for (int i = 0; i < s.size(); ++i) {
+    const double a2 = alpha_deg[i] * alpha_deg[i];
+    x.row(i) << a2 * a2, a2, 1.0;
+  }
+  const Vector y = Eigen::Map<const Vector>(ln_l.data(), s.size());
+  const Vector beta = solveLinear(x, y);
+  BiquadraticFit fit{.curve = {.a = beta(0), .b = beta(1), .c = beta(2)},
+                     .quality = assessFit(s, y - x * beta, x, {beta(0), beta(1), beta(2)})};
+  return fit;
+}
+
+Result<CosineFit> fitCosine(std::span<const double> alpha_deg, std::span<const double> ln_l) {
+  const Samples s{alpha_deg, ln_l};
+  GLARECAM_CHECK(requirePoints(s, kCosineParameters, "cosine fit"));
+  std::vector<GridPoint> grid;
+  const GridAxis powers = logSpacedBothSigns(kCosinePowerMin, kCosinePowerMax, kGridSteps);
+  for (std::size_t i = 0; i < powers.values.size(); ++i) {
+    const double c = powers.values[i];
+    GridPoint g = solveSeparable(s, [c](double alpha) { return cosineLnL(alpha, 0.0, 1.0, c); });
+    g.parameters = {g.parameters[1], g.parameters[0], c};  // (a, b, c)
+    g.cell = {powers.index[i], 0};
+    grid.push_back(std::move(g));
+  }
+  FitQuality q = multiStart<CosineModel, kCosineParameters>(s, bestDistinct(grid, kRefinedStarts));
+  const auto& p = q.parameters;
+  return CosineFit{.curve = {.a = p[0], .b = p[1], .c = p[2]}, .quality = std::move(q)};
+}
+
+LogisticFit refineLogistic(std::span<const double> alpha_deg, std::span<const double> y_deg,
+                           const LogisticCurve& start) {
+  FitQuality q = refine<LogisticModel, kLogisticParameters>({alpha_deg, y_deg},
+                                                            {start.a, start.b, start.c, start.d});
+  const auto& p = q.parameters;
+  return {.curve = {.a = p[0], .b = p[1], .c = p[2], .d = p[3]}, .quality = std::move(q)};
+}
+
+Result<LogisticFit> fitLogistic(std::span<const double> alpha_deg, std::span<const double> y_deg) {
+  const Samples s{alpha_deg, y_deg};
+  GLARECAM_CHECK(requirePoints(s, kLogisticParameters, "logistic fit"));
+  const auto [lo, hi] = alphaRange(s);
+  const double reach = kCentreSearchSpans * (hi - lo);
+  std::vector<GridPoint> grid;
+  const GridAxis centres = linSpaced(lo - reach, hi + reach, kGridSteps);
+  const GridAxis steepness = logSpacedBothSigns(kSteepnessMin, kSteepnessMax, kGridSteps);
+  for (std::size_t i = 0; i < centres.values.size(); ++i) {
+    for (std::size_t j = 0; j < steepness.values.size(); ++j) {
+      const double b = centres.values[i], d = steepness.values[j];
+      GridPoint g =
+          solveSeparable(s, [b, d](double alpha) { return logistic(alpha, 1.0, b, 0.0, d); });
+      g.parameters = {g.parameters[0], b, g.parameters[1], d};  // (a, b, c, d)
+      g.cell = {centres.index[i], steepness.index[j]};
+      grid.push_back(std::move(g));
+    }
+  }
+  FitQuality q =
+      multiStart<LogisticModel, kLogisticParameters>(s, bestDistinct(grid, kRefinedStarts));
+  const auto& p = q.parameters;
+  return LogisticFit{.curve = {.a = p[0], .b = p[1], .c = p[2], .d = p[3]},
+                     .quality = std::move(q)};
+}
+
+namespace {
+
+std::string describe(const char* name, const FitQuality& q) {
+  if (q.under_determined)
+    return fmt::format(
+        "{}: under-determined ({} points for {} parameters): it passes through "
+        "every point, R² means nothing and there are no standard errors",
+        name, q.points, q.parameters.size());
+  if (q.ill_conditioned)
+    return fmt::format(
+        "{}: ill-conditioned (condition number {:.2g}): the parameters trade off "
+        "against each other and are not individually determined; compare curves "
+        "and R², not parameters",
+        name, q.condition_number);
+  return {};
+}
+
+void noteQuality(std::vector<std::string>& warnings, const char* name, const FitQuality& q) {
+  if (std::string text = describe(name, q); !text.empty()) warnings.push_back(std::move(text));
+}
+
+AxisFit fitAxis(const SweepTable& table, std::optional<double> SweepRow::*axis, const char* name,
+                std::vector<std::string>& warnings) {
+  std::vector<double> alpha, y;
+  for (const SweepRow& row : table.rows) {
+    if (!(row.*axis)) continue;
+    alpha.push_back(row.alpha_deg);
+    y.push_back(*(row.*axis));
+  }
+  AxisFit fit{.logistic = std::nullopt, .rows_with_ellipse = static_cast<int>(alpha.size())};
+  auto logistic = fitLogistic(alpha, y);
+  if (!logistic) {
+    warnings.push_back(fmt::format("{} logistic not fitted: {} rows with an ellipse ({})", name,
+                                   alpha.size(), logistic.error().message));
+    return fit;
+  }
+  noteQuality(warnings, name, logistic->quality);
+  fit.logistic = std::move(*logistic);
+  return fit;
+}
+
+nlohmann::json qualityJson(const FitQuality& q, std::initializer_list<const char*> names) {
+  nlohmann::json j, errors;
+  int i = 0;
+  for (const char* name : names) {
+    j[name] = q.parameters[i];
+    errors[name] = q.standard_errors[i] ? nlohmann::json(*q.standard_errors[i]) : nullptr;
+    ++i;
+  }
+  j["standard_errors"] = errors;
+  j["r2"] = std::isfinite(q.r2) ? nlohmann::json(q.r2) : nullptr;
+  j["rmse"] = q.rmse;
+  j["points"] = q.points;
+  j["condition_number"] =
+      std::isfinite(q.condition_number) ? nlohmann::json(q.condition_number) : nullptr;
+  j["under_determined"] = q.under_determined;
+  j["ill_conditioned"] = q.ill_conditioned;
+  j["starts"] = q.start_r2.size();
+  return j;
+}
+
+nlohmann::json axisJson(const AxisFit& axis) {
+  return {{"rows_with_ellipse", axis.rows_with_ellipse},
+          {"logistic", axis.logistic ? qualityJson(axis.logistic->quality, {"a", "b", "c", "d"})
+                                     : nlohmann::json(nullptr)}};
+}
+
+std::string parameterText(const FitQuality& q, std::initializer_list<const char*> names) {
+  std::string text;
+  int i = 0;
+  for (const char* name : names) {
+    text += fmt::format("  {} = {:.5g}", name, q.parameters[i]);
+    if (q.standard_errors[i]) text += fmt::format(" ± {:.2g}", *q.standard_errors[i]);
+    ++i;
+  }
+  return text;
+}
+
+std::string fitLine(const char* label, const char* formula, const FitQuality& q,
+                    std::initializer_list<const char*> names, const char* unit) {
+  return fmt::format("{:<22}{}\n{:<22}{}\n{:<22}  R² = {:.4f}  RMSE = {:.3g} {}  n = {}{}\n", label,
+                     formula, "", parameterText(q, names), "", q.r2, q.rmse, unit, q.points,
+                     q.ill_conditioned    ? "  (ill-conditioned)"
+                     : q.under_determined ? "  (under-determined)"
+                                          : "");
+}
+
+std::string axisReport(const char* label, const AxisFit& axis) {
+  if (!axis.logistic)
+    return fmt::format("{:<22}not fitted ({} rows with an ellipse)\n", label,
+                       axis.rows_with_ellipse);
+  return fitLine(label, "y = a / (1 + exp(-(α - b) d)) + c", axis.logistic->quality,
+                 {"a", "b", "c", "d"}, "°");
+}
+
+}  // namespace
+
+std::string fitsReport(const SweepFits& fits) {
+  std::string text = fmt::format("α from {:g}° to {:g}°\n", fits.alpha_min_deg, fits.alpha_max_deg);
+  text += fitLine("luminance cos", "ln L = a + b / cos(α)^c", fits.cosine.quality, {"a", "b", "c"},
+                  "(ln L)");
+  text += fitLine("luminance biquadratic", "ln L = a α⁴ + b α² + c", fits.biquadratic.quality,
+                  {"a", "b", "c"}, "(ln L)");
+  text += axisReport("vertical logistic", fits.vertical);
+  text += axisReport("horizontal logistic", fits.horizontal);
+  return text;
+}
+
+double SweepFits::lmaxCdM2(double alpha_deg) const {
+  return cosineIsBetter() ? cosine.curve(alpha_deg) : biquadratic.curve(alpha_deg);
+}
+
+Result<SweepFits> fitSweep(const SweepTable& table) {
+  const int rows = static_cast<int>(table.rows.size());
+  if (rows < kLogisticParameters)
+    return badInput(
+        fmt::format("{} rows: the fits need at least {} (the logistic has {} "
+                    "parameters)",
+                    rows, kLogisticParameters, kLogisticParameters));
+  std::vector<double> alpha, ln_l;
+  for (const SweepRow& row : table.rows) {
+    alpha.push_back(row.alpha_deg);
+    ln_l.push_back(std::log(row.lmax_cd_m2));
+  }
+  SweepFits fits;
+  const auto [lo, hi] = std::minmax_element(alpha.begin(), alpha.end());
+  fits.alpha_min_deg = *lo;
+  fits.alpha_max_deg = *hi;
+  GLARECAM_ASSIGN(fits.cosine, fitCosine(alpha, ln_l));
+  GLARECAM_ASSIGN(fits.biquadratic, fitBiquadratic(alpha, ln_l));
+  noteQuality(fits.warnings, "luminance cos", fits.cosine.quality);
+  noteQuality(fits.warnings, "luminance biquadratic", fits.biquadratic.quality);
+  fits.vertical = fitAxis(table, &SweepRow::vertical_deg, "vertical", fits.warnings);
+  fits.horizontal = fitAxis(table, &SweepRow::horizontal_deg, "horizontal", fits.warnings);
+  return fits;
+}
+
+nlohmann::json fitsJson(const SweepFits& fits) {
+  return {{"schema", "glarecam.fits/1"},
+          {"alpha_range_deg", {fits.alpha_min_deg, fits.alpha_max_deg}},
+          {"luminance",
+           {{"cos", qualityJson(fits.cosine.quality, {"a", "b", "c"})},
+            {"biquadratic", qualityJson(fits.biquadratic.quality, {"a", "b", "c"})},
+            {"best", fits.cosineIsBetter() ? "cos" : "biquadratic"}}},
+          {"vertical", axisJson(fits.vertical)},
+          {"horizontal", axisJson(fits.horizontal)},
+          {"warnings", fits.warnings}};
+}
+
+}  // namespace glarecam::pipeline

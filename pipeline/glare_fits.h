@@ -1,0 +1,90 @@
+// The empirical fits of docs/method.md over a sweep table: the cosine and biquadratic functions
+// of ln Lmax, and a logistic function of each limit-ellipse axis (rows without an ellipse left
+// out). The nonlinear fits (cosine, logistic) are separable: for fixed shape parameters the model
+// is linear in the rest, so a grid of shapes is solved by linear least squares and the best
+// starts are refined with Ceres (Levenberg–Marquardt on all parameters). Each fit reports its
+// parameters, standard errors from the Jacobian at the optimum, R² (on ln L for luminance, on
+// degrees for axes), RMSE and the number of points, and says when it is under-determined or
+// ill-conditioned.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "pipeline/glare_functions.h"
+#include "pipeline/sweep_table.h"
+
+namespace glarecam::pipeline {
+
+struct FitQuality {
+  std::vector<double> parameters;
+  std::vector<std::optional<double>> standard_errors;  // empty where not determined
+  double r2 = 0;
+  double rmse = 0;  // on the fitted quantity (ln L or degrees)
+  int points = 0;
+  double condition_number = 0;    // of the Jacobian at the optimum (scaled columns)
+  bool under_determined = false;  // no residual degrees of freedom
+  bool ill_conditioned = false;   // parameters not individually determined
+  std::vector<double> start_r2;   // R² reached from every start refined (multi-start)
+};
+
+struct CosineFit {
+  CosineLnCurve curve;
+  FitQuality quality;
+};
+struct BiquadraticFit {
+  BiquadraticLnCurve curve;
+  FitQuality quality;
+};
+struct LogisticFit {
+  LogisticCurve curve;
+  FitQuality quality;
+};
+
+// The fits on raw samples. alpha in degrees; y = ln L or an axis in degrees. Each needs at
+// least as many points as parameters (kBadInput otherwise).
+Result<CosineFit> fitCosine(std::span<const double> alpha_deg, std::span<const double> ln_l);
+Result<BiquadraticFit> fitBiquadratic(std::span<const double> alpha_deg,
+                                      std::span<const double> ln_l);
+Result<LogisticFit> fitLogistic(std::span<const double> alpha_deg, std::span<const double> y_deg);
+// One Levenberg–Marquardt refinement of the logistic from a given start (what multi-start runs
+// from each start; public so that tests can try their own).
+LogisticFit refineLogistic(std::span<const double> alpha_deg, std::span<const double> y_deg,
+                           const LogisticCurve& start);
+
+inline constexpr int kCosineParameters = 3;
+inline constexpr int kBiquadraticParameters = 3;
+inline constexpr int kLogisticParameters = 4;
+
+struct AxisFit {
+  std::optional<LogisticFit> logistic;  // none: fewer rows with an ellipse than parameters
+  int rows_with_ellipse = 0;
+};
+
+struct SweepFits {
+  CosineFit cosine;
+  BiquadraticFit biquadratic;
+  AxisFit vertical, horizontal;
+  double alpha_min_deg = 0, alpha_max_deg = 0;  // the measured range
+  std::vector<std::string> warnings;            // under-determined, ill-conditioned, skipped
+  // The luminance fit with the higher R² (the data sheet's profile uses it).
+  bool cosineIsBetter() const { return cosine.quality.r2 > biquadratic.quality.r2; }
+  double lmaxCdM2(double alpha_deg) const;
+};
+
+// All four fits of a sweep table. kBadInput when the table has fewer rows than the logistic
+// needs parameters; an axis with too few ellipses is left unfitted with a warning.
+Result<SweepFits> fitSweep(const SweepTable& table);
+
+// {"luminance": {"cos": {a,b,c,r2,...}, "biquadratic": {...}}, "vertical": {"logistic": {...}},
+//  "horizontal": {...}, "warnings": [...]} (docs/datasheet.md).
+nlohmann::json fitsJson(const SweepFits& fits);
+
+// The fits as a short human-readable report (parameters ± standard errors, R², RMSE, points).
+std::string fitsReport(const SweepFits& fits);
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,103 @@
+#include "pipeline/glare_profile.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/version.h"
+#include "pipeline/glare_ellipse.h"
+#include "pipeline/limit_curve.h"
+
+namespace glarecam::pipeline {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr double kMradPerRad = 1000.0;
+
+json optionalNumber(const std::optional<double>& value) {
+  return value ? json(*value) : json(nullptr);
+}
+
+json beamJson(const std::optional<CircularBeamSpread>& beam) {
+  if (!beam) return nullptr;
+  return {{"solid_angle_sr", beam->solid_angle_sr},
+          {"beta_mrad", beam->beta_mrad},
+          {"slope_error_mrad", beam->slope_error_mrad}};
+}
+
+json rowJson(const ProfileRow& row) {
+  return {{"alpha_deg", row.alpha_deg},
+          {"lmax_cd_m2", row.lmax_cd_m2},
+          {"limit_cd_m2", optionalNumber(row.limit_cd_m2)},
+          {"glares", row.glares},
+          {"vertical_deg", optionalNumber(row.vertical_deg)},
+          {"horizontal_deg", optionalNumber(row.horizontal_deg)},
+          {"circular_beam", beamJson(row.beam)},
+          {"extrapolated", row.extrapolated}};
+}
+
+json measuredJson(const SweepRow& row) {
+  return {{"alpha_deg", row.alpha_deg},
+          {"limit_cd_m2", optionalNumber(row.limit_cd_m2)},
+          {"lmax_cd_m2", row.lmax_cd_m2},
+          {"vertical_deg", optionalNumber(row.vertical_deg)},
+          {"horizontal_deg", optionalNumber(row.horizontal_deg)}};
+}
+
+std::optional<double> axisAt(const AxisFit& axis, double alpha_deg) {
+  if (!axis.logistic) return std::nullopt;
+  return axis.logistic->curve(alpha_deg);
+}
+
+}  // namespace
+
+CircularBeamSpread circularBeamSpread(double vertical_deg, double horizontal_deg) {
+  CircularBeamSpread beam;
+  beam.solid_angle_sr = ellipseSolidAngleSr(vertical_deg / 2, horizontal_deg / 2);
+  // A circular cone of half-angle θ spans 2π (1 - cos θ).
+  const double half_angle_rad = std::acos(1.0 - beam.solid_angle_sr / (2 * std::numbers::pi));
+  beam.beta_mrad = 2 * half_angle_rad * kMradPerRad;
+  beam.slope_error_mrad = beam.beta_mrad / 2 - kSunHalfAngleMrad;
+  return beam;
+}
+
+std::vector<ProfileRow> glareProfile(const SweepFits& fits) {
+  std::vector<ProfileRow> rows;
+  for (int alpha = 0; alpha <= kProfileAlphaMaxDeg; alpha += kProfileStepDeg) {
+    ProfileRow row;
+    row.alpha_deg = alpha;
+    row.lmax_cd_m2 = fits.lmaxCdM2(alpha);
+    row.limit_cd_m2 = glareLimitCdM2(alpha);
+    row.glares = row.limit_cd_m2 && row.lmax_cd_m2 > *row.limit_cd_m2;
+    row.extrapolated = alpha < fits.alpha_min_deg || alpha > fits.alpha_max_deg;
+    if (row.glares) {
+      row.vertical_deg = axisAt(fits.vertical, alpha);
+      row.horizontal_deg = axisAt(fits.horizontal, alpha);
+    }
+    if (row.vertical_deg && row.horizontal_deg && *row.vertical_deg > 0 && *row.horizontal_deg > 0)
+      row.beam = circularBeamSpread(*row.vertical_deg, *row.horizontal_deg);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+json glareProfileJson(const ProfileIdentity& identity, const SweepTable& table,
+                      const SweepFits& fits) {
+  json profile = json::array();
+  for (const ProfileRow& row : glareProfile(fits)) profile.push_back(rowJson(row));
+  json measured = json::array();
+  for (const SweepRow& row : table.rows) measured.push_back(measuredJson(row));
+  return {{"schema", "glarecam.glare-profile/1"},
+          {"module", identity.module},
+          {"date", identity.date},
+          {"source", identity.source},
+          {"luminance_fit", fits.cosineIsBetter() ? "cos" : "biquadratic"},
+          {"sun_half_angle_mrad", kSunHalfAngleMrad},
+          {"profile", profile},
+          {"measured", measured},
+          {"fits", fitsJson(fits)},
+          {"generator", {{"name", "glarecam"}, {"version", kVersion}}}};
+}
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,54 @@
+// The module's glare profile (docs/glare-profile.md): Lmax and both limit-ellipse axes per 1° of
+// α from the sweep's fits, the glare limit and whether the module glares, and the beam spread as
+// glare-hazard tools model it: the circular cone of the same solid angle as the measured ellipse,
+// and the surface slope error σ that gives that cone in beta = 2 (4.65 mrad + σ).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pipeline/glare_fits.h"
+
+namespace glarecam::pipeline {
+
+// The sun's angular radius used by SGHAT-style tools (docs/method.md).
+inline constexpr double kSunHalfAngleMrad = 4.65;
+
+struct CircularBeamSpread {
+  double solid_angle_sr = 0;    // of the elliptical cone with the measured full axes
+  double beta_mrad = 0;         // full apex angle of the circular cone of that solid angle
+  double slope_error_mrad = 0;  // σ with beta = 2 (4.65 mrad + σ); negative: narrower than the sun
+};
+
+// The equal-solid-angle circular cone of an elliptical cone with full axes in degrees (the
+// ellipse lies in the azimuthal-equidistant angular plane, as glarecam measures it).
+CircularBeamSpread circularBeamSpread(double vertical_deg, double horizontal_deg);
+
+struct ProfileRow {
+  double alpha_deg = 0;
+  double lmax_cd_m2 = 0;  // from the better luminance fit
+  std::optional<double> limit_cd_m2;
+  bool glares = false;                                 // Lmax above the limit
+  std::optional<double> vertical_deg, horizontal_deg;  // from the logistic fits, where glaring
+  std::optional<CircularBeamSpread> beam;
+  bool extrapolated = false;  // outside the measured α range
+};
+
+inline constexpr int kProfileAlphaMaxDeg = 80;  // the method is defined up to 80°
+inline constexpr int kProfileStepDeg = 1;
+
+std::vector<ProfileRow> glareProfile(const SweepFits& fits);
+
+struct ProfileIdentity {
+  std::string module;
+  std::string date;    // ISO 8601
+  std::string source;  // the sweep table's path
+};
+
+// glarecam.glare-profile/1 (docs/glare-profile.md).
+nlohmann::json glareProfileJson(const ProfileIdentity& identity, const SweepTable& table,
+                                const SweepFits& fits);
+
+}  // namespace glarecam::pipeline

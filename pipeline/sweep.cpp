@@ -1,0 +1,146 @@
+#include "pipeline/sweep.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <atomic>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "core/atomic_file.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "core/stack_manifest.h"
+#include "pipeline/process_stack.h"
+
+namespace glarecam::pipeline {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A result directory per stack, named after it; a second stack of the same name gets "-2".
+std::vector<fs::path> resultDirectories(const std::vector<fs::path>& stacks, const fs::path& out) {
+  std::map<std::string, int> uses;
+  std::vector<fs::path> directories;
+  for (const fs::path& stack : stacks) {
+    std::string name = fs::absolute(stack).lexically_normal().filename().string();
+    if (name.empty()) name = "stack";
+    const int n = ++uses[name];
+    if (n > 1) name += "-" + std::to_string(n);
+    directories.push_back(out / kSweepResultsDirectory / name);
+  }
+  return directories;
+}
+
+Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_directory,
+                            const SweepOptions& options, unsigned threads_per_job) {
+  ProcessOptions process{.calibration_file = options.calibration_file,
+                         .output_directory = result_directory,
+                         .threshold_cd_m2 = options.threshold_cd_m2,
+                         .thresholds_cd_m2 = {},
+                         .threads = threads_per_job,
+                         .show_progress = false};
+  auto summary = processStack(stack, process);
+  if (!summary) return std::unexpected(summary.error());
+  return sweepRowFromResult(summary->result, stack.string());
+}
+
+// The error the whole sweep fails with when nothing could be processed: bad input if every
+// stack was bad input, otherwise the first other failure.
+Error noStackError(const std::vector<SkippedStack>& skipped) {
+  for (const SkippedStack& s : skipped) {
+    if (s.error.code != ErrorCode::kBadInput)
+      return withContext(s.error, "no stack could be processed; " + s.stack.string());
+  }
+  return withContext(skipped.front().error,
+                     "no stack could be processed; " + skipped.front().stack.string());
+}
+
+}  // namespace
+
+StackSearch findStacks(const std::vector<fs::path>& inputs) {
+  StackSearch search;
+  auto skip = [&](const fs::path& input, Error error) {
+    search.skipped.push_back({input, std::move(error)});
+  };
+  for (const fs::path& input : inputs) {
+    std::error_code ec;
+    if (fs::exists(input / kManifestFileName, ec)) {
+      search.stacks.push_back(input);
+      continue;
+    }
+    if (!fs::is_directory(input, ec)) {
+      skip(input, {ErrorCode::kBadInput, "no such stack or directory of stacks"});
+      continue;
+    }
+    std::vector<fs::path> inside;
+    for (const auto& entry : fs::directory_iterator(input, ec)) {
+      if (fs::exists(entry.path() / kManifestFileName, ec)) inside.push_back(entry.path());
+    }
+    if (ec) {
+      skip(input, {ErrorCode::kIo, "cannot list: " + ec.message()});
+    } else if (inside.empty()) {
+      skip(input,
+           {ErrorCode::kBadInput, "neither a stack (no stack.json) nor a directory of stacks"});
+    }
+    std::sort(inside.begin(), inside.end());
+    search.stacks.insert(search.stacks.end(), inside.begin(), inside.end());
+  }
+  return search;
+}
+
+Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& options) {
+  const std::vector<fs::path>& stacks = search.stacks;
+  SweepSummary summary;
+  summary.skipped = search.skipped;
+  if (stacks.empty()) {
+    if (summary.skipped.empty()) return badInput("no stacks to sweep");
+    return std::unexpected(noStackError(summary.skipped));
+  }
+  const unsigned cores = defaultThreadCount();
+  const unsigned jobs =
+      std::clamp(options.jobs ? options.jobs : cores, 1u, static_cast<unsigned>(stacks.size()));
+  const unsigned threads_per_job = std::max(1u, cores / jobs);
+  const std::vector<fs::path> results = resultDirectories(stacks, options.output_directory);
+
+  std::vector<std::optional<Result<SweepRow>>> outcomes(stacks.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  Progress progress("sweep", static_cast<int>(stacks.size()), options.show_progress);
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < stacks.size();) {
+      outcomes[i] = processOne(stacks[i], results[i], options, threads_per_job);
+      const std::lock_guard lock(progress_mutex);
+      progress.advance(stacks[i].filename().string());
+    }
+  };
+  {
+    std::vector<std::jthread> workers;
+    for (unsigned j = 1; j < jobs; ++j) workers.emplace_back(worker);
+    worker();
+  }
+  progress.finish();
+
+  for (std::size_t i = 0; i < stacks.size(); ++i) {
+    if (*outcomes[i]) {
+      summary.table.rows.push_back(std::move(**outcomes[i]));
+    } else {
+      summary.skipped.push_back({stacks[i], outcomes[i]->error()});
+    }
+  }
+  for (const SkippedStack& s : summary.skipped) {
+    spdlog::warn("sweep: skipped {}: {}", s.stack.string(), s.error.message);
+    summary.table.notes.push_back("skipped " + s.stack.string() + ": " + s.error.message);
+  }
+  if (summary.table.rows.empty()) return std::unexpected(noStackError(summary.skipped));
+  std::error_code ec;
+  fs::create_directories(options.output_directory, ec);
+  if (ec) return ioError(options.output_directory.string() + ": cannot create: " + ec.message());
+  summary.sweep_csv = options.output_directory / kSweepTableFileName;
+  GLARECAM_CHECK(writeFileAtomic(summary.sweep_csv, formatSweepTable(summary.table)));
+  return summary;
+}
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,54 @@
+// `glarecam sweep`: many stacks of one module over α processed in parallel into a sweep table.
+// Each stack runs through processStack() with its outputs under OUT/results/<stack name>/; a stack
+// that fails (unreadable, no α, corrupt frames) is reported and skipped, never stops the rest.
+// OUT/sweep.csv (sweep_table.h, rows sorted by α, skipped stacks as '#' notes) is written
+// atomically once every stack is done.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "pipeline/sweep_table.h"
+
+namespace glarecam::pipeline {
+
+struct SweepOptions {
+  std::filesystem::path output_directory = "sweep";
+  unsigned jobs = 0;  // stacks processed at once; 0: one per core
+  std::optional<std::filesystem::path> calibration_file;
+  std::optional<double> threshold_cd_m2;  // a constant glare limit instead of the α curve
+  bool show_progress = true;
+};
+
+struct SkippedStack {
+  std::filesystem::path stack;
+  Error error;
+};
+
+struct SweepSummary {
+  SweepTable table;
+  std::vector<SkippedStack> skipped;
+  std::filesystem::path sweep_csv;
+};
+
+inline constexpr const char* kSweepTableFileName = "sweep.csv";
+inline constexpr const char* kSweepResultsDirectory = "results";
+
+struct StackSearch {
+  std::vector<std::filesystem::path> stacks;
+  std::vector<SkippedStack> skipped;  // inputs that are neither a stack nor hold any
+};
+
+// The stacks named by `inputs`: a stack directory stands for itself, any other directory for
+// the directories directly inside it that hold a stack.json (sorted by name; a broken one is
+// found here and reported when processing it fails).
+StackSearch findStacks(const std::vector<std::filesystem::path>& inputs);
+
+// Processes the stacks and writes the table, listing every skipped input and stack. Fails only
+// when no stack could be processed (with the first error) or the table cannot be written.
+Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& options);
+
+}  // namespace glarecam::pipeline

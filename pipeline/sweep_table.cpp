@@ -1,0 +1,247 @@
+#include "pipeline/sweep_table.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+
+#include "core/csv.h"
+
+namespace glarecam::pipeline {
+
+namespace {
+
+using nlohmann::json;
+
+enum Column {
+  kAlpha,
+  kLimit,
+  kLmax,
+  kVertical,
+  kHorizontal,
+  kLmaxUncertainty,
+  kVerticalUncertainty,
+  kHorizontalUncertainty,
+  kFwhmVertical,
+  kFwhmHorizontal,
+  kGlare,
+  kLimitStatus,
+  kStackId,
+  kStack,
+  kColumnCount
+};
+constexpr int kRequiredColumns = kHorizontal + 1;
+
+constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
+                                                             "limit_cd_m2",
+                                                             "lmax_cd_m2",
+                                                             "vertical_deg",
+                                                             "horizontal_deg",
+                                                             "lmax_uncertainty_cd_m2",
+                                                             "vertical_uncertainty_deg",
+                                                             "horizontal_uncertainty_deg",
+                                                             "fwhm_vertical_deg",
+                                                             "fwhm_horizontal_deg",
+                                                             "glare",
+                                                             "limit_status",
+                                                             "stack_id",
+                                                             "stack"};
+
+// α is the angle from the module normal; at 90° the cosine function is undefined.
+constexpr double kMaxAlphaDeg = 90.0;
+
+std::string trim(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = text.find_last_not_of(" \t\r");
+  return std::string(text.substr(first, last - first + 1));
+}
+
+Result<std::optional<double>> parseNumber(const std::string& text, const char* column) {
+  if (text.empty()) return std::nullopt;
+  double value = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value))
+    return badInput(fmt::format("{}: \"{}\" is not a finite number", column, text));
+  return value;
+}
+
+struct Header {
+  std::array<int, kColumnCount> index;  // -1: column absent
+};
+
+Result<Header> parseHeader(const std::vector<std::string>& fields) {
+  Header header;
+  header.index.fill(-1);
+  for (int i = 0; i < static_cast<int>(fields.size()); ++i) {
+    for (int c = 0; c < kColumnCount; ++c) {
+      if (trim(fields[i]) == kColumnNames[c]) header.index[c] = i;
+    }
+  }
+  std::string missing;
+  for (int c = 0; c < kRequiredColumns; ++c) {
+    if (header.index[c] < 0)
+      missing += (missing.empty() ? "" : ", ") + std::string(kColumnNames[c]);
+  }
+  if (!missing.empty())
+    return badInput("missing column(s) " + missing +
+                    " (the header needs alpha_deg, limit_cd_m2, lmax_cd_m2, vertical_deg, "
+                    "horizontal_deg; see docs/stack-format.md)");
+  return header;
+}
+
+// The field of column c ("" when the column is absent or the line short).
+std::string field(const Header& header, const std::vector<std::string>& fields, Column c) {
+  const int i = header.index[c];
+  return i >= 0 && i < static_cast<int>(fields.size()) ? trim(fields[i]) : std::string();
+}
+
+Status requirePositive(const std::optional<double>& value, const char* column) {
+  if (value && *value <= 0) return badInput(fmt::format("{}: {} must be positive", column, *value));
+  return {};
+}
+
+Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& fields) {
+  SweepRow row;
+  std::array<std::optional<double>, kColumnCount> numbers;
+  for (int c : {kAlpha, kLimit, kLmax, kVertical, kHorizontal, kLmaxUncertainty,
+                kVerticalUncertainty, kHorizontalUncertainty, kFwhmVertical, kFwhmHorizontal}) {
+    GLARECAM_ASSIGN(numbers[c], parseNumber(field(header, fields, Column(c)), kColumnNames[c]));
+  }
+  if (!numbers[kAlpha]) return badInput("alpha_deg is empty");
+  if (!numbers[kLmax]) return badInput("lmax_cd_m2 is empty");
+  row.alpha_deg = *numbers[kAlpha];
+  if (row.alpha_deg < 0 || row.alpha_deg >= kMaxAlphaDeg)
+    return badInput(fmt::format("alpha_deg {} is outside [0, 90)", row.alpha_deg));
+  for (int c : {kLimit, kLmax, kVertical, kHorizontal})
+    GLARECAM_CHECK(requirePositive(numbers[c], kColumnNames[c]));
+  row.limit_cd_m2 = numbers[kLimit];
+  row.lmax_cd_m2 = *numbers[kLmax];
+  row.vertical_deg = numbers[kVertical];
+  row.horizontal_deg = numbers[kHorizontal];
+  row.lmax_uncertainty_cd_m2 = numbers[kLmaxUncertainty];
+  row.vertical_uncertainty_deg = numbers[kVerticalUncertainty];
+  row.horizontal_uncertainty_deg = numbers[kHorizontalUncertainty];
+  row.fwhm_vertical_deg = numbers[kFwhmVertical];
+  row.fwhm_horizontal_deg = numbers[kFwhmHorizontal];
+  const std::string glare = field(header, fields, kGlare);
+  if (glare == "true" || glare == "false") row.glare = glare == "true";
+  row.limit_status = field(header, fields, kLimitStatus);
+  row.stack_id = field(header, fields, kStackId);
+  row.stack = field(header, fields, kStack);
+  return row;
+}
+
+template <typename Fields>
+std::string csvLine(const Fields& fields) {
+  std::string line;
+  bool first = true;
+  for (std::string_view f : fields) {
+    if (!first) line += ',';
+    line.append(f);
+    first = false;
+  }
+  return line + '\n';
+}
+
+std::string number(const std::optional<double>& value) {
+  return value ? fmt::format("{:.6g}", *value) : std::string();
+}
+
+std::optional<double> numberAt(const json& object, const json::json_pointer& pointer) {
+  if (!object.contains(pointer) || !object.at(pointer).is_number()) return std::nullopt;
+  return object.at(pointer).get<double>();
+}
+
+}  // namespace
+
+Result<SweepTable> readSweepTable(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) return badInput(path.string() + ": cannot open the sweep table");
+  auto context = [&](int line) { return fmt::format("{}:{}", path.string(), line); };
+  SweepTable table;
+  std::optional<Header> header;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string text = trim(line);
+    if (text.empty()) continue;
+    if (text.front() == '#') {
+      table.notes.push_back(trim(std::string_view(text).substr(1)));
+      continue;
+    }
+    auto fields = splitCsvLine(text);
+    if (!fields) return std::unexpected(withContext(fields.error(), context(number)));
+    if (!header) {
+      auto parsed = parseHeader(*fields);
+      if (!parsed) return std::unexpected(withContext(parsed.error(), context(number)));
+      header = *parsed;
+      continue;
+    }
+    auto row = parseRow(*header, *fields);
+    if (!row) return std::unexpected(withContext(row.error(), context(number)));
+    table.rows.push_back(std::move(*row));
+  }
+  if (in.bad()) return ioError(path.string() + ": read failed");
+  if (!header) return badInput(path.string() + ": empty sweep table (no header line)");
+  if (table.rows.empty()) return badInput(path.string() + ": the sweep table has no rows");
+  return table;
+}
+
+std::string formatSweepTable(const SweepTable& table) {
+  std::string text;
+  for (const std::string& note : table.notes) text += "# " + note + "\n";
+  text += csvLine(kColumnNames);
+  std::vector<SweepRow> rows = table.rows;
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const SweepRow& a, const SweepRow& b) { return a.alpha_deg < b.alpha_deg; });
+  for (const SweepRow& r : rows) {
+    const std::array<std::string, kColumnCount> fields{number(r.alpha_deg),
+                                                       number(r.limit_cd_m2),
+                                                       number(r.lmax_cd_m2),
+                                                       number(r.vertical_deg),
+                                                       number(r.horizontal_deg),
+                                                       number(r.lmax_uncertainty_cd_m2),
+                                                       number(r.vertical_uncertainty_deg),
+                                                       number(r.horizontal_uncertainty_deg),
+                                                       number(r.fwhm_vertical_deg),
+                                                       number(r.fwhm_horizontal_deg),
+                                                       r.glare ? (*r.glare ? "true" : "false") : "",
+                                                       quoteCsvField(r.limit_status),
+                                                       quoteCsvField(r.stack_id),
+                                                       quoteCsvField(r.stack)};
+    text += csvLine(fields);
+  }
+  return text;
+}
+
+Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack) {
+  using P = json::json_pointer;
+  SweepRow row;
+  const auto alpha = numberAt(result, P("/alpha_deg"));
+  if (!alpha) return badInput(stack + ": the stack has no alpha_deg, which a sweep needs");
+  const auto lmax = numberAt(result, P("/luminance/max_cd_m2"));
+  if (!lmax || *lmax <= 0) return badInput(stack + ": no positive luminance maximum");
+  row.alpha_deg = *alpha;
+  row.lmax_cd_m2 = *lmax;
+  row.limit_cd_m2 = numberAt(result, P("/limit/limit_cd_m2"));
+  if (const auto relative = numberAt(result, P("/luminance/max_relative_uncertainty")))
+    row.lmax_uncertainty_cd_m2 = *relative * *lmax;
+  row.vertical_deg = numberAt(result, P("/limit/ellipse/vertical_deg"));
+  row.horizontal_deg = numberAt(result, P("/limit/ellipse/horizontal_deg"));
+  row.vertical_uncertainty_deg = numberAt(result, P("/limit/ellipse/uncertainty/vertical_deg"));
+  row.horizontal_uncertainty_deg = numberAt(result, P("/limit/ellipse/uncertainty/horizontal_deg"));
+  row.fwhm_vertical_deg = numberAt(result, P("/fwhm/ellipse/vertical_deg"));
+  row.fwhm_horizontal_deg = numberAt(result, P("/fwhm/ellipse/horizontal_deg"));
+  if (result.contains("glare") && result["glare"].is_boolean())
+    row.glare = result["glare"].get<bool>();
+  if (result.contains(P("/limit/status"))) row.limit_status = result.at(P("/limit/status"));
+  if (result.contains("stack") && result["stack"].is_string()) row.stack_id = result["stack"];
+  row.stack = stack;
+  return row;
+}
+
+}  // namespace glarecam::pipeline

@@ -1,0 +1,47 @@
+// The sweep table (docs/stack-format.md, "Sweep table"): one row per stack of a sweep over the
+// angle of incidence, as `glarecam sweep` writes it and `glarecam fit` / `datasheet` read it.
+// Required columns: alpha_deg, limit_cd_m2, lmax_cd_m2, vertical_deg, horizontal_deg (an axis or
+// the limit may be empty); the extra columns below are written by glarecam and optional on read.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+
+namespace glarecam::pipeline {
+
+struct SweepRow {
+  double alpha_deg = 0;
+  std::optional<double> limit_cd_m2;  // empty: no limit at this α (above 80°)
+  double lmax_cd_m2 = 0;
+  std::optional<double> vertical_deg, horizontal_deg;  // empty: no limit ellipse
+  // Extras (optional columns).
+  std::optional<double> lmax_uncertainty_cd_m2;
+  std::optional<double> vertical_uncertainty_deg, horizontal_uncertainty_deg;
+  std::optional<double> fwhm_vertical_deg, fwhm_horizontal_deg;
+  std::optional<bool> glare;
+  std::string limit_status;  // result.json's limit.status, e.g. "measured", "below_level"
+  std::string stack_id, stack;
+};
+
+struct SweepTable {
+  std::vector<SweepRow> rows;      // as read; sorted by α when written
+  std::vector<std::string> notes;  // '#' comment lines (without the '#'), e.g. skipped stacks
+};
+
+// Reads and validates a sweep table: header with the required columns (any order, extra columns
+// ignored), numbers finite, α in [0, 90), Lmax > 0, axes > 0. Errors name the file and line.
+Result<SweepTable> readSweepTable(const std::filesystem::path& path);
+
+// The table as CSV text, rows sorted by α, notes as leading '#' lines.
+std::string formatSweepTable(const SweepTable& table);
+
+// The row of one processed stack from its result.json (glarecam.result/1); kBadInput when the
+// result has no α (a sweep needs one).
+Result<SweepRow> sweepRowFromResult(const nlohmann::json& result, const std::string& stack);
+
+}  // namespace glarecam::pipeline

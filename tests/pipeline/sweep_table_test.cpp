@@ -1,0 +1,131 @@
+// The sweep table CSV (docs/stack-format.md): reading, validation with file:line errors, writing.
+#include "pipeline/sweep_table.h"
+
+#include <gtest/gtest.h>
+
+#include "support/test_support.h"
+
+namespace glarecam::pipeline {
+namespace {
+
+using testing::TempDir;
+using testing::writeText;
+
+constexpr const char* kHeader = "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg\n";
+
+Result<SweepTable> readText(const TempDir& dir, const std::string& text) {
+  writeText(dir / "sweep.csv", text);
+  return readSweepTable(dir / "sweep.csv");
+}
+
+TEST(SweepTable, ReadsThePapersTableIII) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table) << table.error().message;
+  ASSERT_EQ(table->rows.size(), 9u);
+  EXPECT_EQ(table->rows[6].alpha_deg, 60);
+  EXPECT_EQ(table->rows[6].limit_cd_m2, 40000);
+  EXPECT_EQ(table->rows[6].lmax_cd_m2, 2400000);
+  EXPECT_EQ(table->rows[8].horizontal_deg, 2.3);
+}
+
+TEST(SweepTable, ColumnsInAnyOrderCommentsEmptyAxesAndQuotes) {
+  TempDir dir;
+  auto table = readText(dir,
+                        "# a comment\n"
+                        "note,horizontal_deg,vertical_deg,lmax_cd_m2,limit_cd_m2,alpha_deg\n"
+                        "\"a, quoted \"\"note\"\"\",5.5,4.5,600000,30000,10\n"
+                        "x,,,20000,30000,20\n");
+  ASSERT_TRUE(table) << table.error().message;
+  ASSERT_EQ(table->rows.size(), 2u);
+  EXPECT_EQ(table->notes, std::vector<std::string>{"a comment"});
+  EXPECT_EQ(table->rows[0].horizontal_deg, 5.5);
+  EXPECT_FALSE(table->rows[1].vertical_deg);
+}
+
+TEST(SweepTable, WritesSortedAndReadsBackWhatItWrote) {
+  SweepTable table;
+  table.notes = {"skipped x: broken"};
+  SweepRow flat, steep;
+  flat.alpha_deg = 70;
+  flat.limit_cd_m2 = 1e5;
+  flat.lmax_cd_m2 = 1.19e7;
+  flat.vertical_deg = 8.2;
+  flat.horizontal_deg = 3.6;
+  steep.alpha_deg = 5;
+  steep.limit_cd_m2 = 3e4;
+  steep.lmax_cd_m2 = 20000;
+  steep.stack = "dir, with comma/alpha-05";
+  steep.glare = false;
+  table.rows = {flat, steep};
+  TempDir dir;
+  auto read = readText(dir, formatSweepTable(table));
+  ASSERT_TRUE(read) << read.error().message;
+  ASSERT_EQ(read->rows.size(), 2u);
+  EXPECT_EQ(read->rows[0].alpha_deg, 5);
+  EXPECT_EQ(read->rows[0].stack, "dir, with comma/alpha-05");
+  EXPECT_EQ(read->rows[0].glare, false);
+  EXPECT_FALSE(read->rows[0].vertical_deg);
+  EXPECT_EQ(read->rows[1].lmax_cd_m2, 1.19e7);
+  EXPECT_EQ(read->notes, table.notes);
+}
+
+struct BadCsv {
+  const char* name;
+  std::string text;
+  const char* message;  // part of the expected error
+};
+
+class SweepTableBadInput : public ::testing::TestWithParam<BadCsv> {};
+
+TEST_P(SweepTableBadInput, IsAOneLineErrorNamingFileAndProblem) {
+  TempDir dir;
+  auto table = readText(dir, GetParam().text);
+  ASSERT_FALSE(table);
+  EXPECT_EQ(table.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(table.error().message.find("sweep.csv"), std::string::npos) << table.error().message;
+  EXPECT_NE(table.error().message.find(GetParam().message), std::string::npos)
+      << table.error().message;
+  EXPECT_EQ(table.error().message.find('\n'), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SweepTableBadInput,
+    ::testing::Values(
+        BadCsv{"Empty", "", "no header"}, BadCsv{"HeaderOnly", kHeader, "no rows"},
+        BadCsv{"MissingColumn", "alpha_deg,lmax_cd_m2\n5,1\n", "missing column(s) limit_cd_m2"},
+        BadCsv{"NonNumeric", std::string(kHeader) + "5,30000,lots,5,5\n", "sweep.csv:2: lmax"},
+        BadCsv{"NotFinite", std::string(kHeader) + "5,30000,inf,5,5\n", "not a finite number"},
+        BadCsv{"AlphaNegative", std::string(kHeader) + "-1,30000,5e5,5,5\n", "outside [0, 90)"},
+        BadCsv{"AlphaNinety", std::string(kHeader) + "90,30000,5e5,5,5\n", "outside [0, 90)"},
+        BadCsv{"LmaxEmpty", std::string(kHeader) + "5,30000,,5,5\n", "lmax_cd_m2 is empty"},
+        BadCsv{"LmaxZero", std::string(kHeader) + "5,30000,0,5,5\n", "must be positive"},
+        BadCsv{"AxisNegative", std::string(kHeader) + "5,30000,5e5,-5,5\n", "must be positive"},
+        BadCsv{"Unterminated", std::string(kHeader) + "5,30000,5e5,5,\"5\n", "unterminated"},
+        BadCsv{"TrailingGarbage", std::string(kHeader) + "5,30000,5e5x,5,5\n", "5e5x"}),
+    [](const auto& info) { return info.param.name; });
+
+TEST(SweepTable, MissingFileIsBadInput) {
+  auto table = readSweepTable("/nonexistent/sweep.csv");
+  ASSERT_FALSE(table);
+  EXPECT_EQ(table.error().code, ErrorCode::kBadInput);
+}
+
+TEST(SweepTable, RowFromAResultNeedsAlpha) {
+  nlohmann::json result = {{"alpha_deg", nullptr}, {"luminance", {{"max_cd_m2", 5e5}}}};
+  EXPECT_FALSE(sweepRowFromResult(result, "s"));
+  result["alpha_deg"] = 30.0;
+  result["limit"] = {{"limit_cd_m2", 30000.0},
+                     {"status", "measured"},
+                     {"ellipse", {{"vertical_deg", 4.9}, {"horizontal_deg", 5.2}}}};
+  result["fwhm"] = {{"ellipse", nullptr}};
+  result["glare"] = true;
+  auto row = sweepRowFromResult(result, "s");
+  ASSERT_TRUE(row) << row.error().message;
+  EXPECT_EQ(row->vertical_deg, 4.9);
+  EXPECT_FALSE(row->fwhm_vertical_deg);
+  EXPECT_EQ(row->limit_status, "measured");
+  EXPECT_EQ(row->glare, true);
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline

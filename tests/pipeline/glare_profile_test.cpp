@@ -1,0 +1,139 @@
+// The glare profile (SGHAT-equivalent beam spread), the five-facet model and the data sheet files.
+#include "pipeline/glare_profile.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "pipeline/datasheet.h"
+#include "pipeline/facet_model.h"
+#include "support/test_support.h"
+
+namespace glarecam::pipeline {
+namespace {
+
+constexpr double kMradPerDeg = 1000.0 * std::numbers::pi / 180.0;
+
+TEST(CircularBeamSpread, ACircleIsItsOwnEquivalentCone) {
+  // A circular ellipse of full angle 5°: the equal-solid-angle cone is the same cone, so beta is
+  // 5° exactly (1e-9 relative: the trapezoid rule is exact for a constant radius).
+  const CircularBeamSpread beam = circularBeamSpread(5.0, 5.0);
+  EXPECT_NEAR(beam.beta_mrad, 5.0 * kMradPerDeg, 1e-9 * beam.beta_mrad);
+  EXPECT_NEAR(beam.slope_error_mrad, beam.beta_mrad / 2 - kSunHalfAngleMrad, 1e-12);
+  EXPECT_NEAR(beam.solid_angle_sr, 2 * std::numbers::pi * (1 - std::cos(2.5 * kMradPerDeg / 1e3)),
+              1e-12);
+}
+
+TEST(CircularBeamSpread, AnEllipseMapsToTheGeometricMeanForSmallAngles) {
+  // Small cones: Ω ≈ π a b, so the circular equivalent's full angle ≈ √(V H); at 8° × 2° the
+  // curvature of the sphere changes that by < 1e-3 relative.
+  const CircularBeamSpread beam = circularBeamSpread(8.0, 2.0);
+  EXPECT_NEAR(beam.beta_mrad, 4.0 * kMradPerDeg, 1e-3 * beam.beta_mrad);
+}
+
+TEST(CircularBeamSpread, NarrowerThanTheSunGivesANegativeSlopeError) {
+  EXPECT_LT(circularBeamSpread(0.3, 0.3).slope_error_mrad, 0);  // 0.3° < the sun's 0.53°
+}
+
+SweepFits fitsOf(const SweepTable& table) {
+  auto fits = fitSweep(table);
+  EXPECT_TRUE(fits) << fits.error().message;
+  return *fits;
+}
+
+TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const SweepFits fits = fitsOf(*table);
+  const auto rows = glareProfile(fits);
+  ASSERT_EQ(rows.size(), 81u);
+  EXPECT_TRUE(rows[0].extrapolated);  // the table starts at 5°
+  EXPECT_FALSE(rows[5].extrapolated);
+  EXPECT_EQ(rows[60].limit_cd_m2, 40000);
+  EXPECT_DOUBLE_EQ(rows[60].lmax_cd_m2, fits.biquadratic.curve(60));  // the better fit
+  EXPECT_TRUE(rows[60].glares);
+  ASSERT_TRUE(rows[60].vertical_deg && rows[60].beam);
+  EXPECT_DOUBLE_EQ(*rows[60].vertical_deg, fits.vertical.logistic->curve(60));
+  const CircularBeamSpread expected =
+      circularBeamSpread(*rows[60].vertical_deg, *rows[60].horizontal_deg);
+  EXPECT_DOUBLE_EQ(rows[60].beam->beta_mrad, expected.beta_mrad);
+
+  const nlohmann::json j = glareProfileJson({"standard", "2026-11-26", "t.csv"}, *table, fits);
+  EXPECT_EQ(j["schema"], "glarecam.glare-profile/1");
+  EXPECT_EQ(j["profile"].size(), 81u);
+  EXPECT_EQ(j["measured"].size(), 9u);
+  EXPECT_TRUE(j["fits"]["vertical"]["logistic"]["r2"].is_number());
+  EXPECT_TRUE(j["profile"][60]["circular_beam"]["slope_error_mrad"].is_number());
+}
+
+TEST(GlareProfile, NoAxesWhereTheModuleDoesNotGlare) {
+  SweepTable table;
+  for (double alpha : {5.0, 20.0, 40.0, 60.0, 70.0, 80.0}) {
+    SweepRow row;
+    row.alpha_deg = alpha;
+    row.lmax_cd_m2 = 10000 * std::exp(alpha / 20);  // above the 30 000 limit from 22°
+    if (row.lmax_cd_m2 > 30000) {
+      row.vertical_deg = 3 + alpha / 40;
+      row.horizontal_deg = 4 - alpha / 40;
+    }
+    table.rows.push_back(row);
+  }
+  const auto rows = glareProfile(fitsOf(table));
+  EXPECT_FALSE(rows[10].glares);
+  EXPECT_FALSE(rows[10].vertical_deg);
+  EXPECT_FALSE(rows[10].beam);
+  EXPECT_TRUE(rows[80].glares);
+}
+
+TEST(FacetModel, MatchesTheClosedFormsAtNormalAndGrazingIncidence) {
+  // At normal incidence both tilted facets deflect the ray by 2β; toward grazing the east-west
+  // deflection vanishes (cos γ_ew → 1), the north-south one stays 2β.
+  const FacetSpread normal = facetSpread(0.0, 2.5);
+  EXPECT_NEAR(normal.gamma_ew_deg, 5.0, 1e-9);
+  EXPECT_EQ(normal.gamma_ns_deg, 5.0);
+  EXPECT_TRUE(normal.valid);
+  const FacetSpread grazing = facetSpread(89.0, 2.5);
+  EXPECT_LT(grazing.gamma_ew_deg, 0.1);
+  EXPECT_FALSE(grazing.valid);  // elevation 1° < β
+  // At 60° from the normal (elevation 30°): cos γ = cos²30 - sin²30 + 2 sin²30 cos²β.
+  const double e = 30.0 * std::numbers::pi / 180, b = 2.5 * std::numbers::pi / 180;
+  const double expected = std::acos(std::cos(e) * std::cos(e) - std::sin(e) * std::sin(e) +
+                                    2 * std::sin(e) * std::sin(e) * std::cos(b) * std::cos(b));
+  EXPECT_NEAR(facetSpread(60.0, 2.5).gamma_ew_deg, expected * 180 / std::numbers::pi, 1e-9);
+}
+
+TEST(Datasheet, WritesPdfSvgAndPng) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const SweepFits fits = fitsOf(*table);
+  testing::TempDir dir;
+  auto status = writeDatasheet({.module = "standard",
+                                .date = "2026-11-26",
+                                .table = &*table,
+                                .fits = &fits,
+                                .model_beta_deg = 1.25},
+                               dir.path());
+  ASSERT_TRUE(status) << status.error().message;
+  EXPECT_EQ(testing::readText(dir / kDatasheetPdf).substr(0, 5), "%PDF-");
+  const std::string svg = testing::readText(dir / kDatasheetSvg);
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  EXPECT_EQ(testing::readText(dir / kDatasheetPng).substr(1, 3), "PNG");
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
+}
+
+TEST(Datasheet, MissingDirectoryIsAnErrorNotACrash) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const SweepFits fits = fitsOf(*table);
+  auto status = writeDatasheet(
+      {.module = "m", .date = "d", .table = &*table, .fits = &fits, .model_beta_deg = std::nullopt},
+      "/nonexistent/dir");
+  EXPECT_FALSE(status);
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline

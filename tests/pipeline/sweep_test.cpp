@@ -1,0 +1,112 @@
+// glarecam sweep's library: finding stacks, processing them in parallel, skipping bad ones.
+#include "pipeline/sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.h"
+
+namespace glarecam::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::TempDir;
+
+void writeStackAt(const fs::path& directory, double alpha_deg) {
+  fs::create_directories(directory.parent_path());
+  testing::writeSmallStack(directory, testing::smallScene(alpha_deg));
+}
+
+void removeAlpha(const fs::path& stack) {
+  auto manifest = nlohmann::json::parse(testing::readText(stack / "stack.json"));
+  manifest.erase("alpha_deg");
+  testing::writeText(stack / "stack.json", manifest.dump());
+}
+
+SweepOptions quiet(const fs::path& out, unsigned jobs) {
+  SweepOptions options;
+  options.output_directory = out;
+  options.jobs = jobs;
+  options.show_progress = false;
+  return options;
+}
+
+TEST(FindStacks, StacksDirectoriesOfStacksAndWhatIsNeither) {
+  TempDir dir;
+  writeStackAt(dir / "stacks/b", 20);
+  writeStackAt(dir / "stacks/a", 40);
+  fs::create_directories(dir / "stacks/not-a-stack");
+  writeStackAt(dir / "single", 60);
+  fs::create_directories(dir / "empty");
+  const StackSearch search =
+      findStacks({dir / "stacks", dir / "single", dir / "empty", dir / "missing"});
+  ASSERT_EQ(search.stacks.size(), 3u);
+  EXPECT_EQ(search.stacks[0], dir / "stacks/a");  // sorted within a directory
+  EXPECT_EQ(search.stacks[2], dir / "single");
+  ASSERT_EQ(search.skipped.size(), 2u);
+  EXPECT_EQ(search.skipped[0].stack, dir / "empty");
+  EXPECT_EQ(search.skipped[1].error.code, ErrorCode::kBadInput);
+}
+
+TEST(Sweep, ProcessesGoodStacksSortedByAlphaAndReportsBadOnes) {
+  TempDir dir;
+  writeStackAt(dir / "stacks/s1", 60);
+  writeStackAt(dir / "stacks/s2", 20);
+  writeStackAt(dir / "stacks/s3", 40);
+  writeStackAt(dir / "stacks/no-alpha", 30);
+  removeAlpha(dir / "stacks/no-alpha");
+  fs::create_directories(dir / "stacks/broken");
+  testing::writeText(dir / "stacks/broken/stack.json", "{ not json");
+
+  auto summary = runSweep(findStacks({dir / "stacks"}), quiet(dir / "out", 2));
+  ASSERT_TRUE(summary) << summary.error().message;
+  EXPECT_EQ(summary->skipped.size(), 2u);
+  const std::string csv = testing::readText(dir / "out/sweep.csv");
+  EXPECT_NE(csv.find("# skipped " + (dir / "stacks/broken").string()), std::string::npos) << csv;
+  EXPECT_NE(csv.find("no alpha_deg"), std::string::npos) << csv;
+  auto table = readSweepTable(dir / "out/sweep.csv");
+  ASSERT_TRUE(table) << table.error().message;
+  ASSERT_EQ(table->rows.size(), 3u);
+  EXPECT_EQ(table->rows[0].alpha_deg, 20);
+  EXPECT_EQ(table->rows[2].alpha_deg, 60);
+  EXPECT_TRUE(table->rows[0].vertical_deg);
+  EXPECT_EQ(table->rows[0].stack, (dir / "stacks/s2").string());
+  EXPECT_TRUE(fs::exists(dir / "out/results/s2/result.json"));
+  EXPECT_TRUE(fs::exists(dir / "out/results/s2/luminance.png"));
+}
+
+TEST(Sweep, OneJobAndManyJobsGiveTheSameTable) {
+  TempDir dir;
+  for (double alpha : {10.0, 50.0, 70.0})
+    writeStackAt(dir / ("stacks/a" + std::to_string(int(alpha))), alpha);
+  auto one = runSweep(findStacks({dir / "stacks"}), quiet(dir / "one", 1));
+  auto many = runSweep(findStacks({dir / "stacks"}), quiet(dir / "many", 3));
+  ASSERT_TRUE(one && many);
+  EXPECT_EQ(testing::readText(dir / "one/sweep.csv"), testing::readText(dir / "many/sweep.csv"));
+}
+
+TEST(Sweep, SameStackNameTwiceGetsTwoResultDirectories) {
+  TempDir dir;
+  writeStackAt(dir / "day1/alpha", 20);
+  writeStackAt(dir / "day2/alpha", 40);
+  auto summary =
+      runSweep(findStacks({dir / "day1/alpha", dir / "day2/alpha"}), quiet(dir / "o", 2));
+  ASSERT_TRUE(summary);
+  EXPECT_TRUE(fs::exists(dir / "o/results/alpha/result.json"));
+  EXPECT_TRUE(fs::exists(dir / "o/results/alpha-2/result.json"));
+}
+
+TEST(Sweep, NothingProcessableIsBadInput) {
+  TempDir dir;
+  fs::create_directories(dir / "broken");
+  testing::writeText(dir / "broken/stack.json", "[]");
+  auto summary = runSweep(findStacks({dir / "broken", dir / "missing"}), quiet(dir / "o", 1));
+  ASSERT_FALSE(summary);
+  EXPECT_EQ(summary.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(summary.error().message.find("no stack could be processed"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "o/sweep.csv"));
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline

@@ -183,6 +183,7 @@ FitQuality refine(const Samples& s, const std::vector<double>& start) {
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, problem.get(), &summary);
+  Model::canonicalise(p.data());
 
   double cost = 0;
   std::vector<double> residuals;
@@ -221,12 +222,21 @@ struct CosineModel {  // p = (a, b, c)
   static T evaluate(double alpha, const T* p) {
     return cosineLnL(alpha, p[0], p[1], p[2]);
   }
+  static void canonicalise(double*) {}
 };
 
 struct LogisticModel {  // p = (a, b, c, d)
   template <typename T>
   static T evaluate(double alpha, const T* p) {
     return logistic(alpha, p[0], p[1], p[2], p[3]);
+  }
+  // (a, b, c, d) and (-a, b, a + c, -d) are the same curve; report the one with d >= 0, as the
+  // paper does, so that parameters compare across fits.
+  static void canonicalise(double* p) {
+    if (p[3] >= 0) return;
+    p[2] += p[0];
+    p[0] = -p[0];
+    p[3] = -p[3];
   }
 };
 

@@ -52,6 +52,9 @@ TEST(GlareFits, ReachThePapersR2OnTableIII) {
   EXPECT_EQ(fits->cosine.quality.points, 9);
   EXPECT_EQ(fits->vertical.rows_with_ellipse, 9);
   EXPECT_FALSE(fits->cosineIsBetter());  // biquadratic R² 0.983 > cos 0.958, as in the paper
+  // The logistic's two equivalent forms are reported as the one with d >= 0, like the paper's.
+  EXPECT_GE(fits->vertical.logistic->curve.d, 0);
+  EXPECT_GE(fits->horizontal.logistic->curve.d, 0);
 }
 
 TEST(GlareFits, EveryStartTriedEndsNoBetterThanTheResult) {

@@ -14,7 +14,6 @@ namespace fs = std::filesystem;
 using testing::TempDir;
 
 void writeStackAt(const fs::path& directory, double alpha_deg) {
-  fs::create_directories(directory.parent_path());
   testing::writeSmallStack(directory, testing::smallScene(alpha_deg));
 }
 

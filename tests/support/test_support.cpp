@@ -38,6 +38,7 @@ capture::SimulatedStack writeSmallStack(const fs::path& directory,
   auto stack = capture::simulateStack(options);
   EXPECT_TRUE(stack.has_value()) << (stack ? "" : stack.error().message);
   if (!stack) return {};
+  fs::create_directories(directory.parent_path());
   auto status = capture::writeSimulatedStack(directory, *stack);
   EXPECT_TRUE(status.has_value()) << (status ? "" : status.error().message);
   return std::move(*stack);

@@ -30,7 +30,7 @@ std::filesystem::path testDataDir();
 // Simulator options for a small, fast scene (the default sizes are for real use).
 capture::SimulationOptions smallScene(double alpha_deg = 40.0, int width = 160, int height = 128);
 
-// Simulates and writes a stack; fails the calling test on error.
+// Simulates and writes a stack (creating its parent directories); fails the calling test on error.
 capture::SimulatedStack writeSmallStack(const std::filesystem::path& directory,
                                         const capture::SimulationOptions& options = smallScene());
 

@@ -1,57 +1,87 @@
 #!/usr/bin/env bash
-# make demo: a simulated rig sweeps the angle of incidence, captures a bracketed stack at each
-# alpha, processes it, and writes a summary table beside the per-stack results.
+# make demo: a simulated rig sweeps the angle of incidence α = 5…80° over the standard module
+# (a bracketed stack per angle, with sensor noise), then glarecam sweeps the stacks, fits the
+# method's functions and writes the module glare data sheet. Prints where the sheet is, a short
+# table of measured and fitted values beside the simulator's truth, and the fits' worst deviation.
 # Usage: scripts/demo.sh BIN_DIR OUT_DIR
 set -euo pipefail
 BIN=${1:-build/bin}
 OUT=${2:-demo-out}
-ALPHAS=(5 10 20 30 40 50 60 70 80)  # the paper's Table III angles
+MODULE=standard
+ALPHAS=$(seq 5 5 80)
+TRUTH_TOLERANCE_PERCENT=2  # what the fits must reproduce of the simulator's truth (issue 6)
 
-mkdir -p "$OUT/stacks"
-summary="$OUT/summary.csv"
-echo "alpha_deg,limit_cd_m2,lmax_cd_m2,true_lmax_cd_m2,vertical_deg,horizontal_deg,true_vertical_deg,true_horizontal_deg,fwhm_vertical_deg,fwhm_horizontal_deg,glare,valid_fraction,stack" >"$summary.tmp"
+rm -rf "$OUT/stacks.tmp"
+mkdir -p "$OUT/stacks.tmp"
+count=$(wc -w <<<"$ALPHAS")
+i=0
+for alpha in $ALPHAS; do
+  i=$((i + 1))
+  echo "demo: [$i/$count] simulating the rig at α = $alpha°" >&2
+  "$BIN/glarecam" simulate --module "$MODULE" --alpha "$alpha" --seed "$i" \
+    --out "$OUT/stacks.tmp/alpha-$(printf %02d "$alpha")" >/dev/null
+done
+rm -rf "$OUT/stacks" "$OUT/sweep" "$OUT/summary.csv"  # summary.csv: the previous demo's output
+mv "$OUT/stacks.tmp" "$OUT/stacks"
 
-# result.json and truth.json are pretty-printed with two spaces per level, one key per line:
-# field FILE KEY [OBJECT [INDENT]] prints KEY's value at INDENT spaces (default 2) within the
-# top-level OBJECT (or at the top level, without OBJECT); nothing when it is not there (e.g. an
-# ellipse that is null).
-field() {
-  awk -v key="\"$2\":" -v object="${3:-}" -v indent="${4:-2}" '
-    BEGIN { pad = sprintf("%" indent "s", ""); inside = (object == "") }
-    !inside && $0 ~ "^  \"" object "\": " { inside = 1; next }
-    inside && object != "" && $0 ~ /^  [^ ]/ { exit }  # the object ended
-    inside && index($0, pad key) == 1 {
-      sub(/^[^:]*: */, ""); sub(/,$/, ""); print; exit
-    }' "$1"
+echo "demo: processing the stacks (glarecam sweep)" >&2
+sweep_csv=$("$BIN/glarecam" sweep "$OUT/stacks" --out "$OUT/sweep")
+echo "demo: fitting (glarecam fit)" >&2
+"$BIN/glarecam" fit -q "$sweep_csv" --json >"$OUT/sweep/fits.json"
+"$BIN/glarecam" fit -q "$sweep_csv"
+echo "demo: writing the data sheet (glarecam datasheet)" >&2
+pdf=$("$BIN/glarecam" datasheet -q "$sweep_csv" --module "$MODULE (simulated rig)" --model-beta 1.25)
+
+# The profile's rows (α, fitted Lmax, vertical, horizontal) from the pretty-printed JSON.
+fitted=$(awk '
+  /^  "profile": \[/ { inside = 1; next }
+  inside && /^  \]/ { exit }
+  inside && /^      "(alpha_deg|lmax_cd_m2|vertical_deg|horizontal_deg)":/ {
+    key = $1; gsub(/[":]/, "", key); value = $2; sub(/,$/, "", value); row[key] = value }
+  inside && /^    }/ {
+    print row["alpha_deg"] + 0, row["lmax_cd_m2"], row["vertical_deg"], row["horizontal_deg"] }
+' "$OUT/sweep/glare-profile.json")
+
+# truth.json values: KEY [OBJECT] at the top level or one object down.
+truth() {
+  awk -v key="\"$2\":" -v object="${3:-}" '
+    object == "" && index($0, "  " key) == 1 { sub(/^[^:]*: */, ""); sub(/,$/, ""); print; exit }
+    object != "" && $0 ~ "^  \"" object "\": " { inside = 1; next }
+    inside && index($0, "    " key) == 1 { sub(/^[^:]*: */, ""); sub(/,$/, ""); print; exit }
+  ' "$1"
 }
 
-table=$(printf "%-6s %-8s %-22s %-16s %-16s %-5s %s" "alpha" "limit" "Lmax (true) cd/m²" \
-  "vertical° (true)" "horizontal° (true)" "glare" "picture")
-for i in "${!ALPHAS[@]}"; do
-  alpha=${ALPHAS[$i]}
-  stack="$OUT/stacks/alpha-$(printf %02d "$alpha")"
-  echo "demo: [$((i + 1))/${#ALPHAS[@]}] alpha $alpha°: capturing (simulated rig) and processing" >&2
-  "$BIN/glarecam" simulate --out "$stack" --alpha "$alpha" --seed "$((i + 1))" >/dev/null
-  "$BIN/glarecam" process --no-progress "$stack" >/dev/null
-  result="$stack/result/result.json"
-  truth="$stack/truth.json"
-  limit=$(field "$result" limit_cd_m2 limit 4)
-  lmax=$(field "$result" max_cd_m2 luminance 4)
-  true_lmax=$(field "$truth" luminance_max_cd_m2)
-  vertical=$(field "$result" vertical_deg limit 6)
-  horizontal=$(field "$result" horizontal_deg limit 6)
-  true_vertical=$(field "$truth" vertical limit_axes_deg 4)
-  true_horizontal=$(field "$truth" horizontal limit_axes_deg 4)
-  fwhm_vertical=$(field "$result" vertical_deg fwhm 6)
-  fwhm_horizontal=$(field "$result" horizontal_deg fwhm 6)
-  glare=$(field "$result" glare)
-  valid=$(field "$result" valid_fraction luminance 4)
-  echo "$alpha,$limit,$lmax,$true_lmax,${vertical:-},${horizontal:-},${true_vertical:-},${true_horizontal:-},${fwhm_vertical:-},${fwhm_horizontal:-},$glare,$valid,$stack" >>"$summary.tmp"
-  axes() { [[ -n $1 ]] && printf "%.2f (%.2f)" "$1" "$2" || printf "-"; }
-  table+=$'\n'$(printf "%-6s %-8.0f %-22s %-16s %-16s %-5s %s" "$alpha" "$limit" \
-    "$(printf "%.3g (%.3g)" "$lmax" "$true_lmax")" "$(axes "$vertical" "$true_vertical")" \
-    "$(axes "$horizontal" "$true_horizontal")" "$glare" "$stack/result/luminance.png")
-done
-mv "$summary.tmp" "$summary"
-echo "$table"
-echo "demo: wrote $summary and ${#ALPHAS[@]} processed stacks under $OUT/stacks/" >&2
+# One line per stack: α, measured (sweep.csv), fitted (profile), true (truth.json).
+rows=$(tail -n +2 "$sweep_csv" | grep -v '^#' | while IFS=, read -r alpha limit lmax vertical horizontal _; do
+  stack="$OUT/stacks/alpha-$(printf %02d "${alpha%.*}")"
+  echo "$alpha $lmax ${vertical:-nan} ${horizontal:-nan} \
+$(awk -v a="$alpha" '$1 == a { print $2, $3, $4 }' <<<"$fitted") \
+$(truth "$stack/truth.json" luminance_max_cd_m2) $(truth "$stack/truth.json" vertical limit_axes_deg) \
+$(truth "$stack/truth.json" horizontal limit_axes_deg)"
+done)
+
+awk -v tolerance="$TRUTH_TOLERANCE_PERCENT" '
+  function dev(fit, truth) { d = 100 * (fit / truth - 1); return d < 0 ? -d : d }
+  function si(v) { return v >= 1e6 ? sprintf("%.3gM", v / 1e6) : sprintf("%.3gk", v / 1e3) }
+  BEGIN {
+    printf "\n%-5s  %-24s  %-22s  %-22s\n", "α (°)", "Lmax cd/m²: meas/fit/true",
+           "vertical °: meas/fit/true", "horizontal °: meas/fit/true"
+  }
+  {
+    printf "%-5s  %6s / %6s / %6s     %5.2f / %5.2f / %5.2f    %5.2f / %5.2f / %5.2f\n",
+           $1, si($2), si($5), si($8), $3, $6, $9, $4, $7, $10
+    if (dev($5, $8) > worst_l) worst_l = dev($5, $8)
+    if (dev($6, $9) > worst_v) worst_v = dev($6, $9)
+    if (dev($7, $10) > worst_h) worst_h = dev($7, $10)
+  }
+  END {
+    printf "\nfits vs simulator truth, worst over the sweep: Lmax %.2f %%, vertical %.2f %%, " \
+           "horizontal %.2f %% (must be within %s %%)\n", worst_l, worst_v, worst_h, tolerance
+    if (worst_l > tolerance || worst_v > tolerance || worst_h > tolerance) exit 1
+  }' <<<"$rows"
+
+echo
+echo "data sheet:      $pdf (also datasheet.svg, datasheet.png)"
+echo "glare profile:   $OUT/sweep/glare-profile.json"
+echo "sweep table:     $sweep_csv; fits: $OUT/sweep/fits.json"
+echo "per-stack results and pictures: $OUT/sweep/results/alpha-*/"

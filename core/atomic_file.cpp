@@ -122,6 +122,11 @@ Status writeFileAtomic(const fs::path& path, std::string_view text) {
 }
 
 Result<StagingDirectory> StagingDirectory::create(const fs::path& target) {
+  // Like mkdir -p for the parents: `--out runs/2026-11-26/alpha-60` should just work.
+  std::error_code ec;
+  if (const fs::path parent = target.parent_path(); !parent.empty())
+    fs::create_directories(parent, ec);
+  if (ec) return ioError(target.parent_path().string() + ": cannot create: " + ec.message());
   std::string staging = temporarySibling(target).string();
   if (::mkdtemp(staging.data()) == nullptr)
     return systemError(target, "cannot create staging directory");

@@ -35,6 +35,7 @@ inline constexpr std::string_view kTemporaryPrefix = ".tmp-";
 
 // A directory under construction. Files written into path() become visible under `target`
 // together when commit() succeeds; a StagingDirectory destroyed uncommitted removes itself.
+// create() makes the target's missing parent directories.
 class StagingDirectory {
  public:
   static Result<StagingDirectory> create(const std::filesystem::path& target);

@@ -24,6 +24,9 @@ using Matrix = Eigen::MatrixXd;
 // Belsley, Kuh & Welsch (1980) call condition indices above 30-100 strong dependence; we flag
 // only what makes individual parameters meaningless.
 constexpr double kIllConditionedNumber = 1e4;
+// Two estimates correlated this strongly inflate each other's variance by 1 / (1 - r²) >= 500:
+// each is known 20 times worse than if the other were fixed, so neither means much alone.
+constexpr double kStrongCorrelation = 0.999;
 
 // Multi-start: the shape parameters of a separable model are gridded, the linear ones solved
 // exactly at each grid point, and the best distinct grid points refined.
@@ -66,15 +69,22 @@ FitQuality assessFit(const Samples& s, const Vector& residuals, const Matrix& ja
   const Vector sigma = svd.singularValues();
   q.condition_number = sigma(sigma.size() - 1) > 0 ? sigma(0) / sigma(sigma.size() - 1)
                                                    : std::numeric_limits<double>::infinity();
-  q.ill_conditioned = !(q.condition_number < kIllConditionedNumber);
   q.standard_errors.assign(p, std::nullopt);
+  q.ill_conditioned = !(q.condition_number < kIllConditionedNumber);
   if (q.under_determined || !std::isfinite(q.condition_number)) return q;
   // Covariance s² (JᵀJ)⁻¹, via the SVD of the scaled Jacobian.
   const double variance = sse / (q.points - p);
   const Matrix v_over_sigma = svd.matrixV() * sigma.cwiseInverse().asDiagonal();
+  const Matrix covariance = v_over_sigma * v_over_sigma.transpose();  // scaled, without s²
   for (int i = 0; i < p; ++i) {
-    q.standard_errors[i] = std::sqrt(variance * v_over_sigma.row(i).squaredNorm()) / scale(i);
+    q.standard_errors[i] = std::sqrt(variance * covariance(i, i)) / scale(i);
+    for (int j = 0; j < i; ++j) {
+      const double r = covariance(i, j) / std::sqrt(covariance(i, i) * covariance(j, j));
+      q.max_correlation = std::max(q.max_correlation, std::abs(r));
+    }
   }
+  q.ill_conditioned = q.ill_conditioned || q.max_correlation >= kStrongCorrelation;
+  std::fprintf(stderr, "DEBUG cond %g corr %.6f\n", q.condition_number, q.max_correlation);
   return q;
 }
 
@@ -340,15 +350,15 @@ namespace {
 std::string describe(const char* name, const FitQuality& q) {
   if (q.under_determined)
     return fmt::format(
-        "{}: under-determined ({} points for {} parameters): it passes through "
-        "every point, R² means nothing and there are no standard errors",
+        "{}: under-determined ({} points for {} parameters): no residual degrees of "
+        "freedom, so R² does not measure the fit and there are no standard errors",
         name, q.points, q.parameters.size());
   if (q.ill_conditioned)
     return fmt::format(
-        "{}: ill-conditioned (condition number {:.2g}): the parameters trade off "
-        "against each other and are not individually determined; compare curves "
-        "and R², not parameters",
-        name, q.condition_number);
+        "{}: ill-conditioned (condition number {:.2g}, parameter correlation {:.6f}): the "
+        "parameters trade off against each other and are not individually determined; compare "
+        "curves and R², not parameters",
+        name, q.condition_number, q.max_correlation);
   return {};
 }
 
@@ -392,6 +402,7 @@ nlohmann::json qualityJson(const FitQuality& q, std::initializer_list<const char
       std::isfinite(q.condition_number) ? nlohmann::json(q.condition_number) : nullptr;
   j["under_determined"] = q.under_determined;
   j["ill_conditioned"] = q.ill_conditioned;
+  j["max_correlation"] = q.max_correlation;
   j["starts"] = q.start_r2.size();
   return j;
 }
@@ -415,11 +426,14 @@ std::string parameterText(const FitQuality& q, std::initializer_list<const char*
 
 std::string fitLine(const char* label, const char* formula, const FitQuality& q,
                     std::initializer_list<const char*> names, const char* unit) {
-  return fmt::format("{:<22}{}\n{:<22}{}\n{:<22}  R² = {:.4f}  RMSE = {:.3g} {}  n = {}{}\n", label,
-                     formula, "", parameterText(q, names), "", q.r2, q.rmse, unit, q.points,
-                     q.ill_conditioned    ? "  (ill-conditioned)"
-                     : q.under_determined ? "  (under-determined)"
-                                          : "");
+  std::string flags;
+  if (q.under_determined) flags += "  (under-determined)";
+  if (q.ill_conditioned) flags += "  (ill-conditioned)";
+  return fmt::format(
+      "{:<22}{}\n{:<22}{}\n{:<22}  R² = {:.4f}  RMSE = {:.3g} {}  n = {}  cond = {:.3g}  "
+      "max |corr| = {:.6f}{}\n",
+      label, formula, "", parameterText(q, names), "", q.r2, q.rmse, unit, q.points,
+      q.condition_number, q.max_correlation, flags);
 }
 
 std::string axisReport(const char* label, const AxisFit& axis) {

@@ -27,6 +27,7 @@ struct FitQuality {
   double rmse = 0;  // on the fitted quantity (ln L or degrees)
   int points = 0;
   double condition_number = 0;    // of the Jacobian at the optimum (scaled columns)
+  double max_correlation = 0;     // largest |correlation| between two parameters\' estimates
   bool under_determined = false;  // no residual degrees of freedom
   bool ill_conditioned = false;   // parameters not individually determined
   std::vector<double> start_r2;   // R² reached from every start refined (multi-start)

@@ -119,6 +119,70 @@ check "simulate over ." 2 "$GLARECAM" simulate --out . --size 32x32
 check "process a regular file" 2 "$GLARECAM" process "$WORK/precious/thesis.txt"
 expect "regular file: not a stack directory" one_line_naming "not a stack directory"
 
+# Sweep, fit, datasheet, model.
+TABLE3="$CORPUS/../standard-module-table3.csv"
+for alpha in 20 40 60 80; do
+  check "simulate sweep stack $alpha" 0 "$GLARECAM" simulate --out "$WORK/sweep-in/a$alpha" \
+    --alpha "$alpha" --size 160x128 --fov 16 --seed "$alpha" --no-progress
+done
+mkdir -p "$WORK/sweep-in/broken" && echo "{" >"$WORK/sweep-in/broken/stack.json"
+check "sweep" 0 "$GLARECAM" sweep "$WORK/sweep-in" --out "$WORK/sw" --jobs 2 --no-progress
+expect "sweep prints the table's path" grep -qx "$WORK/sw/sweep.csv" "$WORK/out"
+expect "sweep reports the broken stack" grep -q "skipped $WORK/sweep-in/broken" "$WORK/err"
+expect "sweep table notes the broken stack" grep -q "^# skipped $WORK/sweep-in/broken" "$WORK/sw/sweep.csv"
+expect "sweep table has 4 rows sorted by alpha" \
+  test "$(grep -v '^#' "$WORK/sw/sweep.csv" | tail -n +2 | cut -d, -f1 | tr '\n' ' ')" = "20 40 60 80 "
+expect "sweep wrote each result" test -s "$WORK/sw/results/a60/result.json"
+check "sweep --strict with a broken stack" 2 "$GLARECAM" sweep "$WORK/sweep-in" --out "$WORK/sw2" --strict --no-progress
+expect "--strict still writes the table" test -s "$WORK/sw2/sweep.csv"
+check "sweep of nothing usable" 2 "$GLARECAM" sweep "$WORK/sweep-in/broken" "$WORK/nowhere" --out "$WORK/sw3"
+expect "nothing usable: no table" test ! -e "$WORK/sw3/sweep.csv"
+check "sweep --jobs 0" 2 "$GLARECAM" sweep "$WORK/sweep-in" --jobs 0
+check "sweep --threshold bad" 2 "$GLARECAM" sweep "$WORK/sweep-in" --threshold -5
+
+check "fit the sweep" 0 "$GLARECAM" fit "$WORK/sw/sweep.csv"
+expect "fit reports R²" grep -q "R²" "$WORK/out"
+check "fit table III --json" 0 "$GLARECAM" fit "$TABLE3" --json
+for key in '"cos"' '"biquadratic"' '"logistic"' '"r2"' '"standard_errors"'; do
+  expect "fit json has $key" grep -q "$key" "$WORK/out"
+done
+printf 'alpha_deg,lmax_cd_m2\n5,1\n' >"$WORK/missing-col.csv"
+check "fit: missing columns" 2 "$GLARECAM" fit "$WORK/missing-col.csv"
+expect "missing columns named" one_line_naming "missing-col.csv:1: missing column(s) limit_cd_m2"
+head -3 "$TABLE3" >"$WORK/short.csv"
+check "fit: fewer rows than parameters" 2 "$GLARECAM" fit "$WORK/short.csv"
+expect "too few rows named" one_line_naming "short.csv: 2 rows"
+sed 's/^40,/95,/' "$TABLE3" >"$WORK/alpha95.csv"
+check "fit: alpha outside 0-90" 2 "$GLARECAM" fit "$WORK/alpha95.csv"
+expect "alpha outside named with its line" one_line_naming "alpha95.csv:6: alpha_deg 95"
+sed 's/^50,30000,839000/50,30000,lots/' "$TABLE3" >"$WORK/nonnum.csv"
+check "fit: non-numeric" 2 "$GLARECAM" fit "$WORK/nonnum.csv"
+expect "non-numeric named" one_line_naming 'nonnum.csv:7: lmax_cd_m2: "lots"'
+check "fit: missing file" 2 "$GLARECAM" fit "$WORK/none.csv"
+
+check "datasheet" 0 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds" --module "Table III" --date 2026-11-26 --model-beta 1.25
+for f in datasheet.pdf datasheet.svg datasheet.png glare-profile.json; do
+  expect "datasheet wrote $f" test -s "$WORK/ds/$f"
+done
+expect "profile carries the date" grep -q '"date": "2026-11-26"' "$WORK/ds/glare-profile.json"
+SOURCE_DATE_EPOCH=0 check "datasheet at SOURCE_DATE_EPOCH" 0 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds0"
+expect "SOURCE_DATE_EPOCH date" grep -q '"date": "1970-01-01"' "$WORK/ds0/glare-profile.json"
+check "datasheet: bad date" 2 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds1" --date 2026-02-30
+check "datasheet: bad model beta" 2 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds1" --model-beta 60
+check "datasheet: bad table" 2 "$GLARECAM" datasheet "$WORK/nonnum.csv" --out "$WORK/ds1"
+expect "nothing written for a bad table" test ! -e "$WORK/ds1/datasheet.pdf"
+check "datasheet beside the sweep table" 0 "$GLARECAM" datasheet "$WORK/sw/sweep.csv"
+expect "default --out is the table's directory" test -s "$WORK/sw/datasheet.pdf"
+
+check "model" 0 "$GLARECAM" model --beta 2.5 --alpha 0 60
+expect "model at normal incidence: 2 beta" grep -qE "^ +0 +5\.0000 +5\.0000 +yes" "$WORK/out"
+check "model --json" 0 "$GLARECAM" model --beta 2.5 --json
+expect "model json keys" grep -q '"gamma_ew_deg"' "$WORK/out"
+check "model: missing --beta" 2 "$GLARECAM" model
+check "model: beta 0" 2 "$GLARECAM" model --beta 0
+check "model: alpha 100" 2 "$GLARECAM" model --beta 2 --alpha 100
+expect "model alpha error is one line" one_line_naming "--alpha: 100"
+
 # Every bad stack of the corpus: exit 2, one line naming the stack's file and the problem.
 check "missing stack" 2 "$GLARECAM" process "$WORK/no-such-stack"
 for stack in "$CORPUS"/*/; do

@@ -574,7 +574,7 @@ void drawLegend(cairo_t* cr, const Plot& plot, const std::vector<LegendEntry>& e
 // ---- The two plots ----
 
 std::string r2Label(const std::string& what, const FitQuality& quality) {
-  return fmt::format("{}, R\u00b2 = {:.4g}", what, quality.r2);
+  return fmt::format("{}, R\u00b2 = {:.4f}", what, quality.r2);
 }
 
 // The data area of a plot inside its block, below the block's title.
@@ -608,7 +608,7 @@ std::vector<double> lmaxPlotValues(const SweepTable& table, const SweepFits& fit
 
 void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block) {
   const SweepFits& fits = *content.fits;
-  const Function limit = [](double a) { return glareLimitCdM2(a).value_or(kNaN); };
+  const Function limit = [&](double a) { return content.limit.at(a).value_or(kNaN); };
   const Function cosine = [&](double a) { return fits.cosine.curve(a); };
   const Function biquadratic = [&](double a) { return fits.biquadratic.curve(a); };
   Plot plot =
@@ -624,7 +624,10 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
   drawMarkers(cr, plot, measured, kLmaxMarker);
   std::vector<LegendEntry> legend = {
       {"measured Lmax", std::nullopt, kLmaxMarker},
-      {"glare limit", kLimitStyle, std::nullopt},
+      {content.limit.constant_cd_m2 ? fmt::format("glare limit (constant {})",
+                                                  formatLuminance(*content.limit.constant_cd_m2))
+                                    : std::string("glare limit (\u03b1 curve)"),
+       kLimitStyle, std::nullopt},
       {r2Label("cosine fit", fits.cosine.quality), kCosineStyle, std::nullopt},
       {r2Label("biquadratic fit", fits.biquadratic.quality), kBiquadraticStyle, std::nullopt}};
   if (extrapolates(fits)) legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, {}});
@@ -673,11 +676,11 @@ std::vector<LegendEntry> drawModel(cairo_t* cr, Plot& plot, const std::optional<
 std::vector<double> axesPlotValues(const DatasheetContent& content,
                                    const std::vector<AxisSeries>& series) {
   std::vector<double> values;
-  const Range measured = measuredRange(*content.fits);
   for (const AxisSeries& s : series) {
     for (const SweepRow& row : content.table->rows) values.push_back((row.*s.column).value_or(0));
     if (s.fit->logistic) {
-      const std::vector<double> v = sample(s.fit->logistic->curve, measured);
+      const std::vector<double> v =
+          sample(s.fit->logistic->curve, {s.fit->alpha_min_deg, s.fit->alpha_max_deg});
       values.insert(values.end(), v.begin(), v.end());
     }
   }
@@ -695,7 +698,7 @@ LegendEntry axisLegendEntry(const AxisSeries& s) {
 
 void drawAxisSeries(cairo_t* cr, Plot& plot, const DatasheetContent& content, const AxisSeries& s) {
   if (s.fit->logistic)
-    drawFit(cr, plot, s.fit->logistic->curve, measuredRange(*content.fits), s.line);
+    drawFit(cr, plot, s.fit->logistic->curve, {s.fit->alpha_min_deg, s.fit->alpha_max_deg}, s.line);
   std::vector<DataPoint> measured;
   for (const SweepRow& row : content.table->rows)
     if (const std::optional<double>& v = row.*s.column) measured.push_back({row.alpha_deg, *v});

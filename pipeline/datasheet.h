@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "pipeline/glare_fits.h"
+#include "pipeline/limit_curve.h"
 #include "pipeline/sweep_table.h"
 
 namespace glarecam::pipeline {
@@ -21,6 +22,7 @@ struct DatasheetContent {
   const SweepTable* table = nullptr;
   const SweepFits* fits = nullptr;
   std::optional<double> model_beta_deg;  // overlay the five-facet model's 2γ curves
+  GlareLimit limit;                      // the limit curve drawn (the α curve or a constant)
 };
 
 inline constexpr const char* kDatasheetPdf = "datasheet.pdf";

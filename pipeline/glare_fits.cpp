@@ -84,7 +84,6 @@ FitQuality assessFit(const Samples& s, const Vector& residuals, const Matrix& ja
     }
   }
   q.ill_conditioned = q.ill_conditioned || q.max_correlation >= kStrongCorrelation;
-  std::fprintf(stderr, "DEBUG cond %g corr %.6f\n", q.condition_number, q.max_correlation);
   return q;
 }
 
@@ -375,6 +374,11 @@ AxisFit fitAxis(const SweepTable& table, std::optional<double> SweepRow::*axis, 
     y.push_back(*(row.*axis));
   }
   AxisFit fit{.logistic = std::nullopt, .rows_with_ellipse = static_cast<int>(alpha.size())};
+  if (!alpha.empty()) {
+    const auto [lo, hi] = std::minmax_element(alpha.begin(), alpha.end());
+    fit.alpha_min_deg = *lo;
+    fit.alpha_max_deg = *hi;
+  }
   auto logistic = fitLogistic(alpha, y);
   if (!logistic) {
     warnings.push_back(fmt::format("{} logistic not fitted: {} rows with an ellipse ({})", name,
@@ -409,6 +413,7 @@ nlohmann::json qualityJson(const FitQuality& q, std::initializer_list<const char
 
 nlohmann::json axisJson(const AxisFit& axis) {
   return {{"rows_with_ellipse", axis.rows_with_ellipse},
+          {"alpha_range_deg", {axis.alpha_min_deg, axis.alpha_max_deg}},
           {"logistic", axis.logistic ? qualityJson(axis.logistic->quality, {"a", "b", "c", "d"})
                                      : nlohmann::json(nullptr)}};
 }

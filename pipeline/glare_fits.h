@@ -64,6 +64,7 @@ inline constexpr int kLogisticParameters = 4;
 struct AxisFit {
   std::optional<LogisticFit> logistic;  // none: fewer rows with an ellipse than parameters
   int rows_with_ellipse = 0;
+  double alpha_min_deg = 0, alpha_max_deg = 0;  // the α range of those rows
 };
 
 struct SweepFits {

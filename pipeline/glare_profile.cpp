@@ -5,7 +5,6 @@
 
 #include "core/version.h"
 #include "pipeline/glare_ellipse.h"
-#include "pipeline/limit_curve.h"
 
 namespace glarecam::pipeline {
 
@@ -50,6 +49,10 @@ std::optional<double> axisAt(const AxisFit& axis, double alpha_deg) {
   return axis.logistic->curve(alpha_deg);
 }
 
+bool outside(double alpha_deg, double lo_deg, double hi_deg) {
+  return alpha_deg < lo_deg || alpha_deg > hi_deg;
+}
+
 }  // namespace
 
 CircularBeamSpread circularBeamSpread(double vertical_deg, double horizontal_deg) {
@@ -62,18 +65,22 @@ CircularBeamSpread circularBeamSpread(double vertical_deg, double horizontal_deg
   return beam;
 }
 
-std::vector<ProfileRow> glareProfile(const SweepFits& fits) {
+std::vector<ProfileRow> glareProfile(const SweepFits& fits, const GlareLimit& limit) {
   std::vector<ProfileRow> rows;
   for (int alpha = 0; alpha <= kProfileAlphaMaxDeg; alpha += kProfileStepDeg) {
     ProfileRow row;
     row.alpha_deg = alpha;
     row.lmax_cd_m2 = fits.lmaxCdM2(alpha);
-    row.limit_cd_m2 = glareLimitCdM2(alpha);
-    row.glares = row.limit_cd_m2 && row.lmax_cd_m2 > *row.limit_cd_m2;
-    row.extrapolated = alpha < fits.alpha_min_deg || alpha > fits.alpha_max_deg;
+    row.limit_cd_m2 = limit.at(alpha);
+    row.glares = row.limit_cd_m2 && row.lmax_cd_m2 >= *row.limit_cd_m2;
+    row.extrapolated = outside(alpha, fits.alpha_min_deg, fits.alpha_max_deg);
     if (row.glares) {
       row.vertical_deg = axisAt(fits.vertical, alpha);
       row.horizontal_deg = axisAt(fits.horizontal, alpha);
+    }
+    for (const AxisFit* axis : {&fits.vertical, &fits.horizontal}) {
+      if (axis->logistic && row.glares)
+        row.extrapolated |= outside(alpha, axis->alpha_min_deg, axis->alpha_max_deg);
     }
     if (row.vertical_deg && row.horizontal_deg && *row.vertical_deg > 0 && *row.horizontal_deg > 0)
       row.beam = circularBeamSpread(*row.vertical_deg, *row.horizontal_deg);
@@ -83,21 +90,23 @@ std::vector<ProfileRow> glareProfile(const SweepFits& fits) {
 }
 
 json glareProfileJson(const ProfileIdentity& identity, const SweepTable& table,
-                      const SweepFits& fits) {
+                      const SweepFits& fits, const GlareLimit& limit) {
   json profile = json::array();
-  for (const ProfileRow& row : glareProfile(fits)) profile.push_back(rowJson(row));
+  for (const ProfileRow& row : glareProfile(fits, limit)) profile.push_back(rowJson(row));
   json measured = json::array();
   for (const SweepRow& row : table.rows) measured.push_back(measuredJson(row));
-  return {{"schema", "glarecam.glare-profile/1"},
-          {"module", identity.module},
-          {"date", identity.date},
-          {"source", identity.source},
-          {"luminance_fit", fits.cosineIsBetter() ? "cos" : "biquadratic"},
-          {"sun_half_angle_mrad", kSunHalfAngleMrad},
-          {"profile", profile},
-          {"measured", measured},
-          {"fits", fitsJson(fits)},
-          {"generator", {{"name", "glarecam"}, {"version", kVersion}}}};
+  return {
+      {"schema", "glarecam.glare-profile/1"},
+      {"module", identity.module},
+      {"date", identity.date},
+      {"source", identity.source},
+      {"luminance_fit", fits.cosineIsBetter() ? "cos" : "biquadratic"},
+      {"limit", {{"mode", limit.mode()}, {"constant_cd_m2", optionalNumber(limit.constant_cd_m2)}}},
+      {"sun_half_angle_mrad", kSunHalfAngleMrad},
+      {"profile", profile},
+      {"measured", measured},
+      {"fits", fitsJson(fits)},
+      {"generator", {{"name", "glarecam"}, {"version", kVersion}}}};
 }
 
 }  // namespace glarecam::pipeline

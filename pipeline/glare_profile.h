@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pipeline/glare_fits.h"
+#include "pipeline/limit_curve.h"
 
 namespace glarecam::pipeline {
 
@@ -30,16 +31,16 @@ struct ProfileRow {
   double alpha_deg = 0;
   double lmax_cd_m2 = 0;  // from the better luminance fit
   std::optional<double> limit_cd_m2;
-  bool glares = false;                                 // Lmax above the limit
+  bool glares = false;  // Lmax at or above the limit (as in result.json)
   std::optional<double> vertical_deg, horizontal_deg;  // from the logistic fits, where glaring
   std::optional<CircularBeamSpread> beam;
-  bool extrapolated = false;  // outside the measured α range
+  bool extrapolated = false;  // outside the α range the given values were fitted on
 };
 
 inline constexpr int kProfileAlphaMaxDeg = 80;  // the method is defined up to 80°
 inline constexpr int kProfileStepDeg = 1;
 
-std::vector<ProfileRow> glareProfile(const SweepFits& fits);
+std::vector<ProfileRow> glareProfile(const SweepFits& fits, const GlareLimit& limit);
 
 struct ProfileIdentity {
   std::string module;
@@ -49,6 +50,6 @@ struct ProfileIdentity {
 
 // glarecam.glare-profile/1 (docs/glare-profile.md).
 nlohmann::json glareProfileJson(const ProfileIdentity& identity, const SweepTable& table,
-                                const SweepFits& fits);
+                                const SweepFits& fits, const GlareLimit& limit);
 
 }  // namespace glarecam::pipeline

@@ -15,4 +15,13 @@ inline constexpr double kMaxLimitAlphaDeg = 80.0;
 
 std::optional<double> glareLimitCdM2(double alpha_deg);
 
+// Which limit a measurement used: the α curve, or one constant (`--threshold`).
+struct GlareLimit {
+  std::optional<double> constant_cd_m2;  // none: the α curve
+  std::optional<double> at(double alpha_deg) const {
+    return constant_cd_m2 ? constant_cd_m2 : glareLimitCdM2(alpha_deg);
+  }
+  const char* mode() const { return constant_cd_m2 ? "constant" : "alpha_curve"; }
+};
+
 }  // namespace glarecam::pipeline

@@ -159,6 +159,29 @@ std::optional<double> numberAt(const json& object, const json::json_pointer& poi
 
 }  // namespace
 
+GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning) {
+  // Limits are written with 6 significant digits (formatSweepTable).
+  constexpr double kSameLimitRelative = 1e-5;
+  const auto same = [](double a, double b) { return std::abs(a - b) <= kSameLimitRelative * b; };
+  bool curve = true;
+  std::optional<double> constant;
+  bool one_constant = true;
+  for (const SweepRow& row : table.rows) {
+    if (!row.limit_cd_m2) continue;
+    const auto expected = glareLimitCdM2(row.alpha_deg);
+    curve = curve && expected && same(*row.limit_cd_m2, *expected);
+    if (!constant) constant = row.limit_cd_m2;
+    one_constant = one_constant && same(*row.limit_cd_m2, *constant);
+  }
+  if (curve || !constant) return {};
+  if (one_constant) return {.constant_cd_m2 = constant};
+  if (warning)
+    *warning =
+        "the rows' limit_cd_m2 follow neither the α curve nor one constant; the sheet and "
+        "profile use the α curve";
+  return {};
+}
+
 Result<SweepTable> readSweepTable(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) return badInput(path.string() + ": cannot open the sweep table");

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "pipeline/limit_curve.h"
 
 namespace glarecam::pipeline {
 
@@ -36,6 +37,11 @@ struct SweepTable {
 // Reads and validates a sweep table: header with the required columns (any order, extra columns
 // ignored), numbers finite, α in [0, 90), Lmax > 0, axes > 0. Errors name the file and line.
 Result<SweepTable> readSweepTable(const std::filesystem::path& path);
+
+// The limit the table's rows were measured against: the α curve when every row's limit is the
+// curve's (or empty), else the constant all rows share; `warning` is set when the rows mix limits
+// (the α curve is then assumed).
+GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning = nullptr);
 
 // The table as CSV text, rows sorted by α, notes as leading '#' lines.
 std::string formatSweepTable(const SweepTable& table);

@@ -28,7 +28,7 @@ inline constexpr const char* kProfileFileName = "glare-profile.json";
 
 struct DatasheetArgs {
   std::string sweep;
-  std::optional<std::string> out, date;
+  std::optional<std::string> out, date, threshold;
   std::string module = "unnamed module";
   std::optional<double> model_beta_deg;
 };
@@ -69,6 +69,15 @@ Status runDatasheet(const DatasheetArgs& args) {
   pipeline::SweepTable table;
   pipeline::SweepFits fits;
   GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));
+  pipeline::GlareLimit limit;
+  GLARECAM_ASSIGN(limit.constant_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
+  if (limit.constant_cd_m2 && !(*limit.constant_cd_m2 > 0))
+    return badInput("--threshold: expected a positive luminance in cd/m²");
+  if (!limit.constant_cd_m2) {
+    std::string warning;
+    limit = pipeline::inferGlareLimit(table, &warning);
+    if (!warning.empty()) spdlog::warn("{}: {}", args.sweep, warning);
+  }
   const fs::path out = args.out ? fs::path(*args.out) : fs::path(args.sweep).parent_path();
   std::error_code ec;
   if (!out.empty()) fs::create_directories(out, ec);
@@ -77,10 +86,11 @@ Status runDatasheet(const DatasheetArgs& args) {
                                            .date = date,
                                            .table = &table,
                                            .fits = &fits,
-                                           .model_beta_deg = args.model_beta_deg},
+                                           .model_beta_deg = args.model_beta_deg,
+                                           .limit = limit},
                                           out));
   const auto profile = pipeline::glareProfileJson(
-      {.module = args.module, .date = date, .source = args.sweep}, table, fits);
+      {.module = args.module, .date = date, .source = args.sweep}, table, fits, limit);
   GLARECAM_CHECK(writeFileAtomic(out / kProfileFileName, profile.dump(2) + "\n"));
   std::printf("%s\n", (out / pipeline::kDatasheetPdf).c_str());
   return {};
@@ -100,6 +110,9 @@ void addDatasheetCommand(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_option("--date", args->date,
                   "date printed on the sheet, YYYY-MM-DD (default: SOURCE_DATE_EPOCH or today)");
+  sub->add_option("--threshold", args->threshold,
+                  "constant glare limit in cd/m² (default: the one the sweep used, read from the "
+                  "table's limit_cd_m2: the α curve or a constant)");
   sub->add_option("--model-beta", args->model_beta_deg,
                   "overlay the five-facet model with facet tilt β in degrees (glarecam model)");
   sub->callback([args, &action] { action = [args] { return runDatasheet(*args); }; });

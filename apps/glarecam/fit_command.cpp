@@ -2,6 +2,7 @@
 // (docs/sweep.md).
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -14,6 +15,8 @@ namespace glarecam::apps {
 Result<pipeline::SweepFits> readAndFitSweep(const std::string& path, pipeline::SweepTable& table) {
   if (path.empty()) return badInput("SWEEP: expected a sweep table (CSV), got an empty string");
   GLARECAM_ASSIGN(table, pipeline::readSweepTable(path));
+  std::stable_sort(table.rows.begin(), table.rows.end(),
+                   [](const auto& a, const auto& b) { return a.alpha_deg < b.alpha_deg; });
   auto fits = pipeline::fitSweep(table);
   if (!fits) return std::unexpected(withContext(fits.error(), path));
   for (const std::string& warning : fits->warnings) spdlog::warn("{}: {}", path, warning);

@@ -47,7 +47,7 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
   auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
   ASSERT_TRUE(table);
   const SweepFits fits = fitsOf(*table);
-  const auto rows = glareProfile(fits);
+  const auto rows = glareProfile(fits, {});
   ASSERT_EQ(rows.size(), 81u);
   EXPECT_TRUE(rows[0].extrapolated);  // the table starts at 5°
   EXPECT_FALSE(rows[5].extrapolated);
@@ -60,7 +60,7 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
       circularBeamSpread(*rows[60].vertical_deg, *rows[60].horizontal_deg);
   EXPECT_DOUBLE_EQ(rows[60].beam->beta_mrad, expected.beta_mrad);
 
-  const nlohmann::json j = glareProfileJson({"standard", "2026-11-26", "t.csv"}, *table, fits);
+  const nlohmann::json j = glareProfileJson({"standard", "2026-11-26", "t.csv"}, *table, fits, {});
   EXPECT_EQ(j["schema"], "glarecam.glare-profile/1");
   EXPECT_EQ(j["profile"].size(), 81u);
   EXPECT_EQ(j["measured"].size(), 9u);
@@ -80,11 +80,40 @@ TEST(GlareProfile, NoAxesWhereTheModuleDoesNotGlare) {
     }
     table.rows.push_back(row);
   }
-  const auto rows = glareProfile(fitsOf(table));
+  const auto rows = glareProfile(fitsOf(table), {});
   EXPECT_FALSE(rows[10].glares);
   EXPECT_FALSE(rows[10].vertical_deg);
   EXPECT_FALSE(rows[10].beam);
   EXPECT_TRUE(rows[80].glares);
+}
+
+TEST(GlareProfile, AConstantLimitReplacesTheCurve) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const auto rows = glareProfile(fitsOf(*table), {.constant_cd_m2 = 5e6});
+  EXPECT_EQ(rows[30].limit_cd_m2, 5e6);
+  EXPECT_FALSE(rows[30].glares);  // ~570 000 cd/m² < 5e6
+  EXPECT_TRUE(rows[80].glares);   // ~50e6
+}
+
+TEST(GlareProfile, AxesFittedOnANarrowerRangeAreFlaggedExtrapolated) {
+  // Axes measured from 40° only: at 30° the module glares, the Lmax fit interpolates, but the
+  // axis fits extrapolate.
+  SweepTable table;
+  for (double alpha : {5.0, 20.0, 40.0, 55.0, 70.0, 80.0}) {
+    SweepRow row;
+    row.alpha_deg = alpha;
+    row.lmax_cd_m2 = 5e5 * std::exp(alpha / 20);
+    if (alpha >= 40) {
+      row.vertical_deg = 3 + alpha / 40;
+      row.horizontal_deg = 4 - alpha / 40;
+    }
+    table.rows.push_back(row);
+  }
+  const auto rows = glareProfile(fitsOf(table), {});
+  EXPECT_TRUE(rows[30].glares);
+  EXPECT_TRUE(rows[30].extrapolated);
+  EXPECT_FALSE(rows[50].extrapolated);
 }
 
 TEST(FacetModel, MatchesTheClosedFormsAtNormalAndGrazingIncidence) {
@@ -113,7 +142,8 @@ TEST(Datasheet, WritesPdfSvgAndPng) {
                                 .date = "2026-11-26",
                                 .table = &*table,
                                 .fits = &fits,
-                                .model_beta_deg = 1.25},
+                                .model_beta_deg = 1.25,
+                                .limit = {.constant_cd_m2 = 30000}},
                                dir.path());
   ASSERT_TRUE(status) << status.error().message;
   EXPECT_EQ(testing::readText(dir / kDatasheetPdf).substr(0, 5), "%PDF-");
@@ -129,9 +159,13 @@ TEST(Datasheet, MissingDirectoryIsAnErrorNotACrash) {
   auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
   ASSERT_TRUE(table);
   const SweepFits fits = fitsOf(*table);
-  auto status = writeDatasheet(
-      {.module = "m", .date = "d", .table = &*table, .fits = &fits, .model_beta_deg = std::nullopt},
-      "/nonexistent/dir");
+  auto status = writeDatasheet({.module = "m",
+                                .date = "d",
+                                .table = &*table,
+                                .fits = &fits,
+                                .model_beta_deg = std::nullopt,
+                                .limit = {}},
+                               "/nonexistent/dir");
   EXPECT_FALSE(status);
 }
 

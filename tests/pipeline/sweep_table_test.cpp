@@ -104,6 +104,27 @@ INSTANTIATE_TEST_SUITE_P(
         BadCsv{"TrailingGarbage", std::string(kHeader) + "5,30000,5e5x,5,5\n", "5e5x"}),
     [](const auto& info) { return info.param.name; });
 
+SweepTable limits(std::initializer_list<std::pair<double, double>> alpha_limit) {
+  SweepTable table;
+  for (const auto& [alpha, limit] : alpha_limit) {
+    SweepRow row;
+    row.alpha_deg = alpha;
+    row.limit_cd_m2 = limit;
+    row.lmax_cd_m2 = 1e6;
+    table.rows.push_back(row);
+  }
+  return table;
+}
+
+TEST(SweepTable, InfersTheLimitTheSweepUsed) {
+  std::string warning;
+  EXPECT_FALSE(inferGlareLimit(limits({{5, 3e4}, {60, 4e4}, {80, 4e5}}), &warning).constant_cd_m2);
+  EXPECT_EQ(inferGlareLimit(limits({{5, 3e4}, {60, 3e4}, {80, 3e4}})).constant_cd_m2, 3e4);
+  EXPECT_TRUE(warning.empty());
+  EXPECT_FALSE(inferGlareLimit(limits({{5, 3e4}, {60, 5e4}, {80, 3e4}}), &warning).constant_cd_m2);
+  EXPECT_NE(warning.find("neither the α curve nor one constant"), std::string::npos);
+}
+
 TEST(SweepTable, MissingFileIsBadInput) {
   auto table = readSweepTable("/nonexistent/sweep.csv");
   ASSERT_FALSE(table);

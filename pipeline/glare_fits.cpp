@@ -474,11 +474,21 @@ Result<SweepFits> fitSweep(const SweepTable& table) {
                     "parameters)",
                     rows, kLogisticParameters, kLogisticParameters));
   std::vector<double> alpha, ln_l;
+  int bounds = 0;
   for (const SweepRow& row : table.rows) {
+    if (!row.lmax_bound.empty()) {  // saturated or dark everywhere: not a value to fit
+      ++bounds;
+      continue;
+    }
     alpha.push_back(row.alpha_deg);
     ln_l.push_back(std::log(row.lmax_cd_m2));
   }
   SweepFits fits;
+  if (bounds > 0)
+    fits.warnings.push_back(fmt::format(
+        "luminance: {} row(s) whose Lmax is only a bound (lmax_bound) left out of the fits",
+        bounds));
+  if (alpha.empty()) return badInput("every row's Lmax is only a bound: nothing to fit");
   const auto [lo, hi] = std::minmax_element(alpha.begin(), alpha.end());
   fits.alpha_min_deg = *lo;
   fits.alpha_max_deg = *hi;

@@ -25,8 +25,8 @@ std::vector<fs::path> resultDirectories(const std::vector<fs::path>& stacks, con
   std::map<std::string, int> uses;
   std::vector<fs::path> directories;
   for (const fs::path& stack : stacks) {
-    std::string name = fs::absolute(stack).lexically_normal().filename().string();
-    if (name.empty()) name = "stack";
+    std::string name = stack.filename().string();
+    if (name.empty() || name == "." || name == "..") name = "stack";
     const int n = ++uses[name];
     if (n > 1) name += "-" + std::to_string(n);
     directories.push_back(out / kSweepResultsDirectory / name);
@@ -34,8 +34,19 @@ std::vector<fs::path> resultDirectories(const std::vector<fs::path>& stacks, con
   return directories;
 }
 
+// A stack without a valid α is refused before the seconds of processing it.
+Status checkAlpha(const fs::path& stack) {
+  auto manifest = readJsonFile((stack / kManifestFileName).string());
+  if (!manifest || !manifest->is_object()) return {};  // processStack names what is wrong
+  const auto alpha = manifest->find("alpha_deg");
+  if (alpha == manifest->end() || !alpha->is_number()) return validateSweepAlpha(std::nullopt);
+  return validateSweepAlpha(alpha->get<double>());
+}
+
 Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_directory,
                             const SweepOptions& options, unsigned threads_per_job) {
+  if (auto alpha = checkAlpha(stack); !alpha)
+    return std::unexpected(withContext(alpha.error(), stack.string()));
   ProcessOptions process{.calibration_file = options.calibration_file,
                          .output_directory = result_directory,
                          .threshold_cd_m2 = options.threshold_cd_m2,
@@ -60,7 +71,36 @@ Error noStackError(const std::vector<SkippedStack>& skipped) {
 
 }  // namespace
 
-StackSearch findStacks(const std::vector<fs::path>& inputs) {
+namespace {
+
+// "a/s1/" and "a/./s1" as "a/s1", so that the name is the directory's.
+fs::path normalised(const fs::path& input) {
+  fs::path path = input.lexically_normal();
+  return path.filename().empty() && path.has_parent_path() ? path.parent_path() : path;
+}
+
+// Drops stacks named twice (through different spellings), keeping the first.
+std::vector<fs::path> withoutDuplicates(const std::vector<fs::path>& stacks) {
+  std::vector<fs::path> unique, seen;
+  for (const fs::path& stack : stacks) {
+    std::error_code ec;
+    fs::path identity = fs::weakly_canonical(stack, ec);
+    if (ec) identity = fs::absolute(stack);
+    if (std::find(seen.begin(), seen.end(), identity) != seen.end()) {
+      spdlog::warn("sweep: {} given twice, processed once", stack.string());
+      continue;
+    }
+    seen.push_back(identity);
+    unique.push_back(stack);
+  }
+  return unique;
+}
+
+}  // namespace
+
+StackSearch findStacks(const std::vector<fs::path>& raw_inputs) {
+  std::vector<fs::path> inputs;
+  for (const fs::path& input : raw_inputs) inputs.push_back(normalised(input));
   StackSearch search;
   auto skip = [&](const fs::path& input, Error error) {
     search.skipped.push_back({input, std::move(error)});
@@ -88,6 +128,7 @@ StackSearch findStacks(const std::vector<fs::path>& inputs) {
     std::sort(inside.begin(), inside.end());
     search.stacks.insert(search.stacks.end(), inside.begin(), inside.end());
   }
+  search.stacks = withoutDuplicates(search.stacks);
   return search;
 }
 

@@ -28,6 +28,7 @@ enum Column {
   kFwhmVertical,
   kFwhmHorizontal,
   kGlare,
+  kLmaxBound,
   kLimitStatus,
   kStackId,
   kStack,
@@ -46,6 +47,7 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "fwhm_vertical_deg",
                                                              "fwhm_horizontal_deg",
                                                              "glare",
+                                                             "lmax_bound",
                                                              "limit_status",
                                                              "stack_id",
                                                              "stack"};
@@ -112,11 +114,9 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
                 kVerticalUncertainty, kHorizontalUncertainty, kFwhmVertical, kFwhmHorizontal}) {
     GLARECAM_ASSIGN(numbers[c], parseNumber(field(header, fields, Column(c)), kColumnNames[c]));
   }
-  if (!numbers[kAlpha]) return badInput("alpha_deg is empty");
+  GLARECAM_CHECK(validateSweepAlpha(numbers[kAlpha]));
   if (!numbers[kLmax]) return badInput("lmax_cd_m2 is empty");
   row.alpha_deg = *numbers[kAlpha];
-  if (row.alpha_deg < 0 || row.alpha_deg >= kMaxAlphaDeg)
-    return badInput(fmt::format("alpha_deg {} is outside [0, 90)", row.alpha_deg));
   for (int c : {kLimit, kLmax, kVertical, kHorizontal})
     GLARECAM_CHECK(requirePositive(numbers[c], kColumnNames[c]));
   row.limit_cd_m2 = numbers[kLimit];
@@ -130,6 +130,9 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   row.fwhm_horizontal_deg = numbers[kFwhmHorizontal];
   const std::string glare = field(header, fields, kGlare);
   if (glare == "true" || glare == "false") row.glare = glare == "true";
+  row.lmax_bound = field(header, fields, kLmaxBound);
+  if (!row.lmax_bound.empty() && row.lmax_bound != "lower" && row.lmax_bound != "upper")
+    return badInput("lmax_bound: expected lower, upper or nothing, got \"" + row.lmax_bound + "\"");
   row.limit_status = field(header, fields, kLimitStatus);
   row.stack_id = field(header, fields, kStackId);
   row.stack = field(header, fields, kStack);
@@ -233,6 +236,7 @@ std::string formatSweepTable(const SweepTable& table) {
                                                        number(r.fwhm_vertical_deg),
                                                        number(r.fwhm_horizontal_deg),
                                                        r.glare ? (*r.glare ? "true" : "false") : "",
+                                                       r.lmax_bound,
                                                        quoteCsvField(r.limit_status),
                                                        quoteCsvField(r.stack_id),
                                                        quoteCsvField(r.stack)};
@@ -241,11 +245,19 @@ std::string formatSweepTable(const SweepTable& table) {
   return text;
 }
 
+Status validateSweepAlpha(std::optional<double> alpha_deg) {
+  if (!alpha_deg) return badInput("alpha_deg is missing; a sweep needs the angle of incidence");
+  if (*alpha_deg < 0 || *alpha_deg >= kMaxAlphaDeg)
+    return badInput(fmt::format("alpha_deg {} is outside [0, 90)", *alpha_deg));
+  return {};
+}
+
 Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack) {
   using P = json::json_pointer;
   SweepRow row;
   const auto alpha = numberAt(result, P("/alpha_deg"));
-  if (!alpha) return badInput(stack + ": the stack has no alpha_deg, which a sweep needs");
+  if (auto valid = validateSweepAlpha(alpha); !valid)
+    return std::unexpected(withContext(valid.error(), stack));
   const auto lmax = numberAt(result, P("/luminance/max_cd_m2"));
   if (!lmax || *lmax <= 0) return badInput(stack + ": no positive luminance maximum");
   row.alpha_deg = *alpha;
@@ -261,6 +273,8 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   row.fwhm_horizontal_deg = numberAt(result, P("/fwhm/ellipse/horizontal_deg"));
   if (result.contains("glare") && result["glare"].is_boolean())
     row.glare = result["glare"].get<bool>();
+  if (result.value(P("/luminance/max_is_lower_bound"), false)) row.lmax_bound = "lower";
+  if (result.value(P("/luminance/max_is_upper_bound"), false)) row.lmax_bound = "upper";
   if (result.contains(P("/limit/status"))) row.limit_status = result.at(P("/limit/status"));
   if (result.contains("stack") && result["stack"].is_string()) row.stack_id = result["stack"];
   row.stack = stack;

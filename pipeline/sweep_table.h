@@ -25,6 +25,7 @@ struct SweepRow {
   std::optional<double> vertical_uncertainty_deg, horizontal_uncertainty_deg;
   std::optional<double> fwhm_vertical_deg, fwhm_horizontal_deg;
   std::optional<bool> glare;
+  std::string lmax_bound;    // "lower" (saturated top) or "upper" (all dark): Lmax only a bound
   std::string limit_status;  // result.json's limit.status, e.g. "measured", "below_level"
   std::string stack_id, stack;
 };
@@ -46,8 +47,11 @@ GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning = nullp
 // The table as CSV text, rows sorted by α, notes as leading '#' lines.
 std::string formatSweepTable(const SweepTable& table);
 
+// A sweep row's α: present and in [0, 90) (the cosine function is undefined at 90°).
+Status validateSweepAlpha(std::optional<double> alpha_deg);
+
 // The row of one processed stack from its result.json (glarecam.result/1); kBadInput when the
-// result has no α (a sweep needs one).
+// result's α is missing or invalid (a sweep needs one).
 Result<SweepRow> sweepRowFromResult(const nlohmann::json& result, const std::string& stack);
 
 }  // namespace glarecam::pipeline

@@ -192,6 +192,21 @@ TEST(GlareFits, AxisWithoutEnoughEllipsesIsLeftUnfittedWithAWarning) {
   EXPECT_TRUE(fitsJson(*fits)["vertical"]["logistic"].is_null());
 }
 
+TEST(GlareFits, RowsWhoseLmaxIsOnlyABoundAreLeftOutOfTheLuminanceFits) {
+  SweepTable table = tableIII();
+  auto reference = fitSweep(table);
+  table.rows[8].lmax_cd_m2 = 1e9;  // a saturated top: only a lower bound
+  table.rows[8].lmax_bound = "lower";
+  auto fits = fitSweep(table);
+  ASSERT_TRUE(fits && reference);
+  EXPECT_EQ(fits->biquadratic.quality.points, 8);
+  EXPECT_EQ(fits->vertical.rows_with_ellipse, 9);  // its ellipse still counts
+  EXPECT_LT(fits->biquadratic.curve(70), 2 * reference->biquadratic.curve(70));
+  bool warned = false;
+  for (const auto& w : fits->warnings) warned |= w.find("only a bound") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
 TEST(GlareFits, ExactlyAsManyPointsAsParametersIsUnderDetermined) {
   auto fits = fitSweep(rows(
       {{5, 6e5, 5, 5.7}, {30, 5.9e5, 4.9, 5.2}, {60, 2.4e6, 7.4, 4.7}, {80, 4.7e7, 8.2, 2.3}}));

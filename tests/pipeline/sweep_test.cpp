@@ -63,7 +63,7 @@ TEST(Sweep, ProcessesGoodStacksSortedByAlphaAndReportsBadOnes) {
   EXPECT_EQ(summary->skipped.size(), 2u);
   const std::string csv = testing::readText(dir / "out/sweep.csv");
   EXPECT_NE(csv.find("# skipped " + (dir / "stacks/broken").string()), std::string::npos) << csv;
-  EXPECT_NE(csv.find("no alpha_deg"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("alpha_deg is missing"), std::string::npos) << csv;
   auto table = readSweepTable(dir / "out/sweep.csv");
   ASSERT_TRUE(table) << table.error().message;
   ASSERT_EQ(table->rows.size(), 3u);
@@ -94,6 +94,29 @@ TEST(Sweep, SameStackNameTwiceGetsTwoResultDirectories) {
   ASSERT_TRUE(summary);
   EXPECT_TRUE(fs::exists(dir / "o/results/alpha/result.json"));
   EXPECT_TRUE(fs::exists(dir / "o/results/alpha-2/result.json"));
+}
+
+TEST(FindStacks, TrailingSlashesAndTheSameStackTwice) {
+  TempDir dir;
+  writeStackAt(dir / "s1", 20);
+  const StackSearch search =
+      findStacks({fs::path((dir / "s1").string() + "/"), dir / "./s1", dir.path()});
+  ASSERT_EQ(search.stacks.size(), 1u);
+  EXPECT_EQ(search.stacks[0].filename(), "s1");
+}
+
+TEST(Sweep, AStackAtGrazingIncidenceIsSkippedBeforeProcessing) {
+  TempDir dir;
+  writeStackAt(dir / "stacks/ok", 40);
+  writeStackAt(dir / "stacks/grazing", 40);
+  auto manifest = nlohmann::json::parse(testing::readText(dir / "stacks/grazing/stack.json"));
+  manifest["alpha_deg"] = 90.0;
+  testing::writeText(dir / "stacks/grazing/stack.json", manifest.dump());
+  auto summary = runSweep(findStacks({dir / "stacks"}), quiet(dir / "out", 1));
+  ASSERT_TRUE(summary) << summary.error().message;
+  ASSERT_EQ(summary->skipped.size(), 1u);
+  EXPECT_NE(summary->skipped[0].error.message.find("outside [0, 90)"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "out/results/grazing"));  // refused before processing
 }
 
 TEST(Sweep, NothingProcessableIsBadInput) {

@@ -14,10 +14,13 @@ inline constexpr const char* kMergeOpenCvDebevec = "merge/opencv_debevec";
 inline constexpr const char* kAnalysisGlarecam = "analysis/glarecam";
 inline constexpr const char* kAnalysisOpenCvFitEllipse = "analysis/opencv_fitellipse";
 inline constexpr const char* kProcessEndToEnd = "process/end_to_end";
+inline constexpr const char* kSweepOneThread = "sweep/20_stacks/1_thread";
+inline constexpr const char* kSweepAllThreads = "sweep/20_stacks/all_threads";
 
 // Each returns the names it registered.
 std::vector<std::string> registerMergeBenchmarks();     // merge/*
 std::vector<std::string> registerAnalysisBenchmarks();  // analysis/*
 std::vector<std::string> registerProcessBenchmarks();   // process/end_to_end
+std::vector<std::string> registerSweepBenchmarks();     // sweep/*
 
 }  // namespace glarecam::bench

@@ -114,6 +114,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> names = registerMergeBenchmarks();
   for (std::string& name : registerAnalysisBenchmarks()) names.push_back(std::move(name));
   for (std::string& name : registerProcessBenchmarks()) names.push_back(std::move(name));
+  for (std::string& name : registerSweepBenchmarks()) names.push_back(std::move(name));
   std::size_t longest_name = 0;
   for (const std::string& name : names) longest_name = std::max(longest_name, name.size());
 
@@ -130,6 +131,8 @@ int main(int argc, char** argv) {
              kMemoryFloorTargetRatio);
   printRatio(reporter, kAnalysisGlarecam, kMergeGlarecam, 2, Target::kAtMost, kAnalysisTargetRatio);
   printRatio(reporter, kAnalysisGlarecam, kAnalysisOpenCvFitEllipse, 2, Target::kNone, 0);
+  // The sweep's speed-up from parallel stacks: 1 thread ÷ all threads.
+  printRatio(reporter, kSweepOneThread, kSweepAllThreads, 2, Target::kNone, 0);
   benchmark::Shutdown();
   return 0;
 }

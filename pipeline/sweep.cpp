@@ -140,10 +140,10 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
     if (summary.skipped.empty()) return badInput("no stacks to sweep");
     return std::unexpected(noStackError(summary.skipped));
   }
-  const unsigned cores = defaultThreadCount();
-  const unsigned jobs =
-      std::clamp(options.jobs ? options.jobs : cores, 1u, static_cast<unsigned>(stacks.size()));
-  const unsigned threads_per_job = std::max(1u, cores / jobs);
+  const unsigned threads = options.threads ? options.threads : defaultThreadCount();
+  const auto most_jobs = static_cast<unsigned>(std::min<std::size_t>(stacks.size(), threads));
+  const unsigned jobs = std::clamp(options.jobs ? options.jobs : threads, 1u, most_jobs);
+  const unsigned threads_per_job = std::max(1u, threads / jobs);
   const std::vector<fs::path> results = resultDirectories(stacks, options.output_directory);
 
   std::vector<std::optional<Result<SweepRow>>> outcomes(stacks.size());

@@ -17,7 +17,8 @@ namespace glarecam::pipeline {
 
 struct SweepOptions {
   std::filesystem::path output_directory = "sweep";
-  unsigned jobs = 0;  // stacks processed at once; 0: one per core
+  unsigned jobs = 0;     // stacks processed at once; 0: one per core (at most `threads`)
+  unsigned threads = 0;  // threads in all, shared by the jobs; 0: all cores
   std::optional<std::filesystem::path> calibration_file;
   std::optional<double> threshold_cd_m2;  // a constant glare limit instead of the α curve
   bool show_progress = true;

@@ -18,7 +18,7 @@ namespace {
 struct SweepArgs {
   std::vector<std::string> inputs;
   std::optional<std::string> out, calibration, threshold;
-  unsigned jobs = 0;
+  unsigned jobs = 0, threads = 0;
   bool no_progress = false, strict = false;
 };
 
@@ -32,6 +32,7 @@ Status runSweep(const SweepArgs& args) {
   if (options.threshold_cd_m2 && !(*options.threshold_cd_m2 > 0))
     return badInput("--threshold: expected a positive luminance in cd/m²");
   options.jobs = args.jobs;
+  options.threads = args.threads;
   options.show_progress = !args.no_progress;
   std::vector<std::filesystem::path> inputs;
   for (const std::string& input : args.inputs) {
@@ -65,6 +66,10 @@ void addSweepCommand(CLI::App& app, Action& action) {
   sub->add_option("--out", args->out,
                   "output directory for sweep.csv and results/<stack>/ (default ./sweep)");
   sub->add_option("--jobs", args->jobs, "stacks processed at once (default: one per core)")
+      ->check(CLI::Range(1u, 1024u));
+  sub->add_option("--threads", args->threads,
+                  "threads in all, shared by the jobs (default: all cores; decoding and the "
+                  "merge keep to it, some picture and peak-search steps use every core)")
       ->check(CLI::Range(1u, 1024u));
   sub->add_option("--calibration", args->calibration,
                   "calibration JSON file for every stack; overrides the stacks' own");

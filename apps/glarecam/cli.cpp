@@ -50,8 +50,8 @@ Status runAction(const std::function<Status()>& action) {
 int runGlarecam(int argc, char** argv) {
   CLI::App app{
       "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
-      "Docs: docs/process.md, docs/sweep.md, docs/datasheet.md, docs/simulate.md,\n"
-      "docs/stack-format.md, docs/method.md"};
+      "Docs: docs/process.md, docs/sweep.md, docs/datasheet.md, docs/glare-profile.md,\n"
+      "docs/simulate.md, docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
   app.fallthrough();  // global options (-v, -q) also after the subcommand

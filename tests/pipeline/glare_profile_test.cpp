@@ -68,19 +68,25 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
   EXPECT_TRUE(j["profile"][60]["circular_beam"]["slope_error_mrad"].is_number());
 }
 
-TEST(GlareProfile, NoAxesWhereTheModuleDoesNotGlare) {
+// A sweep with Lmax = lmax_at_0 e^(α / 20) and axes 3 + α/40, 4 - α/40 from `axes_from_deg` on.
+SweepTable exponentialSweep(double lmax_at_0_cd_m2, double axes_from_deg) {
   SweepTable table;
-  for (double alpha : {5.0, 20.0, 40.0, 60.0, 70.0, 80.0}) {
+  for (double alpha : {5.0, 20.0, 40.0, 55.0, 70.0, 80.0}) {
     SweepRow row;
     row.alpha_deg = alpha;
-    row.lmax_cd_m2 = 10000 * std::exp(alpha / 20);  // above the 30 000 limit from 22°
-    if (row.lmax_cd_m2 > 30000) {
+    row.lmax_cd_m2 = lmax_at_0_cd_m2 * std::exp(alpha / 20);
+    if (alpha >= axes_from_deg) {
       row.vertical_deg = 3 + alpha / 40;
       row.horizontal_deg = 4 - alpha / 40;
     }
     table.rows.push_back(row);
   }
-  const auto rows = glareProfile(fitsOf(table), {});
+  return table;
+}
+
+TEST(GlareProfile, NoAxesWhereTheModuleDoesNotGlare) {
+  // Lmax crosses the 30 000 limit at 22°: ellipses from the 40° row on.
+  const auto rows = glareProfile(fitsOf(exponentialSweep(10000, 40)), {});
   EXPECT_FALSE(rows[10].glares);
   EXPECT_FALSE(rows[10].vertical_deg);
   EXPECT_FALSE(rows[10].beam);
@@ -99,18 +105,7 @@ TEST(GlareProfile, AConstantLimitReplacesTheCurve) {
 TEST(GlareProfile, AxesFittedOnANarrowerRangeAreFlaggedExtrapolated) {
   // Axes measured from 40° only: at 30° the module glares, the Lmax fit interpolates, but the
   // axis fits extrapolate.
-  SweepTable table;
-  for (double alpha : {5.0, 20.0, 40.0, 55.0, 70.0, 80.0}) {
-    SweepRow row;
-    row.alpha_deg = alpha;
-    row.lmax_cd_m2 = 5e5 * std::exp(alpha / 20);
-    if (alpha >= 40) {
-      row.vertical_deg = 3 + alpha / 40;
-      row.horizontal_deg = 4 - alpha / 40;
-    }
-    table.rows.push_back(row);
-  }
-  const auto rows = glareProfile(fitsOf(table), {});
+  const auto rows = glareProfile(fitsOf(exponentialSweep(5e5, 40)), {});
   EXPECT_TRUE(rows[30].glares);
   EXPECT_TRUE(rows[30].extrapolated);
   EXPECT_FALSE(rows[50].extrapolated);

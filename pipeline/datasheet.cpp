@@ -721,7 +721,11 @@ void drawAxesPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
     legend.push_back(axisLegendEntry(s));
   }
   legend.insert(legend.end(), model_legend.begin(), model_legend.end());
-  if (extrapolates(fits) && (fits.vertical.logistic || fits.horizontal.logistic))
+  const auto axis_extrapolates = [](const AxisFit& axis) {
+    return axis.logistic &&
+           (axis.alpha_min_deg > kAlphaAxisDeg.lo || axis.alpha_max_deg < kMaxLimitAlphaDeg);
+  };
+  if (axis_extrapolates(fits.vertical) || axis_extrapolates(fits.horizontal))
     legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, std::nullopt});
   drawLegend(cr, plot, legend);
 }
@@ -809,13 +813,21 @@ std::string glareCell(const SweepRow& row) {
   return glare ? (*glare ? "yes" : "no") : kEmptyCell;
 }
 
+// Lmax, with ≥ or ≤ where it is only a bound (saturated top, all dark).
+std::string lmaxCell(const SweepRow& row) {
+  const char* prefix = row.lmax_bound == "lower"   ? "\u2265 "
+                       : row.lmax_bound == "upper" ? "\u2264 "
+                                                   : "";
+  return prefix + formatLuminance(row.lmax_cd_m2);
+}
+
 TextTable sweepTable(const SweepTable& sweep) {
   TextTable table{.rows = {{"\u03b1 (\u00b0)", "limit (cd/m\u00b2)", "Lmax (cd/m\u00b2)",
                             "vertical (\u00b0)", "horizontal (\u00b0)", "glare"}}};
   for (const SweepRow& row : sweep.rows) {
     table.rows.push_back({fmt::format("{:g}", row.alpha_deg),
                           row.limit_cd_m2 ? formatLuminance(*row.limit_cd_m2) : kEmptyCell,
-                          formatLuminance(row.lmax_cd_m2), formatAxis(row.vertical_deg),
+                          lmaxCell(row), formatAxis(row.vertical_deg),
                           formatAxis(row.horizontal_deg), glareCell(row)});
   }
   return table;
@@ -848,8 +860,10 @@ FitColumn axisColumn(const std::string& axis, const AxisFit& fit) {
 std::string parameterCell(const FitColumn& column, std::size_t i) {
   if (!column.quality || i >= column.quality->parameters.size()) return kEmptyCell;
   std::string cell = formatG4(column.quality->parameters[i]);
+  // An ill-conditioned fit's standard errors are huge and say only what its flag says.
   const auto& errors = column.quality->standard_errors;
-  if (i < errors.size() && errors[i]) cell += fmt::format(" \u00b1 {:.2g}", *errors[i]);
+  if (i < errors.size() && errors[i] && !column.quality->ill_conditioned)
+    cell += fmt::format(" \u00b1 {:.2g}", *errors[i]);
   return cell;
 }
 
@@ -876,7 +890,8 @@ TextTable fitTable(const SweepFits& fits) {
     table.rows.push_back({kNames[i]});
     for (const FitColumn& c : columns) table.rows.back().push_back(parameterCell(c, i));
   }
-  table.rows.push_back(qualityRow(columns, "R\u00b2", [](auto& q) { return formatG4(q.r2); }));
+  table.rows.push_back(
+      qualityRow(columns, "R\u00b2", [](auto& q) { return fmt::format("{:.4f}", q.r2); }));
   table.rows.push_back(qualityRow(columns, "RMSE", [](auto& q) { return formatG4(q.rmse); }));
   table.rows.push_back(qualityRow(columns, "n", [](auto& q) { return std::to_string(q.points); }));
   std::size_t status_lines = 0;
@@ -942,13 +957,22 @@ Layout pageLayout(cairo_t* cr, const DatasheetContent& content) {
           .warnings = {page.x0, page.y1 - warnings_pt, plot_right, page.y1}};
 }
 
-std::string subtitle(const SweepTable& table, const SweepFits& fits) {
-  const std::size_t n = table.rows.size();
+std::string subtitle(const DatasheetContent& content) {
+  const std::size_t n = content.table->rows.size();
+  if (n == 0) return "An empty sweep.";
+  const auto [lo, hi] = std::minmax_element(
+      content.table->rows.begin(), content.table->rows.end(),
+      [](const SweepRow& a, const SweepRow& b) { return a.alpha_deg < b.alpha_deg; });
+  const std::string limit =
+      content.limit.constant_cd_m2
+          ? fmt::format("a constant limit of {} cd/m\u00b2",
+                        formatLuminance(*content.limit.constant_cd_m2))
+          : fmt::format("the limit curve of the SPF method (undefined above {:g}\u00b0)",
+                        kMaxLimitAlphaDeg);
   return fmt::format(
       "Sweep of {} stack{}, \u03b1 {:g}\u00b0 to {:g}\u00b0 (angle of incidence from the module "
-      "normal). Glare when Lmax reaches the limit curve of the SPF method (undefined above "
-      "{:g}\u00b0). Axes: full angles of the limit ellipse.",
-      n, n == 1 ? "" : "s", fits.alpha_min_deg, fits.alpha_max_deg, kMaxLimitAlphaDeg);
+      "normal). Glare when Lmax reaches {}. Axes: full angles of the limit ellipse.",
+      n, n == 1 ? "" : "s", lo->alpha_deg, hi->alpha_deg, limit);
 }
 
 void drawHeader(cairo_t* cr, const DatasheetContent& content, const Box& box) {
@@ -963,7 +987,7 @@ void drawHeader(cairo_t* cr, const DatasheetContent& content, const Box& box) {
   const double room = box.width() - textWidthPt(cr, stamp, kSubtitleFont) - kColumnGapPt;
   const double scale = std::min(1.0, room / textWidthPt(cr, title, kTitleFont));
   drawText(cr, {box.x0, title_baseline}, title, {{kTitleFont.size_pt * scale, true}});
-  const std::string line = subtitle(*content.table, *content.fits);
+  const std::string line = subtitle(content);
   const double sub_scale = std::min(1.0, box.width() / textWidthPt(cr, line, kSubtitleFont));
   drawText(cr, {box.x0, title_baseline + 2 * kSubtitleFont.size_pt}, line,
            {{kSubtitleFont.size_pt * sub_scale}, kMutedInk});

@@ -71,19 +71,24 @@ FitQuality assessFit(const Samples& s, const Vector& residuals, const Matrix& ja
                                                    : std::numeric_limits<double>::infinity();
   q.standard_errors.assign(p, std::nullopt);
   q.ill_conditioned = !(q.condition_number < kIllConditionedNumber);
-  if (q.under_determined || !std::isfinite(q.condition_number)) return q;
-  // Covariance s² (JᵀJ)⁻¹, via the SVD of the scaled Jacobian.
-  const double variance = sse / (q.points - p);
+  if (!std::isfinite(q.condition_number)) {
+    q.max_correlation = std::numeric_limits<double>::quiet_NaN();  // singular: undefined
+    return q;
+  }
+  // Covariance s² (JᵀJ)⁻¹, via the SVD of the scaled Jacobian; correlations need no s².
   const Matrix v_over_sigma = svd.matrixV() * sigma.cwiseInverse().asDiagonal();
   const Matrix covariance = v_over_sigma * v_over_sigma.transpose();  // scaled, without s²
   for (int i = 0; i < p; ++i) {
-    q.standard_errors[i] = std::sqrt(variance * covariance(i, i)) / scale(i);
     for (int j = 0; j < i; ++j) {
       const double r = covariance(i, j) / std::sqrt(covariance(i, i) * covariance(j, j));
       q.max_correlation = std::max(q.max_correlation, std::abs(r));
     }
   }
   q.ill_conditioned = q.ill_conditioned || q.max_correlation >= kStrongCorrelation;
+  if (q.under_determined) return q;
+  const double variance = sse / (q.points - p);
+  for (int i = 0; i < p; ++i)
+    q.standard_errors[i] = std::sqrt(variance * covariance(i, i)) / scale(i);
   return q;
 }
 
@@ -346,6 +351,14 @@ Result<LogisticFit> fitLogistic(std::span<const double> alpha_deg, std::span<con
 
 namespace {
 
+// |r| near 1 as "1 − 3.4e-05" rather than a rounded "1.0000"; "n/a" for a singular fit.
+std::string correlationText(double r) {
+  constexpr double kShowDistanceFromOne = 0.9999;
+  if (!std::isfinite(r)) return "n/a";
+  if (r >= kShowDistanceFromOne) return fmt::format("1 \u2212 {:.1e}", 1 - r);
+  return fmt::format("{:.4f}", r);
+}
+
 std::string describe(const char* name, const FitQuality& q) {
   if (q.under_determined)
     return fmt::format(
@@ -354,10 +367,10 @@ std::string describe(const char* name, const FitQuality& q) {
         name, q.points, q.parameters.size());
   if (q.ill_conditioned)
     return fmt::format(
-        "{}: ill-conditioned (condition number {:.2g}, parameter correlation {:.6f}): the "
+        "{}: ill-conditioned (condition number {:.2g}, parameter correlation {}): the "
         "parameters trade off against each other and are not individually determined; compare "
         "curves and R², not parameters",
-        name, q.condition_number, q.max_correlation);
+        name, q.condition_number, correlationText(q.max_correlation));
   return {};
 }
 
@@ -406,14 +419,17 @@ nlohmann::json qualityJson(const FitQuality& q, std::initializer_list<const char
       std::isfinite(q.condition_number) ? nlohmann::json(q.condition_number) : nullptr;
   j["under_determined"] = q.under_determined;
   j["ill_conditioned"] = q.ill_conditioned;
-  j["max_correlation"] = q.max_correlation;
+  j["max_correlation"] =
+      std::isfinite(q.max_correlation) ? nlohmann::json(q.max_correlation) : nullptr;
   j["starts"] = q.start_r2.size();
   return j;
 }
 
 nlohmann::json axisJson(const AxisFit& axis) {
   return {{"rows_with_ellipse", axis.rows_with_ellipse},
-          {"alpha_range_deg", {axis.alpha_min_deg, axis.alpha_max_deg}},
+          {"alpha_range_deg", axis.rows_with_ellipse > 0
+                                  ? nlohmann::json{axis.alpha_min_deg, axis.alpha_max_deg}
+                                  : nlohmann::json(nullptr)},
           {"logistic", axis.logistic ? qualityJson(axis.logistic->quality, {"a", "b", "c", "d"})
                                      : nlohmann::json(nullptr)}};
 }
@@ -436,9 +452,9 @@ std::string fitLine(const char* label, const char* formula, const FitQuality& q,
   if (q.ill_conditioned) flags += "  (ill-conditioned)";
   return fmt::format(
       "{:<22}{}\n{:<22}{}\n{:<22}  R² = {:.4f}  RMSE = {:.3g} {}  n = {}  cond = {:.3g}  "
-      "max |corr| = {:.6f}{}\n",
+      "max |corr| = {}{}\n",
       label, formula, "", parameterText(q, names), "", q.r2, q.rmse, unit, q.points,
-      q.condition_number, q.max_correlation, flags);
+      q.condition_number, correlationText(q.max_correlation), flags);
 }
 
 std::string axisReport(const char* label, const AxisFit& axis) {

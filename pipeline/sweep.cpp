@@ -45,8 +45,7 @@ Status checkAlpha(const fs::path& stack) {
 
 Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_directory,
                             const SweepOptions& options, unsigned threads_per_job) {
-  if (auto alpha = checkAlpha(stack); !alpha)
-    return std::unexpected(withContext(alpha.error(), stack.string()));
+  GLARECAM_CHECK(checkAlpha(stack));  // the caller names the stack
   ProcessOptions process{.calibration_file = options.calibration_file,
                          .output_directory = result_directory,
                          .threshold_cd_m2 = options.threshold_cd_m2,
@@ -107,7 +106,7 @@ StackSearch findStacks(const std::vector<fs::path>& raw_inputs) {
   };
   for (const fs::path& input : inputs) {
     std::error_code ec;
-    if (fs::exists(input / kManifestFileName, ec)) {
+    if (fs::is_regular_file(input / kManifestFileName, ec)) {
       search.stacks.push_back(input);
       continue;
     }
@@ -117,7 +116,9 @@ StackSearch findStacks(const std::vector<fs::path>& raw_inputs) {
     }
     std::vector<fs::path> inside;
     for (const auto& entry : fs::directory_iterator(input, ec)) {
-      if (fs::exists(entry.path() / kManifestFileName, ec)) inside.push_back(entry.path());
+      std::error_code unreadable;  // an unreadable child is not a stack, not a listing failure
+      if (fs::is_regular_file(entry.path() / kManifestFileName, unreadable))
+        inside.push_back(entry.path());
     }
     if (ec) {
       skip(input, {ErrorCode::kIo, "cannot list: " + ec.message()});

@@ -256,10 +256,9 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   using P = json::json_pointer;
   SweepRow row;
   const auto alpha = numberAt(result, P("/alpha_deg"));
-  if (auto valid = validateSweepAlpha(alpha); !valid)
-    return std::unexpected(withContext(valid.error(), stack));
+  GLARECAM_CHECK(validateSweepAlpha(alpha));
   const auto lmax = numberAt(result, P("/luminance/max_cd_m2"));
-  if (!lmax || *lmax <= 0) return badInput(stack + ": no positive luminance maximum");
+  if (!lmax || *lmax <= 0) return badInput("no positive luminance maximum in the result");
   row.alpha_deg = *alpha;
   row.lmax_cd_m2 = *lmax;
   row.limit_cd_m2 = numberAt(result, P("/limit/limit_cd_m2"));

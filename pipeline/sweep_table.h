@@ -50,8 +50,9 @@ std::string formatSweepTable(const SweepTable& table);
 // A sweep row's α: present and in [0, 90) (the cosine function is undefined at 90°).
 Status validateSweepAlpha(std::optional<double> alpha_deg);
 
-// The row of one processed stack from its result.json (glarecam.result/1); kBadInput when the
-// result's α is missing or invalid (a sweep needs one).
+// The row of one processed stack (at path `stack`) from its result.json (glarecam.result/1);
+// kBadInput when the result's α is missing or invalid (a sweep needs one). Errors do not repeat
+// the stack's path: the caller names it.
 Result<SweepRow> sweepRowFromResult(const nlohmann::json& result, const std::string& stack);
 
 }  // namespace glarecam::pipeline

@@ -59,6 +59,24 @@ Result<std::string> sheetDate(const std::optional<std::string>& date) {
   return fmt::format("{:%F}", utc);
 }
 
+// --threshold, else the limit the sweep used (from the table). The ellipses were measured at the
+// sweep's limit: a different --threshold changes the verdict, not the axes, so say so.
+pipeline::GlareLimit sheetLimit(const std::string& sweep, const pipeline::SweepTable& table,
+                                const std::optional<double>& threshold_cd_m2) {
+  std::string warning;
+  const pipeline::GlareLimit measured = pipeline::inferGlareLimit(table, &warning);
+  if (!warning.empty()) spdlog::warn("{}: {}", sweep, warning);
+  if (!threshold_cd_m2) return measured;
+  if (measured.constant_cd_m2 != threshold_cd_m2)
+    spdlog::warn(
+        "{}: --threshold {:g} cd/m² differs from the limit the sweep measured its "
+        "ellipses at ({}); the sheet's glare verdict follows --threshold, the axes do not",
+        sweep, *threshold_cd_m2,
+        measured.constant_cd_m2 ? fmt::format("{:g} cd/m²", *measured.constant_cd_m2)
+                                : std::string("the α curve"));
+  return {.constant_cd_m2 = threshold_cd_m2};
+}
+
 Status runDatasheet(const DatasheetArgs& args) {
   GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
   if (args.model_beta_deg &&
@@ -66,18 +84,14 @@ Status runDatasheet(const DatasheetArgs& args) {
     return badInput("--model-beta: expected a facet tilt in (0, 45] degrees");
   std::string date;
   GLARECAM_ASSIGN(date, sheetDate(args.date));
+  std::optional<double> threshold_cd_m2;
+  GLARECAM_ASSIGN(threshold_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
+  if (threshold_cd_m2 && !(*threshold_cd_m2 > 0))
+    return badInput("--threshold: expected a positive luminance in cd/m²");
   pipeline::SweepTable table;
   pipeline::SweepFits fits;
   GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));
-  pipeline::GlareLimit limit;
-  GLARECAM_ASSIGN(limit.constant_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
-  if (limit.constant_cd_m2 && !(*limit.constant_cd_m2 > 0))
-    return badInput("--threshold: expected a positive luminance in cd/m²");
-  if (!limit.constant_cd_m2) {
-    std::string warning;
-    limit = pipeline::inferGlareLimit(table, &warning);
-    if (!warning.empty()) spdlog::warn("{}: {}", args.sweep, warning);
-  }
+  const pipeline::GlareLimit limit = sheetLimit(args.sweep, table, threshold_cd_m2);
   const fs::path out = args.out ? fs::path(*args.out) : fs::path(args.sweep).parent_path();
   std::error_code ec;
   if (!out.empty()) fs::create_directories(out, ec);

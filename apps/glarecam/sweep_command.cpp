@@ -47,9 +47,9 @@ Status runSweep(const SweepArgs& args) {
   std::printf("%s\n", summary.sweep_csv.c_str());
   if (args.strict && !summary.skipped.empty()) {
     const auto& first = summary.skipped.front();
-    return std::unexpected(
-        withContext(first.error, "--strict: " + std::to_string(summary.skipped.size()) +
-                                     " stack(s) skipped, the first " + first.stack.string()));
+    return std::unexpected(withContext(
+        first.error, "--strict: " + std::to_string(summary.skipped.size()) +
+                         " stack(s) or input(s) skipped, the first " + first.stack.string()));
   }
   return {};
 }

@@ -122,22 +122,23 @@ TEST(GlareFits, RecoverKnownParametersExactly) {
 
 TEST(GlareFits, StandardErrorsMatchTheScatterOfRepeatedNoisyFits) {
   // Monte Carlo: the spread of b over noisy repetitions against the reported standard error.
-  // 200 repetitions estimate a standard deviation to ±5 %; linearisation adds a few percent:
+  // 400 repetitions estimate a standard deviation to ±3.5 %; linearisation adds a few percent:
   // a 20 % tolerance separates "right" from "wrong by a factor" robustly.
   const LogisticCurve truth{.a = 3.4, .b = 52.5, .c = 4.9, .d = 0.17};
   constexpr double kNoiseDeg = 0.1;
-  constexpr int kRepetitions = 200;
+  constexpr int kRepetitions = 400;
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0, kNoiseDeg);
   double sum = 0, sum2 = 0, reported = 0;
   for (int r = 0; r < kRepetitions; ++r) {
     std::vector<double> y;
     for (double a : kAlphas) y.push_back(truth(a) + noise(rng));
-    auto fit = fitLogistic(kAlphas, y);
-    ASSERT_TRUE(fit);
-    sum += fit->curve.b;
-    sum2 += fit->curve.b * fit->curve.b;
-    reported += *fit->quality.standard_errors[1] / kRepetitions;
+    // One refinement from the truth (what multi-start ends with here) keeps the test fast
+    // under the sanitizers.
+    const LogisticFit fit = refineLogistic(kAlphas, y, truth);
+    sum += fit.curve.b;
+    sum2 += fit.curve.b * fit.curve.b;
+    reported += *fit.quality.standard_errors[1] / kRepetitions;
   }
   const double mean = sum / kRepetitions;
   const double spread = std::sqrt(sum2 / kRepetitions - mean * mean);

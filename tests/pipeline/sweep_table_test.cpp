@@ -75,6 +75,8 @@ struct BadCsv {
   const char* message;  // part of the expected error
 };
 
+void PrintTo(const BadCsv& c, std::ostream* out) { *out << c.name; }
+
 class SweepTableBadInput : public ::testing::TestWithParam<BadCsv> {};
 
 TEST_P(SweepTableBadInput, IsAOneLineErrorNamingFileAndProblem) {

@@ -110,8 +110,10 @@ struct MarkerStyle {
   Rgb colour;
   MarkerShape shape = MarkerShape::kCircle;
   double size_pt = 4.6;  // diameter or side
+  bool hollow = false;   // an outline only: a value that is only a bound
 };
 constexpr MarkerStyle kLmaxMarker{.colour = kInk};
+constexpr MarkerStyle kLmaxBoundMarker{.colour = kInk, .hollow = true};
 constexpr MarkerStyle kVerticalMarker{.colour = kBlue};
 constexpr MarkerStyle kHorizontalMarker{
     .colour = kGreen, .shape = MarkerShape::kSquare, .size_pt = 4.2};
@@ -283,9 +285,17 @@ void drawMarker(cairo_t* cr, Point at, const MarkerStyle& style) {
   } else {
     cairo_rectangle(cr, at.x - half, at.y - half, style.size_pt, style.size_pt);
   }
+  cairo_set_dash(cr, nullptr, 0, 0);
+  if (style.hollow) {
+    setColour(cr, kWhite);
+    cairo_fill_preserve(cr);
+    cairo_set_line_width(cr, 2 * kOutlinePt);
+    setColour(cr, style.colour);
+    cairo_stroke(cr);
+    return;
+  }
   setColour(cr, style.colour);
   cairo_fill_preserve(cr);
-  cairo_set_dash(cr, nullptr, 0, 0);
   cairo_set_line_width(cr, kOutlinePt);
   setColour(cr, kWhite);
   cairo_stroke(cr);
@@ -618,10 +628,11 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
   drawCurve(cr, plot, limit, {kAlphaAxisDeg.lo, kMaxLimitAlphaDeg}, kLimitStyle);
   drawFit(cr, plot, cosine, measuredRange(fits), kCosineStyle);
   drawFit(cr, plot, biquadratic, measuredRange(fits), kBiquadraticStyle);
-  std::vector<DataPoint> measured;
+  std::vector<DataPoint> measured, bounds;
   for (const SweepRow& row : content.table->rows)
-    measured.push_back({row.alpha_deg, row.lmax_cd_m2});
+    (row.lmax_bound.empty() ? measured : bounds).push_back({row.alpha_deg, row.lmax_cd_m2});
   drawMarkers(cr, plot, measured, kLmaxMarker);
+  drawMarkers(cr, plot, bounds, kLmaxBoundMarker);
   std::vector<LegendEntry> legend = {
       {"measured Lmax", std::nullopt, kLmaxMarker},
       {content.limit.constant_cd_m2 ? fmt::format("glare limit (constant {})",
@@ -630,6 +641,8 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
        kLimitStyle, std::nullopt},
       {r2Label("cosine fit", fits.cosine.quality), kCosineStyle, std::nullopt},
       {r2Label("biquadratic fit", fits.biquadratic.quality), kBiquadraticStyle, std::nullopt}};
+  if (!bounds.empty())
+    legend.push_back({"Lmax only a bound (not fitted)", std::nullopt, kLmaxBoundMarker});
   if (extrapolates(fits)) legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, {}});
   drawLegend(cr, plot, legend);
 }

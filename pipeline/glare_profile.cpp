@@ -40,6 +40,7 @@ json measuredJson(const SweepRow& row) {
   return {{"alpha_deg", row.alpha_deg},
           {"limit_cd_m2", optionalNumber(row.limit_cd_m2)},
           {"lmax_cd_m2", row.lmax_cd_m2},
+          {"lmax_bound", row.lmax_bound.empty() ? json(nullptr) : json(row.lmax_bound)},
           {"vertical_deg", optionalNumber(row.vertical_deg)},
           {"horizontal_deg", optionalNumber(row.horizontal_deg)}};
 }

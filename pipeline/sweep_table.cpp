@@ -89,6 +89,10 @@ Result<Header> parseHeader(const std::vector<std::string>& fields) {
     if (header.index[c] < 0)
       missing += (missing.empty() ? "" : ", ") + std::string(kColumnNames[c]);
   }
+  if (!missing.empty() && fields.size() == 1 && fields[0].find(';') != std::string::npos)
+    return badInput(
+        "the header has no commas but semicolons: the sweep table is comma-separated "
+        "(export CSV with ',' as the separator and '.' as the decimal point)");
   if (!missing.empty())
     return badInput("missing column(s) " + missing +
                     " (the header needs alpha_deg, limit_cd_m2, lmax_cd_m2, vertical_deg, "
@@ -186,6 +190,9 @@ GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning) {
 }
 
 Result<SweepTable> readSweepTable(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    return badInput(path.string() + ": a directory, not a sweep table (CSV)");
   std::ifstream in(path);
   if (!in) return badInput(path.string() + ": cannot open the sweep table");
   auto context = [&](int line) { return fmt::format("{}:{}", path.string(), line); };
@@ -193,6 +200,9 @@ Result<SweepTable> readSweepTable(const std::filesystem::path& path) {
   std::optional<Header> header;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
+    constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";  // spreadsheets write one
+    if (number == 1 && line.starts_with(kUtf8ByteOrderMark))
+      line.erase(0, kUtf8ByteOrderMark.size());
     const std::string text = trim(line);
     if (text.empty()) continue;
     if (text.front() == '#') {

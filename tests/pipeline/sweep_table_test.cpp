@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "support/test_support.h"
 
 namespace glarecam::pipeline {
@@ -40,6 +42,15 @@ TEST(SweepTable, ColumnsInAnyOrderCommentsEmptyAxesAndQuotes) {
   EXPECT_EQ(table->notes, std::vector<std::string>{"a comment"});
   EXPECT_EQ(table->rows[0].horizontal_deg, 5.5);
   EXPECT_FALSE(table->rows[1].vertical_deg);
+}
+
+TEST(SweepTable, SpreadsheetExportsWithAByteOrderMarkAndCrlfRead) {
+  TempDir dir;
+  auto table =
+      readText(dir, "\xEF\xBB\xBF" + std::string(kHeader).insert(std::strlen(kHeader) - 1, "\r") +
+                        "5,30000,594000,5.0,5.7\r\n");
+  ASSERT_TRUE(table) << table.error().message;
+  EXPECT_EQ(table->rows.at(0).horizontal_deg, 5.7);
 }
 
 TEST(SweepTable, WritesSortedAndReadsBackWhatItWrote) {
@@ -103,7 +114,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCsv{"LmaxZero", std::string(kHeader) + "5,30000,0,5,5\n", "must be positive"},
         BadCsv{"AxisNegative", std::string(kHeader) + "5,30000,5e5,-5,5\n", "must be positive"},
         BadCsv{"Unterminated", std::string(kHeader) + "5,30000,5e5,5,\"5\n", "unterminated"},
-        BadCsv{"TrailingGarbage", std::string(kHeader) + "5,30000,5e5x,5,5\n", "5e5x"}),
+        BadCsv{"TrailingGarbage", std::string(kHeader) + "5,30000,5e5x,5,5\n", "5e5x"},
+        BadCsv{"Semicolons", "alpha_deg;limit_cd_m2;lmax_cd_m2;vertical_deg;horizontal_deg\n",
+               "comma-separated"}),
     [](const auto& info) { return info.param.name; });
 
 SweepTable limits(std::initializer_list<std::pair<double, double>> alpha_limit) {
@@ -127,10 +140,15 @@ TEST(SweepTable, InfersTheLimitTheSweepUsed) {
   EXPECT_NE(warning.find("neither the α curve nor one constant"), std::string::npos);
 }
 
-TEST(SweepTable, MissingFileIsBadInput) {
+TEST(SweepTable, MissingFileOrADirectoryIsBadInput) {
   auto table = readSweepTable("/nonexistent/sweep.csv");
   ASSERT_FALSE(table);
   EXPECT_EQ(table.error().code, ErrorCode::kBadInput);
+  TempDir dir;
+  table = readSweepTable(dir.path());
+  ASSERT_FALSE(table);
+  EXPECT_EQ(table.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(table.error().message.find("a directory"), std::string::npos);
 }
 
 TEST(SweepTable, RowFromAResultNeedsAlpha) {

@@ -21,6 +21,7 @@
 #include "core/atomic_file.h"
 #include "core/version.h"
 #include "pipeline/facet_model.h"
+#include "pipeline/glare_profile.h"
 #include "pipeline/limit_curve.h"
 
 namespace glarecam::pipeline {
@@ -494,12 +495,22 @@ void drawCurve(cairo_t* cr, Plot& plot, const Function& f, Range alpha_deg,
 }
 
 // A fitted function: solid over the measured range, lighter and dotted where extrapolated.
-void drawFit(cairo_t* cr, Plot& plot, const Function& f, Range measured_deg,
-             const LineStyle& style) {
-  const double extrapolate_to = std::max(kMaxLimitAlphaDeg, measured_deg.hi);
-  drawCurve(cr, plot, f, {kAlphaAxisDeg.lo, measured_deg.lo}, extrapolated(style));
-  drawCurve(cr, plot, f, {measured_deg.hi, extrapolate_to}, extrapolated(style));
-  drawCurve(cr, plot, f, measured_deg, style);
+// Solid over the measured range, dotted where extrapolated within `shown` (default 0–80°).
+void drawFit(cairo_t* cr, Plot& plot, const Function& f, Range measured_deg, const LineStyle& style,
+             std::optional<Range> shown = std::nullopt) {
+  const Range all =
+      shown.value_or(Range{kAlphaAxisDeg.lo, std::max(kMaxLimitAlphaDeg, measured_deg.hi)});
+  drawCurve(cr, plot, f, {all.lo, std::min(all.hi, measured_deg.lo)}, extrapolated(style));
+  drawCurve(cr, plot, f, {std::max(all.lo, measured_deg.hi), all.hi}, extrapolated(style));
+  drawCurve(cr, plot, f, {std::max(all.lo, measured_deg.lo), std::min(all.hi, measured_deg.hi)},
+            style);
+}
+
+// Where the module glares by the fits, as one range (first onset to last end); none: nowhere.
+std::optional<Range> glaringRange(const DatasheetContent& content) {
+  const std::vector<AlphaRange> ranges = glareRanges(*content.fits, content.limit);
+  if (ranges.empty()) return std::nullopt;
+  return Range{ranges.front().from_deg, ranges.back().to_deg};
 }
 
 struct DataPoint {
@@ -710,8 +721,12 @@ LegendEntry axisLegendEntry(const AxisSeries& s) {
 }
 
 void drawAxisSeries(cairo_t* cr, Plot& plot, const DatasheetContent& content, const AxisSeries& s) {
-  if (s.fit->logistic)
-    drawFit(cr, plot, s.fit->logistic->curve, {s.fit->alpha_min_deg, s.fit->alpha_max_deg}, s.line);
+  // An axis exists only where the module glares: its fit is drawn there only (it can
+  // extrapolate to anything elsewhere), as in glare-profile.json.
+  const std::optional<Range> glaring = glaringRange(content);
+  if (s.fit->logistic && glaring)
+    drawFit(cr, plot, s.fit->logistic->curve, {s.fit->alpha_min_deg, s.fit->alpha_max_deg}, s.line,
+            glaring);
   std::vector<DataPoint> measured;
   for (const SweepRow& row : content.table->rows)
     if (const std::optional<double>& v = row.*s.column) measured.push_back({row.alpha_deg, *v});
@@ -970,6 +985,19 @@ Layout pageLayout(cairo_t* cr, const DatasheetContent& content) {
           .warnings = {page.x0, page.y1 - warnings_pt, plot_right, page.y1}};
 }
 
+// "by the fits it glares for α 49.7–80.0°", or that it does not.
+std::string glareRangesText(const DatasheetContent& content) {
+  const std::vector<AlphaRange> ranges = glareRanges(*content.fits, content.limit);
+  if (ranges.empty())
+    return fmt::format("by the fits it does not glare at any \u03b1 from 0 to {:g}\u00b0",
+                       kMaxLimitAlphaDeg);
+  std::string text;
+  for (const AlphaRange& r : ranges)
+    text +=
+        fmt::format("{}{:.1f}\u2013{:.1f}\u00b0", text.empty() ? "" : ", ", r.from_deg, r.to_deg);
+  return "by the fits it glares for \u03b1 " + text;
+}
+
 std::string subtitle(const DatasheetContent& content) {
   const std::size_t n = content.table->rows.size();
   if (n == 0) return "An empty sweep.";
@@ -984,8 +1012,8 @@ std::string subtitle(const DatasheetContent& content) {
                         kMaxLimitAlphaDeg);
   return fmt::format(
       "Sweep of {} stack{}, \u03b1 {:g}\u00b0 to {:g}\u00b0 (angle of incidence from the module "
-      "normal). Glare when Lmax reaches {}. Axes: full angles of the limit ellipse.",
-      n, n == 1 ? "" : "s", lo->alpha_deg, hi->alpha_deg, limit);
+      "normal). Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.",
+      n, n == 1 ? "" : "s", lo->alpha_deg, hi->alpha_deg, limit, glareRangesText(content));
 }
 
 void drawHeader(cairo_t* cr, const DatasheetContent& content, const Box& box) {

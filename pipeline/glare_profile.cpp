@@ -25,6 +25,12 @@ json beamJson(const std::optional<CircularBeamSpread>& beam) {
           {"slope_error_mrad", beam->slope_error_mrad}};
 }
 
+json rangesJson(const std::vector<AlphaRange>& ranges) {
+  json out = json::array();
+  for (const AlphaRange& r : ranges) out.push_back({r.from_deg, r.to_deg});
+  return out;
+}
+
 json rowJson(const ProfileRow& row) {
   return {{"alpha_deg", row.alpha_deg},
           {"lmax_cd_m2", row.lmax_cd_m2},
@@ -90,6 +96,21 @@ std::vector<ProfileRow> glareProfile(const SweepFits& fits, const GlareLimit& li
   return rows;
 }
 
+std::vector<AlphaRange> glareRanges(const SweepFits& fits, const GlareLimit& limit) {
+  std::vector<AlphaRange> ranges;
+  bool inside = false;
+  const int steps = static_cast<int>(std::lround(kProfileAlphaMaxDeg / kGlareRangeResolutionDeg));
+  for (int i = 0; i <= steps; ++i) {
+    const double alpha = i * kGlareRangeResolutionDeg;
+    const auto limit_cd_m2 = limit.at(alpha);
+    const bool glares = limit_cd_m2 && fits.lmaxCdM2(alpha) >= *limit_cd_m2;
+    if (glares && !inside) ranges.push_back({alpha, alpha});
+    if (glares) ranges.back().to_deg = alpha;
+    inside = glares;
+  }
+  return ranges;
+}
+
 json glareProfileJson(const ProfileIdentity& identity, const SweepTable& table,
                       const SweepFits& fits, const GlareLimit& limit) {
   json profile = json::array();
@@ -102,6 +123,7 @@ json glareProfileJson(const ProfileIdentity& identity, const SweepTable& table,
       {"date", identity.date},
       {"source", identity.source},
       {"luminance_fit", fits.cosineIsBetter() ? "cos" : "biquadratic"},
+      {"glare_ranges_deg", rangesJson(glareRanges(fits, limit))},
       {"limit", {{"mode", limit.mode()}, {"constant_cd_m2", optionalNumber(limit.constant_cd_m2)}}},
       {"sun_half_angle_mrad", kSunHalfAngleMrad},
       {"profile", profile},

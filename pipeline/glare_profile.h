@@ -42,6 +42,15 @@ inline constexpr int kProfileStepDeg = 1;
 
 std::vector<ProfileRow> glareProfile(const SweepFits& fits, const GlareLimit& limit);
 
+struct AlphaRange {
+  double from_deg = 0, to_deg = 0;
+};
+inline constexpr double kGlareRangeResolutionDeg = 0.1;
+
+// The α ranges within 0–80° where the fitted Lmax reaches the limit, to 0.1°: where the module
+// glares by its data sheet (empty: nowhere).
+std::vector<AlphaRange> glareRanges(const SweepFits& fits, const GlareLimit& limit);
+
 struct ProfileIdentity {
   std::string module;
   std::string date;    // ISO 8601

@@ -213,4 +213,14 @@ std::size_t removeStaleTemporaries(const fs::path& directory, std::chrono::secon
   return removed;
 }
 
+Status ensureDirectory(const fs::path& directory) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(directory, ec);
+  if (fs::exists(status) && !fs::is_directory(status))
+    return badInput(directory.string() + ": exists and is not a directory");
+  fs::create_directories(directory, ec);
+  if (ec) return ioError(directory.string() + ": cannot create the directory: " + ec.message());
+  return {};
+}
+
 }  // namespace glarecam

@@ -30,6 +30,10 @@ Status writeFileDurable(const std::filesystem::path& path, std::span<const std::
 
 Status fsyncPath(const std::filesystem::path& path);
 
+// An output directory, created with its parents when missing: kBadInput when something else
+// (a file) is at the path, kIo when it cannot be created (read-only filesystem, permissions).
+Status ensureDirectory(const std::filesystem::path& directory);
+
 // The prefix every temporary sibling carries.
 inline constexpr std::string_view kTemporaryPrefix = ".tmp-";
 

@@ -296,7 +296,7 @@ Status writeManifestAndExtras(const fs::path& staging, const StackWriteRequest& 
   for (const auto& [relative_path, content] : request.text_files) {
     GLARECAM_CHECK(writeFileDurable(staging / relative_path, bytesOf(content)));
   }
-  const std::string manifest_text = toJson(request.manifest).dump(2) + "\n";
+  const std::string manifest_text = jsonText(toJson(request.manifest));
   GLARECAM_CHECK(writeFileDurable(staging / kManifestFileName, bytesOf(manifest_text)));
   std::error_code ec;
   for (const auto& entry : fs::recursive_directory_iterator(staging, ec)) {

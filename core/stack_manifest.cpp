@@ -11,7 +11,7 @@ namespace {
 using nlohmann::json;
 
 std::string show(const json& value) {
-  std::string text = value.dump();
+  std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
   return text.size() > 40 ? text.substr(0, 37) + "..." : text;
 }
 
@@ -290,6 +290,11 @@ Result<json> readJsonFile(const std::string& path) {
   text << in.rdbuf();
   if (in.bad()) return ioError(path + ": read failed");
   return parseJsonText(text.view(), path);
+}
+
+std::string jsonText(const json& document) {
+  constexpr int kIndent = 2;
+  return document.dump(kIndent, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace glarecam

@@ -67,8 +67,12 @@ FitQuality assessFit(const Samples& s, const Vector& residuals, const Matrix& ja
   const Matrix scaled = jacobian * scale.cwiseInverse().asDiagonal();
   Eigen::JacobiSVD<Matrix> svd(scaled, Eigen::ComputeThinV);
   const Vector sigma = svd.singularValues();
+  // Beyond 1/ε the smallest singular value is rounding noise: the Jacobian is singular.
+  constexpr double kSingularCondition = 1 / std::numeric_limits<double>::epsilon();
   q.condition_number = sigma(sigma.size() - 1) > 0 ? sigma(0) / sigma(sigma.size() - 1)
                                                    : std::numeric_limits<double>::infinity();
+  if (q.condition_number > kSingularCondition)
+    q.condition_number = std::numeric_limits<double>::infinity();
   q.standard_errors.assign(p, std::nullopt);
   q.ill_conditioned = !(q.condition_number < kIllConditionedNumber);
   if (!std::isfinite(q.condition_number)) {
@@ -81,7 +85,7 @@ FitQuality assessFit(const Samples& s, const Vector& residuals, const Matrix& ja
   for (int i = 0; i < p; ++i) {
     for (int j = 0; j < i; ++j) {
       const double r = covariance(i, j) / std::sqrt(covariance(i, i) * covariance(j, j));
-      q.max_correlation = std::max(q.max_correlation, std::abs(r));
+      q.max_correlation = std::min(1.0, std::max(q.max_correlation, std::abs(r)));
     }
   }
   q.ill_conditioned = q.ill_conditioned || q.max_correlation >= kStrongCorrelation;
@@ -140,6 +144,27 @@ GridAxis linSpaced(double lo, double hi, int steps) {
   return axis;
 }
 
+// The logistic's centre b: the regular grid plus every sample's α and every midpoint between
+// neighbouring samples, so that a transition steeper than the sample spacing has a start on each
+// side of every sample (Levenberg–Marquardt cannot move b across a sample there: ∂f/∂b ≈ 0).
+GridAxis centreCandidates(const Samples& s, const GridAxis& regular) {
+  std::vector<double> values = regular.values;
+  std::vector<double> alphas(s.alpha_deg.begin(), s.alpha_deg.end());
+  std::sort(alphas.begin(), alphas.end());
+  alphas.erase(std::unique(alphas.begin(), alphas.end()), alphas.end());
+  for (std::size_t i = 0; i < alphas.size(); ++i) {
+    values.push_back(alphas[i]);
+    if (i + 1 < alphas.size()) values.push_back((alphas[i] + alphas[i + 1]) / 2);
+  }
+  std::sort(values.begin(), values.end());
+  GridAxis axis;
+  for (double v : values) {
+    axis.values.push_back(v);
+    axis.index.push_back(static_cast<int>(axis.index.size()));
+  }
+  return axis;
+}
+
 bool neighbours(const GridPoint& a, const GridPoint& b) {
   return std::abs(a.cell[0] - b.cell[0]) <= 1 && std::abs(a.cell[1] - b.cell[1]) <= 1;
 }
@@ -182,6 +207,24 @@ std::unique_ptr<ceres::Problem> makeProblem(const Samples& s, double* parameters
   return problem;
 }
 
+double problemCost(ceres::Problem& problem) {
+  double cost = 0;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
+  return std::isfinite(cost) ? cost : std::numeric_limits<double>::infinity();
+}
+
+// The model's canonical form of the parameters, unless rewriting them loses accuracy (in a
+// logistic tail, a + c cancels catastrophically): then they stay as the solver left them.
+template <typename Model>
+void canonicaliseIfExact(ceres::Problem& problem, double* p, int count) {
+  constexpr double kCostSlack = 1e-9;  // relative: rounding, not a different curve
+  const std::vector<double> solved(p, p + count);
+  const double cost = problemCost(problem);
+  Model::canonicalise(p);
+  if (!(problemCost(problem) <= cost * (1 + kCostSlack)))
+    std::copy(solved.begin(), solved.end(), p);
+}
+
 // Levenberg–Marquardt from `start`; the fit's quality from the Jacobian at the optimum.
 template <typename Model, int kParameters>
 FitQuality refine(const Samples& s, const std::vector<double>& start) {
@@ -197,7 +240,7 @@ FitQuality refine(const Samples& s, const std::vector<double>& start) {
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, problem.get(), &summary);
-  Model::canonicalise(p.data());
+  canonicaliseIfExact<Model>(*problem, p.data(), kParameters);
 
   double cost = 0;
   std::vector<double> residuals;
@@ -214,14 +257,17 @@ FitQuality refine(const Samples& s, const std::vector<double>& start) {
 
 // Refines every start and keeps the best, recording what each start reached.
 template <typename Model, int kParameters>
-FitQuality multiStart(const Samples& s, const std::vector<GridPoint>& starts) {
+Result<FitQuality> multiStart(const Samples& s, const std::vector<GridPoint>& starts) {
+  if (starts.empty())
+    return badInput("no finite starting point: the values are far outside a physical range");
   FitQuality best;
   best.r2 = -std::numeric_limits<double>::infinity();
   std::vector<double> reached;
   for (const GridPoint& start : starts) {
     FitQuality q = refine<Model, kParameters>(s, start.parameters);
     reached.push_back(q.r2);
-    if (q.r2 > best.r2 || best.parameters.empty()) best = std::move(q);
+    const bool better = std::isfinite(q.r2) && !(q.r2 <= best.r2);  // NaN R² never wins
+    if (better || best.parameters.empty()) best = std::move(q);
   }
   best.start_r2 = std::move(reached);
   return best;
@@ -311,7 +357,9 @@ Result<CosineFit> fitCosine(std::span<const double> alpha_deg, std::span<const d
     g.cell = {powers.index[i], 0};
     grid.push_back(std::move(g));
   }
-  FitQuality q = multiStart<CosineModel, kCosineParameters>(s, bestDistinct(grid, kRefinedStarts));
+  FitQuality q;
+  GLARECAM_ASSIGN(
+      q, (multiStart<CosineModel, kCosineParameters>(s, bestDistinct(grid, kRefinedStarts))));
   const auto& p = q.parameters;
   return CosineFit{.curve = {.a = p[0], .b = p[1], .c = p[2]}, .quality = std::move(q)};
 }
@@ -330,7 +378,7 @@ Result<LogisticFit> fitLogistic(std::span<const double> alpha_deg, std::span<con
   const auto [lo, hi] = alphaRange(s);
   const double reach = kCentreSearchSpans * (hi - lo);
   std::vector<GridPoint> grid;
-  const GridAxis centres = linSpaced(lo - reach, hi + reach, kGridSteps);
+  const GridAxis centres = centreCandidates(s, linSpaced(lo - reach, hi + reach, kGridSteps));
   const GridAxis steepness = logSpacedBothSigns(kSteepnessMin, kSteepnessMax, kGridSteps);
   for (std::size_t i = 0; i < centres.values.size(); ++i) {
     for (std::size_t j = 0; j < steepness.values.size(); ++j) {
@@ -342,8 +390,9 @@ Result<LogisticFit> fitLogistic(std::span<const double> alpha_deg, std::span<con
       grid.push_back(std::move(g));
     }
   }
-  FitQuality q =
-      multiStart<LogisticModel, kLogisticParameters>(s, bestDistinct(grid, kRefinedStarts));
+  FitQuality q;
+  GLARECAM_ASSIGN(
+      q, (multiStart<LogisticModel, kLogisticParameters>(s, bestDistinct(grid, kRefinedStarts))));
   const auto& p = q.parameters;
   return LogisticFit{.curve = {.a = p[0], .b = p[1], .c = p[2], .d = p[3]},
                      .quality = std::move(q)};
@@ -355,6 +404,7 @@ namespace {
 std::string correlationText(double r) {
   constexpr double kShowDistanceFromOne = 0.9999;
   if (!std::isfinite(r)) return "n/a";
+  if (r >= 1) return "1";
   if (r >= kShowDistanceFromOne) return fmt::format("1 \u2212 {:.1e}", 1 - r);
   return fmt::format("{:.4f}", r);
 }

@@ -13,6 +13,7 @@
 #include "core/image_io.h"
 #include "core/progress.h"
 #include "core/stack_io.h"
+#include "core/stack_manifest.h"
 #include "pipeline/false_colour.h"
 #include "pipeline/glare_analysis.h"
 #include "pipeline/glare_picture.h"
@@ -57,11 +58,8 @@ constexpr std::string_view kOutputNames[] = {"luminance.exr", "quality.exr", "lu
 // interrupted run never leaves old results beside new pictures under a complete-looking set.
 // A result.json that is not glarecam's is refused, not overwritten.
 Status prepareOutputDirectory(const fs::path& directory) {
+  GLARECAM_CHECK(ensureDirectory(directory));
   std::error_code ec;
-  fs::create_directories(directory, ec);
-  if (ec) return ioError(directory.string() + ": cannot create output directory: " + ec.message());
-  if (!fs::is_directory(directory, ec))
-    return badInput(directory.string() + ": output path is not a directory");
   removeStaleTemporaries(directory, kStaleTemporaryAge, kOutputNames);
   const fs::path previous = directory / kResultFileName;
   if (!fs::exists(fs::symlink_status(previous, ec))) return {};
@@ -212,7 +210,7 @@ Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
   GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
   GLARECAM_CHECK(writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb));
   progress.advance("luminance.png");
-  GLARECAM_CHECK(writeFileAtomic(out / kResultFileName, summary.result.dump(2) + "\n"));
+  GLARECAM_CHECK(writeFileAtomic(out / kResultFileName, jsonText(summary.result)));
   progress.advance("result.json");
   return {};
 }

@@ -4,8 +4,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <map>
 #include <mutex>
+#include <new>
+#include <set>
 #include <thread>
 
 #include "core/atomic_file.h"
@@ -20,15 +21,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A result directory per stack, named after it; a second stack of the same name gets "-2".
+std::string baseName(const fs::path& stack) {
+  const std::string name = stack.filename().string();
+  return name.empty() || name == "." || name == ".." ? "stack" : name;
+}
+
+// A result directory per stack, named after it; a stack whose name is taken gets the first free
+// "-2", "-3", … (free also of the names other stacks have as they are).
 std::vector<fs::path> resultDirectories(const std::vector<fs::path>& stacks, const fs::path& out) {
-  std::map<std::string, int> uses;
+  std::set<std::string> taken;
+  for (const fs::path& stack : stacks) taken.insert(baseName(stack));
+  std::set<std::string> used;
   std::vector<fs::path> directories;
   for (const fs::path& stack : stacks) {
-    std::string name = stack.filename().string();
-    if (name.empty() || name == "." || name == "..") name = "stack";
-    const int n = ++uses[name];
-    if (n > 1) name += "-" + std::to_string(n);
+    const std::string base = baseName(stack);
+    std::string name = base;
+    for (int n = 2; used.contains(name) || (name != base && taken.contains(name)); ++n)
+      name = base + "-" + std::to_string(n);
+    used.insert(name);
     directories.push_back(out / kSweepResultsDirectory / name);
   }
   return directories;
@@ -52,9 +62,17 @@ Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_direct
                          .thresholds_cd_m2 = {},
                          .threads = threads_per_job,
                          .show_progress = false};
-  auto summary = processStack(stack, process);
-  if (!summary) return std::unexpected(summary.error());
-  return sweepRowFromResult(summary->result, stack.string());
+  // Runs on a worker thread: an exception (out of memory, a bug) must skip this stack, not
+  // terminate the process and lose every other stack's work.
+  try {
+    auto summary = processStack(stack, process);
+    if (!summary) return std::unexpected(summary.error());
+    return sweepRowFromResult(summary->result, stack.string());
+  } catch (const std::bad_alloc&) {
+    return fail(ErrorCode::kIo, "out of memory");
+  } catch (const std::exception& e) {
+    return fail(ErrorCode::kInternal, std::string("internal error: ") + e.what());
+  }
 }
 
 // The error the whole sweep fails with when nothing could be processed: bad input if every
@@ -135,6 +153,7 @@ StackSearch findStacks(const std::vector<fs::path>& raw_inputs) {
 
 Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& options) {
   const std::vector<fs::path>& stacks = search.stacks;
+  GLARECAM_CHECK(ensureDirectory(options.output_directory));  // before the minutes of processing
   SweepSummary summary;
   summary.skipped = search.skipped;
   if (stacks.empty()) {
@@ -177,9 +196,6 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
     summary.table.notes.push_back("skipped " + s.stack.string() + ": " + s.error.message);
   }
   if (summary.table.rows.empty()) return std::unexpected(noStackError(summary.skipped));
-  std::error_code ec;
-  fs::create_directories(options.output_directory, ec);
-  if (ec) return ioError(options.output_directory.string() + ": cannot create: " + ec.message());
   summary.sweep_csv = options.output_directory / kSweepTableFileName;
   GLARECAM_CHECK(writeFileAtomic(summary.sweep_csv, formatSweepTable(summary.table)));
   return summary;

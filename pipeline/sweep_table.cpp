@@ -52,6 +52,11 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "stack_id",
                                                              "stack"};
 
+// Physical bounds: no reflection is brighter than the sun's disk (about 1.6e9 cd/m²), and a full
+// ellipse axis is an angle between two rays, at most 180°.
+constexpr double kMaxLuminanceCdM2 = 1e10;
+constexpr double kMaxAxisDeg = 180.0;
+
 // α is the angle from the module normal; at 90° the cosine function is undefined.
 constexpr double kMaxAlphaDeg = 90.0;
 
@@ -81,7 +86,11 @@ Result<Header> parseHeader(const std::vector<std::string>& fields) {
   header.index.fill(-1);
   for (int i = 0; i < static_cast<int>(fields.size()); ++i) {
     for (int c = 0; c < kColumnCount; ++c) {
-      if (trim(fields[i]) == kColumnNames[c]) header.index[c] = i;
+      if (trim(fields[i]) != kColumnNames[c]) continue;
+      if (header.index[c] >= 0)
+        return badInput(fmt::format("column {} appears twice (fields {} and {})", kColumnNames[c],
+                                    header.index[c] + 1, i + 1));
+      header.index[c] = i;
     }
   }
   std::string missing;
@@ -111,6 +120,13 @@ Status requirePositive(const std::optional<double>& value, const char* column) {
   return {};
 }
 
+Status requireAtMost(const std::optional<double>& value, double most, const char* column) {
+  if (value && *value > most)
+    return badInput(
+        fmt::format("{}: {} is beyond the physical range (at most {:g})", column, *value, most));
+  return {};
+}
+
 Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& fields) {
   SweepRow row;
   std::array<std::optional<double>, kColumnCount> numbers;
@@ -123,6 +139,10 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   row.alpha_deg = *numbers[kAlpha];
   for (int c : {kLimit, kLmax, kVertical, kHorizontal})
     GLARECAM_CHECK(requirePositive(numbers[c], kColumnNames[c]));
+  for (int c : {kLimit, kLmax})
+    GLARECAM_CHECK(requireAtMost(numbers[c], kMaxLuminanceCdM2, kColumnNames[c]));
+  for (int c : {kVertical, kHorizontal})
+    GLARECAM_CHECK(requireAtMost(numbers[c], kMaxAxisDeg, kColumnNames[c]));
   row.limit_cd_m2 = numbers[kLimit];
   row.lmax_cd_m2 = *numbers[kLmax];
   row.vertical_deg = numbers[kVertical];
@@ -156,7 +176,7 @@ std::string csvLine(const Fields& fields) {
 }
 
 std::string number(const std::optional<double>& value) {
-  return value ? fmt::format("{:.6g}", *value) : std::string();
+  return value ? fmt::format("{}", *value) : std::string();  // shortest exact form
 }
 
 std::optional<double> numberAt(const json& object, const json::json_pointer& pointer) {
@@ -229,7 +249,11 @@ Result<SweepTable> readSweepTable(const std::filesystem::path& path) {
 
 std::string formatSweepTable(const SweepTable& table) {
   std::string text;
-  for (const std::string& note : table.notes) text += "# " + note + "\n";
+  for (std::string note : table.notes) {
+    std::replace_if(
+        note.begin(), note.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+    text += "# " + note + "\n";  // a line break would end the comment and break the table
+  }
   text += csvLine(kColumnNames);
   std::vector<SweepRow> rows = table.rows;
   std::stable_sort(rows.begin(), rows.end(),

@@ -52,7 +52,7 @@ truth() {
 }
 
 # One line per stack: α, measured (sweep.csv), fitted (profile), true (truth.json).
-rows=$(tail -n +2 "$sweep_csv" | grep -v '^#' | while IFS=, read -r alpha limit lmax vertical horizontal _; do
+rows=$(grep -v '^#' "$sweep_csv" | tail -n +2 | while IFS=, read -r alpha limit lmax vertical horizontal _; do
   stack="$OUT/stacks/alpha-$(printf %02d "${alpha%.*}")"
   echo "$alpha $lmax ${vertical:-nan} ${horizontal:-nan} \
 $(awk -v a="$alpha" '$1 == a { print $2, $3, $4 }' <<<"$fitted") \

@@ -15,6 +15,7 @@
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
 #include "core/atomic_file.h"
+#include "core/stack_manifest.h"
 #include "pipeline/datasheet.h"
 #include "pipeline/facet_model.h"
 #include "pipeline/glare_profile.h"
@@ -93,9 +94,7 @@ Status runDatasheet(const DatasheetArgs& args) {
   GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));
   const pipeline::GlareLimit limit = sheetLimit(args.sweep, table, threshold_cd_m2);
   const fs::path out = args.out ? fs::path(*args.out) : fs::path(args.sweep).parent_path();
-  std::error_code ec;
-  if (!out.empty()) fs::create_directories(out, ec);
-  if (ec) return ioError(out.string() + ": cannot create: " + ec.message());
+  if (!out.empty()) GLARECAM_CHECK(ensureDirectory(out));
   GLARECAM_CHECK(pipeline::writeDatasheet({.module = args.module,
                                            .date = date,
                                            .table = &table,
@@ -105,7 +104,7 @@ Status runDatasheet(const DatasheetArgs& args) {
                                           out));
   const auto profile = pipeline::glareProfileJson(
       {.module = args.module, .date = date, .source = args.sweep}, table, fits, limit);
-  GLARECAM_CHECK(writeFileAtomic(out / kProfileFileName, profile.dump(2) + "\n"));
+  GLARECAM_CHECK(writeFileAtomic(out / kProfileFileName, jsonText(profile)));
   std::printf("%s\n", (out / pipeline::kDatasheetPdf).c_str());
   return {};
 }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/glarecam/commands.h"
+#include "core/stack_manifest.h"
 #include "pipeline/glare_fits.h"
 
 namespace glarecam::apps {
@@ -35,7 +36,7 @@ Status runFit(const FitArgs& args) {
   pipeline::SweepFits fits;
   GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));
   if (args.json) {
-    std::printf("%s\n", pipeline::fitsJson(fits).dump(2).c_str());
+    std::printf("%s", jsonText(pipeline::fitsJson(fits)).c_str());
   } else {
     std::printf("%s", pipeline::fitsReport(fits).c_str());
   }

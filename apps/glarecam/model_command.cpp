@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apps/glarecam/commands.h"
+#include "core/stack_manifest.h"
 #include "pipeline/facet_model.h"
 
 namespace glarecam::apps {
@@ -45,7 +46,7 @@ Status runModel(const ModelArgs& args) {
   }
   if (args.json) {
     const nlohmann::json out{{"model", "five-facet"}, {"beta_deg", args.beta_deg}, {"rows", rows}};
-    std::printf("%s\n", out.dump(2).c_str());
+    std::printf("%s", jsonText(out).c_str());
   } else {
     std::printf("%s", table.c_str());
   }

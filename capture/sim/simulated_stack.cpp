@@ -11,6 +11,7 @@
 #include "capture/sim/module_model.h"
 #include "core/progress.h"
 #include "core/stack_io.h"
+#include "core/stack_manifest.h"
 #include "pipeline/limit_curve.h"
 
 namespace glarecam::capture {
@@ -238,7 +239,7 @@ Status writeSimulatedStack(const std::filesystem::path& directory, const Simulat
   StackWriteRequest request;
   request.manifest = stack.manifest;
   request.frames = stack.frames;
-  request.text_files.emplace_back("truth.json", stack.truthJson().dump(2) + "\n");
+  request.text_files.emplace_back("truth.json", jsonText(stack.truthJson()));
   return writeStack(directory, request);
 }
 

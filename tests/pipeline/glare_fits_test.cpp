@@ -145,6 +145,29 @@ TEST(GlareFits, StandardErrorsMatchTheScatterOfRepeatedNoisyFits) {
   EXPECT_NEAR(reported / spread, 1.0, 0.2) << "reported " << reported << " spread " << spread;
 }
 
+TEST(GlareFits, ANoisyFlatAxisKeepsTheBestFitFound) {
+  // An axis that is flat (5.4° ± 0.3°): the best logistic is a step in a logistic tail, where
+  // rewriting it with d >= 0 cancels a + c catastrophically (R² -528 before the rewrite was
+  // guarded). The fit must keep what the solver found: about as good as a constant, R² >= 0.
+  const std::vector<double> alpha{23.511558, 25.627251, 27.742944, 29.858636, 31.974329, 34.090022,
+                                  36.205715, 38.321407, 40.437100, 42.552793, 44.668486, 46.784178,
+                                  48.899871, 51.015564, 53.131257, 55.246949};
+  const std::vector<double> y{5.943603, 5.084058, 5.085326, 5.445231, 5.246103, 5.394621,
+                              5.347324, 5.393779, 5.537977, 5.596100, 4.963284, 5.391286,
+                              5.435367, 5.423613, 5.381135, 5.731024};
+  auto fit = fitLogistic(alpha, y);
+  ASSERT_TRUE(fit);
+  EXPECT_GE(fit->quality.r2, 0.0);
+  EXPECT_TRUE(fit->quality.ill_conditioned);
+}
+
+TEST(GlareFits, ValuesFarOutsideAnyPhysicalRangeAreAnErrorNotACrash) {
+  const std::vector<double> alpha{5, 20, 40, 60, 80}, y{1e300, 2e300, 3e300, 4e300, 5e300};
+  auto fit = fitLogistic(alpha, y);
+  ASSERT_FALSE(fit);
+  EXPECT_EQ(fit.error().code, ErrorCode::kBadInput);
+}
+
 TEST(GlareFits, TooFewDistinctAnglesIsBadInput) {
   const std::vector<double> alpha{10, 10, 20, 20}, y{1, 2, 3, 4};
   auto fit = fitLogistic(alpha, y);

@@ -68,6 +68,8 @@ TEST(SweepTable, WritesSortedAndReadsBackWhatItWrote) {
   steep.stack = "dir, with comma/alpha-05";
   steep.glare = false;
   table.rows = {flat, steep};
+  SweepTable with_break = table;
+  with_break.notes = {"skipped a\nb: broken"};
   TempDir dir;
   auto read = readText(dir, formatSweepTable(table));
   ASSERT_TRUE(read) << read.error().message;
@@ -78,6 +80,10 @@ TEST(SweepTable, WritesSortedAndReadsBackWhatItWrote) {
   EXPECT_FALSE(read->rows[0].vertical_deg);
   EXPECT_EQ(read->rows[1].lmax_cd_m2, 1.19e7);
   EXPECT_EQ(read->notes, table.notes);
+  // A line break in a note (a stack path may hold one) stays inside the comment.
+  auto broken = readText(dir, formatSweepTable(with_break));
+  ASSERT_TRUE(broken) << broken.error().message;
+  EXPECT_EQ(broken->notes, std::vector<std::string>{"skipped a b: broken"});
 }
 
 struct BadCsv {
@@ -115,6 +121,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCsv{"AxisNegative", std::string(kHeader) + "5,30000,5e5,-5,5\n", "must be positive"},
         BadCsv{"Unterminated", std::string(kHeader) + "5,30000,5e5,5,\"5\n", "unterminated"},
         BadCsv{"TrailingGarbage", std::string(kHeader) + "5,30000,5e5x,5,5\n", "5e5x"},
+        BadCsv{"DuplicateColumn", std::string("alpha_deg,") + kHeader + "5,6,30000,5e5,5,5\n",
+               "column alpha_deg appears twice"},
+        BadCsv{"AxisBeyondPhysical", std::string(kHeader) + "5,30000,5e5,500,5\n",
+               "beyond the physical range"},
+        BadCsv{"LmaxBeyondPhysical", std::string(kHeader) + "5,30000,1e300,5,5\n",
+               "beyond the physical range"},
         BadCsv{"Semicolons", "alpha_deg;limit_cd_m2;lmax_cd_m2;vertical_deg;horizontal_deg\n",
                "comma-separated"}),
     [](const auto& info) { return info.param.name; });

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "support/test_support.h"
 
@@ -117,6 +118,37 @@ TEST(Sweep, AStackAtGrazingIncidenceIsSkippedBeforeProcessing) {
   ASSERT_EQ(summary->skipped.size(), 1u);
   EXPECT_NE(summary->skipped[0].error.message.find("outside [0, 90)"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "out/results/grazing"));  // refused before processing
+}
+
+TEST(Sweep, ResultNamesNeverCollide) {
+  // Two stacks named s1 and one named s1-2: the second s1 must not take s1-2's name.
+  TempDir dir;
+  writeStackAt(dir / "x/s1", 20);
+  writeStackAt(dir / "y/s1", 40);
+  writeStackAt(dir / "z/s1-2", 60);
+  auto summary =
+      runSweep(findStacks({dir / "x/s1", dir / "y/s1", dir / "z/s1-2"}), quiet(dir / "o", 2));
+  ASSERT_TRUE(summary) << summary.error().message;
+  std::set<double> alphas;
+  for (const char* name : {"s1", "s1-2", "s1-3"}) {
+    auto result =
+        nlohmann::json::parse(testing::readText(dir / "o/results" / name / "result.json"));
+    alphas.insert(result["alpha_deg"].get<double>());
+  }
+  EXPECT_EQ(alphas, (std::set<double>{20, 40, 60}));
+  EXPECT_EQ(
+      nlohmann::json::parse(testing::readText(dir / "o/results/s1-2/result.json"))["alpha_deg"],
+      60.0);
+}
+
+TEST(Sweep, AnOutputPathThatIsAFileIsBadInputBeforeAnyWork) {
+  TempDir dir;
+  writeStackAt(dir / "s", 20);
+  testing::writeText(dir / "file", "x");
+  auto summary = runSweep(findStacks({dir / "s"}), quiet(dir / "file", 1));
+  ASSERT_FALSE(summary);
+  EXPECT_EQ(summary.error().code, ErrorCode::kBadInput);
+  EXPECT_FALSE(fs::exists(dir / "s/result"));
 }
 
 TEST(Sweep, NothingProcessableIsBadInput) {

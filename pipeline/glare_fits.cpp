@@ -428,6 +428,25 @@ void noteQuality(std::vector<std::string>& warnings, const char* name, const Fit
   if (std::string text = describe(name, q); !text.empty()) warnings.push_back(std::move(text));
 }
 
+// A logistic rises from 12 % to 88 % of its step over 4 / |d| degrees. When that is shorter than
+// the gap between the samples it falls in, the data do not resolve the transition: the fit jumps
+// between two samples and its values there are a guess. Empty when the transition is resolved.
+std::string sharpStep(std::vector<double> alpha, const LogisticCurve& curve) {
+  constexpr double kTransitionWidthPerD = 4.0;
+  if (curve.d == 0) return {};
+  const double width_deg = kTransitionWidthPerD / std::abs(curve.d);
+  std::sort(alpha.begin(), alpha.end());
+  const auto after = std::upper_bound(alpha.begin(), alpha.end(), curve.b);
+  if (after == alpha.begin() || after == alpha.end()) return {};  // a tail: no step inside
+  const double gap_deg = *after - *(after - 1);
+  if (width_deg >= gap_deg) return {};
+  return fmt::format(
+      "the logistic steps from one value to another within {:.2g}° at α {:.1f}°, "
+      "between samples {:g}° apart: the data do not resolve that transition, and "
+      "the function may not suit this axis",
+      width_deg, curve.b, gap_deg);
+}
+
 AxisFit fitAxis(const SweepTable& table, std::optional<double> SweepRow::*axis, const char* name,
                 std::vector<std::string>& warnings) {
   std::vector<double> alpha, y;
@@ -449,6 +468,8 @@ AxisFit fitAxis(const SweepTable& table, std::optional<double> SweepRow::*axis, 
     return fit;
   }
   noteQuality(warnings, name, logistic->quality);
+  if (std::string step = sharpStep(alpha, logistic->curve); !step.empty())
+    warnings.push_back(fmt::format("{}: {}", name, step));
   fit.logistic = std::move(*logistic);
   return fit;
 }

@@ -161,6 +161,24 @@ TEST(GlareFits, ANoisyFlatAxisKeepsTheBestFitFound) {
   EXPECT_TRUE(fit->quality.ill_conditioned);
 }
 
+TEST(GlareFits, AStepBetweenTwoSamplesIsWarnedAbout) {
+  // An axis that jumps between 50° and 55° (a module that starts to glare there): the best
+  // logistic is a step the samples cannot resolve.
+  SweepTable table;
+  for (double alpha : {40.0, 45.0, 50.0, 55.0, 60.0, 65.0, 70.0, 75.0, 80.0}) {
+    SweepRow row;
+    row.alpha_deg = alpha;
+    row.lmax_cd_m2 = 1e5 * alpha;
+    row.vertical_deg = alpha <= 50 ? 0.4 + 0.001 * alpha : 1.5 + 0.001 * alpha;
+    table.rows.push_back(row);
+  }
+  auto fits = fitSweep(table);
+  ASSERT_TRUE(fits) << fits.error().message;
+  bool warned = false;
+  for (const auto& w : fits->warnings) warned |= w.find("vertical: the logistic steps") == 0;
+  EXPECT_TRUE(warned);
+}
+
 TEST(GlareFits, ValuesFarOutsideAnyPhysicalRangeAreAnErrorNotACrash) {
   const std::vector<double> alpha{5, 20, 40, 60, 80}, y{1e300, 2e300, 3e300, 4e300, 5e300};
   auto fit = fitLogistic(alpha, y);

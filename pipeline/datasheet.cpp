@@ -221,11 +221,15 @@ constexpr double kGroupThousandsFrom = 1000;
 
 std::string formatG4(double value) { return fmt::format("{:.4g}", value); }
 
-// 47 500 000 with thin spaces between groups of three; small values with four digits.
+// 47 500 000 with thin spaces between groups of three, rounded to four significant digits (a
+// measured luminance is not known better: 59 713 400 would claim eight); small values likewise.
 std::string formatLuminance(double cd_m2) {
+  constexpr int kSignificantDigits = 4;
   if (!std::isfinite(cd_m2)) return kEmptyCell;
   if (std::abs(cd_m2) < kGroupThousandsFrom) return formatG4(cd_m2);
-  const std::string digits = fmt::format("{:.0f}", std::abs(cd_m2));
+  const double scale =
+      std::pow(10.0, std::floor(std::log10(std::abs(cd_m2))) + 1 - kSignificantDigits);
+  const std::string digits = fmt::format("{:.0f}", std::round(std::abs(cd_m2) / scale) * scale);
   std::string grouped = cd_m2 < 0 ? "-" : "";
   for (std::size_t i = 0; i < digits.size(); ++i) {
     if (i > 0 && (digits.size() - i) % 3 == 0) grouped += "\u2009";

@@ -14,6 +14,8 @@
 
 namespace glarecam::pipeline {
 
+inline constexpr const char* kGlareProfileFileName = "glare-profile.json";
+
 // The sun's angular radius used by SGHAT-style tools (docs/method.md).
 inline constexpr double kSunHalfAngleMrad = 4.65;
 

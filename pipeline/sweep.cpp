@@ -13,6 +13,8 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/stack_manifest.h"
+#include "pipeline/datasheet.h"
+#include "pipeline/glare_profile.h"
 #include "pipeline/process_stack.h"
 
 namespace glarecam::pipeline {
@@ -73,6 +75,26 @@ Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_direct
   } catch (const std::exception& e) {
     return fail(ErrorCode::kInternal, std::string("internal error: ") + e.what());
   }
+}
+
+// An output directory reused from an earlier sweep keeps that sweep's data sheet and results of
+// stacks not in this one: nothing is deleted (they may be wanted), but a reader must not take them
+// for this sweep's.
+void warnAboutEarlierOutputs(const fs::path& out, const std::vector<fs::path>& results) {
+  for (const char* name : {kDatasheetPdf, kGlareProfileFileName}) {
+    if (fs::exists(out / name))
+      spdlog::warn("sweep: {} is from an earlier run: run glarecam datasheet again",
+                   (out / name).string());
+  }
+  std::error_code ec;
+  int others = 0;
+  for (const auto& entry : fs::directory_iterator(out / kSweepResultsDirectory, ec)) {
+    if (entry.path().filename().string().starts_with(kTemporaryPrefix)) continue;
+    others += std::find(results.begin(), results.end(), entry.path()) == results.end();
+  }
+  if (others > 0)
+    spdlog::warn("sweep: {} holds {} result(s) of stacks not in this sweep (an earlier run)",
+                 (out / kSweepResultsDirectory).string(), others);
 }
 
 // The error the whole sweep fails with when nothing could be processed: bad input if every
@@ -198,6 +220,7 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
   if (summary.table.rows.empty()) return std::unexpected(noStackError(summary.skipped));
   summary.sweep_csv = options.output_directory / kSweepTableFileName;
   GLARECAM_CHECK(writeFileAtomic(summary.sweep_csv, formatSweepTable(summary.table)));
+  warnAboutEarlierOutputs(options.output_directory, results);
   return summary;
 }
 

@@ -18,7 +18,7 @@ i=0
 for alpha in $ALPHAS; do
   i=$((i + 1))
   echo "demo: [$i/$count] simulating the rig at α = $alpha°" >&2
-  "$BIN/glarecam" simulate --module "$MODULE" --alpha "$alpha" --seed "$i" \
+  "$BIN/glarecam" simulate --no-progress --module "$MODULE" --alpha "$alpha" --seed "$i" \
     --out "$OUT/stacks.tmp/alpha-$(printf %02d "$alpha")" >/dev/null
 done
 rm -rf "$OUT/stacks" "$OUT/sweep" "$OUT/summary.csv"  # summary.csv: the previous demo's output

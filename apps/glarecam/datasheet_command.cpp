@@ -25,8 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-inline constexpr const char* kProfileFileName = "glare-profile.json";
-
 struct DatasheetArgs {
   std::string sweep;
   std::optional<std::string> out, date, threshold;
@@ -104,7 +102,7 @@ Status runDatasheet(const DatasheetArgs& args) {
                                           out));
   const auto profile = pipeline::glareProfileJson(
       {.module = args.module, .date = date, .source = args.sweep}, table, fits, limit);
-  GLARECAM_CHECK(writeFileAtomic(out / kProfileFileName, jsonText(profile)));
+  GLARECAM_CHECK(writeFileAtomic(out / pipeline::kGlareProfileFileName, jsonText(profile)));
   std::printf("%s\n", (out / pipeline::kDatasheetPdf).c_str());
   return {};
 }

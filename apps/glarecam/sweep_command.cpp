@@ -65,7 +65,8 @@ void addSweepCommand(CLI::App& app, Action& action) {
       ->required();
   sub->add_option("--out", args->out,
                   "output directory for sweep.csv and results/<stack>/ (default ./sweep)");
-  sub->add_option("--jobs", args->jobs, "stacks processed at once (default: one per core)")
+  sub->add_option("--jobs", args->jobs,
+                  "stacks processed at once (default: one per thread of --threads)")
       ->check(CLI::Range(1u, 1024u));
   sub->add_option("--threads", args->threads,
                   "threads in all, shared by the jobs (default: all cores; decoding and the "

@@ -173,6 +173,9 @@ check "datasheet: bad table" 2 "$GLARECAM" datasheet "$WORK/nonnum.csv" --out "$
 expect "nothing written for a bad table" test ! -e "$WORK/ds1/datasheet.pdf"
 check "datasheet beside the sweep table" 0 "$GLARECAM" datasheet "$WORK/sw/sweep.csv"
 expect "default --out is the table's directory" test -s "$WORK/sw/datasheet.pdf"
+check "sweep into a used directory" 0 "$GLARECAM" sweep "$WORK/sweep-in/a20" "$WORK/sweep-in/a40" --out "$WORK/sw" --no-progress
+expect "earlier data sheet warned about" grep -q "datasheet.pdf is from an earlier run" "$WORK/err"
+expect "earlier results warned about" grep -q "2 result(s) of stacks not in this sweep" "$WORK/err"
 
 check "model" 0 "$GLARECAM" model --beta 2.5 --alpha 0 60
 expect "model at normal incidence: 2 beta" grep -qE "^ +0 +5\.0000 +5\.0000 +yes" "$WORK/out"

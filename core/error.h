@@ -4,7 +4,9 @@
 // option or stack is wrong) exits 2, everything else exits 1.
 #pragma once
 
+#include <exception>
 #include <expected>
+#include <new>
 #include <string>
 #include <utility>
 
@@ -43,6 +45,20 @@ inline constexpr int kExitBadInput = 2;
 
 inline int exitStatus(const Error& error) {
   return error.code == ErrorCode::kBadInput ? kExitBadInput : kExitFailure;
+}
+
+// Inside a catch block: the exception being handled as an Error (out of memory is kIo, anything
+// else kInternal), so that an exception from a library becomes a one-line message, not an abort.
+inline Error currentExceptionError() {
+  try {
+    throw;
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::kIo, "out of memory"};
+  } catch (const std::exception& e) {
+    return {ErrorCode::kInternal, std::string("internal error: ") + e.what()};
+  } catch (...) {
+    return {ErrorCode::kInternal, "internal error"};
+  }
 }
 
 // Prefixes the message with context ("frame-03.png: " + message), keeping the code.

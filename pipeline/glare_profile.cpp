@@ -101,7 +101,7 @@ std::vector<AlphaRange> glareRanges(const SweepFits& fits, const GlareLimit& lim
   bool inside = false;
   const int steps = static_cast<int>(std::lround(kProfileAlphaMaxDeg / kGlareRangeResolutionDeg));
   for (int i = 0; i <= steps; ++i) {
-    const double alpha = i * kGlareRangeResolutionDeg;
+    const double alpha = i / (1 / kGlareRangeResolutionDeg);  // 49.8, not 49.800000000000004
     const auto limit_cd_m2 = limit.at(alpha);
     const bool glares = limit_cd_m2 && fits.lmaxCdM2(alpha) >= *limit_cd_m2;
     if (glares && !inside) ranges.push_back({alpha, alpha});

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <mutex>
-#include <new>
 #include <set>
 #include <thread>
 
@@ -70,10 +69,8 @@ Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_direct
     auto summary = processStack(stack, process);
     if (!summary) return std::unexpected(summary.error());
     return sweepRowFromResult(summary->result, stack.string());
-  } catch (const std::bad_alloc&) {
-    return fail(ErrorCode::kIo, "out of memory");
-  } catch (const std::exception& e) {
-    return fail(ErrorCode::kInternal, std::string("internal error: ") + e.what());
+  } catch (...) {
+    return std::unexpected(currentExceptionError());
   }
 }
 

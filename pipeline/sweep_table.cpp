@@ -163,6 +163,14 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   return row;
 }
 
+// Text on one line: the table is read line by line, so a line break in a note or a field (a stack
+// path may hold one) would break it; it becomes a space.
+std::string oneLine(std::string text) {
+  std::replace_if(
+      text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  return text;
+}
+
 template <typename Fields>
 std::string csvLine(const Fields& fields) {
   std::string line;
@@ -187,7 +195,7 @@ std::optional<double> numberAt(const json& object, const json::json_pointer& poi
 }  // namespace
 
 GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning) {
-  // Limits are written with 6 significant digits (formatSweepTable).
+  // Tables written by hand or by other tools may round the limit.
   constexpr double kSameLimitRelative = 1e-5;
   const auto same = [](double a, double b) { return std::abs(a - b) <= kSameLimitRelative * b; };
   bool curve = true;
@@ -249,11 +257,7 @@ Result<SweepTable> readSweepTable(const std::filesystem::path& path) {
 
 std::string formatSweepTable(const SweepTable& table) {
   std::string text;
-  for (std::string note : table.notes) {
-    std::replace_if(
-        note.begin(), note.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-    text += "# " + note + "\n";  // a line break would end the comment and break the table
-  }
+  for (const std::string& note : table.notes) text += "# " + oneLine(note) + "\n";
   text += csvLine(kColumnNames);
   std::vector<SweepRow> rows = table.rows;
   std::stable_sort(rows.begin(), rows.end(),
@@ -271,9 +275,9 @@ std::string formatSweepTable(const SweepTable& table) {
                                                        number(r.fwhm_horizontal_deg),
                                                        r.glare ? (*r.glare ? "true" : "false") : "",
                                                        r.lmax_bound,
-                                                       quoteCsvField(r.limit_status),
-                                                       quoteCsvField(r.stack_id),
-                                                       quoteCsvField(r.stack)};
+                                                       quoteCsvField(oneLine(r.limit_status)),
+                                                       quoteCsvField(oneLine(r.stack_id)),
+                                                       quoteCsvField(oneLine(r.stack))};
     text += csvLine(fields);
   }
   return text;

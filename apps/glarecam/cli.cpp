@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
-#include <new>
 #include <string>
 
 #include "apps/glarecam/commands.h"
@@ -38,10 +37,8 @@ Status runAction(const std::function<Status()>& action) {
   if (!action) return badInput("no command given");
   try {
     return action();
-  } catch (const std::bad_alloc&) {
-    return fail(ErrorCode::kIo, "out of memory");
-  } catch (const std::exception& e) {
-    return fail(ErrorCode::kInternal, std::string("internal error: ") + e.what());
+  } catch (...) {
+    return std::unexpected(currentExceptionError());
   }
 }
 

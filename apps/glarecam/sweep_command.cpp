@@ -77,7 +77,7 @@ void addSweepCommand(CLI::App& app, Action& action) {
   sub->add_option("--threshold", args->threshold,
                   "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
   sub->add_flag("--strict", args->strict,
-                "exit non-zero when any stack was skipped (the table is still written)");
+                "exit non-zero when any stack or input was skipped (the table is still written)");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSweep(*args); }; });
 }

@@ -70,6 +70,7 @@ TEST(SweepTable, WritesSortedAndReadsBackWhatItWrote) {
   table.rows = {flat, steep};
   SweepTable with_break = table;
   with_break.notes = {"skipped a\nb: broken"};
+  with_break.rows[1].stack = "day\n1/alpha-05";
   TempDir dir;
   auto read = readText(dir, formatSweepTable(table));
   ASSERT_TRUE(read) << read.error().message;
@@ -84,6 +85,7 @@ TEST(SweepTable, WritesSortedAndReadsBackWhatItWrote) {
   auto broken = readText(dir, formatSweepTable(with_break));
   ASSERT_TRUE(broken) << broken.error().message;
   EXPECT_EQ(broken->notes, std::vector<std::string>{"skipped a b: broken"});
+  EXPECT_EQ(broken->rows.at(0).stack, "day 1/alpha-05");
 }
 
 struct BadCsv {

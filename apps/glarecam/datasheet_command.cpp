@@ -78,6 +78,7 @@ pipeline::GlareLimit sheetLimit(const std::string& sweep, const pipeline::SweepT
 
 Status runDatasheet(const DatasheetArgs& args) {
   GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
+  GLARECAM_CHECK(requireUtf8(args.module, "--module"));
   if (args.model_beta_deg &&
       !(*args.model_beta_deg > 0 && *args.model_beta_deg <= pipeline::kMaxFacetTiltDeg))
     return badInput("--model-beta: expected a facet tilt in (0, 45] degrees");

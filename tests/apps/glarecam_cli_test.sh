@@ -168,6 +168,9 @@ expect "profile carries the date" grep -q '"date": "2026-11-26"' "$WORK/ds/glare
 SOURCE_DATE_EPOCH=0 check "datasheet at SOURCE_DATE_EPOCH" 0 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds0"
 expect "SOURCE_DATE_EPOCH date" grep -q '"date": "1970-01-01"' "$WORK/ds0/glare-profile.json"
 check "datasheet: bad date" 2 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds1" --date 2026-02-30
+check "datasheet: module name not UTF-8" 2 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds1" --module $'bad\xff'
+expect "module name error is one line" one_line_naming "--module: not valid UTF-8"
+check "datasheet: module name in UTF-8" 0 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds2" --module "Modul Ä – β"
 check "datasheet: bad model beta" 2 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds1" --model-beta 60
 check "datasheet: bad table" 2 "$GLARECAM" datasheet "$WORK/nonnum.csv" --out "$WORK/ds1"
 expect "nothing written for a bad table" test ! -e "$WORK/ds1/datasheet.pdf"

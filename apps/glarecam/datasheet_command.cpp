@@ -85,9 +85,7 @@ Status runDatasheet(const DatasheetArgs& args) {
   std::string date;
   GLARECAM_ASSIGN(date, sheetDate(args.date));
   std::optional<double> threshold_cd_m2;
-  GLARECAM_ASSIGN(threshold_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
-  if (threshold_cd_m2 && !(*threshold_cd_m2 > 0))
-    return badInput("--threshold: expected a positive luminance in cd/m²");
+  GLARECAM_ASSIGN(threshold_cd_m2, parseOptionalLuminance(args.threshold, "--threshold"));
   pipeline::SweepTable table;
   pipeline::SweepFits fits;
   GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));

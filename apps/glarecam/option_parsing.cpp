@@ -72,6 +72,14 @@ Result<std::optional<double>> parseOptionalNumber(const std::optional<std::strin
   return values->front();
 }
 
+Result<std::optional<double>> parseOptionalLuminance(const std::optional<std::string>& text,
+                                                     const std::string& option) {
+  auto value = parseOptionalNumber(text, option);
+  if (value && *value && !(**value > 0))
+    return badInput(option + ": expected a positive luminance in cd/m²");
+  return value;
+}
+
 Status requireUtf8(const std::string& text, const std::string& option) {
   // The byte structure of UTF-8 (RFC 3629): a lead byte, then as many 10xxxxxx continuation
   // bytes as it announces (0 to 3). That is what Cairo and the JSON writer need.

@@ -23,6 +23,9 @@ Status requireUtf8(const std::string& text, const std::string& option);
 // The number of an option that was given (nullopt when it was not).
 Result<std::optional<double>> parseOptionalNumber(const std::optional<std::string>& text,
                                                   const std::string& option);
+// The same for a luminance in cd/m², which must be positive (a --threshold).
+Result<std::optional<double>> parseOptionalLuminance(const std::optional<std::string>& text,
+                                                     const std::string& option);
 
 Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option,
                                             std::size_t min_count, std::size_t max_count);

@@ -28,9 +28,7 @@ Status runSweep(const SweepArgs& args) {
   pipeline::SweepOptions options;
   if (args.out) options.output_directory = *args.out;
   if (args.calibration) options.calibration_file = *args.calibration;
-  GLARECAM_ASSIGN(options.threshold_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
-  if (options.threshold_cd_m2 && !(*options.threshold_cd_m2 > 0))
-    return badInput("--threshold: expected a positive luminance in cd/m²");
+  GLARECAM_ASSIGN(options.threshold_cd_m2, parseOptionalLuminance(args.threshold, "--threshold"));
   options.jobs = args.jobs;
   options.threads = args.threads;
   options.show_progress = !args.no_progress;

@@ -56,6 +56,12 @@ std::optional<double> axisAt(const AxisFit& axis, double alpha_deg) {
   return axis.logistic->curve(alpha_deg);
 }
 
+// The method's verdict on the fits: the fitted Lmax at or above the limit (as in result.json).
+bool glaresAt(const SweepFits& fits, const GlareLimit& limit, double alpha_deg) {
+  const auto limit_cd_m2 = limit.at(alpha_deg);
+  return limit_cd_m2 && fits.lmaxCdM2(alpha_deg) >= *limit_cd_m2;
+}
+
 bool outside(double alpha_deg, double lo_deg, double hi_deg) {
   return alpha_deg < lo_deg || alpha_deg > hi_deg;
 }
@@ -79,7 +85,7 @@ std::vector<ProfileRow> glareProfile(const SweepFits& fits, const GlareLimit& li
     row.alpha_deg = alpha;
     row.lmax_cd_m2 = fits.lmaxCdM2(alpha);
     row.limit_cd_m2 = limit.at(alpha);
-    row.glares = row.limit_cd_m2 && row.lmax_cd_m2 >= *row.limit_cd_m2;
+    row.glares = glaresAt(fits, limit, alpha);
     row.extrapolated = outside(alpha, fits.alpha_min_deg, fits.alpha_max_deg);
     if (row.glares) {
       row.vertical_deg = axisAt(fits.vertical, alpha);
@@ -102,8 +108,7 @@ std::vector<AlphaRange> glareRanges(const SweepFits& fits, const GlareLimit& lim
   const int steps = static_cast<int>(std::lround(kProfileAlphaMaxDeg / kGlareRangeResolutionDeg));
   for (int i = 0; i <= steps; ++i) {
     const double alpha = i / (1 / kGlareRangeResolutionDeg);  // 49.8, not 49.800000000000004
-    const auto limit_cd_m2 = limit.at(alpha);
-    const bool glares = limit_cd_m2 && fits.lmaxCdM2(alpha) >= *limit_cd_m2;
+    const bool glares = glaresAt(fits, limit, alpha);
     if (glares && !inside) ranges.push_back({alpha, alpha});
     if (glares) ranges.back().to_deg = alpha;
     inside = glares;

@@ -612,10 +612,13 @@ void drawBlockTitle(cairo_t* cr, const Box& block, const std::string& title) {
   drawText(cr, {block.x0, block.y0 + kSectionFont.size_pt}, title, {kSectionFont});
 }
 
+// The α range a fit was measured over: all luminance rows, or an axis's rows with an ellipse.
 Range measuredRange(const SweepFits& fits) { return {fits.alpha_min_deg, fits.alpha_max_deg}; }
+Range measuredRange(const AxisFit& axis) { return {axis.alpha_min_deg, axis.alpha_max_deg}; }
 
-bool extrapolates(const SweepFits& fits) {
-  return fits.alpha_min_deg > kAlphaAxisDeg.lo || fits.alpha_max_deg < kMaxLimitAlphaDeg;
+// Whether a fit measured over `measured` is drawn extrapolated somewhere in 0–80°.
+bool extrapolates(Range measured) {
+  return measured.lo > kAlphaAxisDeg.lo || measured.hi < kMaxLimitAlphaDeg;
 }
 
 // Measured points, the limit curve, and the fits over the measured range (not their
@@ -658,7 +661,8 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
       {r2Label("biquadratic fit", fits.biquadratic.quality), kBiquadraticStyle, std::nullopt}};
   if (!bounds.empty())
     legend.push_back({"Lmax only a bound (not fitted)", std::nullopt, kLmaxBoundMarker});
-  if (extrapolates(fits)) legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, {}});
+  if (extrapolates(measuredRange(fits)))
+    legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, {}});
   drawLegend(cr, plot, legend);
 }
 
@@ -707,8 +711,7 @@ std::vector<double> axesPlotValues(const DatasheetContent& content,
   for (const AxisSeries& s : series) {
     for (const SweepRow& row : content.table->rows) values.push_back((row.*s.column).value_or(0));
     if (s.fit->logistic) {
-      const std::vector<double> v =
-          sample(s.fit->logistic->curve, {s.fit->alpha_min_deg, s.fit->alpha_max_deg});
+      const std::vector<double> v = sample(s.fit->logistic->curve, measuredRange(*s.fit));
       values.insert(values.end(), v.begin(), v.end());
     }
   }
@@ -729,8 +732,7 @@ void drawAxisSeries(cairo_t* cr, Plot& plot, const DatasheetContent& content, co
   // extrapolate to anything elsewhere), as in glare-profile.json.
   const std::optional<Range> glaring = glaringRange(content);
   if (s.fit->logistic && glaring)
-    drawFit(cr, plot, s.fit->logistic->curve, {s.fit->alpha_min_deg, s.fit->alpha_max_deg}, s.line,
-            glaring);
+    drawFit(cr, plot, s.fit->logistic->curve, measuredRange(*s.fit), s.line, glaring);
   std::vector<DataPoint> measured;
   for (const SweepRow& row : content.table->rows)
     if (const std::optional<double>& v = row.*s.column) measured.push_back({row.alpha_deg, *v});
@@ -754,8 +756,7 @@ void drawAxesPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
   }
   legend.insert(legend.end(), model_legend.begin(), model_legend.end());
   const auto axis_extrapolates = [](const AxisFit& axis) {
-    return axis.logistic &&
-           (axis.alpha_min_deg > kAlphaAxisDeg.lo || axis.alpha_max_deg < kMaxLimitAlphaDeg);
+    return axis.logistic && extrapolates(measuredRange(axis));
   };
   if (axis_extrapolates(fits.vertical) || axis_extrapolates(fits.horizontal))
     legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, std::nullopt});

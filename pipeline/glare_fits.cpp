@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <set>
+#include <tuple>
 
 namespace glarecam::pipeline {
 
@@ -40,6 +41,12 @@ constexpr double kSteepnessMin = 1e-3, kSteepnessMax = 3.0;
 constexpr double kCosinePowerMin = 1e-3, kCosinePowerMax = 10.0;
 constexpr int kSolverIterations = 1000;
 constexpr double kSolverTolerance = 1e-14;
+
+// The smallest and largest α of a non-empty set.
+std::pair<double, double> alphaRange(std::span<const double> alpha_deg) {
+  const auto [lo, hi] = std::minmax_element(alpha_deg.begin(), alpha_deg.end());
+  return {*lo, *hi};
+}
 
 struct Samples {
   std::span<const double> alpha_deg, y;
@@ -184,8 +191,8 @@ std::vector<GridPoint> bestDistinct(std::vector<GridPoint> grid, int count) {
   return chosen;
 }
 
-// Residual y_i - f(α_i; p) of a model given as a functor Model::operator()(alpha, const T* p).
-template <typename Model, int kParameters>
+// Residual y_i - f(α_i; p) of a model given as Model::evaluate(alpha, const T* p).
+template <typename Model>
 struct Residual {
   double alpha, y;
   template <typename T>
@@ -199,7 +206,7 @@ template <typename Model, int kParameters>
 std::unique_ptr<ceres::Problem> makeProblem(const Samples& s, double* parameters) {
   auto problem = std::make_unique<ceres::Problem>();
   for (int i = 0; i < s.size(); ++i) {
-    using Cost = Residual<Model, kParameters>;
+    using Cost = Residual<Model>;
     problem->AddResidualBlock(
         new ceres::AutoDiffCostFunction<Cost, 1, kParameters>(new Cost{s.alpha_deg[i], s.y[i]}),
         nullptr, parameters);
@@ -322,11 +329,6 @@ Status requirePoints(const Samples& s, int parameters, const char* what) {
   return {};
 }
 
-std::pair<double, double> alphaRange(const Samples& s) {
-  const auto [lo, hi] = std::minmax_element(s.alpha_deg.begin(), s.alpha_deg.end());
-  return {*lo, *hi};
-}
-
 }  // namespace
 
 Result<BiquadraticFit> fitBiquadratic(std::span<const double> alpha_deg,
@@ -375,7 +377,7 @@ LogisticFit refineLogistic(std::span<const double> alpha_deg, std::span<const do
 Result<LogisticFit> fitLogistic(std::span<const double> alpha_deg, std::span<const double> y_deg) {
   const Samples s{alpha_deg, y_deg};
   GLARECAM_CHECK(requirePoints(s, kLogisticParameters, "logistic fit"));
-  const auto [lo, hi] = alphaRange(s);
+  const auto [lo, hi] = alphaRange(alpha_deg);
   const double reach = kCentreSearchSpans * (hi - lo);
   std::vector<GridPoint> grid;
   const GridAxis centres = centreCandidates(s, linSpaced(lo - reach, hi + reach, kGridSteps));
@@ -456,11 +458,7 @@ AxisFit fitAxis(const SweepTable& table, std::optional<double> SweepRow::*axis, 
     y.push_back(*(row.*axis));
   }
   AxisFit fit{.logistic = std::nullopt, .rows_with_ellipse = static_cast<int>(alpha.size())};
-  if (!alpha.empty()) {
-    const auto [lo, hi] = std::minmax_element(alpha.begin(), alpha.end());
-    fit.alpha_min_deg = *lo;
-    fit.alpha_max_deg = *hi;
-  }
+  if (!alpha.empty()) std::tie(fit.alpha_min_deg, fit.alpha_max_deg) = alphaRange(alpha);
   auto logistic = fitLogistic(alpha, y);
   if (!logistic) {
     warnings.push_back(fmt::format("{} logistic not fitted: {} rows with an ellipse ({})", name,
@@ -576,9 +574,7 @@ Result<SweepFits> fitSweep(const SweepTable& table) {
         "luminance: {} row(s) whose Lmax is only a bound (lmax_bound) left out of the fits",
         bounds));
   if (alpha.empty()) return badInput("every row's Lmax is only a bound: nothing to fit");
-  const auto [lo, hi] = std::minmax_element(alpha.begin(), alpha.end());
-  fits.alpha_min_deg = *lo;
-  fits.alpha_max_deg = *hi;
+  std::tie(fits.alpha_min_deg, fits.alpha_max_deg) = alphaRange(alpha);
   GLARECAM_ASSIGN(fits.cosine, fitCosine(alpha, ln_l));
   GLARECAM_ASSIGN(fits.biquadratic, fitBiquadratic(alpha, ln_l));
   noteQuality(fits.warnings, "luminance cos", fits.cosine.quality);

@@ -37,6 +37,9 @@ inline std::unexpected<Error> badInput(std::string message) {
 inline std::unexpected<Error> ioError(std::string message) {
   return fail(ErrorCode::kIo, std::move(message));
 }
+inline std::unexpected<Error> hardwareError(std::string message) {
+  return fail(ErrorCode::kHardware, std::move(message));
+}
 
 // Process exit statuses shared by every glarecam executable.
 inline constexpr int kExitSuccess = 0;

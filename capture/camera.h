@@ -1,0 +1,98 @@
+// A camera as the bracketer sees it: one interface over every backend (Aravis, libcamera, V4L2,
+// the simulator). A backend lists the cameras it can see and opens one by id; the Camera owns its
+// device until destroyed. capture() takes a whole bracket, so a backend can pipeline the frames
+// and match each one to its request (libcamera by the ExposureTime in the request metadata, V4L2
+// by dropping frames until the control took effect), and returns the exposure and gain the camera
+// actually applied: cameras round them, and the manifest must record what was used.
+// Hardware libraries are included only by each backend's .cpp; this header stays portable.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "core/image.h"
+
+namespace glarecam::capture {
+
+struct CameraInfo {
+  std::string uri;      // what `glarecam capture --camera` accepts, e.g. "aravis:GV01"
+  std::string backend;  // "aravis", "libcamera", "v4l2", "sim"
+  std::string vendor;
+  std::string model;
+  std::string serial;
+  std::string detail;  // transport, address, device node
+};
+
+struct CameraLimits {
+  double min_exposure_us = 0;
+  double max_exposure_us = 0;
+  double exposure_step_us = 1;  // resolution the camera rounds to
+  double min_gain_db = 0;
+  double max_gain_db = 0;
+};
+
+// What the frames hold: the GenICam PixelFormat name (Mono8, Mono12, Mono16) and the number of
+// significant bits of each value, which the stack's PNGs keep (8 or 16 bits per file).
+struct SensorFormat {
+  std::string pixel_format;
+  int width = 0;
+  int height = 0;
+  int bits_per_pixel = 16;  // 8 or 16 as stored; values use up to this many bits
+};
+
+struct ExposureRequest {
+  double exposure_us = 0;
+  double gain_db = 0;
+};
+
+struct CapturedFrame {
+  RawFrame image;
+  double exposure_us = 0;  // as applied (read back or from the frame's metadata)
+  double gain_db = 0;      // as applied
+  std::uint64_t timestamp_ns = 0;
+  int retries = 0;  // incomplete or stale frames discarded before this one
+};
+
+// Options every backend understands; the ones a backend has no use for are ignored.
+struct CameraOptions {
+  std::optional<std::string> pixel_format;    // GenICam name; default: the deepest mono format
+  int max_frame_retries = 5;                  // incomplete / timed-out frames per request
+  double frame_timeout_s = 5.0;               // beyond the exposure time
+  std::optional<double> simulated_alpha_deg;  // sim: the α of the scene the rig looks at
+};
+
+class Camera {
+ public:
+  virtual ~Camera() = default;
+  Camera(const Camera&) = delete;
+  Camera& operator=(const Camera&) = delete;
+
+  virtual const CameraInfo& info() const = 0;
+  virtual CameraLimits limits() const = 0;
+  virtual SensorFormat format() const = 0;
+  // One frame per request, in request order. Errors name the camera's URI; a camera that was
+  // lost (unplugged, powered off) fails every later call.
+  virtual Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) = 0;
+
+ protected:
+  Camera() = default;
+};
+
+class CameraBackend {
+ public:
+  virtual ~CameraBackend() = default;
+  virtual std::string_view scheme() const = 0;  // the URI prefix: "aravis"
+  // Cameras this backend can see now; an empty list is not an error.
+  virtual Result<std::vector<CameraInfo>> list() = 0;
+  // Opens the camera `id` (the part of the URI after "scheme:"; empty: the first one found).
+  virtual Result<std::unique_ptr<Camera>> open(std::string_view id,
+                                               const CameraOptions& options) = 0;
+};
+
+}  // namespace glarecam::capture

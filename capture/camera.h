@@ -17,8 +17,16 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/stack_manifest.h"
 
 namespace glarecam::capture {
+
+// The lens and filter in front of the sensor, when the backend knows them (the simulator does;
+// real cameras do not, and the capture's --f-number / --nd-transmission say).
+struct CameraOptics {
+  std::optional<double> f_number;
+  std::optional<double> nd_transmission;
+};
 
 struct CameraInfo {
   std::string uri;      // what `glarecam capture --camera` accepts, e.g. "aravis:GV01"
@@ -27,6 +35,7 @@ struct CameraInfo {
   std::string model;
   std::string serial;
   std::string detail;  // transport, address, device node
+  CameraOptics optics;
 };
 
 struct CameraLimits {
@@ -76,6 +85,9 @@ class Camera {
   virtual const CameraInfo& info() const = 0;
   virtual CameraLimits limits() const = 0;
   virtual SensorFormat format() const = 0;
+  // The calibration of a camera that knows its own (the simulator); real cameras have none and
+  // the capture's --calibration supplies it.
+  virtual std::optional<Calibration> knownCalibration() const { return std::nullopt; }
   // One frame per request, in request order. Errors name the camera's URI; a camera that was
   // lost (unplugged, powered off) fails every later call.
   virtual Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) = 0;

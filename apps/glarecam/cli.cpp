@@ -64,6 +64,9 @@ int runGlarecam(int argc, char** argv) {
   addFitCommand(app, action);
   addDatasheetCommand(app, action);
   addModelCommand(app, action);
+  addCamerasCommand(app, action);
+  addCaptureCommand(app, action);
+  addFakeCameraCommand(app, action);
 
   try {
     app.parse(argc, argv);

@@ -18,6 +18,9 @@ void addSweepCommand(CLI::App& app, Action& action);
 void addFitCommand(CLI::App& app, Action& action);
 void addDatasheetCommand(CLI::App& app, Action& action);
 void addModelCommand(CLI::App& app, Action& action);
+void addCamerasCommand(CLI::App& app, Action& action);
+void addCaptureCommand(CLI::App& app, Action& action);
+void addFakeCameraCommand(CLI::App& app, Action& action);
 
 // Shared by fit and datasheet: reads the sweep table at `path` into `table` and fits it, logging
 // the fits' warnings; errors name the file.

@@ -22,6 +22,8 @@ constexpr double kMinFovDeg = 1.0, kMaxFovDeg = 150.0;  // a pinhole model's sen
 constexpr double kMaxOffsetDeg = 80.0;                  // the lobe stays in front of the lens
 constexpr std::string_view kTruthSchema = "glarecam.truth/1";
 
+}  // namespace
+
 Calibration simulatedCalibration(const SimulationOptions& options) {
   Calibration calibration;
   calibration.black_level_dn = options.sensor.black_level_dn;
@@ -34,6 +36,8 @@ Calibration simulatedCalibration(const SimulationOptions& options) {
   calibration.source = nlohmann::json::object();
   return calibration;
 }
+
+namespace {
 
 std::string stackId(const SimulationOptions& options) {
   char id[96];
@@ -175,7 +179,7 @@ nlohmann::json SimulatedStack::truthJson() const {
            {{"exposures_us", bracket.exposures_us}, {"peak_clipped", bracket.peak_clipped}}}};
 }
 
-Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
+Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options) {
   GLARECAM_CHECK(options.validate());
   ModuleGlareModel module;
   GLARECAM_ASSIGN(module, moduleModel(options.module));
@@ -198,10 +202,9 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   lobe->centre_direction_deg = options.lobe_offset_deg;
   auto scene = GlareScene::create(*lobe);
   if (!scene) return std::unexpected(scene.error());
-  SimulatedStack result;
-  Progress progress("simulate", 1 + options.bracket.min_frames, options.show_progress);
-  const Calibration calibration = simulatedCalibration(options);
-  const calibration::CameraModel camera(calibration.intrinsics);
+  SimulatedScene result;
+  result.calibration = simulatedCalibration(options);
+  const calibration::CameraModel camera(result.calibration.intrinsics);
   GLARECAM_CHECK(checkLensInvertible(camera, options.width, options.height));
   const auto centre = camera.project(scene->centreRay());
   if (!(centre.x >= 0 && centre.y >= 0 && centre.x <= options.width - 1 &&
@@ -211,13 +214,31 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   result.centre_pixel = {centre.x, centre.y};
   result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
   result.truth = scene->truth(limit);
+  return result;
+}
+
+FrameSpec simulatedFrameSpec(const SimulationOptions& options, double exposure_us, double gain_db) {
+  return {.file = {},
+          .exposure_us = exposure_us,
+          .gain_db = gain_db,
+          .f_number = options.f_number,
+          .nd_transmission = options.nd_transmission,
+          .source = nlohmann::json::object()};
+}
+
+Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
+  Progress progress("simulate", 1 + options.bracket.min_frames, options.show_progress);
+  SimulatedScene scene;
+  GLARECAM_ASSIGN(scene, renderSimulatedScene(options));
   progress.advance("scene rendered");
+  SimulatedStack result;
+  result.true_luminance_cd_m2 = std::move(scene.true_luminance_cd_m2);
+  result.truth = scene.truth;
+  result.centre_pixel = scene.centre_pixel;
+  const Calibration& calibration = scene.calibration;
 
   // Signal rates at the reference exposure of 1 µs, from a unit-exposure frame's radiometry.
-  FrameSpec unit;
-  unit.exposure_us = 1.0;
-  unit.f_number = options.f_number;
-  unit.nd_transmission = options.nd_transmission;
+  const FrameSpec unit = simulatedFrameSpec(options, 1.0, 0.0);
   const double scale = calibration::frameRadiometry(unit, calibration).scale_cd_m2_per_dn;
   const auto [peak, background] = meterScene(result.true_luminance_cd_m2);
   GLARECAM_ASSIGN(

@@ -53,6 +53,23 @@ struct SimulatedStack {
 Intrinsics pinholeIntrinsics(int width, int height, double horizontal_fov_deg,
                              const std::array<double, 5>& distortion = {});
 
+// The scene the simulated rig looks at, before any sensor: what the `sim:` camera and the fake
+// GigE Vision camera expose frames of.
+struct SimulatedScene {
+  FloatImage true_luminance_cd_m2;
+  SceneTruth truth;
+  Calibration calibration;  // the simulated camera's, exact by construction
+  std::array<double, 2> centre_pixel{0, 0};
+};
+
+Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options);
+
+// The calibration block of the simulated camera (its sensor, K, f-number and pinhole model).
+Calibration simulatedCalibration(const SimulationOptions& options);
+
+// A frame of the simulated camera at an exposure and gain, with its f-number and ND filter.
+FrameSpec simulatedFrameSpec(const SimulationOptions& options, double exposure_us, double gain_db);
+
 Result<SimulatedStack> simulateStack(const SimulationOptions& options);
 
 // Writes the stack atomically with truth.json inside it, beside stack.json.

@@ -7,6 +7,8 @@
 #include <random>
 #include <sstream>
 
+#include "pipeline/process_stack.h"
+
 namespace glarecam::testing {
 namespace fs = std::filesystem;
 
@@ -93,6 +95,31 @@ std::string readText(const fs::path& path) {
 void writeText(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << text;
+}
+
+nlohmann::json expectProcessedMatchesTruth(const std::filesystem::path& directory,
+                                           const capture::SceneTruth& truth,
+                                           double relative_tolerance) {
+  pipeline::ProcessOptions options;
+  options.show_progress = false;
+  auto summary = pipeline::processStack(directory, options);
+  EXPECT_TRUE(summary) << summary.error().message;
+  if (!summary) return {};
+  const nlohmann::json& result = summary->result;
+  EXPECT_NEAR(result["luminance"]["max_cd_m2"].get<double>() / truth.peak_cd_m2, 1,
+              relative_tolerance);
+  const auto expect_axes = [&](const nlohmann::json& ellipse,
+                               const std::optional<capture::EllipseAxes>& axes) {
+    if (!axes) return;
+    EXPECT_TRUE(ellipse.is_object()) << ellipse.dump();
+    if (!ellipse.is_object()) return;
+    EXPECT_NEAR(ellipse["vertical_deg"].get<double>() / axes->vertical_deg, 1, relative_tolerance);
+    EXPECT_NEAR(ellipse["horizontal_deg"].get<double>() / axes->horizontal_deg, 1,
+                relative_tolerance);
+  };
+  expect_axes(result["limit"]["ellipse"], truth.limit_axes);
+  expect_axes(result["fwhm"]["ellipse"], truth.fwhm_axes);
+  return result;
 }
 
 }  // namespace glarecam::testing

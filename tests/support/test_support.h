@@ -64,6 +64,12 @@ capture::GlareLobe lobeAtLimit(double limit_cd_m2, double peak_cd_m2, double ver
 RenderedScene renderScene(const SceneSpec& spec);
 
 std::string readText(const std::filesystem::path& path);
+
+// Processes the stack at `directory` (no progress) and checks its maximum and both ellipses
+// against `truth`, each within `relative_tolerance`; returns result.json for further checks.
+nlohmann::json expectProcessedMatchesTruth(const std::filesystem::path& directory,
+                                           const capture::SceneTruth& truth,
+                                           double relative_tolerance);
 void writeText(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace glarecam::testing

@@ -1,0 +1,305 @@
+// glarecam cameras / capture / fake-camera: the camera backends (capture/camera_registry.h), the
+// bracketer (capture/bracketer.h) and Aravis's GigE Vision fake camera showing our scene.
+#include <fmt/format.h>
+#include <signal.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <memory>
+#include <optional>
+#include <thread>
+
+#include "apps/glarecam/commands.h"
+#include "apps/glarecam/option_parsing.h"
+#include "capture/bracketer.h"
+#include "capture/camera_registry.h"
+#include "core/atomic_file.h"
+#include "core/stack_io.h"
+#include "core/stack_manifest.h"
+#if GLARECAM_WITH_ARAVIS
+#include "capture/aravis/fake_gv_camera.h"
+#endif
+
+namespace glarecam::apps {
+namespace {
+
+constexpr double kMaxAlphaDeg = 90.0;  // α is measured from the module normal
+
+// ---- cameras -------------------------------------------------------------------------------
+
+nlohmann::json cameraInfoJson(const capture::CameraInfo& camera) {
+  return {{"uri", camera.uri},     {"backend", camera.backend}, {"vendor", camera.vendor},
+          {"model", camera.model}, {"serial", camera.serial},   {"detail", camera.detail}};
+}
+
+Status runCameras(bool json) {
+  nlohmann::json document = {{"cameras", nlohmann::json::array()},
+                             {"unavailable", nlohmann::json::object()}};
+  for (const auto& backend : capture::cameraBackends()) {
+    auto cameras = backend->list();
+    if (!cameras) {
+      document["unavailable"][std::string(backend->scheme())] = cameras.error().message;
+      if (!json)
+        std::printf("%s: %s\n", std::string(backend->scheme()).c_str(),
+                    cameras.error().message.c_str());
+      continue;
+    }
+    for (const auto& camera : *cameras) {
+      document["cameras"].push_back(cameraInfoJson(camera));
+      if (!json) {
+        std::printf("%-28s %s %s (serial %s) %s\n", camera.uri.c_str(), camera.vendor.c_str(),
+                    camera.model.c_str(), camera.serial.empty() ? "-" : camera.serial.c_str(),
+                    camera.detail.c_str());
+      }
+    }
+  }
+  if (json) std::fputs(jsonText(document).c_str(), stdout);
+  return {};
+}
+
+// ---- capture -------------------------------------------------------------------------------
+
+struct CaptureArgs {
+  std::string camera;
+  std::string out;
+  std::optional<std::string> alpha, gain, f_number, nd, calibration, pixel_format;
+  std::string exposures = "auto";
+  std::string count = "1";
+  double interval_s = 0;
+  std::string max_retries = "5";
+  bool no_progress = false;
+};
+
+Result<capture::CaptureSettings> captureSettings(const CaptureArgs& args) {
+  capture::CaptureSettings settings;
+  GLARECAM_ASSIGN(settings.alpha_deg, parseOptionalNumber(args.alpha, "--alpha"));
+  if (settings.alpha_deg && !(*settings.alpha_deg >= 0 && *settings.alpha_deg < kMaxAlphaDeg)) {
+    return badInput("capture: --alpha must be in [0, 90) degrees");
+  }
+  std::optional<double> gain;
+  GLARECAM_ASSIGN(gain, parseOptionalNumber(args.gain, "--gain"));
+  settings.gain_db = gain.value_or(0.0);
+  GLARECAM_ASSIGN(settings.optics.f_number, parseOptionalNumber(args.f_number, "--f-number"));
+  GLARECAM_ASSIGN(settings.optics.nd_transmission,
+                  parseOptionalNumber(args.nd, "--nd-transmission"));
+  if (settings.optics.f_number && !(*settings.optics.f_number > 0)) {
+    return badInput("capture: --f-number must be positive");
+  }
+  if (settings.optics.nd_transmission &&
+      !(*settings.optics.nd_transmission > 0 && *settings.optics.nd_transmission <= 1)) {
+    return badInput("capture: --nd-transmission must be in (0, 1]");
+  }
+  if (args.exposures != "auto") {
+    std::vector<double> exposures;
+    GLARECAM_ASSIGN(exposures, parseNumberList(args.exposures, "--exposures", 1, 64));
+    settings.exposures_us = std::move(exposures);
+  }
+  GLARECAM_CHECK(requireNonEmptyPath(args.calibration, "--calibration"));
+  if (args.calibration) {
+    GLARECAM_ASSIGN(settings.calibration, readCalibrationFile(*args.calibration));
+  }
+  settings.show_progress = !args.no_progress;
+  return settings;
+}
+
+Result<capture::CameraOptions> cameraOptions(const CaptureArgs& args,
+                                             const capture::CaptureSettings& settings) {
+  capture::CameraOptions options;
+  options.pixel_format = args.pixel_format;
+  std::uint64_t retries = 0;
+  GLARECAM_ASSIGN(retries, parseUnsigned(args.max_retries, "--max-retries"));
+  options.max_frame_retries = static_cast<int>(std::min<std::uint64_t>(retries, 1000));
+  options.simulated_alpha_deg = settings.alpha_deg;
+  return options;
+}
+
+Status runCapture(const CaptureArgs& args) {
+  capture::CaptureSettings settings;
+  GLARECAM_ASSIGN(settings, captureSettings(args));
+  capture::CameraOptions options;
+  GLARECAM_ASSIGN(options, cameraOptions(args, settings));
+  std::uint64_t count = 0;
+  GLARECAM_ASSIGN(count, parseUnsigned(args.count, "--count"));
+  if (count == 0) return badInput("capture: --count must be at least 1");
+  if (!(args.interval_s >= 0)) return badInput("capture: --interval must be >= 0 seconds");
+  GLARECAM_CHECK(ensureDirectory(args.out));
+  std::unique_ptr<capture::Camera> camera;
+  GLARECAM_ASSIGN(camera, capture::openCamera(args.camera, options));
+  if (!settings.calibration && !camera->knownCalibration()) {
+    spdlog::warn(
+        "capture: no --calibration; the stacks need one when processed "
+        "(glarecam process --calibration FILE)");
+  }
+  auto next = std::chrono::steady_clock::now();
+  for (std::uint64_t i = 0; i < count; ++i) {
+    std::this_thread::sleep_until(next);
+    next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(args.interval_s));
+    capture::CapturedStack stack;
+    GLARECAM_ASSIGN(stack, capture::captureStack(*camera, settings));
+    std::filesystem::path written;
+    GLARECAM_ASSIGN(written, capture::writeCapturedStack(args.out, stack));
+    std::printf("%s\n", written.c_str());
+    std::fflush(stdout);
+  }
+  return {};
+}
+
+// ---- fake-camera ---------------------------------------------------------------------------
+
+#if GLARECAM_WITH_ARAVIS
+struct FakeCameraArgs {
+  capture::FakeGvCameraOptions options;
+  std::string size = "640x512";
+  std::string seed = "1";
+  std::optional<std::string> calibration_out;
+  double duration_s = 0;
+};
+
+Status writeFakeCalibrations(const capture::FakeGvCamera& camera, const std::string& directory) {
+  GLARECAM_CHECK(ensureDirectory(directory));
+  for (const char* format : {"Mono16", "Mono8"}) {
+    Calibration calibration;
+    GLARECAM_ASSIGN(calibration, camera.calibration(format));
+    const auto path =
+        std::filesystem::path(directory) /
+        fmt::format("fake-camera-{}.json", format == std::string("Mono16") ? "mono16" : "mono8");
+    GLARECAM_CHECK(writeFileAtomic(path, jsonText(toJson(calibration))));
+    spdlog::info("fake-camera: calibration for {} frames: {}", format, path.string());
+  }
+  return {};
+}
+
+// Blocks until SIGINT / SIGTERM, or for `duration_s` when positive.
+void waitForStop(double duration_s) {
+  sigset_t stop;
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGINT);
+  sigaddset(&stop, SIGTERM);
+  if (duration_s > 0) {
+    const auto whole = static_cast<time_t>(duration_s);
+    const timespec timeout{whole, static_cast<long>((duration_s - whole) * 1e9)};
+    sigtimedwait(&stop, nullptr, &timeout);
+  } else {
+    int signal_number = 0;
+    sigwait(&stop, &signal_number);
+  }
+}
+
+Status runFakeCamera(FakeCameraArgs& args) {
+  std::pair<int, int> size;
+  GLARECAM_ASSIGN(size, parseSize(args.size, "--size"));
+  std::tie(args.options.scene.width, args.options.scene.height) = size;
+  GLARECAM_ASSIGN(args.options.scene.seed, parseUnsigned(args.seed, "--seed"));
+  GLARECAM_CHECK(requireNonEmptyPath(args.calibration_out, "--calibration-out"));
+  if (!(args.duration_s >= 0)) return badInput("fake-camera: --duration must be >= 0 seconds");
+  // Block the stop signals before any thread starts, so that only waitForStop receives them.
+  sigset_t stop;
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGINT);
+  sigaddset(&stop, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop, nullptr);
+  std::unique_ptr<capture::FakeGvCamera> camera;
+  GLARECAM_ASSIGN(camera, capture::FakeGvCamera::start(args.options));
+  if (args.calibration_out) GLARECAM_CHECK(writeFakeCalibrations(*camera, *args.calibration_out));
+  spdlog::info("fake-camera: serving {} on {} (α {:g}°, packet loss {:g}); Ctrl-C stops it",
+               camera->uri(), args.options.interface_address, args.options.scene.alpha_deg,
+               args.options.packet_loss);
+  std::printf("%s\n", camera->uri().c_str());
+  std::fflush(stdout);
+  waitForStop(args.duration_s);
+  return {};
+}
+#endif
+
+}  // namespace
+
+void addCamerasCommand(CLI::App& app, Action& action) {
+  auto json = std::make_shared<bool>(false);
+  CLI::App* sub =
+      app.add_subcommand("cameras",
+                         "List the cameras every backend can see: sim, aravis, libcamera, v4l2 "
+                         "(docs/cameras.md)");
+  sub->add_flag("--json", *json, "print JSON instead of a table");
+  sub->callback([json, &action] { action = [json] { return runCameras(*json); }; });
+}
+
+void addCaptureCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<CaptureArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "capture",
+      "Capture a bracketed stack from a camera and write it atomically under --out; "
+      "prints each stack's path (docs/cameras.md)");
+  sub->add_option("--camera", args->camera,
+                  "camera URI: sim:[KEY=VALUE,...], aravis:[ID], libcamera:[ID], v4l2:/dev/videoN")
+      ->required();
+  sub->add_option("--out", args->out, "directory the stacks are written into (created)")
+      ->required();
+  sub->add_option("--alpha", args->alpha, "angle of incidence α in degrees, recorded in the stack");
+  sub->add_option("--exposures", args->exposures,
+                  "'auto' (meter, plan, check) or a list of exposure times in µs, e.g. 10,100,1000")
+      ->capture_default_str();
+  sub->add_option("--gain", args->gain, "analogue gain in dB (default 0)");
+  sub->add_option("--calibration", args->calibration,
+                  "calibration file written inline into each stack; its black level and "
+                  "saturation guide the auto-bracket");
+  sub->add_option("--pixel-format", args->pixel_format,
+                  "GenICam pixel format (Mono16, Mono12, Mono8); default the deepest mono one");
+  sub->add_option("--f-number", args->f_number, "lens f-number, when the camera cannot know it");
+  sub->add_option("--nd-transmission", args->nd, "ND filter transmission in (0, 1]");
+  sub->add_option("--count", args->count, "number of stacks in the series")->capture_default_str();
+  sub->add_option("--interval", args->interval_s, "seconds from one capture's start to the next")
+      ->capture_default_str();
+  sub->add_option("--max-retries", args->max_retries,
+                  "incomplete or timed-out frames retried per exposure")
+      ->capture_default_str();
+  sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
+  sub->callback([args, &action] { action = [args] { return runCapture(*args); }; });
+}
+
+void addFakeCameraCommand(CLI::App& app, Action& action) {
+#if GLARECAM_WITH_ARAVIS
+  auto args = std::make_shared<FakeCameraArgs>();
+  args->options.scene.horizontal_fov_deg = 20.0;  // the lobe fills a 640x512 frame
+  CLI::App* sub = app.add_subcommand(
+      "fake-camera",
+      "Serve Aravis's GigE Vision fake camera showing the simulated glare scene; prints its URI "
+      "and runs until Ctrl-C (docs/cameras.md)");
+  sub->add_option("--interface", args->options.interface_address,
+                  "network interface name or IPv4 address to serve on")
+      ->capture_default_str();
+  sub->add_option("--serial", args->options.serial, "the camera's serial number")
+      ->capture_default_str();
+  sub->add_option("--alpha", args->options.scene.alpha_deg, "α of the scene, degrees 0..80")
+      ->capture_default_str();
+  sub->add_option("--module", args->options.scene.module, "module glare model")
+      ->capture_default_str();
+  sub->add_option("--size", args->size, "frame size WIDTHxHEIGHT (at most 2048x2048)")
+      ->capture_default_str();
+  sub->add_option("--fov", args->options.scene.horizontal_fov_deg,
+                  "horizontal field of view in degrees")
+      ->capture_default_str();
+  sub->add_option("--seed", args->seed, "noise seed")->capture_default_str();
+  sub->add_option("--packet-loss", args->options.packet_loss,
+                  "fraction of GVSP packets dropped, e.g. 0.001")
+      ->capture_default_str();
+  sub->add_option("--calibration-out", args->calibration_out,
+                  "directory to write fake-camera-mono16.json and fake-camera-mono8.json into");
+  sub->add_option("--duration", args->duration_s,
+                  "stop after this many seconds (0: run until "
+                  "SIGINT/SIGTERM)")
+      ->capture_default_str();
+  sub->callback([args, &action] { action = [args] { return runFakeCamera(*args); }; });
+#else
+  app.add_subcommand("fake-camera", "Unavailable: this glarecam was built without Aravis 0.8")
+      ->callback([&action] {
+        action = [] {
+          return hardwareError("fake-camera: this glarecam was built without Aravis 0.8");
+        };
+      });
+#endif
+}
+
+}  // namespace glarecam::apps

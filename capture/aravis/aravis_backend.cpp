@@ -1,0 +1,408 @@
+#include "capture/aravis/aravis_backend.h"
+
+#include <arv.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cstring>
+
+#include "capture/aravis/glib_ownership.h"
+
+namespace glarecam::capture {
+namespace {
+
+using aravis::GObjectPtr;
+using aravis::OwnedError;
+
+// Deepest first: Mono8 only as the last resort (a warning says so).
+constexpr std::array<std::string_view, 3> kPreferredPixelFormats{"Mono16", "Mono12", "Mono8"};
+constexpr int kStreamBufferCount = 8;        // enough to absorb a burst while one is copied
+constexpr guint64 kPopSliceUs = 50'000;      // how often a wait checks for control-lost
+constexpr int kFreeRunningSettleFrames = 2;  // frames in flight when the exposure changed
+constexpr double kMicrosecondsPerSecond = 1e6;
+constexpr std::string_view kFakeDevicePrefix = "Fake_";  // Aravis's in-process fake: "Fake_1"
+
+std::string deviceDetail(ArvCamera* camera) {
+  if (arv_camera_is_gv_device(camera)) return "GigE Vision";
+  if (arv_camera_is_uv_device(camera)) return "USB3 Vision";
+  return "Aravis fake camera";
+}
+
+std::string orEmpty(const char* text) { return text != nullptr ? text : ""; }
+
+// Copies an image buffer into a RawFrame; nullopt when it is not complete or not mono.
+std::optional<RawFrame> toRawFrame(ArvBuffer* buffer) {
+  const ArvPixelFormat format = arv_buffer_get_image_pixel_format(buffer);
+  const int width = arv_buffer_get_image_width(buffer);
+  const int height = arv_buffer_get_image_height(buffer);
+  std::size_t bytes_per_pixel = 0;
+  if (format == ARV_PIXEL_FORMAT_MONO_8) bytes_per_pixel = 1;
+  if (format == ARV_PIXEL_FORMAT_MONO_12 || format == ARV_PIXEL_FORMAT_MONO_16) bytes_per_pixel = 2;
+  std::size_t size = 0;
+  const auto* data = static_cast<const std::uint8_t*>(arv_buffer_get_image_data(buffer, &size));
+  const std::size_t expected = static_cast<std::size_t>(width) * height * bytes_per_pixel;
+  if (bytes_per_pixel == 0 || width <= 0 || height <= 0 || data == nullptr || size < expected) {
+    return std::nullopt;
+  }
+  RawFrame frame(width, height);
+  if (bytes_per_pixel == 1) {
+    std::copy(data, data + expected, frame.data());
+  } else {
+    std::memcpy(frame.data(), data, expected);  // GenICam Mono12/16: little-endian, unpacked
+  }
+  return frame;
+}
+
+void onControlLost(ArvDevice*, gpointer flag) {
+  static_cast<std::atomic<bool>*>(flag)->store(true);
+}
+
+class AravisCamera final : public Camera {
+ public:
+  AravisCamera(GObjectPtr<ArvCamera> camera, const CameraOptions& options)
+      : camera_(std::move(camera)), options_(options) {}
+
+  ~AravisCamera() override {
+    if (acquiring_) {
+      OwnedError ignored;
+      arv_camera_stop_acquisition(camera_.get(), ignored.out());
+    }
+    if (control_lost_handler_ != 0) {
+      g_signal_handler_disconnect(arv_camera_get_device(camera_.get()), control_lost_handler_);
+    }
+    stream_.reset();  // the stream thread stops before the camera goes
+  }
+
+  Status configure(std::string_view requested_id) {
+    ArvCamera* camera = camera_.get();
+    control_lost_handler_ = g_signal_connect(arv_camera_get_device(camera), "control-lost",
+                                             G_CALLBACK(onControlLost), &control_lost_);
+    OwnedError error;
+    const std::string device_id = orEmpty(arv_camera_get_device_id(camera, error.out()));
+    info_ = {.uri = "aravis:" + (device_id.empty() ? std::string(requested_id) : device_id),
+             .backend = "aravis",
+             .vendor = orEmpty(arv_camera_get_vendor_name(camera, error.out())),
+             .model = orEmpty(arv_camera_get_model_name(camera, error.out())),
+             .serial = orEmpty(arv_camera_get_device_serial_number(camera, error.out())),
+             .detail = deviceDetail(camera),
+             .optics = {}};
+    GLARECAM_CHECK(choosePixelFormat());
+    GLARECAM_CHECK(readLimits());
+    GLARECAM_CHECK(chooseTrigger());
+    return createStream();
+  }
+
+  const CameraInfo& info() const override { return info_; }
+  CameraLimits limits() const override { return limits_; }
+  SensorFormat format() const override { return format_; }
+
+  Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) override {
+    GLARECAM_CHECK(checkConnected());
+    GLARECAM_CHECK(startAcquisition());
+    std::vector<CapturedFrame> frames;
+    frames.reserve(requests.size());
+    for (const ExposureRequest& request : requests) {
+      auto frame = captureOne(request);
+      if (!frame) {
+        stopAcquisition();
+        return std::unexpected(frame.error());
+      }
+      frames.push_back(std::move(*frame));
+    }
+    stopAcquisition();
+    return frames;
+  }
+
+ private:
+  std::unexpected<Error> failed(std::string_view what, const OwnedError& error) const {
+    if (control_lost_) return lostError();
+    return hardwareError(fmt::format("{}: {}: {}", info_.uri, what, error.message()));
+  }
+  std::unexpected<Error> lostError() const {
+    return hardwareError(fmt::format(
+        "{}: camera lost (control-lost: unplugged, powered off or unreachable); nothing was "
+        "stored",
+        info_.uri));
+  }
+  Status checkConnected() const {
+    if (control_lost_) return lostError();
+    return {};
+  }
+
+  Status choosePixelFormat() {
+    OwnedError error;
+    guint count = 0;
+    aravis::StringArray available(
+        arv_camera_dup_available_pixel_formats_as_strings(camera_.get(), &count, error.out()));
+    if (error) return failed("cannot list pixel formats", error);
+    const auto offered = [&](std::string_view name) {
+      for (guint i = 0; i < count; ++i) {
+        if (available.get()[i] != nullptr && name == available.get()[i]) return true;
+      }
+      return false;
+    };
+    std::string chosen;
+    if (options_.pixel_format) {
+      if (!offered(*options_.pixel_format)) {
+        return badInput(fmt::format("{}: pixel format {} is not offered by this camera", info_.uri,
+                                    *options_.pixel_format));
+      }
+      chosen = *options_.pixel_format;
+    } else {
+      for (const auto name : kPreferredPixelFormats) {
+        if (offered(name)) {
+          chosen = name;
+          break;
+        }
+      }
+      if (chosen.empty()) {
+        return hardwareError(fmt::format("{}: offers none of Mono16, Mono12, Mono8", info_.uri));
+      }
+      if (chosen == "Mono8") {
+        spdlog::warn(
+            "{}: no 12- or 16-bit mono format; using Mono8 (less range per frame, the "
+            "bracket needs more frames)",
+            info_.uri);
+      }
+    }
+    arv_camera_set_pixel_format_from_string(camera_.get(), chosen.c_str(), error.out());
+    if (error) return failed("cannot set PixelFormat " + chosen, error);
+    gint x = 0, y = 0, width = 0, height = 0;
+    arv_camera_get_region(camera_.get(), &x, &y, &width, &height, error.out());
+    if (error) return failed("cannot read the image size", error);
+    format_ = {.pixel_format = chosen,
+               .width = width,
+               .height = height,
+               .bits_per_pixel = chosen == "Mono8" ? 8 : 16};
+    return {};
+  }
+
+  Status readLimits() {
+    OwnedError error;
+    arv_camera_set_exposure_time_auto(camera_.get(), ARV_AUTO_OFF, error.out());
+    error.reset();  // cameras without ExposureAuto are already manual
+    arv_camera_get_exposure_time_bounds(camera_.get(), &limits_.min_exposure_us,
+                                        &limits_.max_exposure_us, error.out());
+    if (error) return failed("cannot read the exposure time range", error);
+    limits_.exposure_step_us = 1.0;  // GenICam floats rarely declare one; read-back decides
+    if (arv_camera_is_gain_available(camera_.get(), error.out())) {
+      arv_camera_set_gain_auto(camera_.get(), ARV_AUTO_OFF, error.out());
+      error.reset();
+      arv_camera_get_gain_bounds(camera_.get(), &limits_.min_gain_db, &limits_.max_gain_db,
+                                 error.out());
+      if (error) return failed("cannot read the gain range", error);
+      gain_available_ = true;
+    }
+    return {};
+  }
+
+  Status chooseTrigger() {
+    OwnedError error;
+    arv_camera_set_acquisition_mode(camera_.get(), ARV_ACQUISITION_MODE_CONTINUOUS, error.out());
+    if (error) return failed("cannot set AcquisitionMode Continuous", error);
+    software_trigger_ = arv_camera_is_software_trigger_supported(camera_.get(), error.out());
+    error.reset();
+    if (software_trigger_) {
+      arv_camera_set_trigger(camera_.get(), "Software", error.out());
+      if (error) return failed("cannot set TriggerSource Software", error);
+    } else {
+      arv_camera_clear_triggers(camera_.get(), error.out());
+      error.reset();  // cameras without TriggerMode are free-running anyway
+    }
+    return {};
+  }
+
+  Status createStream() {
+    OwnedError error;
+    if (arv_camera_is_gv_device(camera_.get())) {
+      arv_camera_gv_auto_packet_size(camera_.get(), error.out());
+      if (error) spdlog::warn("{}: packet size negotiation failed: {}", info_.uri, error.message());
+      error.reset();
+    }
+    stream_.reset(arv_camera_create_stream(camera_.get(), nullptr, nullptr, error.out()));
+    if (error || !stream_) return failed("cannot create a stream", error);
+    const guint payload = arv_camera_get_payload(camera_.get(), error.out());
+    if (error) return failed("cannot read the payload size", error);
+    for (int i = 0; i < kStreamBufferCount; ++i) {
+      arv_stream_push_buffer(stream_.get(), arv_buffer_new_allocate(payload));
+    }
+    return {};
+  }
+
+  Status startAcquisition() {
+    OwnedError error;
+    arv_camera_start_acquisition(camera_.get(), error.out());
+    if (error) return failed("cannot start acquisition", error);
+    acquiring_ = true;
+    return {};
+  }
+
+  void stopAcquisition() {
+    OwnedError error;
+    arv_camera_stop_acquisition(camera_.get(), error.out());
+    acquiring_ = false;
+    // Buffers that arrived after the last frame was taken go back to the pool.
+    while (ArvBuffer* stale = arv_stream_try_pop_buffer(stream_.get())) {
+      arv_stream_push_buffer(stream_.get(), stale);
+    }
+  }
+
+  // Sets exposure and gain and returns what the camera applied.
+  Result<ExposureRequest> apply(const ExposureRequest& request) {
+    OwnedError error;
+    arv_camera_set_exposure_time(camera_.get(), request.exposure_us, error.out());
+    if (error)
+      return failed(fmt::format("cannot set exposure {:g} µs", request.exposure_us), error);
+    ExposureRequest applied;
+    applied.exposure_us = arv_camera_get_exposure_time(camera_.get(), error.out());
+    if (error) return failed("cannot read back the exposure", error);
+    if (gain_available_) {
+      arv_camera_set_gain(camera_.get(), request.gain_db, error.out());
+      if (error) return failed(fmt::format("cannot set gain {:g}", request.gain_db), error);
+      applied.gain_db = arv_camera_get_gain(camera_.get(), error.out());
+      if (error) return failed("cannot read back the gain", error);
+    } else if (request.gain_db != 0) {
+      return badInput(fmt::format("{}: this camera has no gain control", info_.uri));
+    }
+    return applied;
+  }
+
+  // Waits for the next buffer, in slices so that control-lost ends the wait at once.
+  Result<ArvBuffer*> waitForBuffer(double timeout_s) {
+    const gint64 deadline =
+        g_get_monotonic_time() + static_cast<gint64>(timeout_s * kMicrosecondsPerSecond);
+    while (g_get_monotonic_time() < deadline) {
+      GLARECAM_CHECK(checkConnected());
+      if (ArvBuffer* buffer = arv_stream_timeout_pop_buffer(stream_.get(), kPopSliceUs)) {
+        return buffer;
+      }
+    }
+    return nullptr;
+  }
+
+  Result<CapturedFrame> captureOne(const ExposureRequest& request) {
+    CapturedFrame frame;
+    ExposureRequest applied;
+    GLARECAM_ASSIGN(applied, apply(request));
+    frame.exposure_us = applied.exposure_us;
+    frame.gain_db = applied.gain_db;
+    const double timeout_s =
+        options_.frame_timeout_s + applied.exposure_us / kMicrosecondsPerSecond;
+    int settle = software_trigger_ ? 0 : kFreeRunningSettleFrames;
+    std::string last_problem = "no frame";
+    while (frame.retries <= options_.max_frame_retries) {
+      if (software_trigger_) {
+        OwnedError error;
+        arv_camera_software_trigger(camera_.get(), error.out());
+        if (error) return failed("software trigger failed", error);
+      }
+      ArvBuffer* buffer = nullptr;
+      GLARECAM_ASSIGN(buffer, waitForBuffer(timeout_s));
+      if (buffer == nullptr) {
+        last_problem = fmt::format("no frame within {:g} s", timeout_s);
+        ++frame.retries;
+        continue;
+      }
+      const ArvBufferStatus status = arv_buffer_get_status(buffer);
+      std::optional<RawFrame> image;
+      if (status == ARV_BUFFER_STATUS_SUCCESS) image = toRawFrame(buffer);
+      frame.timestamp_ns = arv_buffer_get_timestamp(buffer);
+      arv_stream_push_buffer(stream_.get(), buffer);
+      if (!image) {
+        last_problem = status == ARV_BUFFER_STATUS_SUCCESS ? "frame of unexpected size or format"
+                                                           : bufferStatusText(status);
+        ++frame.retries;
+      } else if (settle > 0) {
+        --settle;  // exposed (partly) before the change: not counted as a retry
+      } else {
+        frame.image = std::move(*image);
+        return frame;
+      }
+    }
+    return hardwareError(fmt::format("{}: {} attempts at {:g} µs failed (last: {}); nothing stored",
+                                     info_.uri, frame.retries, frame.exposure_us, last_problem));
+  }
+
+  static std::string bufferStatusText(ArvBufferStatus status) {
+    switch (status) {
+      case ARV_BUFFER_STATUS_TIMEOUT:
+        return "buffer timed out";
+      case ARV_BUFFER_STATUS_MISSING_PACKETS:
+        return "missing packets";
+      case ARV_BUFFER_STATUS_WRONG_PACKET_ID:
+        return "wrong packet id";
+      case ARV_BUFFER_STATUS_SIZE_MISMATCH:
+        return "payload larger than the buffer";
+      case ARV_BUFFER_STATUS_ABORTED:
+        return "acquisition aborted";
+      default:
+        return fmt::format("buffer status {}", static_cast<int>(status));
+    }
+  }
+
+  GObjectPtr<ArvCamera> camera_;
+  GObjectPtr<ArvStream> stream_;
+  CameraOptions options_;
+  CameraInfo info_;
+  CameraLimits limits_;
+  SensorFormat format_;
+  bool gain_available_ = false;
+  bool software_trigger_ = false;
+  bool acquiring_ = false;
+  std::atomic<bool> control_lost_{false};
+  gulong control_lost_handler_ = 0;
+};
+
+}  // namespace
+
+void enableAravisFakeInterface() { arv_enable_interface("Fake"); }
+
+namespace {
+
+class AravisBackend final : public CameraBackend {
+ public:
+  std::string_view scheme() const override { return "aravis"; }
+
+  Result<std::vector<CameraInfo>> list() override {
+    arv_update_device_list();
+    std::vector<CameraInfo> cameras;
+    for (unsigned i = 0; i < arv_get_n_devices(); ++i) {
+      cameras.push_back({.uri = "aravis:" + orEmpty(arv_get_device_id(i)),
+                         .backend = "aravis",
+                         .vendor = orEmpty(arv_get_device_vendor(i)),
+                         .model = orEmpty(arv_get_device_model(i)),
+                         .serial = orEmpty(arv_get_device_serial_nbr(i)),
+                         .detail = fmt::format("{} {}", orEmpty(arv_get_device_protocol(i)),
+                                               orEmpty(arv_get_device_address(i))),
+                         .optics = {}});
+    }
+    return cameras;
+  }
+
+  Result<std::unique_ptr<Camera>> open(std::string_view id, const CameraOptions& options) override {
+    const std::string name(id);
+    // Aravis's in-process fake camera is a test double: enabled only when asked for by name.
+    if (name.starts_with(kFakeDevicePrefix)) enableAravisFakeInterface();
+    OwnedError error;
+    GObjectPtr<ArvCamera> camera(
+        arv_camera_new(name.empty() ? nullptr : name.c_str(), error.out()));
+    if (error || !camera) {
+      return hardwareError(
+          fmt::format("aravis:{}: no such camera ({}); `glarecam cameras` lists "
+                      "what Aravis sees",
+                      name, error ? error.message() : "none found"));
+    }
+    auto opened = std::make_unique<AravisCamera>(std::move(camera), options);
+    GLARECAM_CHECK(opened->configure(id));
+    return opened;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<CameraBackend> makeAravisBackend() { return std::make_unique<AravisBackend>(); }
+
+}  // namespace glarecam::capture

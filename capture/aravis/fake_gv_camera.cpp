@@ -1,0 +1,141 @@
+#include "capture/aravis/fake_gv_camera.h"
+
+#include <arv.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+
+#include "capture/aravis/glib_ownership.h"
+#include "capture/sim/sensor_model.h"
+
+namespace glarecam::capture {
+namespace {
+
+// The simulated sensor is 12-bit; Mono16 frames carry its values MSB-aligned, Mono8 its top
+// 8 bits: 4 bits of shift either way.
+constexpr int kMono16Shift = 4;
+constexpr int kMono8Shift = 4;
+constexpr int kMono8Max = 255;
+
+Calibration scaledCalibration(Calibration base, double dn_scale) {
+  base.black_level_dn *= dn_scale;
+  base.saturation_dn *= dn_scale;
+  base.luminance_factor /= dn_scale;  // K is cd/m² per DN/µs
+  if (base.noise) {
+    base.noise->read_noise_dn *= dn_scale;
+    base.noise->dn_per_electron *= dn_scale;
+  }
+  return base;
+}
+
+}  // namespace
+
+struct FakeGvCamera::State {
+  FakeGvCameraOptions options;
+  SimulatedScene scene;
+  aravis::GObjectPtr<ArvGvFakeCamera> camera;
+  std::atomic<std::uint64_t> frames_rendered{0};
+
+  // ArvFakeCameraFillPattern: runs on the fake camera's thread for every frame it sends.
+  static void fill(ArvBuffer* buffer, void* self, guint32 exposure_time_us, guint32 gain_raw,
+                   ArvPixelFormat pixel_format) {
+    static_cast<State*>(self)->render(buffer, exposure_time_us, gain_raw, pixel_format);
+  }
+
+  void render(ArvBuffer* buffer, guint32 exposure_time_us, guint32 gain_raw,
+              ArvPixelFormat pixel_format) {
+    const int width = arv_buffer_get_image_width(buffer);
+    const int height = arv_buffer_get_image_height(buffer);
+    const bool mono16 = pixel_format == ARV_PIXEL_FORMAT_MONO_16;
+    if (!scene.true_luminance_cd_m2.sameSize(width, height) ||
+        (!mono16 && pixel_format != ARV_PIXEL_FORMAT_MONO_8)) {
+      return;  // only the scene's size in Mono16 / Mono8: anything else stays as it was
+    }
+    const FrameSpec spec =
+        simulatedFrameSpec(options.scene, std::max<guint32>(exposure_time_us, 1), gain_raw);
+    const RawFrame frame =
+        exposeFrame(scene.true_luminance_cd_m2, spec, scene.calibration, options.scene.sensor,
+                    options.scene.seed * 1'000'003 + frames_rendered++);
+    // The buffer was allocated for this size and format (the payload when streaming started).
+    auto* data =
+        static_cast<std::uint8_t*>(const_cast<void*>(arv_buffer_get_data(buffer, nullptr)));
+    const std::uint16_t* values = frame.data();
+    for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
+      if (mono16) {
+        const auto value = static_cast<std::uint16_t>(values[i] << kMono16Shift);
+        std::memcpy(data + 2 * i, &value, sizeof value);  // GenICam Mono16: little-endian
+      } else {
+        // Rounded, not truncated: the scaled calibration then holds without a half-DN bias.
+        const int rounded = (values[i] + (1 << (kMono8Shift - 1))) >> kMono8Shift;
+        data[i] = static_cast<std::uint8_t>(std::min(rounded, kMono8Max));
+      }
+    }
+  }
+};
+
+Status FakeGvCameraOptions::validate() const {
+  if (!(packet_loss >= 0 && packet_loss < 1)) {
+    return badInput("fake-camera: --packet-loss must be in [0, 1)");
+  }
+  if (!(trigger_poll_hz > 0 && trigger_poll_hz <= 10'000)) {
+    return badInput("fake-camera: the trigger poll rate must be in (0, 10000] Hz");
+  }
+  if (scene.width > ARV_FAKE_CAMERA_SENSOR_WIDTH || scene.height > ARV_FAKE_CAMERA_SENSOR_HEIGHT) {
+    return badInput(fmt::format("fake-camera: --size is limited to {}x{} (Aravis's fake sensor)",
+                                ARV_FAKE_CAMERA_SENSOR_WIDTH, ARV_FAKE_CAMERA_SENSOR_HEIGHT));
+  }
+  return scene.validate();
+}
+
+FakeGvCamera::FakeGvCamera(std::unique_ptr<State> state) : state_(std::move(state)) {}
+
+FakeGvCamera::~FakeGvCamera() {
+  if (state_ && state_->camera) {
+    // Stop the thread (unref) before the fill pattern's data goes.
+    state_->camera.reset();
+  }
+}
+
+Result<std::unique_ptr<FakeGvCamera>> FakeGvCamera::start(const FakeGvCameraOptions& options) {
+  GLARECAM_CHECK(options.validate());
+  auto state = std::make_unique<State>();
+  state->options = options;
+  GLARECAM_ASSIGN(state->scene, renderSimulatedScene(options.scene));
+  state->camera.reset(
+      arv_gv_fake_camera_new(options.interface_address.c_str(), options.serial.c_str()));
+  if (!state->camera || !arv_gv_fake_camera_is_running(state->camera.get())) {
+    return hardwareError(fmt::format(
+        "fake-camera: cannot serve GigE Vision on {} (no such interface, or another GigE Vision "
+        "device already uses UDP port 3956 there)",
+        options.interface_address));
+  }
+  ArvFakeCamera* fake = arv_gv_fake_camera_get_fake_camera(state->camera.get());
+  arv_fake_camera_write_register(fake, ARV_FAKE_CAMERA_REGISTER_WIDTH,
+                                 static_cast<guint32>(options.scene.width));
+  arv_fake_camera_write_register(fake, ARV_FAKE_CAMERA_REGISTER_HEIGHT,
+                                 static_cast<guint32>(options.scene.height));
+  arv_fake_camera_set_trigger_frequency(fake, options.trigger_poll_hz);
+  g_object_set(state->camera.get(), "gvsp-lost-ratio", options.packet_loss, nullptr);
+  arv_fake_camera_set_fill_pattern(fake, &State::fill, state.get());
+  return std::unique_ptr<FakeGvCamera>(new FakeGvCamera(std::move(state)));
+}
+
+std::string FakeGvCamera::uri() const { return "aravis:" + state_->options.serial; }
+
+const SimulatedScene& FakeGvCamera::scene() const { return state_->scene; }
+
+Result<Calibration> FakeGvCamera::calibration(std::string_view pixel_format) const {
+  if (pixel_format == "Mono16") {
+    return scaledCalibration(state_->scene.calibration, std::ldexp(1.0, kMono16Shift));
+  }
+  if (pixel_format == "Mono8") {
+    return scaledCalibration(state_->scene.calibration, std::ldexp(1.0, -kMono8Shift));
+  }
+  return badInput(fmt::format("fake-camera: no calibration for pixel format '{}' (Mono16, Mono8)",
+                              pixel_format));
+}
+
+}  // namespace glarecam::capture

@@ -1,0 +1,261 @@
+#include "capture/bracketer.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+#include "core/progress.h"
+#include "core/stack_io.h"
+
+namespace glarecam::capture {
+namespace {
+
+// Without a calibration: no black level known, and the top 5 % of the pixel format's range
+// treated as saturated (sensors leave the linear range before full scale).
+constexpr double kUncalibratedSaturationFraction = 0.95;
+
+int significantBits(const SensorFormat& format) {
+  for (const int bits : {8, 10, 12, 14, 16}) {
+    if (format.pixel_format == "Mono" + std::to_string(bits)) return bits;
+  }
+  return format.bits_per_pixel;
+}
+
+struct SensorLevels {
+  double black_dn = 0;
+  double saturation_dn = 0;
+  double usableRange() const { return saturation_dn - black_dn; }
+};
+
+// The calibration in force: the capture's, else the camera's own.
+std::optional<Calibration> calibrationFor(const Camera& camera, const CaptureSettings& settings) {
+  return settings.calibration ? settings.calibration : camera.knownCalibration();
+}
+
+SensorLevels sensorLevels(const Camera& camera, const CaptureSettings& settings) {
+  if (const auto calibration = calibrationFor(camera, settings)) {
+    return {calibration->black_level_dn, calibration->saturation_dn};
+  }
+  const double full_scale = std::ldexp(1.0, significantBits(camera.format())) - 1.0;
+  return {0.0, kUncalibratedSaturationFraction * full_scale};
+}
+
+Result<CapturedFrame> captureOne(Camera& camera, double exposure_us, double gain_db) {
+  const ExposureRequest request{exposure_us, gain_db};
+  std::vector<CapturedFrame> frames;
+  GLARECAM_ASSIGN(frames, camera.capture({&request, 1}));
+  return std::move(frames.front());
+}
+
+Result<std::vector<CapturedFrame>> captureExposures(Camera& camera,
+                                                    const std::vector<double>& exposures_us,
+                                                    double gain_db) {
+  std::vector<ExposureRequest> requests;
+  for (const double exposure : exposures_us) requests.push_back({exposure, gain_db});
+  return camera.capture(requests);
+}
+
+using NextMetering = std::optional<double> (*)(const MeteringFrame&, double, const CameraLimits&,
+                                               const AutoBracketOptions&);
+
+// Meters from `exposure_us` until `next` is satisfied; every frame goes into the log.
+Result<MeteringFrame> meter(Camera& camera, const CaptureSettings& settings,
+                            const SensorLevels& levels, double exposure_us, NextMetering next,
+                            AutoBracketLog& log) {
+  for (int attempt = 0;; ++attempt) {
+    CapturedFrame frame;
+    GLARECAM_ASSIGN(frame, captureOne(camera, exposure_us, settings.gain_db));
+    const MeteringFrame metered{
+        frame.exposure_us, measureFrameLevels(frame.image, levels.black_dn, levels.saturation_dn)};
+    log.metering.push_back(metered);
+    const auto following =
+        next(metered, levels.usableRange(), camera.limits(), settings.auto_bracket);
+    if (!following) return metered;
+    if (attempt + 1 >= settings.auto_bracket.max_metering_frames) {
+      spdlog::warn("{}: metering did not settle in {} frames; planning from the last one",
+                   camera.info().uri, settings.auto_bracket.max_metering_frames);
+      return metered;
+    }
+    exposure_us = *following;
+  }
+}
+
+struct Bracket {
+  std::vector<CapturedFrame> frames;
+  AutoBracketLog log;
+};
+
+// Captures `plan`, re-planning shorter while the peak is clipped in the shortest frame.
+Status captureUnclipped(Camera& camera, const CaptureSettings& settings, const SensorLevels& levels,
+                        double background_rate, BracketPlan plan, Bracket& bracket,
+                        Progress& progress) {
+  for (int attempt = 0;; ++attempt) {
+    progress.setTotal(2 + static_cast<int>(plan.exposures_us.size()));
+    GLARECAM_ASSIGN(bracket.frames, captureExposures(camera, plan.exposures_us, settings.gain_db));
+    progress.advance(fmt::format("{} frames", bracket.frames.size()));
+    const double shortest_us = bracket.frames.front().exposure_us;
+    bracket.log.peak_clipped =
+        measureFrameLevels(bracket.frames.front().image, levels.black_dn, levels.saturation_dn)
+            .peak_clipped;
+    bracket.log.background_underexposed = plan.background_underexposed;
+    if (!bracket.log.peak_clipped || plan.peak_clipped ||
+        attempt >= settings.auto_bracket.max_rebrackets) {
+      return {};
+    }
+    ++bracket.log.rebrackets;
+    spdlog::info("{}: peak clipped at {:g} µs; re-bracketing shorter", camera.info().uri,
+                 shortest_us);
+    GLARECAM_ASSIGN(
+        plan, planForRates(clippedPeakRate(shortest_us, levels.usableRange()), background_rate,
+                           levels.usableRange(), camera.limits(), settings.auto_bracket));
+  }
+}
+
+Result<Bracket> autoBracket(Camera& camera, const CaptureSettings& settings, Progress& progress) {
+  const SensorLevels levels = sensorLevels(camera, settings);
+  if (!(levels.usableRange() > 0)) {
+    return badInput(fmt::format("{}: the calibration's saturation is not above its black level",
+                                camera.info().uri));
+  }
+  const CameraLimits limits = camera.limits();
+  Bracket bracket;
+  MeteringFrame peak, background;
+  GLARECAM_ASSIGN(peak, meter(camera, settings, levels,
+                              std::clamp(settings.auto_bracket.first_metering_exposure_us,
+                                         limits.min_exposure_us, limits.max_exposure_us),
+                              nextPeakMetering, bracket.log));
+  progress.advance("peak metered");
+  background = peak;
+  if (const auto longer =
+          nextBackgroundMetering(peak, levels.usableRange(), limits, settings.auto_bracket)) {
+    GLARECAM_ASSIGN(background,
+                    meter(camera, settings, levels, *longer, nextBackgroundMetering, bracket.log));
+  }
+  progress.advance("background metered");
+  BracketPlan plan;
+  GLARECAM_ASSIGN(plan,
+                  planForRates(peakRate(peak, levels.usableRange()), backgroundRate(background),
+                               levels.usableRange(), limits, settings.auto_bracket));
+  GLARECAM_CHECK(captureUnclipped(camera, settings, levels, backgroundRate(background),
+                                  std::move(plan), bracket, progress));
+  if (bracket.log.peak_clipped) {
+    spdlog::warn(
+        "{}: the peak is clipped even in the shortest frame ({:g} µs); Lmax will be a "
+        "lower bound",
+        camera.info().uri, bracket.frames.front().exposure_us);
+  }
+  return bracket;
+}
+
+std::string utcTimestamp(const char* format) {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, format, &utc);
+  return text;
+}
+
+nlohmann::json cameraJson(const Camera& camera) {
+  const CameraInfo& info = camera.info();
+  const SensorFormat format = camera.format();
+  return {{"backend", info.backend}, {"uri", info.uri},
+          {"vendor", info.vendor},   {"model", info.model},
+          {"serial", info.serial},   {"pixel_format", format.pixel_format},
+          {"width", format.width},   {"height", format.height}};
+}
+
+StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings,
+                           const Bracket& bracket) {
+  StackManifest manifest;
+  const std::string stamp = utcTimestamp("%Y%m%dT%H%M%SZ");
+  manifest.id =
+      settings.alpha_deg ? fmt::format("{}-a{:05.2f}", stamp, *settings.alpha_deg) : stamp;
+  manifest.captured_at = utcTimestamp("%Y-%m-%dT%H:%M:%SZ");
+  manifest.alpha_deg = settings.alpha_deg;
+  manifest.calibration = calibrationFor(camera, settings);
+  const CameraOptics& known = camera.info().optics;
+  const auto f_number = settings.optics.f_number ? settings.optics.f_number : known.f_number;
+  const double nd = settings.optics.nd_transmission.value_or(known.nd_transmission.value_or(1.0));
+  int retries = 0;
+  for (std::size_t i = 0; i < bracket.frames.size(); ++i) {
+    const CapturedFrame& frame = bracket.frames[i];
+    manifest.frames.push_back({.file = fmt::format("frame-{:02}.png", i),
+                               .exposure_us = frame.exposure_us,
+                               .gain_db = frame.gain_db,
+                               .f_number = f_number,
+                               .nd_transmission = nd,
+                               .source = nlohmann::json::object()});
+    retries += frame.retries;
+  }
+  nlohmann::json capture = {{"bracketing", settings.exposures_us ? "fixed" : "auto"},
+                            {"discarded_frames", retries}};
+  if (!settings.exposures_us) capture["auto_bracket"] = bracket.log.toJson();
+  manifest.source = {{"camera", cameraJson(camera)}, {"capture", std::move(capture)}};
+  return manifest;
+}
+
+Status checkSettings(const Camera& camera, const CaptureSettings& settings) {
+  const CameraLimits limits = camera.limits();
+  if (settings.exposures_us) {
+    if (settings.exposures_us->empty()) return badInput("capture: --exposures lists no exposure");
+    for (const double exposure : *settings.exposures_us) {
+      if (!(exposure >= limits.min_exposure_us && exposure <= limits.max_exposure_us)) {
+        return badInput(
+            fmt::format("capture: exposure {:g} µs is outside {}'s range {:g} … {:g} µs", exposure,
+                        camera.info().uri, limits.min_exposure_us, limits.max_exposure_us));
+      }
+    }
+  }
+  if (!(settings.gain_db >= limits.min_gain_db && settings.gain_db <= limits.max_gain_db)) {
+    return badInput(fmt::format("capture: gain {:g} dB is outside {}'s range {:g} … {:g} dB",
+                                settings.gain_db, camera.info().uri, limits.min_gain_db,
+                                limits.max_gain_db));
+  }
+  return settings.auto_bracket.validate();
+}
+
+}  // namespace
+
+Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settings) {
+  GLARECAM_CHECK(checkSettings(camera, settings));
+  const int planned = settings.exposures_us ? static_cast<int>(settings.exposures_us->size())
+                                            : 2 + settings.auto_bracket.bracket.min_frames;
+  Progress progress("capture", planned, settings.show_progress);
+  Bracket bracket;
+  if (settings.exposures_us) {
+    GLARECAM_ASSIGN(bracket.frames,
+                    captureExposures(camera, *settings.exposures_us, settings.gain_db));
+    progress.advance(fmt::format("{} frames", bracket.frames.size()));
+  } else {
+    GLARECAM_ASSIGN(bracket, autoBracket(camera, settings, progress));
+  }
+  progress.finish();
+  CapturedStack stack;
+  stack.manifest = makeManifest(camera, settings, bracket);
+  stack.bit_depth = camera.format().bits_per_pixel <= 8 ? 8 : 16;
+  for (CapturedFrame& frame : bracket.frames) stack.frames.push_back(std::move(frame.image));
+  return stack;
+}
+
+Result<std::filesystem::path> writeCapturedStack(const std::filesystem::path& parent,
+                                                 const CapturedStack& stack) {
+  const std::string id = stack.manifest.id.value_or("stack");
+  std::filesystem::path target = parent / id;
+  std::error_code error;
+  for (int suffix = 2; std::filesystem::exists(target, error); ++suffix) {
+    target = parent / fmt::format("{}-{}", id, suffix);
+  }
+  StackWriteRequest request;
+  request.manifest = stack.manifest;
+  request.manifest.id = target.filename().string();
+  request.frames = stack.frames;
+  request.bit_depth = stack.bit_depth;
+  GLARECAM_CHECK(writeStack(target, request));
+  return target;
+}
+
+}  // namespace glarecam::capture

@@ -1,0 +1,43 @@
+// The bracketer: one bracketed stack (glarecam.stack/1) from any Camera. With fixed exposures it
+// captures them; with auto-bracketing it meters, plans and checks (auto_bracket.h). Frames stay
+// in memory until the bracket is complete (no disk I/O while the camera streams), then the
+// stack is written atomically: a capture that fails leaves nothing behind.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "capture/auto_bracket.h"
+#include "capture/camera.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/stack_manifest.h"
+
+namespace glarecam::capture {
+
+struct CaptureSettings {
+  std::optional<std::vector<double>> exposures_us;  // none: auto-bracket
+  double gain_db = 0;
+  std::optional<Calibration> calibration;  // written inline; its black level and saturation
+                                           // also guide the auto-bracket
+  std::optional<double> alpha_deg;
+  CameraOptics optics;  // overrides what the camera reports
+  AutoBracketOptions auto_bracket;
+  bool show_progress = false;
+};
+
+struct CapturedStack {
+  StackManifest manifest;
+  std::vector<RawFrame> frames;
+  int bit_depth = 16;  // of the stack's PNG files
+};
+
+Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settings);
+
+// Writes the stack atomically to `parent`/<its id> and returns that path; an id already taken
+// gets a numeric suffix, so a series never overwrites a stack.
+Result<std::filesystem::path> writeCapturedStack(const std::filesystem::path& parent,
+                                                 const CapturedStack& stack);
+
+}  // namespace glarecam::capture

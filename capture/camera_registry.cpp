@@ -1,0 +1,105 @@
+#include "capture/camera_registry.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <functional>
+
+#include "capture/sim/sim_camera.h"
+#include "capture/v4l2/v4l2_backend.h"
+#if GLARECAM_WITH_ARAVIS
+#include "capture/aravis/aravis_backend.h"
+#endif
+#if GLARECAM_WITH_LIBCAMERA
+#include "capture/libcamera/libcamera_backend.h"
+#endif
+
+namespace glarecam::capture {
+namespace {
+
+// Stands in for a backend whose library was not found when this binary was built.
+class UnavailableBackend final : public CameraBackend {
+ public:
+  UnavailableBackend(std::string_view scheme, std::string_view library)
+      : scheme_(scheme),
+        reason_(fmt::format("{}: camera support is not built into this glarecam ({} was not found "
+                            "at build time; install it and rebuild)",
+                            scheme, library)) {}
+  std::string_view scheme() const override { return scheme_; }
+  Result<std::vector<CameraInfo>> list() override { return hardwareError(reason_); }
+  Result<std::unique_ptr<Camera>> open(std::string_view, const CameraOptions&) override {
+    return hardwareError(reason_);
+  }
+
+ private:
+  std::string scheme_;
+  std::string reason_;
+};
+
+struct BackendEntry {
+  std::string_view scheme;
+  std::function<std::unique_ptr<CameraBackend>()> make;
+};
+
+const std::array<BackendEntry, 4>& backendEntries() {
+  static const std::array<BackendEntry, 4> entries{{
+      {"sim", makeSimCameraBackend},
+#if GLARECAM_WITH_ARAVIS
+      {"aravis", makeAravisBackend},
+#else
+      {"aravis", [] { return std::make_unique<UnavailableBackend>("aravis", "Aravis 0.8"); }},
+#endif
+#if GLARECAM_WITH_LIBCAMERA
+      {"libcamera", makeLibcameraBackend},
+#else
+      {"libcamera", [] { return std::make_unique<UnavailableBackend>("libcamera", "libcamera"); }},
+#endif
+      {"v4l2", [] { return makeV4l2Backend(); }},
+  }};
+  return entries;
+}
+
+std::string knownSchemes() {
+  std::string names;
+  for (const auto& entry : backendEntries()) {
+    names += (names.empty() ? "" : ", ") + std::string(entry.scheme) + ":";
+  }
+  return names;
+}
+
+}  // namespace
+
+Result<CameraUri> parseCameraUri(std::string_view uri) {
+  const auto colon = uri.find(':');
+  CameraUri parsed{std::string(uri.substr(0, colon)),
+                   colon == std::string_view::npos ? "" : std::string(uri.substr(colon + 1))};
+  for (const auto& entry : backendEntries()) {
+    if (entry.scheme == parsed.scheme) return parsed;
+  }
+  return badInput(
+      fmt::format("camera URI '{}': unknown backend (expected one of {})", uri, knownSchemes()));
+}
+
+std::vector<std::unique_ptr<CameraBackend>> cameraBackends() {
+  std::vector<std::unique_ptr<CameraBackend>> backends;
+  for (const auto& entry : backendEntries()) backends.push_back(entry.make());
+  return backends;
+}
+
+Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme) {
+  for (const auto& entry : backendEntries()) {
+    if (entry.scheme == scheme) return entry.make();
+  }
+  return badInput(
+      fmt::format("unknown camera backend '{}' (expected one of {})", scheme, knownSchemes()));
+}
+
+Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options) {
+  CameraUri parsed;
+  GLARECAM_ASSIGN(parsed, parseCameraUri(uri));
+  std::unique_ptr<CameraBackend> backend;
+  GLARECAM_ASSIGN(backend, cameraBackend(parsed.scheme));
+  return backend->open(parsed.id, options);
+}
+
+}  // namespace glarecam::capture

@@ -1,0 +1,33 @@
+// Camera URIs ("scheme:id") and the backends that open them: sim, aravis, libcamera, v4l2. A
+// backend not built into this binary (its library was missing at build time) is still listed and
+// fails with a message saying so, so a URI is never silently misread.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "capture/camera.h"
+#include "core/error.h"
+
+namespace glarecam::capture {
+
+struct CameraUri {
+  std::string scheme;  // "aravis"
+  std::string id;      // everything after the first ':' (may be empty: the first camera)
+};
+
+// "aravis:GV01" → {aravis, GV01}; a bare known scheme ("sim") is accepted as "sim:".
+Result<CameraUri> parseCameraUri(std::string_view uri);
+
+// Every backend, in the order `glarecam cameras` lists them.
+std::vector<std::unique_ptr<CameraBackend>> cameraBackends();
+
+// The backend for `scheme`, or a kBadInput error listing the known schemes.
+Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme);
+
+// Parses `uri` and opens the camera it names.
+Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options);
+
+}  // namespace glarecam::capture

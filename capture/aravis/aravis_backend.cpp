@@ -82,7 +82,7 @@ class AravisCamera final : public Camera {
                                              G_CALLBACK(onControlLost), &control_lost_);
     OwnedError error;
     const std::string device_id = orEmpty(arv_camera_get_device_id(camera, error.out()));
-    info_ = {.uri = "aravis:" + (device_id.empty() ? std::string(requested_id) : device_id),
+    info_ = {.uri = "aravis:" + (requested_id.empty() ? device_id : std::string(requested_id)),
              .backend = "aravis",
              .vendor = orEmpty(arv_camera_get_vendor_name(camera, error.out())),
              .model = orEmpty(arv_camera_get_model_name(camera, error.out())),
@@ -283,37 +283,50 @@ class AravisCamera final : public Camera {
     return nullptr;
   }
 
+  Status trigger() {
+    if (!software_trigger_) return {};
+    OwnedError error;
+    arv_camera_software_trigger(camera_.get(), error.out());
+    if (error) return failed("software trigger failed", error);
+    return {};
+  }
+
+  // One frame at `request`: triggers, and discards (counting them) frames that time out, arrive
+  // incomplete, or were received before the new exposure was set (a late frame of an earlier
+  // trigger); free-running cameras also skip the frames in flight during the change.
   Result<CapturedFrame> captureOne(const ExposureRequest& request) {
     CapturedFrame frame;
     ExposureRequest applied;
     GLARECAM_ASSIGN(applied, apply(request));
+    const auto applied_at_ns = static_cast<guint64>(g_get_real_time()) * 1000;  // host clock
     frame.exposure_us = applied.exposure_us;
     frame.gain_db = applied.gain_db;
     const double timeout_s =
         options_.frame_timeout_s + applied.exposure_us / kMicrosecondsPerSecond;
     int settle = software_trigger_ ? 0 : kFreeRunningSettleFrames;
     std::string last_problem = "no frame";
+    bool needs_trigger = true;
     while (frame.retries <= options_.max_frame_retries) {
-      if (software_trigger_) {
-        OwnedError error;
-        arv_camera_software_trigger(camera_.get(), error.out());
-        if (error) return failed("software trigger failed", error);
-      }
+      if (needs_trigger) GLARECAM_CHECK(trigger());
       ArvBuffer* buffer = nullptr;
       GLARECAM_ASSIGN(buffer, waitForBuffer(timeout_s));
       if (buffer == nullptr) {
         last_problem = fmt::format("no frame within {:g} s", timeout_s);
         ++frame.retries;
+        needs_trigger = true;
         continue;
       }
+      const bool stale = arv_buffer_get_system_timestamp(buffer) < applied_at_ns;
       const ArvBufferStatus status = arv_buffer_get_status(buffer);
       std::optional<RawFrame> image;
-      if (status == ARV_BUFFER_STATUS_SUCCESS) image = toRawFrame(buffer);
+      if (!stale && status == ARV_BUFFER_STATUS_SUCCESS) image = toRawFrame(buffer);
       frame.timestamp_ns = arv_buffer_get_timestamp(buffer);
       arv_stream_push_buffer(stream_.get(), buffer);
-      if (!image) {
-        last_problem = status == ARV_BUFFER_STATUS_SUCCESS ? "frame of unexpected size or format"
-                                                           : bufferStatusText(status);
+      needs_trigger = !stale;  // a stale frame answered an earlier trigger: ours is pending
+      if (stale || !image) {
+        last_problem = stale ? "a frame from before the exposure change"
+                       : status == ARV_BUFFER_STATUS_SUCCESS ? "frame of unexpected size or format"
+                                                             : bufferStatusText(status);
         ++frame.retries;
       } else if (settle > 0) {
         --settle;  // exposed (partly) before the change: not counted as a retry

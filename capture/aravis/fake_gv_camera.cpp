@@ -1,10 +1,15 @@
 #include "capture/aravis/fake_gv_camera.h"
 
+#include <arpa/inet.h>
 #include <arv.h>
 #include <fmt/format.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 
@@ -29,6 +34,24 @@ Calibration scaledCalibration(Calibration base, double dn_scale) {
     base.noise->dn_per_electron *= dn_scale;
   }
   return base;
+}
+
+// GigE Vision control (GVCP) listens on this UDP port (GigE Vision 2.0, section 7).
+constexpr std::uint16_t kGvcpPort = 3956;
+
+// Aravis binds its fake camera's sockets with SO_REUSEADDR, so a second one would start and
+// answer beside the first; a plain bind tells whether the port is already served at `address`.
+bool gvcpPortInUse(const std::string& address) {
+  sockaddr_in where{};
+  where.sin_family = AF_INET;
+  where.sin_port = htons(kGvcpPort);
+  if (inet_pton(AF_INET, address.c_str(), &where.sin_addr) != 1) return false;  // a name
+  const int probe = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (probe < 0) return false;
+  const bool in_use = bind(probe, reinterpret_cast<const sockaddr*>(&where), sizeof where) != 0 &&
+                      errno == EADDRINUSE;
+  close(probe);
+  return in_use;
 }
 
 }  // namespace
@@ -103,6 +126,11 @@ Result<std::unique_ptr<FakeGvCamera>> FakeGvCamera::start(const FakeGvCameraOpti
   GLARECAM_CHECK(options.validate());
   auto state = std::make_unique<State>();
   state->options = options;
+  if (gvcpPortInUse(options.interface_address)) {
+    return hardwareError(fmt::format(
+        "fake-camera: UDP port {} on {} is already in use (another GigE Vision fake camera?)",
+        kGvcpPort, options.interface_address));
+  }
   GLARECAM_ASSIGN(state->scene, renderSimulatedScene(options.scene));
   state->camera.reset(
       arv_gv_fake_camera_new(options.interface_address.c_str(), options.serial.c_str()));
@@ -123,17 +151,23 @@ Result<std::unique_ptr<FakeGvCamera>> FakeGvCamera::start(const FakeGvCameraOpti
   return std::unique_ptr<FakeGvCamera>(new FakeGvCamera(std::move(state)));
 }
 
-std::string FakeGvCamera::uri() const { return "aravis:" + state_->options.serial; }
+std::string FakeGvCamera::uri() const {
+  // By address, not by serial: discovery can find a loopback camera through another interface
+  // (broadcasts loop back), and its stream would then be sent where it cannot arrive.
+  const std::string& where = state_->options.interface_address;
+  aravis::GObjectPtr<GInetAddress> address(g_inet_address_new_from_string(where.c_str()));
+  return "aravis:" + (address ? where : state_->options.serial);
+}
 
 const SimulatedScene& FakeGvCamera::scene() const { return state_->scene; }
 
 Result<Calibration> FakeGvCamera::calibration(std::string_view pixel_format) const {
-  if (pixel_format == "Mono16") {
-    return scaledCalibration(state_->scene.calibration, std::ldexp(1.0, kMono16Shift));
-  }
-  if (pixel_format == "Mono8") {
-    return scaledCalibration(state_->scene.calibration, std::ldexp(1.0, -kMono8Shift));
-  }
+  // A GigE Vision client cannot know the simulated lens's ND filter: it is folded into K, so that
+  // frames recorded with the default transmission of 1 read true luminance.
+  Calibration base = state_->scene.calibration;
+  base.luminance_factor /= state_->options.scene.nd_transmission;
+  if (pixel_format == "Mono16") return scaledCalibration(base, std::ldexp(1.0, kMono16Shift));
+  if (pixel_format == "Mono8") return scaledCalibration(base, std::ldexp(1.0, -kMono8Shift));
   return badInput(fmt::format("fake-camera: no calibration for pixel format '{}' (Mono16, Mono8)",
                               pixel_format));
 }

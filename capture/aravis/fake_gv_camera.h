@@ -38,7 +38,8 @@ class FakeGvCamera {
 
   std::string uri() const;  // what `glarecam capture --camera` takes
   const SimulatedScene& scene() const;
-  // The calibration of its frames in `pixel_format` (Mono16 or Mono8).
+  // The calibration of its frames in `pixel_format` (Mono16 or Mono8), the simulated ND filter
+  // included in K (a client records no ND filter).
   Result<Calibration> calibration(std::string_view pixel_format) const;
 
  private:

@@ -124,7 +124,10 @@ Status runCapture(const CaptureArgs& args) {
   GLARECAM_ASSIGN(count, parseUnsigned(args.count, "--count"));
   if (count == 0) return badInput("capture: --count must be at least 1");
   if (!(args.interval_s >= 0)) return badInput("capture: --interval must be >= 0 seconds");
-  GLARECAM_CHECK(ensureDirectory(args.out));
+  std::error_code error;
+  if (std::filesystem::exists(args.out, error) && !std::filesystem::is_directory(args.out, error)) {
+    return badInput(fmt::format("capture: --out {} is not a directory", args.out));
+  }
   std::unique_ptr<capture::Camera> camera;
   GLARECAM_ASSIGN(camera, capture::openCamera(args.camera, options));
   if (!settings.calibration && !camera->knownCalibration()) {

@@ -66,7 +66,7 @@ class AravisCamera final : public Camera {
       : camera_(std::move(camera)), options_(options) {}
 
   ~AravisCamera() override {
-    if (acquiring_) {
+    if (acquiring_ && responsive()) {
       OwnedError ignored;
       arv_camera_stop_acquisition(camera_.get(), ignored.out());
     }
@@ -117,7 +117,13 @@ class AravisCamera final : public Camera {
   }
 
  private:
-  std::unexpected<Error> failed(std::string_view what, const OwnedError& error) const {
+  // A command that failed. When the camera stopped answering, later clean-up commands are
+  // skipped instead of each waiting out its retries (seconds with GigE Vision).
+  std::unexpected<Error> failed(std::string_view what, const OwnedError& error) {
+    for (const ArvDeviceError gone : {ARV_DEVICE_ERROR_TIMEOUT, ARV_DEVICE_ERROR_NOT_CONNECTED,
+                                      ARV_DEVICE_ERROR_TRANSFER_ERROR}) {
+      if (error.matches(ARV_DEVICE_ERROR, gone)) unresponsive_ = true;
+    }
     if (control_lost_) return lostError();
     return hardwareError(fmt::format("{}: {}: {}", info_.uri, what, error.message()));
   }
@@ -240,9 +246,13 @@ class AravisCamera final : public Camera {
     return {};
   }
 
+  bool responsive() const { return !unresponsive_ && !control_lost_; }
+
   void stopAcquisition() {
-    OwnedError error;
-    arv_camera_stop_acquisition(camera_.get(), error.out());
+    if (responsive()) {
+      OwnedError error;
+      arv_camera_stop_acquisition(camera_.get(), error.out());
+    }
     acquiring_ = false;
     // Buffers that arrived after the last frame was taken go back to the pool.
     while (ArvBuffer* stale = arv_stream_try_pop_buffer(stream_.get())) {
@@ -365,6 +375,7 @@ class AravisCamera final : public Camera {
   bool gain_available_ = false;
   bool software_trigger_ = false;
   bool acquiring_ = false;
+  bool unresponsive_ = false;
   std::atomic<bool> control_lost_{false};
   gulong control_lost_handler_ = 0;
 };

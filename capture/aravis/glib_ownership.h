@@ -34,6 +34,9 @@ class OwnedError {
   std::string message() const {
     return error_ != nullptr && error_->message != nullptr ? error_->message : "unknown error";
   }
+  bool matches(GQuark domain, gint code) const {
+    return g_error_matches(error_, domain, code) != FALSE;
+  }
   void reset() {
     if (error_ != nullptr) g_error_free(error_);
     error_ = nullptr;

@@ -7,32 +7,7 @@ GLARECAM=$1
 CORPUS=$2
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-passed=0
-failed=0
-
-check() {  # check NAME EXPECTED_STATUS COMMAND... ; leaves stdout/stderr in $WORK/out, $WORK/err
-  local name=$1 expected=$2
-  shift 2
-  "$@" >"$WORK/out" 2>"$WORK/err"
-  local status=$?
-  if [[ $status -eq $expected ]]; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAIL $name: exit $status, expected $expected"
-    sed 's/^/  stderr: /' "$WORK/err" | head -5
-  fi
-}
-
-expect() {  # expect NAME CONDITION-COMMAND...
-  local name=$1
-  shift
-  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL $name"; fi
-}
-
-one_line_naming() {  # stderr is exactly one line and contains $1
-  [[ $(wc -l <"$WORK/err") -eq 1 ]] && grep -qF -- "$1" "$WORK/err"
-}
+source "$(dirname "$0")/cli_test_lib.sh"
 
 # Usage errors.
 check "help" 0 "$GLARECAM" --help
@@ -189,6 +164,37 @@ check "model: beta 0" 2 "$GLARECAM" model --beta 0
 check "model: alpha 100" 2 "$GLARECAM" model --beta 2 --alpha 100
 expect "model alpha error is one line" one_line_naming "--alpha: 100"
 
+# Cameras: the simulator through the camera interface, and the no-device error paths.
+check "cameras" 0 "$GLARECAM" cameras
+expect "cameras lists the simulator" grep -q "^sim:" "$WORK/out"
+check "cameras --json" 0 "$GLARECAM" cameras --json
+expect "cameras --json has a cameras array" grep -q '"cameras": \[' "$WORK/out"
+check "capture sim" 0 "$GLARECAM" capture --camera sim:size=200x160,fov=16 --alpha 70 --out "$WORK/cap" --no-progress
+expect "capture prints the stack path" grep -q "^$WORK/cap/.*-a70.00$" "$WORK/out"
+captured=$(cat "$WORK/out")
+check "process a captured stack" 0 "$GLARECAM" process --no-progress --json "$captured"
+expect "captured stack glares at α 70" grep -q '"glare": true' "$WORK/out"
+check "capture series" 0 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/series" --exposures 100,1000 --count 2 --no-progress
+expect "series wrote two stacks" test "$(wc -l <"$WORK/out")" -eq 2 -a "$(ls "$WORK/series" | wc -l)" -eq 2
+check "capture: unknown backend" 2 "$GLARECAM" capture --camera gige:cam1 --out "$WORK/nocap"
+expect "unknown backend is one line" one_line_naming "unknown backend"
+check "capture: bad exposures" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --exposures 10,abc
+check "capture: exposure out of range" 2 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/nocap" --exposures 1
+expect "out-of-range exposure names the camera" one_line_naming "outside sim:size=64x48's range"
+check "capture: bad sim parameter" 2 "$GLARECAM" capture --camera sim:colour=red --out "$WORK/nocap"
+check "capture: alpha 95" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --alpha 95
+check "capture: count 0" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --count 0
+check "capture: missing calibration file" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --calibration "$WORK/none.json"
+touch "$WORK/a-file"
+check "capture: --out is a file" 2 "$GLARECAM" capture --camera sim: --out "$WORK/a-file"
+expect "nothing captured on bad input" test ! -e "$WORK/nocap"
+check "capture: no V4L2 device" 1 "$GLARECAM" capture --camera v4l2:/dev/video-glarecam-missing --out "$WORK/nocap"
+expect "missing V4L2 device is one line naming the URI" one_line_naming "v4l2:/dev/video-glarecam-missing"
+check "capture: no libcamera camera" 1 "$GLARECAM" capture --camera libcamera: --out "$WORK/nocap"
+expect "missing libcamera camera names the URI" grep -q "libcamera:" "$WORK/err"
+check "capture: no Aravis camera" 1 "$GLARECAM" capture --camera aravis:glarecam-none --out "$WORK/nocap"
+expect "missing Aravis camera names the URI" grep -q "aravis:glarecam-none" "$WORK/err"
+
 # Every bad stack of the corpus: exit 2, one line naming the stack's file and the problem.
 check "missing stack" 2 "$GLARECAM" process "$WORK/no-such-stack"
 for stack in "$CORPUS"/*/; do
@@ -199,5 +205,4 @@ for stack in "$CORPUS"/*/; do
 done
 expect "no output for bad stacks" test ! -e "$WORK/bad-out/result.json"
 
-echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish

@@ -16,11 +16,14 @@ inline constexpr const char* kAnalysisOpenCvFitEllipse = "analysis/opencv_fitell
 inline constexpr const char* kProcessEndToEnd = "process/end_to_end";
 inline constexpr const char* kSweepOneThread = "sweep/20_stacks/1_thread";
 inline constexpr const char* kSweepAllThreads = "sweep/20_stacks/all_threads";
+inline constexpr const char* kCaptureFakeGvBracket = "capture/fake_gv_bracket";
+inline constexpr const char* kCaptureLinkFloor = "capture/link_floor";
 
 // Each returns the names it registered.
 std::vector<std::string> registerMergeBenchmarks();     // merge/*
 std::vector<std::string> registerAnalysisBenchmarks();  // analysis/*
 std::vector<std::string> registerProcessBenchmarks();   // process/end_to_end
 std::vector<std::string> registerSweepBenchmarks();     // sweep/*
+std::vector<std::string> registerCaptureBenchmarks();   // capture/* (with Aravis only)
 
 }  // namespace glarecam::bench

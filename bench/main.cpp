@@ -5,6 +5,8 @@
 //   analysis/glarecam ÷ merge/glarecam           target <= 3x: analysis no bottleneck
 //   analysis/glarecam ÷ analysis/opencv_fitellipse   (no target: the price of sub-pixel
 //                                                      contours, angles and uncertainties)
+//   capture/fake_gv_bracket ÷ capture/link_floor target <= 0.1x: the capture's overhead at
+//                                                most 10 % of exposure plus transfer
 // A ratio is printed only when both of its benchmarks ran (--benchmark_filter may skip some).
 // The console report is always used (it records the times); for machine-readable results add
 // --benchmark_out=FILE --benchmark_out_format=json.
@@ -29,6 +31,7 @@ namespace {
 constexpr double kDebevecTargetRatio = 40.0;
 constexpr double kMemoryFloorTargetRatio = 2.0;
 constexpr double kAnalysisTargetRatio = 3.0;
+constexpr double kCaptureOverheadTargetRatio = 0.1;
 // Room after a name for an aggregate's suffix ("_median", "_stddev") with --benchmark_repetitions.
 constexpr std::size_t kAggregateSuffixWidth = 7;
 
@@ -115,6 +118,9 @@ int main(int argc, char** argv) {
   for (std::string& name : registerAnalysisBenchmarks()) names.push_back(std::move(name));
   for (std::string& name : registerProcessBenchmarks()) names.push_back(std::move(name));
   for (std::string& name : registerSweepBenchmarks()) names.push_back(std::move(name));
+#if GLARECAM_WITH_ARAVIS
+  for (std::string& name : registerCaptureBenchmarks()) names.push_back(std::move(name));
+#endif
   std::size_t longest_name = 0;
   for (const std::string& name : names) longest_name = std::max(longest_name, name.size());
 
@@ -133,6 +139,8 @@ int main(int argc, char** argv) {
   printRatio(reporter, kAnalysisGlarecam, kAnalysisOpenCvFitEllipse, 2, Target::kNone, 0);
   // The sweep's speed-up from parallel stacks: 1 thread ÷ all threads.
   printRatio(reporter, kSweepOneThread, kSweepAllThreads, 2, Target::kNone, 0);
+  printRatio(reporter, kCaptureFakeGvBracket, kCaptureLinkFloor, 3, Target::kAtMost,
+             kCaptureOverheadTargetRatio);
   benchmark::Shutdown();
   return 0;
 }

@@ -12,6 +12,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <tuple>
+#include <vector>
 
 #include "capture/aravis/glib_ownership.h"
 #include "capture/sim/sensor_model.h"
@@ -24,6 +27,7 @@ namespace {
 constexpr int kMono16Shift = 4;
 constexpr int kMono8Shift = 4;
 constexpr int kMono8Max = 255;
+constexpr std::size_t kMaxReusedFrames = 64;  // distinct exposures kept with reuse_frames
 
 Calibration scaledCalibration(Calibration base, double dn_scale) {
   base.black_level_dn *= dn_scale;
@@ -77,26 +81,45 @@ struct FakeGvCamera::State {
         (!mono16 && pixel_format != ARV_PIXEL_FORMAT_MONO_8)) {
       return;  // only the scene's size in Mono16 / Mono8: anything else stays as it was
     }
+    const std::vector<std::uint8_t>& bytes = frameBytes(exposure_time_us, gain_raw, mono16);
+    // The buffer was allocated for this size and format (the payload when streaming started).
+    std::memcpy(const_cast<void*>(arv_buffer_get_data(buffer, nullptr)), bytes.data(),
+                bytes.size());
+  }
+
+  // The bytes of a frame at this exposure and gain: rendered with fresh noise, or with
+  // reuse_frames the first rendering again (for benchmarks of everything but the simulator).
+  const std::vector<std::uint8_t>& frameBytes(guint32 exposure_time_us, guint32 gain_raw,
+                                              bool mono16) {
+    const auto key = std::make_tuple(exposure_time_us, gain_raw, mono16);
+    if (const auto cached = cache.find(key); cached != cache.end()) return cached->second;
     const FrameSpec spec =
         simulatedFrameSpec(options.scene, std::max<guint32>(exposure_time_us, 1), gain_raw);
     const RawFrame frame =
         exposeFrame(scene.true_luminance_cd_m2, spec, scene.calibration, options.scene.sensor,
                     options.scene.seed * 1'000'003 + frames_rendered++);
-    // The buffer was allocated for this size and format (the payload when streaming started).
-    auto* data =
-        static_cast<std::uint8_t*>(const_cast<void*>(arv_buffer_get_data(buffer, nullptr)));
+    std::vector<std::uint8_t> bytes(frame.pixelCount() * (mono16 ? 2 : 1));
     const std::uint16_t* values = frame.data();
     for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
       if (mono16) {
         const auto value = static_cast<std::uint16_t>(values[i] << kMono16Shift);
-        std::memcpy(data + 2 * i, &value, sizeof value);  // GenICam Mono16: little-endian
+        std::memcpy(bytes.data() + 2 * i, &value, sizeof value);  // GenICam Mono16: little-endian
       } else {
         // Rounded, not truncated: the scaled calibration then holds without a half-DN bias.
         const int rounded = (values[i] + (1 << (kMono8Shift - 1))) >> kMono8Shift;
-        data[i] = static_cast<std::uint8_t>(std::min(rounded, kMono8Max));
+        bytes[i] = static_cast<std::uint8_t>(std::min(rounded, kMono8Max));
       }
     }
+    if (!options.reuse_frames) {
+      scratch = std::move(bytes);
+      return scratch;
+    }
+    if (cache.size() >= kMaxReusedFrames) cache.clear();
+    return cache.emplace(key, std::move(bytes)).first->second;
   }
+
+  std::map<std::tuple<guint32, guint32, bool>, std::vector<std::uint8_t>> cache;
+  std::vector<std::uint8_t> scratch;
 };
 
 Status FakeGvCameraOptions::validate() const {

@@ -24,6 +24,9 @@ struct FakeGvCameraOptions {
   double packet_loss = 0.0;  // fraction of GVSP packets dropped, [0, 1)
   // How often the fake camera looks for a software trigger: sets its trigger latency.
   double trigger_poll_hz = 1000.0;
+  // Send the first rendering of each exposure again instead of new noise: benchmarks then
+  // measure the transport and the backend, not the simulator.
+  bool reuse_frames = false;
   Status validate() const;
 };
 

@@ -237,6 +237,7 @@ Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settin
   CapturedStack stack;
   stack.manifest = makeManifest(camera, settings, bracket);
   stack.bit_depth = camera.format().bits_per_pixel <= 8 ? 8 : 16;
+  stack.truth = camera.sceneTruth();
   for (CapturedFrame& frame : bracket.frames) stack.frames.push_back(std::move(frame.image));
   return stack;
 }
@@ -254,6 +255,7 @@ Result<std::filesystem::path> writeCapturedStack(const std::filesystem::path& pa
   request.manifest.id = target.filename().string();
   request.frames = stack.frames;
   request.bit_depth = stack.bit_depth;
+  if (stack.truth) request.text_files.emplace_back("truth.json", jsonText(*stack.truth));
   GLARECAM_CHECK(writeStack(target, request));
   return target;
 }

@@ -30,7 +30,8 @@ struct CaptureSettings {
 struct CapturedStack {
   StackManifest manifest;
   std::vector<RawFrame> frames;
-  int bit_depth = 16;  // of the stack's PNG files
+  int bit_depth = 16;                   // of the stack's PNG files
+  std::optional<nlohmann::json> truth;  // a simulated camera's scene truth, as truth.json
 };
 
 Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settings);

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -88,6 +89,9 @@ class Camera {
   // The calibration of a camera that knows its own (the simulator); real cameras have none and
   // the capture's --calibration supplies it.
   virtual std::optional<Calibration> knownCalibration() const { return std::nullopt; }
+  // The truth of the scene a simulated camera shows (truth.json, docs/simulate.md), written
+  // into its stacks so that the pipeline can be checked against it; real cameras have none.
+  virtual std::optional<nlohmann::json> sceneTruth() const { return std::nullopt; }
   // One frame per request, in request order. Errors name the camera's URI; a camera that was
   // lost (unplugged, powered off) fails every later call.
   virtual Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) = 0;

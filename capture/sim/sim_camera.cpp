@@ -92,6 +92,9 @@ class SimCamera final : public Camera {
   }
 
   std::optional<Calibration> knownCalibration() const override { return scene_.calibration; }
+  std::optional<nlohmann::json> sceneTruth() const override {
+    return sceneTruthJson(scene_, options_.alpha_deg);
+  }
 
   Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) override {
     std::vector<CapturedFrame> frames;

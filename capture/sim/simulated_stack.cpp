@@ -165,18 +165,27 @@ Status checkLensInvertible(const calibration::CameraModel& camera, int width, in
 
 }  // namespace
 
-nlohmann::json SimulatedStack::truthJson() const {
+nlohmann::json sceneTruthJson(const SimulatedScene& scene, double alpha_deg) {
+  const SceneTruth& truth = scene.truth;
   return {{"schema", kTruthSchema},
-          {"stack", manifest.id.value_or("")},
-          {"alpha_deg", manifest.alpha_deg.value_or(0.0)},
+          {"alpha_deg", alpha_deg},
           {"luminance_max_cd_m2", truth.peak_cd_m2},
           {"limit_cd_m2", truth.limit_cd_m2},
           {"limit_axes_deg", axesJson(truth.limit_axes)},
           {"fwhm_axes_deg", axesJson(truth.fwhm_axes)},
           {"glare", truth.peak_cd_m2 >= truth.limit_cd_m2},
-          {"centre_pixel", centre_pixel},
-          {"bracket",
-           {{"exposures_us", bracket.exposures_us}, {"peak_clipped", bracket.peak_clipped}}}};
+          {"centre_pixel", scene.centre_pixel}};
+}
+
+nlohmann::json SimulatedStack::truthJson() const {
+  SimulatedScene scene;
+  scene.truth = truth;
+  scene.centre_pixel = centre_pixel;
+  nlohmann::json document = sceneTruthJson(scene, manifest.alpha_deg.value_or(0.0));
+  document["stack"] = manifest.id.value_or("");
+  document["bracket"] = {{"exposures_us", bracket.exposures_us},
+                         {"peak_clipped", bracket.peak_clipped}};
+  return document;
 }
 
 Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options) {

@@ -64,6 +64,9 @@ struct SimulatedScene {
 
 Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options);
 
+// truth.json (schema glarecam.truth/1) of a scene: maximum, limit, both axes, glare, centre.
+nlohmann::json sceneTruthJson(const SimulatedScene& scene, double alpha_deg);
+
 // The calibration block of the simulated camera (its sensor, K, f-number and pinhole model).
 Calibration simulatedCalibration(const SimulationOptions& options);
 

@@ -18,7 +18,6 @@
 namespace glarecam::bench {
 namespace {
 
-constexpr int kWidth = 640, kHeight = 512;
 constexpr double kBytesPerPixel = 2;  // Mono16
 // Gigabit Ethernet: 125 MB/s on the wire, of which GVSP over 1500-byte packets keeps about 95 %.
 constexpr double kGigabitPayloadBytesPerS = 125e6 * 0.95;
@@ -27,15 +26,13 @@ const std::vector<double> kBracketUs{100, 316, 1000, 3162, 10000, 31623};
 
 double linkFloorS() {
   const double exposures_s = std::accumulate(kBracketUs.begin(), kBracketUs.end(), 0.0) / 1e6;
-  const double frame_bytes = kWidth * kHeight * kBytesPerPixel;
+  const capture::SimulationOptions scene = capture::fakeCameraScene();
+  const double frame_bytes = scene.width * scene.height * kBytesPerPixel;
   return exposures_s + kBracketUs.size() * frame_bytes / kGigabitPayloadBytesPerS;
 }
 
 void fakeGvBracket(benchmark::State& state) {
-  capture::FakeGvCameraOptions fake_options;
-  fake_options.scene.width = kWidth;
-  fake_options.scene.height = kHeight;
-  fake_options.scene.horizontal_fov_deg = 20;
+  capture::FakeGvCameraOptions fake_options;  // the default scene: 640x512
   fake_options.reuse_frames = true;
   auto fake = capture::FakeGvCamera::start(fake_options);
   if (!fake) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -16,12 +17,20 @@ namespace {
 // Without a calibration: no black level known, and the top 5 % of the pixel format's range
 // treated as saturated (sensors leave the linear range before full scale).
 constexpr double kUncalibratedSaturationFraction = 0.95;
+// Stacks captured into one directory within the same second get "-2", "-3", ... up to this.
+constexpr int kMaxStackNameSuffix = 1000;
 
+// The bits a pixel format carries: the number ending its name (Mono12, BayerRG10), else the
+// stored depth.
 int significantBits(const SensorFormat& format) {
-  for (const int bits : {8, 10, 12, 14, 16}) {
-    if (format.pixel_format == "Mono" + std::to_string(bits)) return bits;
+  const std::string& name = format.pixel_format;
+  const auto digits = name.find_last_not_of("0123456789") + 1;
+  int bits = 0;
+  const auto [end, error] = std::from_chars(name.data() + digits, name.data() + name.size(), bits);
+  if (error != std::errc() || bits < 8 || bits > format.bits_per_pixel) {
+    return format.bits_per_pixel;
   }
-  return format.bits_per_pixel;
+  return bits;
 }
 
 struct SensorLevels {
@@ -50,14 +59,6 @@ Result<CapturedFrame> captureOne(Camera& camera, double exposure_us, double gain
   return std::move(frames.front());
 }
 
-Result<std::vector<CapturedFrame>> captureExposures(Camera& camera,
-                                                    const std::vector<double>& exposures_us,
-                                                    double gain_db) {
-  std::vector<ExposureRequest> requests;
-  for (const double exposure : exposures_us) requests.push_back({exposure, gain_db});
-  return camera.capture(requests);
-}
-
 using NextMetering = std::optional<double> (*)(const MeteringFrame&, double, const CameraLimits&,
                                                const AutoBracketOptions&);
 
@@ -84,9 +85,19 @@ Result<MeteringFrame> meter(Camera& camera, const CaptureSettings& settings,
 }
 
 struct Bracket {
-  std::vector<CapturedFrame> frames;
+  std::vector<ExposureRequest> requested;
+  std::vector<CapturedFrame> frames;  // as applied, one per request
   AutoBracketLog log;
 };
+
+// Captures one frame per exposure into `bracket`, replacing what it held.
+Status captureExposures(Camera& camera, const std::vector<double>& exposures_us, double gain_db,
+                        Bracket& bracket) {
+  bracket.requested.clear();
+  for (const double exposure : exposures_us) bracket.requested.push_back({exposure, gain_db});
+  GLARECAM_ASSIGN(bracket.frames, camera.capture(bracket.requested));
+  return {};
+}
 
 // Captures `plan`, re-planning shorter while the peak is clipped in the shortest frame.
 Status captureUnclipped(Camera& camera, const CaptureSettings& settings, const SensorLevels& levels,
@@ -94,14 +105,17 @@ Status captureUnclipped(Camera& camera, const CaptureSettings& settings, const S
                         Progress& progress) {
   for (int attempt = 0;; ++attempt) {
     progress.setTotal(2 + static_cast<int>(plan.exposures_us.size()));
-    GLARECAM_ASSIGN(bracket.frames, captureExposures(camera, plan.exposures_us, settings.gain_db));
+    GLARECAM_CHECK(captureExposures(camera, plan.exposures_us, settings.gain_db, bracket));
     progress.advance(fmt::format("{} frames", bracket.frames.size()));
     const double shortest_us = bracket.frames.front().exposure_us;
     bracket.log.peak_clipped =
         measureFrameLevels(bracket.frames.front().image, levels.black_dn, levels.saturation_dn)
             .peak_clipped;
     bracket.log.background_underexposed = plan.background_underexposed;
-    if (!bracket.log.peak_clipped || plan.peak_clipped ||
+    // Nothing shorter to try at the camera's shortest exposure.
+    const bool at_shortest =
+        shortest_us <= camera.limits().min_exposure_us + camera.limits().exposure_step_us;
+    if (!bracket.log.peak_clipped || plan.peak_clipped || at_shortest ||
         attempt >= settings.auto_bracket.max_rebrackets) {
       return {};
     }
@@ -168,14 +182,22 @@ nlohmann::json cameraJson(const Camera& camera) {
           {"width", format.width},   {"height", format.height}};
 }
 
+// α as given, else as a simulated camera knows it from its scene.
+std::optional<double> alphaFor(const Camera& camera, const CaptureSettings& settings) {
+  if (settings.alpha_deg) return settings.alpha_deg;
+  const auto truth = camera.sceneTruth();
+  if (truth && truth->contains("alpha_deg")) return (*truth)["alpha_deg"].get<double>();
+  return std::nullopt;
+}
+
 StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings,
                            const Bracket& bracket) {
+  const std::optional<double> alpha_deg = alphaFor(camera, settings);
   StackManifest manifest;
   const std::string stamp = utcTimestamp("%Y%m%dT%H%M%SZ");
-  manifest.id =
-      settings.alpha_deg ? fmt::format("{}-a{:05.2f}", stamp, *settings.alpha_deg) : stamp;
+  manifest.id = alpha_deg ? fmt::format("{}-a{:05.2f}", stamp, *alpha_deg) : stamp;
   manifest.captured_at = utcTimestamp("%Y-%m-%dT%H:%M:%SZ");
-  manifest.alpha_deg = settings.alpha_deg;
+  manifest.alpha_deg = alpha_deg;
   manifest.calibration = calibrationFor(camera, settings);
   const CameraOptics& known = camera.info().optics;
   const auto f_number = settings.optics.f_number ? settings.optics.f_number : known.f_number;
@@ -183,12 +205,15 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
   int retries = 0;
   for (std::size_t i = 0; i < bracket.frames.size(); ++i) {
     const CapturedFrame& frame = bracket.frames[i];
-    manifest.frames.push_back({.file = fmt::format("frame-{:02}.png", i),
-                               .exposure_us = frame.exposure_us,
-                               .gain_db = frame.gain_db,
-                               .f_number = f_number,
-                               .nd_transmission = nd,
-                               .source = nlohmann::json::object()});
+    manifest.frames.push_back(
+        {.file = fmt::format("frame-{:02}.png", i),
+         .exposure_us = frame.exposure_us,
+         .gain_db = frame.gain_db,
+         .f_number = f_number,
+         .nd_transmission = nd,
+         .source = {{"requested_exposure_us", bracket.requested[i].exposure_us},
+                    {"requested_gain_db", bracket.requested[i].gain_db},
+                    {"discarded_frames", frame.retries}}});
     retries += frame.retries;
   }
   nlohmann::json capture = {{"bracketing", settings.exposures_us ? "fixed" : "auto"},
@@ -227,8 +252,7 @@ Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settin
   Progress progress("capture", planned, settings.show_progress);
   Bracket bracket;
   if (settings.exposures_us) {
-    GLARECAM_ASSIGN(bracket.frames,
-                    captureExposures(camera, *settings.exposures_us, settings.gain_db));
+    GLARECAM_CHECK(captureExposures(camera, *settings.exposures_us, settings.gain_db, bracket));
     progress.advance(fmt::format("{} frames", bracket.frames.size()));
   } else {
     GLARECAM_ASSIGN(bracket, autoBracket(camera, settings, progress));
@@ -245,19 +269,27 @@ Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settin
 Result<std::filesystem::path> writeCapturedStack(const std::filesystem::path& parent,
                                                  const CapturedStack& stack) {
   const std::string id = stack.manifest.id.value_or("stack");
-  std::filesystem::path target = parent / id;
-  std::error_code error;
-  for (int suffix = 2; std::filesystem::exists(target, error); ++suffix) {
-    target = parent / fmt::format("{}-{}", id, suffix);
-  }
   StackWriteRequest request;
   request.manifest = stack.manifest;
-  request.manifest.id = target.filename().string();
   request.frames = stack.frames;
   request.bit_depth = stack.bit_depth;
+  request.may_replace = false;
   if (stack.truth) request.text_files.emplace_back("truth.json", jsonText(*stack.truth));
-  GLARECAM_CHECK(writeStack(target, request));
-  return target;
+  for (int suffix = 1; suffix <= kMaxStackNameSuffix; ++suffix) {
+    const std::filesystem::path target =
+        parent / (suffix == 1 ? id : fmt::format("{}-{}", id, suffix));
+    std::error_code error;
+    if (std::filesystem::exists(std::filesystem::symlink_status(target, error))) continue;
+    request.manifest.id = target.filename().string();
+    Status written = writeStack(target, request);
+    if (written) return target;
+    // Another capture took the name meanwhile (its stack is left alone): try the next one.
+    if (!std::filesystem::exists(std::filesystem::symlink_status(target, error))) {
+      return std::unexpected(written.error());
+    }
+  }
+  return fail(ErrorCode::kIo, fmt::format("{}: {} stacks named {} already exist", parent.string(),
+                                          kMaxStackNameSuffix, id));
 }
 
 }  // namespace glarecam::capture

@@ -313,7 +313,11 @@ Status writeStack(const fs::path& requested_directory, const StackWriteRequest& 
   GLARECAM_CHECK(checkWriteRequest(directory, request));
   auto staging = StagingDirectory::create(directory);
   if (!staging) return std::unexpected(staging.error());
-  staging->setReplaceCheck(isStackDirectory);
+  if (request.may_replace) {
+    staging->setReplaceCheck(isStackDirectory);
+  } else {
+    staging->setReplaceCheck([](const fs::path&) { return false; });
+  }
   GLARECAM_CHECK(writeFrames(staging->path(), request));
   GLARECAM_CHECK(writeManifestAndExtras(staging->path(), request));
   return staging->commit();

@@ -52,6 +52,8 @@ struct StackWriteRequest {
   int bit_depth = 16;                                           // 16 or 8
   std::vector<StackAttachment> attachments;                     // e.g. the flat field
   std::vector<std::pair<std::string, std::string>> text_files;  // relative path, content
+  bool may_replace = true;  // false: an existing stack at the path (even one written meanwhile by
+                            // another process) is left alone and the write fails
 };
 
 // Writes the stack at `directory`, or atomically replaces the stack that is there. Anything else

@@ -25,7 +25,9 @@
 namespace glarecam::apps {
 namespace {
 
-constexpr double kMaxAlphaDeg = 90.0;  // α is measured from the module normal
+constexpr double kMaxAlphaDeg = 90.0;             // α is measured from the module normal
+constexpr std::uint64_t kMaxFrameRetries = 1000;  // beyond this a link is broken, not lossy
+constexpr double kMaxWaitS = 7 * 24 * 3600.0;     // --interval, --duration: a week at most
 
 // ---- cameras -------------------------------------------------------------------------------
 
@@ -110,7 +112,8 @@ Result<capture::CameraOptions> cameraOptions(const CaptureArgs& args,
   options.pixel_format = args.pixel_format;
   std::uint64_t retries = 0;
   GLARECAM_ASSIGN(retries, parseUnsigned(args.max_retries, "--max-retries"));
-  options.max_frame_retries = static_cast<int>(std::min<std::uint64_t>(retries, 1000));
+  if (retries > kMaxFrameRetries) return badInput("capture: --max-retries must be at most 1000");
+  options.max_frame_retries = static_cast<int>(retries);
   options.simulated_alpha_deg = settings.alpha_deg;
   return options;
 }
@@ -123,7 +126,9 @@ Status runCapture(const CaptureArgs& args) {
   std::uint64_t count = 0;
   GLARECAM_ASSIGN(count, parseUnsigned(args.count, "--count"));
   if (count == 0) return badInput("capture: --count must be at least 1");
-  if (!(args.interval_s >= 0)) return badInput("capture: --interval must be >= 0 seconds");
+  if (!(args.interval_s >= 0 && args.interval_s <= kMaxWaitS)) {
+    return badInput("capture: --interval must be between 0 and 604800 seconds (a week)");
+  }
   std::error_code error;
   if (std::filesystem::exists(args.out, error) && !std::filesystem::is_directory(args.out, error)) {
     return badInput(fmt::format("capture: --out {} is not a directory", args.out));
@@ -155,7 +160,7 @@ Status runCapture(const CaptureArgs& args) {
 #if GLARECAM_WITH_ARAVIS
 struct FakeCameraArgs {
   capture::FakeGvCameraOptions options;
-  std::string size = "640x512";
+  std::string size = fmt::format("{}x{}", options.scene.width, options.scene.height);
   std::string seed = "1";
   std::optional<std::string> calibration_out;
   double duration_s = 0;
@@ -175,12 +180,18 @@ Status writeFakeCalibrations(const capture::FakeGvCamera& camera, const std::str
   return {};
 }
 
-// Blocks until SIGINT / SIGTERM, or for `duration_s` when positive.
-void waitForStop(double duration_s) {
+sigset_t stopSignals() {
   sigset_t stop;
   sigemptyset(&stop);
   sigaddset(&stop, SIGINT);
   sigaddset(&stop, SIGTERM);
+  return stop;
+}
+
+// Blocks until SIGINT / SIGTERM (blocked in every thread, see runFakeCamera), or for
+// `duration_s` when positive.
+void waitForStop(double duration_s) {
+  const sigset_t stop = stopSignals();
   if (duration_s > 0) {
     const auto whole = static_cast<time_t>(duration_s);
     const timespec timeout{whole, static_cast<long>((duration_s - whole) * 1e9)};
@@ -197,12 +208,11 @@ Status runFakeCamera(FakeCameraArgs& args) {
   std::tie(args.options.scene.width, args.options.scene.height) = size;
   GLARECAM_ASSIGN(args.options.scene.seed, parseUnsigned(args.seed, "--seed"));
   GLARECAM_CHECK(requireNonEmptyPath(args.calibration_out, "--calibration-out"));
-  if (!(args.duration_s >= 0)) return badInput("fake-camera: --duration must be >= 0 seconds");
+  if (!(args.duration_s >= 0 && args.duration_s <= kMaxWaitS)) {
+    return badInput("fake-camera: --duration must be between 0 and 604800 seconds (a week)");
+  }
   // Block the stop signals before any thread starts, so that only waitForStop receives them.
-  sigset_t stop;
-  sigemptyset(&stop);
-  sigaddset(&stop, SIGINT);
-  sigaddset(&stop, SIGTERM);
+  const sigset_t stop = stopSignals();
   pthread_sigmask(SIG_BLOCK, &stop, nullptr);
   std::unique_ptr<capture::FakeGvCamera> camera;
   GLARECAM_ASSIGN(camera, capture::FakeGvCamera::start(args.options));
@@ -249,7 +259,8 @@ void addCaptureCommand(CLI::App& app, Action& action) {
                   "calibration file written inline into each stack; its black level and "
                   "saturation guide the auto-bracket");
   sub->add_option("--pixel-format", args->pixel_format,
-                  "GenICam pixel format (Mono16, Mono12, Mono8); default the deepest mono one");
+                  "pixel format: Mono16, Mono12, Mono8 (Mono10 with v4l2, libcamera's names "
+                  "with libcamera); default the deepest mono one");
   sub->add_option("--f-number", args->f_number, "lens f-number, when the camera cannot know it");
   sub->add_option("--nd-transmission", args->nd, "ND filter transmission in (0, 1]");
   sub->add_option("--count", args->count, "number of stacks in the series")->capture_default_str();
@@ -265,7 +276,6 @@ void addCaptureCommand(CLI::App& app, Action& action) {
 void addFakeCameraCommand(CLI::App& app, Action& action) {
 #if GLARECAM_WITH_ARAVIS
   auto args = std::make_shared<FakeCameraArgs>();
-  args->options.scene.horizontal_fov_deg = 20.0;  // the lobe fills a 640x512 frame
   CLI::App* sub = app.add_subcommand(
       "fake-camera",
       "Serve Aravis's GigE Vision fake camera showing the simulated glare scene; prints its URI "

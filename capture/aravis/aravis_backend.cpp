@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstring>
 
 #include "capture/aravis/glib_ownership.h"
@@ -19,9 +20,11 @@ using aravis::OwnedError;
 
 // Deepest first: Mono8 only as the last resort (a warning says so).
 constexpr std::array<std::string_view, 3> kPreferredPixelFormats{"Mono16", "Mono12", "Mono8"};
-constexpr int kStreamBufferCount = 8;        // enough to absorb a burst while one is copied
-constexpr guint64 kPopSliceUs = 50'000;      // how often a wait checks for control-lost
-constexpr int kFreeRunningSettleFrames = 2;  // frames in flight when the exposure changed
+constexpr int kStreamBufferCount = 8;    // enough to absorb a burst while one is copied
+constexpr guint64 kPopSliceUs = 50'000;  // how often a wait checks for control-lost
+// Free-running: the frame being exposed and the one being read out when the exposure changed
+// (sensors apply a new exposure from the next frame start: a global-shutter pipeline of two).
+constexpr int kFreeRunningSettleFrames = 2;
 constexpr double kMicrosecondsPerSecond = 1e6;
 constexpr std::string_view kFakeDevicePrefix = "Fake_";  // Aravis's in-process fake: "Fake_1"
 
@@ -100,6 +103,23 @@ class AravisCamera final : public Camera {
   SensorFormat format() const override { return format_; }
 
   Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) override {
+    try {
+      return captureBracket(requests);
+    } catch (...) {  // bad_alloc of a frame: nothing of ours may throw past the interface
+      stopAcquisition();
+      return std::unexpected(currentExceptionError());
+    }
+  }
+
+ private:
+  Result<std::vector<CapturedFrame>> captureBracket(std::span<const ExposureRequest> requests) {
+    for (const ExposureRequest& request : requests) {
+      if (!(request.exposure_us > 0 && std::isfinite(request.exposure_us) &&
+            std::isfinite(request.gain_db))) {
+        return badInput(fmt::format("{}: exposure {:g} µs / gain {:g} dB is not a valid request",
+                                    info_.uri, request.exposure_us, request.gain_db));
+      }
+    }
     GLARECAM_CHECK(checkConnected());
     GLARECAM_CHECK(startAcquisition());
     std::vector<CapturedFrame> frames;
@@ -118,7 +138,6 @@ class AravisCamera final : public Camera {
     return frames;
   }
 
- private:
   // A command that failed. When the camera stopped answering, later clean-up commands are
   // skipped instead of each waiting out its retries (seconds with GigE Vision).
   std::unexpected<Error> failed(std::string_view what, const OwnedError& error) {
@@ -154,6 +173,13 @@ class AravisCamera final : public Camera {
     };
     std::string chosen;
     if (options_.pixel_format) {
+      if (std::find(kPreferredPixelFormats.begin(), kPreferredPixelFormats.end(),
+                    *options_.pixel_format) == kPreferredPixelFormats.end()) {
+        return badInput(
+            fmt::format("{}: pixel format {} is not one glarecam reads (Mono16, "
+                        "Mono12, Mono8)",
+                        info_.uri, *options_.pixel_format));
+      }
       if (!offered(*options_.pixel_format)) {
         return badInput(fmt::format("{}: pixel format {} is not offered by this camera", info_.uri,
                                     *options_.pixel_format));
@@ -321,11 +347,23 @@ class AravisCamera final : public Camera {
     return {};
   }
 
-  // One frame at `request`: triggers, and discards (counting them) frames that time out, arrive
-  // incomplete, or were received before the new exposure was set (a late frame of an earlier
-  // trigger); free-running cameras also skip the frames in flight during the change.
+  // Returns buffers that arrived before this step to the pool: frames of the previous exposure.
+  int drainQueued() {
+    int drained = 0;
+    while (ArvBuffer* queued = arv_stream_try_pop_buffer(stream_.get())) {
+      arv_stream_push_buffer(stream_.get(), queued);
+      ++drained;
+    }
+    return drained;
+  }
+
+  // One frame at `request`: triggers, and discards (counting them) frames that time out or
+  // arrive incomplete (at most max_frame_retries), and complete frames received before the new
+  // exposure was set (late answers to an earlier trigger; at most one per stream buffer).
+  // Free-running cameras also skip the frames in flight during the change.
   Result<CapturedFrame> captureOne(const ExposureRequest& request) {
     CapturedFrame frame;
+    frame.retries = drainQueued();
     ExposureRequest applied;
     GLARECAM_ASSIGN(applied, apply(request));
     const auto applied_at_ns = static_cast<guint64>(g_get_real_time()) * 1000;  // host clock
@@ -334,39 +372,46 @@ class AravisCamera final : public Camera {
     const double timeout_s =
         options_.frame_timeout_s + applied.exposure_us / kMicrosecondsPerSecond;
     int settle = software_trigger_ ? 0 : kFreeRunningSettleFrames;
+    int failures = 0, stale = 0;
     std::string last_problem = "no frame";
     bool needs_trigger = true;
-    while (frame.retries <= options_.max_frame_retries) {
+    while (failures <= options_.max_frame_retries && stale <= kStreamBufferCount) {
       if (needs_trigger) GLARECAM_CHECK(trigger());
       ArvBuffer* buffer = nullptr;
       GLARECAM_ASSIGN(buffer, waitForBuffer(timeout_s));
       if (buffer == nullptr) {
         last_problem = fmt::format("no frame within {:g} s", timeout_s);
-        ++frame.retries;
+        ++failures;
         needs_trigger = true;
         continue;
       }
-      const bool stale = arv_buffer_get_system_timestamp(buffer) < applied_at_ns;
       const ArvBufferStatus status = arv_buffer_get_status(buffer);
+      // The receive time is that of the frame's first packet: meaningful for complete frames.
+      const bool late = status == ARV_BUFFER_STATUS_SUCCESS &&
+                        arv_buffer_get_system_timestamp(buffer) < applied_at_ns;
       std::optional<RawFrame> image;
-      if (!stale && status == ARV_BUFFER_STATUS_SUCCESS) image = toRawFrame(buffer);
+      if (!late && status == ARV_BUFFER_STATUS_SUCCESS) image = toRawFrame(buffer);
       frame.timestamp_ns = arv_buffer_get_timestamp(buffer);
       arv_stream_push_buffer(stream_.get(), buffer);
-      needs_trigger = !stale;  // a stale frame answered an earlier trigger: ours is pending
-      if (stale || !image) {
-        last_problem = stale ? "a frame from before the exposure change"
-                       : status == ARV_BUFFER_STATUS_SUCCESS ? "frame of unexpected size or format"
-                                                             : bufferStatusText(status);
+      needs_trigger = !late;  // a late frame answered an earlier trigger: ours is pending
+      if (late) {
+        ++stale;
+        ++frame.retries;
+      } else if (!image) {
+        last_problem = status == ARV_BUFFER_STATUS_SUCCESS ? "frame of unexpected size or format"
+                                                           : bufferStatusText(status);
+        ++failures;
         ++frame.retries;
       } else if (settle > 0) {
-        --settle;  // exposed (partly) before the change: not counted as a retry
+        --settle;  // exposed (partly) before the change
+        ++frame.retries;
       } else {
         frame.image = std::move(*image);
         return frame;
       }
     }
     return hardwareError(fmt::format("{}: {} attempts at {:g} µs failed (last: {}); nothing stored",
-                                     info_.uri, frame.retries, frame.exposure_us, last_problem));
+                                     info_.uri, failures, frame.exposure_us, last_problem));
   }
 
   static std::string bufferStatusText(ArvBufferStatus status) {

@@ -97,7 +97,7 @@ struct FakeGvCamera::State {
         simulatedFrameSpec(options.scene, std::max<guint32>(exposure_time_us, 1), gain_raw);
     const RawFrame frame =
         exposeFrame(scene.true_luminance_cd_m2, spec, scene.calibration, options.scene.sensor,
-                    options.scene.seed * 1'000'003 + frames_rendered++);
+                    simulatedFrameSeed(options.scene.seed, frames_rendered++));
     std::vector<std::uint8_t> bytes(frame.pixelCount() * (mono16 ? 2 : 1));
     const std::uint16_t* values = frame.data();
     for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
@@ -121,6 +121,16 @@ struct FakeGvCamera::State {
   std::map<std::tuple<guint32, guint32, bool>, std::vector<std::uint8_t>> cache;
   std::vector<std::uint8_t> scratch;
 };
+
+SimulationOptions fakeCameraScene() {
+  constexpr int kWidth = 640, kHeight = 512;
+  constexpr double kFieldOfViewDeg = 20.0;
+  SimulationOptions scene;
+  scene.width = kWidth;
+  scene.height = kHeight;
+  scene.horizontal_fov_deg = kFieldOfViewDeg;
+  return scene;
+}
 
 Status FakeGvCameraOptions::validate() const {
   if (!(packet_loss >= 0 && packet_loss < 1)) {

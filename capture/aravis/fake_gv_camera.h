@@ -17,10 +17,14 @@
 
 namespace glarecam::capture {
 
+// The fake camera's default scene: 640x512 frames (a VGA-class GigE sensor) with a 20° field of
+// view, so that the glare lobe spans about a hundred pixels (16 px per degree).
+SimulationOptions fakeCameraScene();
+
 struct FakeGvCameraOptions {
   std::string interface_address = "127.0.0.1";  // an interface name or IPv4 address
   std::string serial = "GV01";
-  SimulationOptions scene;
+  SimulationOptions scene = fakeCameraScene();
   double packet_loss = 0.0;  // fraction of GVSP packets dropped, [0, 1)
   // How often the fake camera looks for a software trigger: sets its trigger latency.
   double trigger_poll_hz = 1000.0;

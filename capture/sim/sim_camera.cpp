@@ -18,6 +18,8 @@ namespace {
 constexpr double kSimMinGainDb = 0.0;
 constexpr double kSimMaxGainDb = 24.0;
 constexpr std::string_view kSimSerial = "SIM-0001";
+constexpr double kMaxSizeParameter = 1 << 20;  // converts to int exactly
+constexpr double kMaxSeedParameter = 0x1p53;   // whole numbers a double holds exactly
 
 Result<double> parseNumber(std::string_view text, std::string_view uri_key) {
   double value = 0;
@@ -39,13 +41,17 @@ Status applyParameter(std::string_view key, std::string_view value, SimulationOp
     if (x == std::string_view::npos) return badInput("camera URI sim: size must be WxH");
     GLARECAM_ASSIGN(width, parseNumber(value.substr(0, x), "size"));
     GLARECAM_ASSIGN(height, parseNumber(value.substr(x + 1), "size"));
+    // Out of range here would be undefined in the conversion; validate() names the real limits.
+    if (!(width >= 1 && height >= 1 && width <= kMaxSizeParameter && height <= kMaxSizeParameter)) {
+      return badInput(fmt::format("camera URI sim: size={} is out of range", value));
+    }
     sim.width = static_cast<int>(width);
     sim.height = static_cast<int>(height);
     return {};
   }
   double number = 0;
   GLARECAM_ASSIGN(number, parseNumber(value, key));
-  if (key == "seed" && number >= 0 && number == std::floor(number)) {
+  if (key == "seed" && number >= 0 && number < kMaxSeedParameter && number == std::floor(number)) {
     sim.seed = static_cast<std::uint64_t>(number);
   } else if (key == "fov") {
     sim.horizontal_fov_deg = number;
@@ -105,7 +111,7 @@ class SimCamera final : public Camera {
       frame.gain_db = std::clamp(request.gain_db, kSimMinGainDb, kSimMaxGainDb);
       const FrameSpec spec = simulatedFrameSpec(options_, frame.exposure_us, frame.gain_db);
       frame.image = exposeFrame(scene_.true_luminance_cd_m2, spec, scene_.calibration,
-                                options_.sensor, options_.seed * kFrameSeedStride + frames_taken_);
+                                options_.sensor, simulatedFrameSeed(options_.seed, frames_taken_));
       frame.timestamp_ns = frames_taken_++;
       frames.push_back(std::move(frame));
     }
@@ -120,10 +126,6 @@ class SimCamera final : public Camera {
         std::round(exposure_us / range.exposure_step_us) * range.exposure_step_us;
     return std::clamp(rounded, range.min_exposure_us, range.max_exposure_us);
   }
-
-  // Every frame of every seed gets its own noise: seeds are spaced further apart than any
-  // capture session takes frames.
-  static constexpr std::uint64_t kFrameSeedStride = 1'000'003;
 
   SimulationOptions options_;
   SimulatedScene scene_;

@@ -226,6 +226,11 @@ Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options) {
   return result;
 }
 
+std::uint64_t simulatedFrameSeed(std::uint64_t seed, std::uint64_t frame) {
+  constexpr std::uint64_t kSeedStride = 1'000'003;  // a prime above any session's frame count
+  return seed * kSeedStride + frame;
+}
+
 FrameSpec simulatedFrameSpec(const SimulationOptions& options, double exposure_us, double gain_db) {
   return {.file = {},
           .exposure_us = exposure_us,

@@ -70,6 +70,10 @@ nlohmann::json sceneTruthJson(const SimulatedScene& scene, double alpha_deg);
 // The calibration block of the simulated camera (its sensor, K, f-number and pinhole model).
 Calibration simulatedCalibration(const SimulationOptions& options);
 
+// The noise seed of the `frame`-th frame a simulated camera takes with `seed`: every frame of
+// every seed gets its own noise (seeds are spaced further apart than a session takes frames).
+std::uint64_t simulatedFrameSeed(std::uint64_t seed, std::uint64_t frame);
+
 // A frame of the simulated camera at an exposure and gain, with its f-number and ND filter.
 FrameSpec simulatedFrameSpec(const SimulationOptions& options, double exposure_us, double gain_db);
 

@@ -151,6 +151,10 @@ class V4l2Camera final : public Camera {
   Result<AppliedControls> writeControls(const ExposureRequest& request);
   Result<V4l2Buffer> nextBuffer(std::chrono::milliseconds timeout, std::string_view what);
   Status requeue(const V4l2Buffer& buffer) { return device_->queueBuffer(buffer.index); }
+  // Stale frames one step may see: the settle frames, the queued buffers and the retries.
+  int maxStaleFrames() const {
+    return v4l2_options_.settle_frames + buffer_count_ + options_.max_frame_retries;
+  }
   bool complete(const V4l2Buffer& buffer) const {
     return !buffer.error && buffer.bytes_used >= frameBytes(setup_.format, setup_.mono) &&
            device_->bufferData(buffer.index).size() >= frameBytes(setup_.format, setup_.mono);
@@ -255,7 +259,14 @@ Result<CapturedFrame> V4l2Camera::captureOne(std::size_t index, const ExposureRe
     V4l2Buffer buffer;
     GLARECAM_ASSIGN(buffer, nextBuffer(timeout, what));
     if (!gate.settled(buffer.sequence)) {
-      ++stale;
+      // A driver whose sequence numbers do not advance would keep every frame stale: bounded.
+      if (++stale > maxStaleFrames()) {
+        GLARECAM_CHECK(requeue(buffer));
+        return hardwareError(fmt::format(
+            "{}: {} frames without the new exposure taking effect (the driver's sequence "
+            "numbers do not advance?)",
+            what, stale));
+      }
     } else if (!complete(buffer)) {
       if (++corrupt > options_.max_frame_retries) {
         return hardwareError(fmt::format(

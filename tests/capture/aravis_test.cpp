@@ -77,13 +77,20 @@ TEST(AravisFake, Mono8PathAndAnEightBitStack) {
   EXPECT_NE(read.error().message.find("calibration"), std::string::npos);
 }
 
-TEST(AravisFake, UnofferedPixelFormatIsABadInput) {
+TEST(AravisFake, PixelFormatsItCannotUseAreBadInput) {
   CameraOptions options;
-  options.pixel_format = "Mono14";
+  options.pixel_format = "Mono12";  // one glarecam reads, but the fake camera lacks
   auto camera = openCamera("aravis:Fake_1", options);
   ASSERT_FALSE(camera);
   EXPECT_EQ(camera.error().code, ErrorCode::kBadInput);
-  EXPECT_NE(camera.error().message.find("Mono14 is not offered"), std::string::npos);
+  EXPECT_NE(camera.error().message.find("Mono12 is not offered"), std::string::npos)
+      << camera.error().message;
+  options.pixel_format = "BayerRG8";  // offered, but not a format glarecam reads
+  camera = openCamera("aravis:Fake_1", options);
+  ASSERT_FALSE(camera);
+  EXPECT_EQ(camera.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(camera.error().message.find("not one glarecam reads"), std::string::npos)
+      << camera.error().message;
 }
 
 FakeGvCameraOptions loopbackScene(double alpha_deg, double packet_loss = 0) {

@@ -224,6 +224,38 @@ TEST(Bracketer, FixedExposuresAreRecordedAsApplied) {
   EXPECT_EQ(stack->manifest.source["capture"]["bracketing"], "fixed");
   EXPECT_EQ(stack->manifest.source["camera"]["backend"], "sim");
   EXPECT_DOUBLE_EQ(*stack->manifest.frames[0].f_number, 8.0);  // the simulated optics
+  EXPECT_DOUBLE_EQ(stack->manifest.frames[0].source["requested_exposure_us"].get<double>(), 100.3);
+  // The simulated camera's truth travels with the stack.
+  ASSERT_TRUE(stack->truth);
+  EXPECT_EQ((*stack->truth)["schema"], "glarecam.truth/1");
+  testing::TempDir dir;
+  auto written = writeCapturedStack(dir.path(), *stack);
+  ASSERT_TRUE(written);
+  EXPECT_TRUE(std::filesystem::is_regular_file(*written / "truth.json"));
+}
+
+TEST(Bracketer, ACaptureNeverReplacesAStackWrittenMeanwhile) {
+  auto camera = openSim("size=64x48");
+  CaptureSettings settings = quietAuto(40);
+  settings.exposures_us = std::vector<double>{1000};
+  auto stack = captureStack(*camera, settings);
+  ASSERT_TRUE(stack);
+  testing::TempDir dir;
+  // Another process's stack under the name this one would take.
+  StackWriteRequest other;
+  other.manifest = stack->manifest;
+  other.frames = stack->frames;
+  other.text_files.emplace_back("marker.txt", "theirs");
+  ASSERT_TRUE(writeStack(dir / *stack->manifest.id, other));
+  StackWriteRequest mine = other;
+  mine.may_replace = false;
+  mine.text_files.clear();
+  auto refused = writeStack(dir / *stack->manifest.id, mine);
+  EXPECT_FALSE(refused);
+  EXPECT_EQ(testing::readText(dir / *stack->manifest.id / "marker.txt"), "theirs");
+  auto written = writeCapturedStack(dir.path(), *stack);
+  ASSERT_TRUE(written) << written.error().message;
+  EXPECT_EQ(written->filename().string(), *stack->manifest.id + "-2");
 }
 
 TEST(Bracketer, RefusesExposuresAndGainOutsideTheCamera) {

@@ -139,6 +139,7 @@ struct FakeConfig {
   int frames_per_wait = 1;  // > 1: frames pile up between the backend's waits
   bool deliver = true;      // false: the sensor never delivers a frame
   std::set<std::uint32_t> error_sequences;  // delivered with V4L2_BUF_FLAG_ERROR
+  bool frozen_sequence = false;             // a broken driver: every frame carries sequence 0
 };
 
 // What the test can observe after the device moved into the camera.
@@ -267,8 +268,8 @@ class FakeSensor final : public V4l2Device {
     const int index = queued_.front();
     queued_.erase(queued_.begin());
     fill(buffers_[static_cast<std::size_t>(index)], exposureInEffect(sequence));
-    ready_.push_back({index, sequence, 1'000'000ull * sequence, format_.image_bytes,
-                      config_.error_sequences.contains(sequence)});
+    ready_.push_back({index, config_.frozen_sequence ? 0u : sequence, 1'000'000ull * sequence,
+                      format_.image_bytes, config_.error_sequences.contains(sequence)});
   }
 
   void fill(std::vector<std::byte>& data, std::int64_t value) const {
@@ -433,6 +434,21 @@ TEST(V4l2Backend, FailsAfterMaxFrameRetries) {
             "short), more than max_frame_retries = 2");
   EXPECT_FALSE(rig.state->streaming);
   EXPECT_EQ(rig.state->buffers, 0);
+}
+
+TEST(V4l2Backend, ADriverWhoseSequenceNeverAdvancesFailsInsteadOfHanging) {
+  FakeConfig config;
+  config.frozen_sequence = true;
+  auto rig = fakeRig(config);
+  auto camera = openFake(rig, {});
+  ASSERT_TRUE(camera);
+  const std::vector<ExposureRequest> two{{1000, 0}, {2000, 0}};
+  auto frames = camera->capture(two);
+  ASSERT_FALSE(frames);
+  EXPECT_NE(frames.error().message.find("without the new exposure taking effect"),
+            std::string::npos)
+      << frames.error().message;
+  EXPECT_FALSE(rig.state->streaming);
 }
 
 TEST(V4l2Backend, ASensorThatNeverDeliversTimesOut) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # make demo: a simulated rig sweeps the angle of incidence α = 5…80° over the standard module
-# (a bracketed stack per angle, with sensor noise), then glarecam sweeps the stacks, fits the
+# (`glarecam capture` from the sim: camera, auto-bracketed, with sensor noise and the scene's
+# truth.json in each stack), then glarecam sweeps the stacks, fits the
 # method's functions and writes the module glare data sheet. Prints where the sheet is, a short
 # table of measured and fitted values beside the simulator's truth, and the fits' worst deviation.
 # Usage: scripts/demo.sh BIN_DIR OUT_DIR
@@ -17,11 +18,13 @@ count=$(wc -w <<<"$ALPHAS")
 i=0
 for alpha in $ALPHAS; do
   i=$((i + 1))
-  echo "demo: [$i/$count] simulating the rig at α = $alpha°" >&2
-  "$BIN/glarecam" simulate --no-progress --module "$MODULE" --alpha "$alpha" --seed "$i" \
-    --out "$OUT/stacks.tmp/alpha-$(printf %02d "$alpha")" >/dev/null
+  echo "demo: [$i/$count] the rig captures at α = $alpha° (auto-bracketed, sim: camera)" >&2
+  stack=$("$BIN/glarecam" capture --no-progress --camera "sim:module=$MODULE,seed=$i" \
+    --alpha "$alpha" --out "$OUT/stacks.tmp/captured")
+  mv "$stack" "$OUT/stacks.tmp/alpha-$(printf %02d "$alpha")"
 done
 rm -rf "$OUT/stacks" "$OUT/sweep" "$OUT/summary.csv"  # summary.csv: the previous demo's output
+rmdir "$OUT/stacks.tmp/captured"
 mv "$OUT/stacks.tmp" "$OUT/stacks"
 
 echo "demo: processing the stacks (glarecam sweep)" >&2

@@ -301,29 +301,34 @@ class AravisCamera final : public Camera {
     return applied_;
   }
 
-  Result<double> applyExposure(double exposure_us) {
+  using FeatureSetter = void (*)(ArvCamera*, double, GError**);
+  using FeatureGetter = double (*)(ArvCamera*, GError**);
+
+  // Writes a control and reads back what the camera made of it.
+  Result<double> setAndReadBack(FeatureSetter set, FeatureGetter get, double value,
+                                std::string_view what) {
     last_request_.reset();  // unknown until the read-back succeeds
     OwnedError error;
-    arv_camera_set_exposure_time(camera_.get(), exposure_us, error.out());
-    if (error) return failed(fmt::format("cannot set exposure {:g} µs", exposure_us), error);
-    const double applied = arv_camera_get_exposure_time(camera_.get(), error.out());
-    if (error) return failed("cannot read back the exposure", error);
+    set(camera_.get(), value, error.out());
+    if (error) return failed(fmt::format("cannot set {} {:g}", what, value), error);
+    const double applied = get(camera_.get(), error.out());
+    if (error) return failed(fmt::format("cannot read back the {}", what), error);
     return applied;
   }
 
+  Result<double> applyExposure(double exposure_us) {
+    return setAndReadBack(arv_camera_set_exposure_time, arv_camera_get_exposure_time, exposure_us,
+                          "exposure (µs)");
+  }
+
   Result<double> applyGain(double gain_db) {
-    last_request_.reset();
     if (!gain_available_) {
-      if (gain_db != 0)
+      if (gain_db != 0) {
         return badInput(fmt::format("{}: this camera has no gain control", info_.uri));
+      }
       return 0.0;
     }
-    OwnedError error;
-    arv_camera_set_gain(camera_.get(), gain_db, error.out());
-    if (error) return failed(fmt::format("cannot set gain {:g}", gain_db), error);
-    const double applied = arv_camera_get_gain(camera_.get(), error.out());
-    if (error) return failed("cannot read back the gain", error);
-    return applied;
+    return setAndReadBack(arv_camera_set_gain, arv_camera_get_gain, gain_db, "gain");
   }
 
   // Waits for the next buffer, in slices so that control-lost ends the wait at once.

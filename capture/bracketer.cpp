@@ -52,10 +52,23 @@ SensorLevels sensorLevels(const Camera& camera, const CaptureSettings& settings)
   return {0.0, kUncalibratedSaturationFraction * full_scale};
 }
 
+// camera.capture(), held to its contract: one frame per request.
+Result<std::vector<CapturedFrame>> captureFrames(Camera& camera,
+                                                 std::span<const ExposureRequest> requests) {
+  std::vector<CapturedFrame> frames;
+  GLARECAM_ASSIGN(frames, camera.capture(requests));
+  if (frames.size() != requests.size()) {
+    return fail(ErrorCode::kInternal,
+                fmt::format("{}: {} frames for {} requests", camera.info().uri, frames.size(),
+                            requests.size()));
+  }
+  return frames;
+}
+
 Result<CapturedFrame> captureOne(Camera& camera, double exposure_us, double gain_db) {
   const ExposureRequest request{exposure_us, gain_db};
   std::vector<CapturedFrame> frames;
-  GLARECAM_ASSIGN(frames, camera.capture({&request, 1}));
+  GLARECAM_ASSIGN(frames, captureFrames(camera, {&request, 1}));
   return std::move(frames.front());
 }
 
@@ -95,7 +108,7 @@ Status captureExposures(Camera& camera, const std::vector<double>& exposures_us,
                         Bracket& bracket) {
   bracket.requested.clear();
   for (const double exposure : exposures_us) bracket.requested.push_back({exposure, gain_db});
-  GLARECAM_ASSIGN(bracket.frames, camera.capture(bracket.requested));
+  GLARECAM_ASSIGN(bracket.frames, captureFrames(camera, bracket.requested));
   return {};
 }
 
@@ -164,10 +177,9 @@ Result<Bracket> autoBracket(Camera& camera, const CaptureSettings& settings, Pro
   return bracket;
 }
 
-std::string utcTimestamp(const char* format) {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+std::string utcTimestamp(std::time_t time, const char* format) {
   std::tm utc{};
-  gmtime_r(&now, &utc);
+  gmtime_r(&time, &utc);
   char text[32];
   std::strftime(text, sizeof text, format, &utc);
   return text;
@@ -186,7 +198,9 @@ nlohmann::json cameraJson(const Camera& camera) {
 std::optional<double> alphaFor(const Camera& camera, const CaptureSettings& settings) {
   if (settings.alpha_deg) return settings.alpha_deg;
   const auto truth = camera.sceneTruth();
-  if (truth && truth->contains("alpha_deg")) return (*truth)["alpha_deg"].get<double>();
+  if (truth && truth->contains("alpha_deg") && (*truth)["alpha_deg"].is_number()) {
+    return (*truth)["alpha_deg"].get<double>();
+  }
   return std::nullopt;
 }
 
@@ -194,9 +208,10 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
                            const Bracket& bracket) {
   const std::optional<double> alpha_deg = alphaFor(camera, settings);
   StackManifest manifest;
-  const std::string stamp = utcTimestamp("%Y%m%dT%H%M%SZ");
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  const std::string stamp = utcTimestamp(now, "%Y%m%dT%H%M%SZ");
   manifest.id = alpha_deg ? fmt::format("{}-a{:05.2f}", stamp, *alpha_deg) : stamp;
-  manifest.captured_at = utcTimestamp("%Y-%m-%dT%H:%M:%SZ");
+  manifest.captured_at = utcTimestamp(now, "%Y-%m-%dT%H:%M:%SZ");
   manifest.alpha_deg = alpha_deg;
   manifest.calibration = calibrationFor(camera, settings);
   const CameraOptics& known = camera.info().optics;

@@ -28,6 +28,8 @@ namespace {
 constexpr double kMaxAlphaDeg = 90.0;             // α is measured from the module normal
 constexpr std::uint64_t kMaxFrameRetries = 1000;  // beyond this a link is broken, not lossy
 constexpr double kMaxWaitS = 7 * 24 * 3600.0;     // --interval, --duration: a week at most
+// A staging directory this old belongs to no capture still running (a bracket takes seconds).
+constexpr std::chrono::minutes kStaleTemporaryAge{10};
 
 // ---- cameras -------------------------------------------------------------------------------
 
@@ -132,6 +134,10 @@ Status runCapture(const CaptureArgs& args) {
   std::error_code error;
   if (std::filesystem::exists(args.out, error) && !std::filesystem::is_directory(args.out, error)) {
     return badInput(fmt::format("capture: --out {} is not a directory", args.out));
+  }
+  // A capture killed while writing leaves its hidden staging directory: old ones go now.
+  if (std::filesystem::is_directory(args.out, error)) {
+    removeStaleTemporaries(args.out, kStaleTemporaryAge);
   }
   std::unique_ptr<capture::Camera> camera;
   GLARECAM_ASSIGN(camera, capture::openCamera(args.camera, options));

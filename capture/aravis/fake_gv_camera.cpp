@@ -82,7 +82,9 @@ struct FakeGvCamera::State {
       return;  // only the scene's size in Mono16 / Mono8: anything else stays as it was
     }
     const std::vector<std::uint8_t>& bytes = frameBytes(exposure_time_us, gain_raw, mono16);
-    // The buffer was allocated for this size and format (the payload when streaming started).
+    // Fits: Aravis calls the fill pattern only when the buffer holds the current payload
+    // (arv_fake_camera_fill_buffer: SIZE_MISMATCH otherwise), and for Mono8 / Mono16 at the
+    // scene's size that payload is exactly these bytes.
     std::memcpy(const_cast<void*>(arv_buffer_get_data(buffer, nullptr)), bytes.data(),
                 bytes.size());
   }

@@ -176,6 +176,9 @@ check "process a captured stack" 0 "$GLARECAM" process --no-progress --json "$ca
 expect "captured stack glares at α 70" grep -q '"glare": true' "$WORK/out"
 check "capture series" 0 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/series" --exposures 100,1000 --count 2 --no-progress
 expect "series wrote two stacks" test "$(wc -l <"$WORK/out")" -eq 2 -a "$(ls "$WORK/series" | wc -l)" -eq 2
+mkdir "$WORK/series/.tmp-killed-stack-x1y2z3" && touch -d '1 hour ago' "$WORK/series/.tmp-killed-stack-x1y2z3"
+check "capture after a killed one" 0 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/series" --exposures 100 --no-progress
+expect "the killed capture's staging directory is gone" test ! -e "$WORK/series/.tmp-killed-stack-x1y2z3"
 check "capture: unknown backend" 2 "$GLARECAM" capture --camera gige:cam1 --out "$WORK/nocap"
 expect "unknown backend is one line" one_line_naming "unknown backend"
 check "capture: bad exposures" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --exposures 10,abc

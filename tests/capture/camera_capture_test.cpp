@@ -79,7 +79,8 @@ TEST(SimCamera, ParsesItsParametersAndRefusesBadOnes) {
   CameraOptions with_alpha;
   with_alpha.simulated_alpha_deg = 20.0;
   EXPECT_DOUBLE_EQ(parseSimCameraId("", with_alpha)->alpha_deg, 20.0);
-  for (const char* bad : {"size=320", "fov=wide", "colour=red", "seed", "seed=-1"}) {
+  for (const char* bad : {"size=320", "fov=wide", "colour=red", "seed", "seed=-1", "seed=1e300",
+                          "size=1e10x5", "size=0x0"}) {
     auto parsed = parseSimCameraId(bad, {});
     ASSERT_FALSE(parsed) << bad;
     EXPECT_EQ(parsed.error().code, ErrorCode::kBadInput) << bad;

@@ -172,17 +172,20 @@ struct FakeCameraArgs {
   double duration_s = 0;
 };
 
-Status writeFakeCalibrations(const capture::FakeGvCamera& camera, const std::string& directory) {
+// The calibrations of both pixel formats and the scene's truth, for checking captures.
+Status writeFakeCameraFiles(const capture::FakeGvCamera& camera, const std::string& directory,
+                            double alpha_deg) {
   GLARECAM_CHECK(ensureDirectory(directory));
-  for (const char* format : {"Mono16", "Mono8"}) {
+  for (const auto& [format, file] : {std::pair{"Mono16", "fake-camera-mono16.json"},
+                                     std::pair{"Mono8", "fake-camera-mono8.json"}}) {
     Calibration calibration;
     GLARECAM_ASSIGN(calibration, camera.calibration(format));
-    const auto path =
-        std::filesystem::path(directory) /
-        fmt::format("fake-camera-{}.json", format == std::string("Mono16") ? "mono16" : "mono8");
-    GLARECAM_CHECK(writeFileAtomic(path, jsonText(toJson(calibration))));
-    spdlog::info("fake-camera: calibration for {} frames: {}", format, path.string());
+    GLARECAM_CHECK(
+        writeFileAtomic(std::filesystem::path(directory) / file, jsonText(toJson(calibration))));
   }
+  GLARECAM_CHECK(writeFileAtomic(std::filesystem::path(directory) / "fake-camera-truth.json",
+                                 jsonText(capture::sceneTruthJson(camera.scene(), alpha_deg))));
+  spdlog::info("fake-camera: calibrations and truth in {}", directory);
   return {};
 }
 
@@ -222,7 +225,10 @@ Status runFakeCamera(FakeCameraArgs& args) {
   pthread_sigmask(SIG_BLOCK, &stop, nullptr);
   std::unique_ptr<capture::FakeGvCamera> camera;
   GLARECAM_ASSIGN(camera, capture::FakeGvCamera::start(args.options));
-  if (args.calibration_out) GLARECAM_CHECK(writeFakeCalibrations(*camera, *args.calibration_out));
+  if (args.calibration_out) {
+    GLARECAM_CHECK(
+        writeFakeCameraFiles(*camera, *args.calibration_out, args.options.scene.alpha_deg));
+  }
   spdlog::info("fake-camera: serving {} on {} (α {:g}°, packet loss {:g}); Ctrl-C stops it",
                camera->uri(), args.options.interface_address, args.options.scene.alpha_deg,
                args.options.packet_loss);
@@ -305,7 +311,8 @@ void addFakeCameraCommand(CLI::App& app, Action& action) {
                   "fraction of GVSP packets dropped, e.g. 0.001")
       ->capture_default_str();
   sub->add_option("--calibration-out", args->calibration_out,
-                  "directory to write fake-camera-mono16.json and fake-camera-mono8.json into");
+                  "directory to write the calibrations (fake-camera-mono16.json, "
+                  "fake-camera-mono8.json) and the scene's truth (fake-camera-truth.json) into");
   sub->add_option("--duration", args->duration_s,
                   "stop after this many seconds (0: run until "
                   "SIGINT/SIGTERM)")

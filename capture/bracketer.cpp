@@ -19,6 +19,9 @@ namespace {
 constexpr double kUncalibratedSaturationFraction = 0.95;
 // Stacks captured into one directory within the same second get "-2", "-3", ... up to this.
 constexpr int kMaxStackNameSuffix = 1000;
+// Progress steps of an auto-bracket: peak metered, background metered, bracket captured (one
+// more per re-bracket).
+constexpr int kAutoBracketStages = 3;
 
 // The bits a pixel format carries: the number ending its name (Mono12, BayerRG10), else the
 // stored depth.
@@ -117,7 +120,6 @@ Status captureUnclipped(Camera& camera, const CaptureSettings& settings, const S
                         double background_rate, BracketPlan plan, Bracket& bracket,
                         Progress& progress) {
   for (int attempt = 0;; ++attempt) {
-    progress.setTotal(2 + static_cast<int>(plan.exposures_us.size()));
     GLARECAM_CHECK(captureExposures(camera, plan.exposures_us, settings.gain_db, bracket));
     progress.advance(fmt::format("{} frames", bracket.frames.size()));
     const double shortest_us = bracket.frames.front().exposure_us;
@@ -133,6 +135,7 @@ Status captureUnclipped(Camera& camera, const CaptureSettings& settings, const S
       return {};
     }
     ++bracket.log.rebrackets;
+    progress.setTotal(kAutoBracketStages + bracket.log.rebrackets);
     spdlog::info("{}: peak clipped at {:g} µs; re-bracketing shorter", camera.info().uri,
                  shortest_us);
     GLARECAM_ASSIGN(
@@ -238,7 +241,26 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
   return manifest;
 }
 
+// A calibration made for another pixel format (Mono8's for Mono16 frames, say) puts saturation
+// outside the frames' range, or far below it: refused rather than merged into nonsense. Sensors
+// of 10 bits and more in a 16-bit container are 6 bits short at most; Mono8 in Mono16 is 8.
+Status checkCalibrationFitsFormat(const Camera& camera, const Calibration& calibration) {
+  constexpr double kMaxUnusedBits = 7;
+  const SensorFormat format = camera.format();
+  const double full_scale = std::ldexp(1.0, significantBits(format)) - 1.0;
+  if (calibration.saturation_dn > full_scale ||
+      calibration.saturation_dn < std::ldexp(full_scale, -static_cast<int>(kMaxUnusedBits))) {
+    return badInput(fmt::format(
+        "capture: the calibration's saturation ({:g} DN) does not fit {}'s {} frames (0 … {:g} "
+        "DN): a calibration for another pixel format?",
+        calibration.saturation_dn, camera.info().uri, format.pixel_format, full_scale));
+  }
+  return {};
+}
+
 Status checkSettings(const Camera& camera, const CaptureSettings& settings) {
+  if (settings.calibration)
+    GLARECAM_CHECK(checkCalibrationFitsFormat(camera, *settings.calibration));
   const CameraLimits limits = camera.limits();
   if (settings.exposures_us) {
     if (settings.exposures_us->empty()) return badInput("capture: --exposures lists no exposure");
@@ -262,8 +284,7 @@ Status checkSettings(const Camera& camera, const CaptureSettings& settings) {
 
 Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settings) {
   GLARECAM_CHECK(checkSettings(camera, settings));
-  const int planned = settings.exposures_us ? static_cast<int>(settings.exposures_us->size())
-                                            : 2 + settings.auto_bracket.bracket.min_frames;
+  const int planned = settings.exposures_us ? 1 : kAutoBracketStages;
   Progress progress("capture", planned, settings.show_progress);
   Bracket bracket;
   if (settings.exposures_us) {

@@ -4,7 +4,9 @@
 #include <signal.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <ctime>
 #include <memory>
@@ -120,6 +122,10 @@ Result<capture::CameraOptions> cameraOptions(const CaptureArgs& args,
   return options;
 }
 
+Status checkAgainstCamera(const capture::Camera& camera, const capture::CaptureSettings& settings);
+Status captureSeries(capture::Camera& camera, const capture::CaptureSettings& settings,
+                     const std::string& out, std::uint64_t count, double interval_s);
+
 Status runCapture(const CaptureArgs& args) {
   capture::CaptureSettings settings;
   GLARECAM_ASSIGN(settings, captureSettings(args));
@@ -131,6 +137,7 @@ Status runCapture(const CaptureArgs& args) {
   if (!(args.interval_s >= 0 && args.interval_s <= kMaxWaitS)) {
     return badInput("capture: --interval must be between 0 and 604800 seconds (a week)");
   }
+  GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
   std::error_code error;
   if (std::filesystem::exists(args.out, error) && !std::filesystem::is_directory(args.out, error)) {
     return badInput(fmt::format("capture: --out {} is not a directory", args.out));
@@ -141,20 +148,73 @@ Status runCapture(const CaptureArgs& args) {
   }
   std::unique_ptr<capture::Camera> camera;
   GLARECAM_ASSIGN(camera, capture::openCamera(args.camera, options));
-  if (!settings.calibration && !camera->knownCalibration()) {
+  GLARECAM_CHECK(checkAgainstCamera(*camera, settings));
+  return captureSeries(*camera, settings, args.out, count, args.interval_s);
+}
+
+// What the camera itself knows must not be contradicted, and what it lacks is warned about.
+Status checkAgainstCamera(const capture::Camera& camera, const capture::CaptureSettings& settings) {
+  const capture::CameraOptics& known = camera.info().optics;
+  if ((settings.optics.f_number && known.f_number) ||
+      (settings.optics.nd_transmission && known.nd_transmission)) {
+    return badInput(
+        fmt::format("capture: {} knows its own lens and filter; --f-number and "
+                    "--nd-transmission are for real cameras",
+                    camera.info().uri));
+  }
+  if (!settings.calibration && !camera.knownCalibration()) {
     spdlog::warn(
         "capture: no --calibration; the stacks need one when processed "
         "(glarecam process --calibration FILE)");
   }
+  if (!settings.alpha_deg && !camera.sceneTruth()) {
+    spdlog::warn(
+        "capture: no --alpha; the stacks record no angle of incidence, so process "
+        "cannot apply the α-dependent glare limit");
+  }
+  return {};
+}
+
+// Set by the first SIGINT / SIGTERM: the series stops after the stack being captured (a second
+// signal ends the process at once).
+volatile std::sig_atomic_t g_stop_requested = 0;
+
+void requestStop(int) { g_stop_requested = 1; }
+
+void stopGracefullyOnSignals() {
+  struct sigaction action {};
+  action.sa_handler = requestStop;
+  action.sa_flags = SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+// Sleeps until `deadline` or a stop request, whichever comes first.
+void sleepUntil(std::chrono::steady_clock::time_point deadline) {
+  constexpr auto kSlice = std::chrono::milliseconds(100);
+  while (!g_stop_requested && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::min<std::chrono::steady_clock::duration>(
+        kSlice, deadline - std::chrono::steady_clock::now()));
+  }
+}
+
+Status captureSeries(capture::Camera& camera, const capture::CaptureSettings& settings,
+                     const std::string& out, std::uint64_t count, double interval_s) {
+  stopGracefullyOnSignals();
   auto next = std::chrono::steady_clock::now();
   for (std::uint64_t i = 0; i < count; ++i) {
-    std::this_thread::sleep_until(next);
+    sleepUntil(next);
+    if (g_stop_requested) {
+      return fail(ErrorCode::kInternal,
+                  fmt::format("capture: interrupted after {} of {} stacks", i, count));
+    }
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-        std::chrono::duration<double>(args.interval_s));
+        std::chrono::duration<double>(interval_s));
     capture::CapturedStack stack;
-    GLARECAM_ASSIGN(stack, capture::captureStack(*camera, settings));
+    GLARECAM_ASSIGN(stack, capture::captureStack(camera, settings));
     std::filesystem::path written;
-    GLARECAM_ASSIGN(written, capture::writeCapturedStack(args.out, stack));
+    GLARECAM_ASSIGN(written, capture::writeCapturedStack(out, stack));
     std::printf("%s\n", written.c_str());
     std::fflush(stdout);
   }

@@ -422,7 +422,7 @@ class AravisCamera final : public Camera {
   static std::string bufferStatusText(ArvBufferStatus status) {
     switch (status) {
       case ARV_BUFFER_STATUS_TIMEOUT:
-        return "buffer timed out";
+        return "buffer timed out: packets lost";
       case ARV_BUFFER_STATUS_MISSING_PACKETS:
         return "missing packets";
       case ARV_BUFFER_STATUS_WRONG_PACKET_ID:

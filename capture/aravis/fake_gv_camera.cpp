@@ -135,6 +135,12 @@ SimulationOptions fakeCameraScene() {
 }
 
 Status FakeGvCameraOptions::validate() const {
+  // GigE Vision bootstrap register "Serial number": 16 bytes, NUL-terminated.
+  constexpr std::size_t kMaxSerialLength = 15;
+  if (serial.empty() || serial.size() > kMaxSerialLength) {
+    return badInput("fake-camera: --serial must be 1 to 15 characters (GigE Vision's field)");
+  }
+  if (interface_address.empty()) return badInput("fake-camera: --interface must not be empty");
   if (!(packet_loss >= 0 && packet_loss < 1)) {
     return badInput("fake-camera: --packet-loss must be in [0, 1)");
   }

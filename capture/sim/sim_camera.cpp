@@ -9,6 +9,7 @@
 
 #include "capture/sim/module_model.h"
 #include "capture/sim/sensor_model.h"
+#include "pipeline/limit_curve.h"
 
 namespace glarecam::capture {
 namespace {
@@ -18,8 +19,9 @@ namespace {
 constexpr double kSimMinGainDb = 0.0;
 constexpr double kSimMaxGainDb = 24.0;
 constexpr std::string_view kSimSerial = "SIM-0001";
-constexpr double kMaxSizeParameter = 1 << 20;  // converts to int exactly
-constexpr double kMaxSeedParameter = 0x1p53;   // whole numbers a double holds exactly
+constexpr std::string_view kSimPixelFormat = "Mono12";  // SensorModel's 12-bit ADC
+constexpr double kMaxSizeParameter = 1 << 20;           // converts to int exactly
+constexpr double kMaxSeedParameter = 0x1p53;            // whole numbers a double holds exactly
 
 Result<double> parseNumber(std::string_view text, std::string_view uri_key) {
   double value = 0;
@@ -38,9 +40,15 @@ Status applyParameter(std::string_view key, std::string_view value, SimulationOp
   if (key == "size") {
     const auto x = value.find('x');
     double width = 0, height = 0;
-    if (x == std::string_view::npos) return badInput("camera URI sim: size must be WxH");
-    GLARECAM_ASSIGN(width, parseNumber(value.substr(0, x), "size"));
-    GLARECAM_ASSIGN(height, parseNumber(value.substr(x + 1), "size"));
+    const auto bad_size = [&] {
+      return badInput(fmt::format("camera URI sim: size={} must be WIDTHxHEIGHT", value));
+    };
+    if (x == std::string_view::npos) return bad_size();
+    auto parsed_width = parseNumber(value.substr(0, x), "size");
+    auto parsed_height = parseNumber(value.substr(x + 1), "size");
+    if (!parsed_width || !parsed_height) return bad_size();
+    width = *parsed_width;
+    height = *parsed_height;
     // Out of range here would be undefined in the conversion; validate() names the real limits.
     if (!(width >= 1 && height >= 1 && width <= kMaxSizeParameter && height <= kMaxSizeParameter)) {
       return badInput(fmt::format("camera URI sim: size={} is out of range", value));
@@ -51,7 +59,10 @@ Status applyParameter(std::string_view key, std::string_view value, SimulationOp
   }
   double number = 0;
   GLARECAM_ASSIGN(number, parseNumber(value, key));
-  if (key == "seed" && number >= 0 && number < kMaxSeedParameter && number == std::floor(number)) {
+  if (key == "seed") {
+    if (!(number >= 0 && number < kMaxSeedParameter && number == std::floor(number))) {
+      return badInput(fmt::format("camera URI sim: seed={} must be a whole number >= 0", value));
+    }
     sim.seed = static_cast<std::uint64_t>(number);
   } else if (key == "fov") {
     sim.horizontal_fov_deg = number;
@@ -59,8 +70,7 @@ Status applyParameter(std::string_view key, std::string_view value, SimulationOp
     sim.alpha_deg = number;
   } else {
     return badInput(fmt::format(
-        "camera URI sim: unknown or invalid parameter '{}' (known: module, seed, size, fov, alpha)",
-        key));
+        "camera URI sim: unknown parameter '{}' (known: module, seed, size, fov, alpha)", key));
   }
   return {};
 }
@@ -91,7 +101,7 @@ class SimCamera final : public Camera {
   }
 
   SensorFormat format() const override {
-    return {.pixel_format = "Mono" + std::to_string(options_.sensor.adc_bits),
+    return {.pixel_format = std::string(kSimPixelFormat),
             .width = options_.width,
             .height = options_.height,
             .bits_per_pixel = 16};
@@ -148,11 +158,15 @@ class SimCameraBackend final : public CameraBackend {
   }
 
   Result<std::unique_ptr<Camera>> open(std::string_view id, const CameraOptions& options) override {
+    if (options.pixel_format && *options.pixel_format != kSimPixelFormat) {
+      return badInput(fmt::format("camera URI sim: the simulated camera has {} only, not {}",
+                                  kSimPixelFormat, *options.pixel_format));
+    }
     SimulationOptions sim;
     GLARECAM_ASSIGN(sim, parseSimCameraId(id, options));
     auto rendered = renderSimulatedScene(sim);
     if (!rendered) {
-      return badInput(fmt::format("camera URI sim:{}: {}", id, rendered.error().message));
+      return badInput(fmt::format("camera URI 'sim:{}': {}", id, rendered.error().message));
     }
     return std::make_unique<SimCamera>(std::move(sim), std::move(*rendered),
                                        "sim:" + std::string(id));
@@ -173,6 +187,17 @@ Result<SimulationOptions> parseSimCameraId(std::string_view id, const CameraOpti
       return badInput(fmt::format("camera URI sim: '{}' is not KEY=VALUE", item));
     }
     GLARECAM_CHECK(applyParameter(item.substr(0, equals), item.substr(equals + 1), sim));
+  }
+  if (options.simulated_alpha_deg && sim.alpha_deg != *options.simulated_alpha_deg) {
+    return badInput(
+        fmt::format("camera URI sim: alpha={:g} contradicts --alpha {:g}; give the scene's α once",
+                    sim.alpha_deg, *options.simulated_alpha_deg));
+  }
+  if (!(sim.alpha_deg >= 0 && sim.alpha_deg <= pipeline::kMaxLimitAlphaDeg)) {
+    return badInput(
+        fmt::format("camera URI sim: the simulated scene's α must be within 0…{:g}° "
+                    "(the method's range), not {:g}",
+                    pipeline::kMaxLimitAlphaDeg, sim.alpha_deg));
   }
   return sim;
 }

@@ -53,6 +53,10 @@ expect "captured maximum $measured within 1 % of the truth $truth" \
   awk -v m="$measured" -v t="$truth" 'BEGIN { exit !(t > 0 && m / t > 0.99 && m / t < 1.01) }'
 check "capture Mono8" 0 "$GLARECAM" capture --camera "$uri" --pixel-format Mono8 \
   --calibration "$WORK/cal/fake-camera-mono8.json" --exposures 1000,10000 --out "$WORK/stacks8" --no-progress
+check "a Mono8 calibration for Mono16 frames" 2 "$GLARECAM" capture --camera "$uri" --alpha 40 \
+  --calibration "$WORK/cal/fake-camera-mono8.json" --out "$WORK/none"
+expect "the calibration mismatch is one line" one_line_naming "another pixel format"
+check "fake camera: empty serial" 2 "$GLARECAM" fake-camera --serial "" --duration 1
 check "unreadable pixel format" 2 "$GLARECAM" capture --camera "$uri" --pixel-format BayerRG8 --out "$WORK/none"
 
 # Killed mid-bracket: 64 frames of 1024x1024 take seconds to render and send.

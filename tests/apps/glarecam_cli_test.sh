@@ -176,6 +176,18 @@ check "process a captured stack" 0 "$GLARECAM" process --no-progress --json "$ca
 expect "captured stack glares at α 70" grep -q '"glare": true' "$WORK/out"
 check "capture series" 0 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/series" --exposures 100,1000 --count 2 --no-progress
 expect "series wrote two stacks" test "$(wc -l <"$WORK/out")" -eq 2 -a "$(ls "$WORK/series" | wc -l)" -eq 2
+# Ctrl-C stops a series after the stack being captured: complete stacks only, exit 1, one line.
+"$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/interrupted" --exposures 100 --count 1000 \
+  --interval 0.2 --no-progress >"$WORK/out" 2>"$WORK/err" &
+series_pid=$!
+sleep 1
+kill -INT $series_pid
+wait $series_pid
+status=$?
+expect "an interrupted series exits 1 (got $status)" test $status -eq 1
+expect "an interrupted series says how far it got" one_line_naming "interrupted after"
+expect "every stack of an interrupted series is complete" \
+  test "$(ls "$WORK/interrupted" | wc -l)" -eq "$(wc -l <"$WORK/out")" -a -z "$(ls -A "$WORK/interrupted" | grep '^\.')"
 mkdir "$WORK/series/.tmp-killed-stack-x1y2z3" && touch -d '1 hour ago' "$WORK/series/.tmp-killed-stack-x1y2z3"
 check "capture after a killed one" 0 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/series" --exposures 100 --no-progress
 expect "the killed capture's staging directory is gone" test ! -e "$WORK/series/.tmp-killed-stack-x1y2z3"
@@ -185,11 +197,15 @@ check "capture: bad exposures" 2 "$GLARECAM" capture --camera sim: --out "$WORK/
 check "capture: exposure out of range" 2 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/nocap" --exposures 1
 expect "out-of-range exposure names the camera" one_line_naming "outside sim:size=64x48's range"
 check "capture: bad sim parameter" 2 "$GLARECAM" capture --camera sim:colour=red --out "$WORK/nocap"
+check "capture: sim α contradicting --alpha" 2 "$GLARECAM" capture --camera sim:alpha=20 --alpha 30 --out "$WORK/nocap"
+check "capture: lens options for the sim camera" 2 "$GLARECAM" capture --camera sim: --f-number 4 --out "$WORK/nocap"
+check "capture: a pixel format the sim camera lacks" 2 "$GLARECAM" capture --camera sim: --pixel-format Mono8 --out "$WORK/nocap"
 check "capture: alpha 95" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --alpha 95
 check "capture: count 0" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --count 0
 check "capture: missing calibration file" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --calibration "$WORK/none.json"
 touch "$WORK/a-file"
 check "capture: --out is a file" 2 "$GLARECAM" capture --camera sim: --out "$WORK/a-file"
+check "capture: empty --out" 2 "$GLARECAM" capture --camera sim: --out ""
 expect "nothing captured on bad input" test ! -e "$WORK/nocap"
 check "capture: no V4L2 device" 1 "$GLARECAM" capture --camera v4l2:/dev/video-glarecam-missing --out "$WORK/nocap"
 expect "missing V4L2 device is one line naming the URI" one_line_naming "v4l2:/dev/video-glarecam-missing"

@@ -19,6 +19,10 @@ Status BracketOptions::validate() const {
   return {};
 }
 
+double roundedExposureUs(double exposure_us, double step_us, double min_us, double max_us) {
+  return std::clamp(std::round(exposure_us / step_us) * step_us, min_us, max_us);
+}
+
 Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_us,
                                 double usable_range_dn, const BracketOptions& options) {
   GLARECAM_CHECK(options.validate());
@@ -43,10 +47,8 @@ Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_
     const double exposure =
         shortest * std::pow(span, steps == 0 ? 0.0 : static_cast<double>(i) / steps);
     // Round to the camera's resolution, never beyond its limits: this is the applied value.
-    const double rounded =
-        std::round(exposure / options.exposure_step_us) * options.exposure_step_us;
-    plan.exposures_us.push_back(
-        std::clamp(rounded, options.min_exposure_us, options.max_exposure_us));
+    plan.exposures_us.push_back(roundedExposureUs(
+        exposure, options.exposure_step_us, options.min_exposure_us, options.max_exposure_us));
   }
   return plan;
 }

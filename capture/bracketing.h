@@ -31,6 +31,9 @@ struct BracketPlan {
   bool background_underexposed = false;  // even the longest leaves the background dark
 };
 
+// What a camera makes of a requested exposure: rounded to its resolution, clamped to its range.
+double roundedExposureUs(double exposure_us, double step_us, double min_us, double max_us);
+
 Result<BracketPlan> planBracket(double peak_dn_per_us, double background_dn_per_us,
                                 double usable_range_dn, const BracketOptions& options = {});
 

@@ -143,6 +143,7 @@ StagingDirectory::StagingDirectory(StagingDirectory&& other) noexcept
     : staging_(std::move(other.staging_)),
       target_(std::move(other.target_)),
       may_replace_(std::move(other.may_replace_)),
+      replacing_forbidden_(other.replacing_forbidden_),
       committed_(other.committed_) {
   other.committed_ = true;  // the moved-from object no longer owns the directory
 }
@@ -158,7 +159,7 @@ Status StagingDirectory::commit() {
     return fail(ErrorCode::kInternal, target_.string() + ": staging directory already committed");
   if (auto status = fsyncPath(staging_); !status) return status;
   std::error_code ec;
-  bool replacing = fs::exists(target_, ec);
+  const bool replacing = !replacing_forbidden_ && fs::exists(target_, ec);
   if (!replacing) {
     // RENAME_NOREPLACE: a concurrent writer that got there first is not silently overwritten.
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_NOREPLACE) != 0) {

@@ -54,6 +54,9 @@ class StagingDirectory {
   void setReplaceCheck(std::function<bool(const std::filesystem::path&)> may_replace) {
     may_replace_ = std::move(may_replace);
   }
+  // commit() fails instead of replacing an existing target, which is never touched (not even
+  // swapped out for an instant).
+  void forbidReplacing() { replacing_forbidden_ = true; }
   // fsyncs the directory, renames it to the target (atomically exchanging an existing target,
   // which is then removed) and fsyncs the parent.
   Status commit();
@@ -64,6 +67,7 @@ class StagingDirectory {
   std::filesystem::path staging_;
   std::filesystem::path target_;
   std::function<bool(const std::filesystem::path&)> may_replace_;
+  bool replacing_forbidden_ = false;
   bool committed_ = false;
 };
 

@@ -316,7 +316,7 @@ Status writeStack(const fs::path& requested_directory, const StackWriteRequest& 
   if (request.may_replace) {
     staging->setReplaceCheck(isStackDirectory);
   } else {
-    staging->setReplaceCheck([](const fs::path&) { return false; });
+    staging->forbidReplacing();
   }
   GLARECAM_CHECK(writeFrames(staging->path(), request));
   GLARECAM_CHECK(writeManifestAndExtras(staging->path(), request));

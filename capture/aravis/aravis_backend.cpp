@@ -283,10 +283,7 @@ class AravisCamera final : public Camera {
       arv_camera_stop_acquisition(camera_.get(), error.out());
     }
     acquiring_ = false;
-    // Buffers that arrived after the last frame was taken go back to the pool.
-    while (ArvBuffer* stale = arv_stream_try_pop_buffer(stream_.get())) {
-      arv_stream_push_buffer(stream_.get(), stale);
-    }
+    drainQueued();  // buffers that arrived after the last frame was taken
   }
 
   // Sets exposure and gain and returns what the camera applied.

@@ -45,11 +45,17 @@ constexpr std::uint16_t kGvcpPort = 3956;
 
 // Aravis binds its fake camera's sockets with SO_REUSEADDR, so a second one would start and
 // answer beside the first; a plain bind tells whether the port is already served at `address`.
+bool isIpv4Address(const std::string& text) {
+  in_addr parsed{};
+  return inet_pton(AF_INET, text.c_str(), &parsed) == 1;
+}
+
 bool gvcpPortInUse(const std::string& address) {
+  if (!isIpv4Address(address)) return false;  // an interface name: cannot be probed
   sockaddr_in where{};
   where.sin_family = AF_INET;
   where.sin_port = htons(kGvcpPort);
-  if (inet_pton(AF_INET, address.c_str(), &where.sin_addr) != 1) return false;  // a name
+  inet_pton(AF_INET, address.c_str(), &where.sin_addr);
   const int probe = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   if (probe < 0) return false;
   const bool in_use = bind(probe, reinterpret_cast<const sockaddr*>(&where), sizeof where) != 0 &&
@@ -196,8 +202,7 @@ std::string FakeGvCamera::uri() const {
   // By address, not by serial: discovery can find a loopback camera through another interface
   // (broadcasts loop back), and its stream would then be sent where it cannot arrive.
   const std::string& where = state_->options.interface_address;
-  aravis::GObjectPtr<GInetAddress> address(g_inet_address_new_from_string(where.c_str()));
-  return "aravis:" + (address ? where : state_->options.serial);
+  return "aravis:" + (isIpv4Address(where) ? where : state_->options.serial);
 }
 
 const SimulatedScene& FakeGvCamera::scene() const { return state_->scene; }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "capture/bracketing.h"
 #include "capture/sim/module_model.h"
 #include "capture/sim/sensor_model.h"
 #include "pipeline/limit_curve.h"
@@ -132,9 +133,8 @@ class SimCamera final : public Camera {
   // Like a real camera: the exposure is rounded to its resolution and clamped to its range.
   double applied(double exposure_us) const {
     const CameraLimits range = limits();
-    const double rounded =
-        std::round(exposure_us / range.exposure_step_us) * range.exposure_step_us;
-    return std::clamp(rounded, range.min_exposure_us, range.max_exposure_us);
+    return roundedExposureUs(exposure_us, range.exposure_step_us, range.min_exposure_us,
+                             range.max_exposure_us);
   }
 
   SimulationOptions options_;

@@ -26,6 +26,11 @@ check "packet loss above 1" 2 "$GLARECAM" fake-camera --packet-loss 1.5 --durati
 expect "packet loss error is one line" one_line_naming "--packet-loss"
 check "size beyond the fake sensor" 2 "$GLARECAM" fake-camera --size 4096x4096 --duration 1
 check "alpha beyond 80" 2 "$GLARECAM" fake-camera --alpha 85 --duration 1
+check "serial longer than GigE Vision's field" 2 "$GLARECAM" fake-camera --serial 0123456789abcdef --duration 1
+check "empty interface" 2 "$GLARECAM" fake-camera --interface "" --duration 1
+check "empty --calibration-out" 2 "$GLARECAM" fake-camera --calibration-out "" --duration 1
+check "negative duration" 2 "$GLARECAM" fake-camera --duration -1
+check "duration over a week" 2 "$GLARECAM" fake-camera --duration 1e9
 
 start_fake --size 320x256 --fov 20 --calibration-out "$WORK/cal" || exit 1
 uri=$(cat "$WORK/fake.out")

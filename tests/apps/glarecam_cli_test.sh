@@ -202,6 +202,14 @@ check "capture: lens options for the sim camera" 2 "$GLARECAM" capture --camera 
 check "capture: a pixel format the sim camera lacks" 2 "$GLARECAM" capture --camera sim: --pixel-format Mono8 --out "$WORK/nocap"
 check "capture: alpha 95" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --alpha 95
 check "capture: count 0" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --count 0
+check "capture: --max-retries above 1000" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --max-retries 1001
+check "capture: negative --interval" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --interval -1
+check "capture: --interval over a week" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --interval 1e9
+check "capture: --f-number 0" 2 "$GLARECAM" capture --camera v4l2:/dev/null --out "$WORK/nocap" --f-number 0
+check "capture: --nd-transmission above 1" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --nd-transmission 2
+check "capture: --gain beyond the camera" 2 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/nocap" --gain 40
+expect "gain error names the range" one_line_naming "outside sim:size=64x48's range"
+check "capture: --gain not a number" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --gain loud
 check "capture: missing calibration file" 2 "$GLARECAM" capture --camera sim: --out "$WORK/nocap" --calibration "$WORK/none.json"
 touch "$WORK/a-file"
 check "capture: --out is a file" 2 "$GLARECAM" capture --camera sim: --out "$WORK/a-file"

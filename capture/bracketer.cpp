@@ -238,6 +238,7 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
                             {"discarded_frames", retries}};
   if (!settings.exposures_us) capture["auto_bracket"] = bracket.log.toJson();
   manifest.source = {{"camera", cameraJson(camera)}, {"capture", std::move(capture)}};
+  if (settings.geometry) manifest.source["geometry"] = *settings.geometry;
   return manifest;
 }
 

@@ -22,7 +22,8 @@ struct CaptureSettings {
   std::optional<Calibration> calibration;  // written inline; its black level and saturation
                                            // also guide the auto-bracket
   std::optional<double> alpha_deg;
-  CameraOptics optics;  // overrides what the camera reports
+  std::optional<nlohmann::json> geometry;  // the rig's geometry block (rig_geometry.h), as measured
+  CameraOptics optics;                     // overrides what the camera reports
   AutoBracketOptions auto_bracket;
   bool show_progress = false;
 };

@@ -17,6 +17,7 @@
 #include "apps/glarecam/option_parsing.h"
 #include "capture/bracketer.h"
 #include "capture/camera_registry.h"
+#include "capture/rig_geometry.h"
 #include "core/atomic_file.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
@@ -68,7 +69,7 @@ Status runCameras(bool json) {
 // ---- capture -------------------------------------------------------------------------------
 
 struct CaptureArgs {
-  std::string camera;
+  std::optional<std::string> camera, config;
   std::string out;
   std::optional<std::string> alpha, gain, f_number, nd, calibration, pixel_format;
   std::string exposures = "auto";
@@ -123,12 +124,61 @@ Result<capture::CameraOptions> cameraOptions(const CaptureArgs& args,
 }
 
 Status checkAgainstCamera(const capture::Camera& camera, const capture::CaptureSettings& settings);
-Status captureSeries(capture::Camera& camera, const capture::CaptureSettings& settings,
-                     const std::string& out, std::uint64_t count, double interval_s);
+Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
+                     capture::RigSensors* sensors, const std::string& out, std::uint64_t count,
+                     double interval_s);
+
+// The rig's calibration file serves the camera when it holds a camera calibration (it may hold
+// only the inclinometer's zero offset).
+Result<std::optional<Calibration>> rigCameraCalibration(const capture::RigConfig& rig) {
+  if (!rig.calibration) return std::nullopt;
+  nlohmann::json document;
+  GLARECAM_ASSIGN(document, readJsonFile(rig.calibration->string()));
+  if (!document.is_object() || !document.contains("black_level_dn")) return std::nullopt;
+  return readCalibrationFile(rig.calibration->string());
+}
+
+// With a --config: the camera and calibration it names (unless given as options), and its
+// sensors when it can measure α, whose first measurement sets the stack's α.
+Result<std::unique_ptr<capture::RigSensors>> applyRigConfig(const CaptureArgs& args,
+                                                            std::string& camera_uri,
+                                                            capture::CaptureSettings& settings) {
+  if (!args.config) return nullptr;
+  capture::RigConfig rig;
+  GLARECAM_ASSIGN(rig, capture::readRigConfig(*args.config));
+  if (!args.camera && rig.camera) camera_uri = *rig.camera;
+  if (!args.calibration) GLARECAM_ASSIGN(settings.calibration, rigCameraCalibration(rig));
+  if (!rig.site && !rig.fixed_source) return nullptr;
+  if (args.alpha)
+    return badInput(fmt::format("capture: --alpha contradicts {}, whose [{}] gives α; give one",
+                                *args.config, rig.site ? "site" : "source"));
+  std::unique_ptr<capture::RigSensors> sensors;
+  GLARECAM_ASSIGN(sensors, capture::RigSensors::open(rig));
+  return sensors;
+}
+
+// Measures the rig's geometry now and records it (α and the geometry block) in `settings`.
+Status measureGeometryInto(capture::RigSensors& sensors, capture::CaptureSettings& settings) {
+  capture::RigGeometry geometry;
+  GLARECAM_ASSIGN(geometry, sensors.measure(std::chrono::time_point_cast<std::chrono::microseconds>(
+                                std::chrono::system_clock::now())));
+  for (const std::string& warning : geometry.warnings) spdlog::warn("capture: {}", warning);
+  spdlog::info("capture: α {:.3f}° ± {:.3f}° (module tilt {:.3f}°)", geometry.alpha_deg,
+               geometry.alpha_uncertainty_deg, geometry.module.tilt_deg);
+  settings.alpha_deg = geometry.alpha_deg;
+  settings.geometry = capture::geometryJson(geometry);
+  return {};
+}
 
 Status runCapture(const CaptureArgs& args) {
   capture::CaptureSettings settings;
   GLARECAM_ASSIGN(settings, captureSettings(args));
+  std::string camera_uri = args.camera.value_or("");
+  std::unique_ptr<capture::RigSensors> sensors;
+  GLARECAM_ASSIGN(sensors, applyRigConfig(args, camera_uri, settings));
+  if (camera_uri.empty())
+    return badInput("capture: give --camera URI (or a --config with camera = \"URI\")");
+  if (sensors) GLARECAM_CHECK(measureGeometryInto(*sensors, settings));
   capture::CameraOptions options;
   GLARECAM_ASSIGN(options, cameraOptions(args, settings));
   std::uint64_t count = 0;
@@ -147,9 +197,10 @@ Status runCapture(const CaptureArgs& args) {
     removeStaleTemporaries(args.out, kStaleTemporaryAge);
   }
   std::unique_ptr<capture::Camera> camera;
-  GLARECAM_ASSIGN(camera, capture::openCamera(args.camera, options));
+  GLARECAM_ASSIGN(camera, capture::openCamera(camera_uri, options));
   GLARECAM_CHECK(checkAgainstCamera(*camera, settings));
-  return captureSeries(*camera, settings, args.out, count, args.interval_s);
+  return captureSeries(*camera, std::move(settings), sensors.get(), args.out, count,
+                       args.interval_s);
 }
 
 // What the camera itself knows must not be contradicted, and what it lacks is warned about.
@@ -199,8 +250,9 @@ void sleepUntil(std::chrono::steady_clock::time_point deadline) {
   }
 }
 
-Status captureSeries(capture::Camera& camera, const capture::CaptureSettings& settings,
-                     const std::string& out, std::uint64_t count, double interval_s) {
+Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
+                     capture::RigSensors* sensors, const std::string& out, std::uint64_t count,
+                     double interval_s) {
   stopGracefullyOnSignals();
   auto next = std::chrono::steady_clock::now();
   for (std::uint64_t i = 0; i < count; ++i) {
@@ -211,6 +263,8 @@ Status captureSeries(capture::Camera& camera, const capture::CaptureSettings& se
     }
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(interval_s));
+    // The first stack's geometry was measured before the camera opened; later ones anew.
+    if (sensors && i > 0) GLARECAM_CHECK(measureGeometryInto(*sensors, settings));
     capture::CapturedStack stack;
     GLARECAM_ASSIGN(stack, capture::captureStack(camera, settings));
     std::filesystem::path written;
@@ -318,8 +372,11 @@ void addCaptureCommand(CLI::App& app, Action& action) {
       "Capture a bracketed stack from a camera and write it atomically under --out; "
       "prints each stack's path (docs/cameras.md)");
   sub->add_option("--camera", args->camera,
-                  "camera URI: sim:[KEY=VALUE,...], aravis:[ID], libcamera:[ID], v4l2:/dev/videoN")
-      ->required();
+                  "camera URI: sim:[KEY=VALUE,...], aravis:[ID], libcamera:[ID], v4l2:/dev/videoN "
+                  "(default: the --config's)");
+  sub->add_option("--config", args->config,
+                  "rig config (TOML, docs/rig.md): camera, calibration, and the inclinometer, "
+                  "site and module that give α and the manifest's geometry block");
   sub->add_option("--out", args->out, "directory the stacks are written into (created)")
       ->required();
   sub->add_option("--alpha", args->alpha, "angle of incidence α in degrees, recorded in the stack");

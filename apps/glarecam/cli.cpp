@@ -48,7 +48,7 @@ int runGlarecam(int argc, char** argv) {
   CLI::App app{
       "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
       "Docs: docs/process.md, docs/sweep.md, docs/datasheet.md, docs/glare-profile.md,\n"
-      "docs/cameras.md, docs/simulate.md, docs/stack-format.md, docs/method.md"};
+      "docs/cameras.md, docs/rig.md, docs/simulate.md, docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
   app.fallthrough();  // global options (-v, -q) also after the subcommand
@@ -67,6 +67,9 @@ int runGlarecam(int argc, char** argv) {
   addCamerasCommand(app, action);
   addCaptureCommand(app, action);
   addFakeCameraCommand(app, action);
+  addSunCommand(app, action);
+  addAlphaCommand(app, action);
+  addInclinometerCommand(app, action);
 
   try {
     app.parse(argc, argv);

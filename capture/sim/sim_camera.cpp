@@ -3,13 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <string>
 
 #include "capture/bracketing.h"
 #include "capture/sim/module_model.h"
 #include "capture/sim/sensor_model.h"
+#include "core/uri_parameters.h"
 #include "pipeline/limit_curve.h"
 
 namespace glarecam::capture {
@@ -24,13 +24,10 @@ constexpr std::string_view kSimPixelFormat = "Mono12";  // SensorModel's 12-bit 
 constexpr double kMaxSizeParameter = 1 << 20;           // converts to int exactly
 constexpr double kMaxSeedParameter = 0x1p53;            // whole numbers a double holds exactly
 
+constexpr std::string_view kUriName = "camera URI sim:";
+
 Result<double> parseNumber(std::string_view text, std::string_view uri_key) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    return badInput(fmt::format("camera URI sim: {}='{}' is not a number", uri_key, text));
-  }
-  return value;
+  return parseUriNumber(text, uri_key, kUriName);
 }
 
 Status applyParameter(std::string_view key, std::string_view value, SimulationOptions& sim) {
@@ -178,16 +175,10 @@ class SimCameraBackend final : public CameraBackend {
 Result<SimulationOptions> parseSimCameraId(std::string_view id, const CameraOptions& options) {
   SimulationOptions sim;
   if (options.simulated_alpha_deg) sim.alpha_deg = *options.simulated_alpha_deg;
-  while (!id.empty()) {
-    const auto comma = id.find(',');
-    const std::string_view item = id.substr(0, comma);
-    id = comma == std::string_view::npos ? std::string_view{} : id.substr(comma + 1);
-    const auto equals = item.find('=');
-    if (equals == std::string_view::npos) {
-      return badInput(fmt::format("camera URI sim: '{}' is not KEY=VALUE", item));
-    }
-    GLARECAM_CHECK(applyParameter(item.substr(0, equals), item.substr(equals + 1), sim));
-  }
+  GLARECAM_CHECK(
+      forEachUriParameter(id, kUriName, [&](std::string_view key, std::string_view value) {
+        return applyParameter(key, value, sim);
+      }));
   if (options.simulated_alpha_deg && sim.alpha_deg != *options.simulated_alpha_deg) {
     return badInput(
         fmt::format("camera URI sim: alpha={:g} contradicts --alpha {:g}; give the scene's α once",

@@ -54,7 +54,7 @@ std::string_view trim(std::string_view text) {
 
 }  // namespace
 
-Result<UtcMicroseconds> parseIsoTime(std::string_view raw_text) {
+Result<UtcTime> parseIsoTime(std::string_view raw_text) {
   const std::string_view text = trim(raw_text);
   const std::string quoted = "time \"" + std::string(raw_text) + "\"";
   const auto malformed = [&](const std::string& what) {
@@ -146,12 +146,12 @@ Result<UtcMicroseconds> parseIsoTime(std::string_view raw_text) {
   }
   if (!cursor.atEnd()) return malformed("unexpected text after the time zone");
 
-  const UtcMicroseconds local =
+  const UtcTime local =
       sys_days{date} + hours{*hour} + minutes{*minute} + seconds{*second} + fraction;
   return local - offset;
 }
 
-std::string formatIsoTime(UtcMicroseconds utc) {
+std::string formatIsoTime(UtcTime utc) {
   const sys_days day = floor<days>(utc);
   const year_month_day date{day};
   const hh_mm_ss<microseconds> time{utc - day};

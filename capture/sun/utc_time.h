@@ -11,7 +11,7 @@
 
 namespace glarecam::capture {
 
-using UtcMicroseconds = std::chrono::sys_time<std::chrono::microseconds>;
+using UtcTime = std::chrono::sys_time<std::chrono::microseconds>;
 
 // Parses YYYY-MM-DD, then "T", "t" or a space, then hh:mm[:ss[.fraction]], then "Z", "z", ±hh:mm,
 // ±hhmm or ±hh. Fractions finer than a microsecond are rounded to one. Years are 4 digits, or a
@@ -19,10 +19,10 @@ using UtcMicroseconds = std::chrono::sys_time<std::chrono::microseconds>;
 // kBadInput naming the text for anything else: a missing zone, an invalid date (February 30), an
 // hour of 24 or more, a minute or second of 60 or more (leap seconds included), an offset beyond
 // ±18:00.
-Result<UtcMicroseconds> parseIsoTime(std::string_view text);
+Result<UtcTime> parseIsoTime(std::string_view text);
 
 // "2003-10-17T19:30:30Z", with ".5" or ".000125" when the fraction of a second is not zero
 // (trailing zeros dropped): parseIsoTime(formatIsoTime(t)) == t.
-std::string formatIsoTime(UtcMicroseconds utc);
+std::string formatIsoTime(UtcTime utc);
 
 }  // namespace glarecam::capture

@@ -1,0 +1,386 @@
+// glarecam sun / alpha / inclinometer: the rig's sensors (capture/rig_geometry.h): the sun's
+// position at a site and time, α from the config's geometry, and the inclinometer's readings and
+// flip calibration.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "apps/glarecam/commands.h"
+#include "apps/glarecam/option_parsing.h"
+#include "capture/inclinometer/inclinometer_registry.h"
+#include "capture/inclinometer/zero_offset_file.h"
+#include "capture/rig_config.h"
+#include "capture/rig_geometry.h"
+#include "capture/sun/clock_sync.h"
+#include "capture/sun/solar_position.h"
+#include "capture/sun/utc_time.h"
+#include "core/atomic_file.h"
+#include "core/progress.h"
+#include "core/stack_manifest.h"
+
+namespace glarecam::apps {
+namespace {
+
+using capture::UtcTime;
+
+UtcTime now() {
+  return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
+}
+
+// --time, else now (with a warning when the clock cannot be trusted).
+Result<UtcTime> timeOption(const std::optional<std::string>& text) {
+  if (text) return capture::parseIsoTime(*text);
+  const capture::ClockStatus clock = capture::systemClockStatus();
+  if (!clock.synchronised)
+    spdlog::warn("the system clock is not synchronised: {}; a wrong clock is a wrong sun position",
+                 clock.detail);
+  return now();
+}
+
+void printJson(const nlohmann::json& document) { std::fputs(jsonText(document).c_str(), stdout); }
+
+// ---- sun -----------------------------------------------------------------------------------
+
+struct SunArgs {
+  std::optional<std::string> latitude, longitude, time, pressure, temperature, altitude;
+  bool json = false;
+};
+
+Result<capture::SiteLocation> siteFromArgs(const SunArgs& args) {
+  capture::SiteLocation site;
+  std::optional<double> value;
+  GLARECAM_ASSIGN(value, parseOptionalNumber(args.latitude, "--lat"));
+  site.latitude_deg = *value;
+  GLARECAM_ASSIGN(value, parseOptionalNumber(args.longitude, "--lon"));
+  site.longitude_deg = *value;
+  GLARECAM_ASSIGN(value, parseOptionalNumber(args.altitude, "--altitude-m"));
+  site.altitude_m = value.value_or(0.0);
+  GLARECAM_ASSIGN(value, parseOptionalNumber(args.pressure, "--pressure-hpa"));
+  site.pressure_hpa = value.value_or(capture::standardPressureHpa(site.altitude_m));
+  GLARECAM_ASSIGN(value, parseOptionalNumber(args.temperature, "--temperature-c"));
+  if (value) site.temperature_c = *value;
+  GLARECAM_CHECK(capture::validate(site));
+  return site;
+}
+
+nlohmann::json sunJson(const capture::SolarPosition& sun, const capture::SiteLocation& site,
+                       UtcTime time) {
+  return {{"time", capture::formatIsoTime(time)}, {"latitude_deg", site.latitude_deg},
+          {"longitude_deg", site.longitude_deg},  {"altitude_m", site.altitude_m},
+          {"pressure_hpa", site.pressure_hpa},    {"temperature_c", site.temperature_c},
+          {"elevation_deg", sun.elevation_deg},   {"zenith_deg", sun.zenith_deg},
+          {"azimuth_deg", sun.azimuth_deg},       {"true_elevation_deg", sun.true_elevation_deg},
+          {"refraction_deg", sun.refraction_deg}, {"declination_deg", sun.declination_deg},
+          {"hour_angle_deg", sun.hour_angle_deg}, {"delta_t_s", sun.delta_t_s}};
+}
+
+Status runSun(const SunArgs& args) {
+  capture::SiteLocation site;
+  GLARECAM_ASSIGN(site, siteFromArgs(args));
+  UtcTime time;
+  GLARECAM_ASSIGN(time, timeOption(args.time));
+  capture::SolarPosition sun;
+  GLARECAM_ASSIGN(sun, capture::solarPosition(time, site));
+  if (args.json) {
+    printJson(sunJson(sun, site, time));
+    return {};
+  }
+  std::printf(
+      "%s at %.6f° %.6f°: elevation %.4f°, zenith %.4f°, azimuth %.4f° (apparent; "
+      "refraction %.4f°)\n",
+      capture::formatIsoTime(time).c_str(), site.latitude_deg, site.longitude_deg,
+      sun.elevation_deg, sun.zenith_deg, sun.azimuth_deg, sun.refraction_deg);
+  return {};
+}
+
+// ---- alpha ---------------------------------------------------------------------------------
+
+struct AlphaArgs {
+  std::string config = capture::kDefaultRigConfigPath;
+  std::optional<std::string> time;
+  bool json = false;
+  bool no_progress = false;
+};
+
+// Opens the config's sensors and measures once, showing progress over the inclinometer samples.
+Result<capture::RigGeometry> measureGeometry(capture::RigSensors& sensors, UtcTime time,
+                                             bool show_progress) {
+  const auto& inclinometer = sensors.config().inclinometer;
+  Progress progress("inclinometer", inclinometer ? inclinometer->tilt.samples : 0,
+                    show_progress && sensors.hasInclinometer());
+  auto geometry = sensors.measure(time, [&progress] { progress.advance(); });
+  progress.finish();
+  return geometry;
+}
+
+void printGeometry(const capture::RigGeometry& g) {
+  std::printf("alpha %.3f° ± %.3f° (%s; tilt's share %.4f°, clock's %.4f°)\n", g.alpha_deg,
+              g.alpha_uncertainty_deg, g.source == "sun" ? "the sun" : "a fixed source",
+              g.alpha_uncertainty_tilt_deg, g.alpha_uncertainty_clock_deg);
+  if (g.tilt) {
+    std::printf("module tilt %.3f° (inclinometer %s, σ %.4f° over %d samples), facing %.2f°\n",
+                g.module.tilt_deg, g.inclinometer_uri.c_str(), g.tilt->tilt_std_deg,
+                g.tilt->samples, g.module.azimuth_deg);
+  } else {
+    std::printf("module tilt %.3f° (fixed in the config), facing %.2f°\n", g.module.tilt_deg,
+                g.module.azimuth_deg);
+  }
+  std::printf("%s elevation %.3f°, azimuth %.3f° at %s\n", g.source == "sun" ? "sun" : "source",
+              g.source_direction.elevation_deg, g.source_direction.azimuth_deg,
+              capture::formatIsoTime(g.time).c_str());
+}
+
+Status runAlpha(const AlphaArgs& args) {
+  capture::RigConfig config;
+  GLARECAM_ASSIGN(config, capture::readRigConfig(args.config));
+  UtcTime time;
+  GLARECAM_ASSIGN(time, args.time ? capture::parseIsoTime(*args.time) : Result<UtcTime>(now()));
+  std::unique_ptr<capture::RigSensors> sensors;
+  GLARECAM_ASSIGN(sensors, capture::RigSensors::open(config));
+  capture::RigGeometry geometry;
+  GLARECAM_ASSIGN(geometry, measureGeometry(*sensors, time, !args.no_progress));
+  for (const std::string& warning : geometry.warnings) spdlog::warn("alpha: {}", warning);
+  if (args.json) {
+    printJson(capture::geometryJson(geometry));
+  } else {
+    printGeometry(geometry);
+  }
+  return {};
+}
+
+// ---- inclinometer --------------------------------------------------------------------------
+
+struct InclinometerArgs {
+  std::optional<std::string> uri, config, calibration, out;
+  std::optional<std::string> samples;
+  std::vector<std::string> from;
+  bool json = false;
+  bool no_progress = false;
+};
+
+// The sensor to use: --inclinometer, else the config's; with the config's tilt options.
+struct InclinometerChoice {
+  std::string uri;
+  capture::TiltOptions tilt;
+  std::optional<std::filesystem::path> calibration;  // --calibration, else the config's
+};
+
+Result<InclinometerChoice> chooseInclinometer(const InclinometerArgs& args, const char* command) {
+  InclinometerChoice choice;
+  if (args.config) {
+    capture::RigConfig config;
+    GLARECAM_ASSIGN(config, capture::readRigConfig(*args.config));
+    if (config.inclinometer) {
+      choice.uri = config.inclinometer->uri;
+      choice.tilt = config.inclinometer->tilt;
+    }
+    choice.calibration = config.calibration;
+  }
+  if (args.uri) choice.uri = *args.uri;
+  if (args.calibration) choice.calibration = *args.calibration;
+  if (choice.uri.empty())
+    return badInput(
+        fmt::format("inclinometer {}: give --inclinometer URI, or --config with an "
+                    "[inclinometer] uri",
+                    command));
+  std::optional<double> samples;
+  GLARECAM_ASSIGN(samples, parseOptionalNumber(args.samples, "--samples"));
+  if (samples) {
+    if (!(*samples >= 2 && *samples <= 100000 && *samples == std::floor(*samples)))
+      return badInput("inclinometer: --samples must be a whole number in [2, 100000]");
+    choice.tilt.samples = int(*samples);
+  }
+  GLARECAM_CHECK(choice.tilt.validate());
+  return choice;
+}
+
+Result<capture::TiltReading> readTilt(capture::Inclinometer& sensor,
+                                      const InclinometerChoice& choice,
+                                      const capture::InclinometerZeroOffset& zero,
+                                      bool show_progress) {
+  Progress progress("inclinometer", choice.tilt.samples, show_progress);
+  auto reading =
+      capture::measureTilt(sensor, choice.tilt, zero, [&progress] { progress.advance(); });
+  progress.finish();
+  return reading;
+}
+
+void printReading(const capture::TiltReading& r) {
+  std::printf("tilt x %.4f°, y %.4f°; module tilt %.4f° ± %.4f° (σ %.4f° over %d samples",
+              r.tilt.x_deg, r.tilt.y_deg, r.module_tilt_deg, r.tilt_uncertainty_deg, r.tilt_std_deg,
+              r.samples);
+  if (r.mean.temperature_c) std::printf(", %.1f °C", *r.mean.temperature_c);
+  std::printf(")\n");
+}
+
+Status runInclinometerRead(const InclinometerArgs& args) {
+  GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
+  InclinometerChoice choice;
+  GLARECAM_ASSIGN(choice, chooseInclinometer(args, "read"));
+  capture::InclinometerZeroOffset zero;
+  if (choice.calibration) {
+    std::optional<capture::InclinometerZeroOffset> stored;
+    GLARECAM_ASSIGN(stored, capture::readZeroOffset(*choice.calibration));
+    if (stored) zero = *stored;
+  }
+  std::unique_ptr<capture::Inclinometer> sensor;
+  GLARECAM_ASSIGN(sensor, capture::openInclinometer(choice.uri));
+  capture::TiltReading reading;
+  GLARECAM_ASSIGN(reading, readTilt(*sensor, choice, zero, !args.no_progress));
+  nlohmann::json document = capture::tiltReadingJson(reading);
+  document["uri"] = choice.uri;
+  document["time"] = capture::formatIsoTime(now());
+  if (args.out) GLARECAM_CHECK(writeFileAtomic(*args.out, jsonText(document)));
+  if (args.json) {
+    printJson(document);
+  } else {
+    printReading(reading);
+  }
+  return {};
+}
+
+Result<capture::TiltReading> readSavedReading(const std::string& path) {
+  nlohmann::json document;
+  GLARECAM_ASSIGN(document, readJsonFile(path));
+  return capture::parseTiltReading(document, path);
+}
+
+// The two readings of the flip: from --from files, or taken now with the operator turning the
+// sensor in between.
+Result<std::pair<capture::TiltReading, capture::TiltReading>> flipReadings(
+    const InclinometerArgs& args, const InclinometerChoice& choice) {
+  if (!args.from.empty()) {
+    capture::TiltReading first, second;
+    GLARECAM_ASSIGN(first, readSavedReading(args.from[0]));
+    GLARECAM_ASSIGN(second, readSavedReading(args.from[1]));
+    return std::pair{first, second};
+  }
+  std::unique_ptr<capture::Inclinometer> sensor;
+  GLARECAM_ASSIGN(sensor, capture::openInclinometer(choice.uri));
+  capture::TiltReading first, second;
+  GLARECAM_ASSIGN(first, readTilt(*sensor, choice, {}, !args.no_progress));
+  std::fprintf(stderr,
+               "First reading: tilt x %.4f°, y %.4f°. Turn the sensor (or the rig) 180° about the "
+               "vertical on the same surface, let it settle, then press Enter.\n",
+               first.raw_tilt.x_deg, first.raw_tilt.y_deg);
+  std::string line;
+  if (!std::getline(std::cin, line))
+    return badInput(
+        "inclinometer flip: stdin closed before the second reading (to compute from "
+        "saved readings: --from FIRST.json SECOND.json)");
+  GLARECAM_ASSIGN(second, readTilt(*sensor, choice, {}, !args.no_progress));
+  return std::pair{first, second};
+}
+
+Status runInclinometerFlip(const InclinometerArgs& args) {
+  InclinometerChoice choice;
+  if (args.from.empty()) {
+    GLARECAM_ASSIGN(choice, chooseInclinometer(args, "flip"));
+  } else if (args.calibration) {
+    choice.calibration = *args.calibration;
+  } else if (args.config) {
+    capture::RigConfig config;
+    GLARECAM_ASSIGN(config, capture::readRigConfig(*args.config));
+    choice.calibration = config.calibration;
+  }
+  if (!choice.calibration)
+    return badInput(
+        "inclinometer flip: give --calibration FILE (or a --config naming one) to "
+        "store the zero offset in");
+  std::pair<capture::TiltReading, capture::TiltReading> readings;
+  GLARECAM_ASSIGN(readings, flipReadings(args, choice));
+  const capture::InclinometerZeroOffset zero =
+      capture::flipZeroOffset(readings.first, readings.second);
+  if (std::abs(zero.offset.x_deg) > capture::kMaxPlausibleZeroOffsetDeg ||
+      std::abs(zero.offset.y_deg) > capture::kMaxPlausibleZeroOffsetDeg)
+    return badInput(fmt::format(
+        "inclinometer flip: the readings give a zero offset of ({:.2f}°, {:.2f}°), beyond the "
+        "plausible {:g}°: the sensor was not turned 180° about the vertical, or the surface moved",
+        zero.offset.x_deg, zero.offset.y_deg, capture::kMaxPlausibleZeroOffsetDeg));
+  const nlohmann::json provenance{
+      {"method", "flip"},
+      {"date", capture::formatIsoTime(now())},
+      {"uri", choice.uri},
+      {"readings",
+       {capture::tiltReadingJson(readings.first), capture::tiltReadingJson(readings.second)}}};
+  GLARECAM_CHECK(capture::writeZeroOffset(*choice.calibration, zero, provenance));
+  std::printf("zero offset x %.4f°, y %.4f° (± %.4f°) written to %s\n", zero.offset.x_deg,
+              zero.offset.y_deg, zero.uncertainty_deg, choice.calibration->c_str());
+  return {};
+}
+
+void addInclinometerSource(CLI::App* sub, InclinometerArgs& args) {
+  sub->add_option("--inclinometer", args.uri,
+                  "inclinometer URI: adxl355:/dev/i2c-1@0x1d, iio:iio:device0, sim:TILT_DEG");
+  sub->add_option("--config", args.config, "rig config (TOML) naming the inclinometer");
+  sub->add_option("--calibration", args.calibration,
+                  "calibration file holding the zero offset (default: the config's)");
+  sub->add_option("--samples", args.samples, "samples averaged per reading (default 50)");
+  sub->add_flag("--no-progress", args.no_progress, "no progress on stderr");
+}
+
+}  // namespace
+
+void addSunCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<SunArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "sun", "Print the apparent (refraction-corrected) sun position at a site (docs/rig.md)");
+  sub->add_option("--lat", args->latitude, "latitude in degrees, north positive")->required();
+  sub->add_option("--lon", args->longitude, "longitude in degrees, east positive")->required();
+  sub->add_option(
+      "--time", args->time,
+      "ISO 8601 time with a zone, e.g. 2026-06-21T12:00:00Z or ...+02:00 (default now)");
+  sub->add_option("--altitude-m", args->altitude, "altitude above sea level in metres (default 0)");
+  sub->add_option("--pressure-hpa", args->pressure,
+                  "air pressure for refraction (default: the standard atmosphere at the altitude)");
+  sub->add_option("--temperature-c", args->temperature,
+                  "air temperature for refraction (default 12)");
+  sub->add_flag("--json", args->json,
+                "print JSON: elevation_deg, zenith_deg, azimuth_deg (clockwise from north), ...");
+  sub->callback([args, &action] { action = [args] { return runSun(*args); }; });
+}
+
+void addAlphaCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<AlphaArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "alpha",
+      "Measure the angle of incidence α now from the rig's config: inclinometer tilt, module "
+      "azimuth, sun or fixed source; with its uncertainty (docs/rig.md)");
+  sub->add_option("--config", args->config, "rig config (TOML)")->capture_default_str();
+  sub->add_option("--time", args->time, "ISO 8601 time with a zone (default now)");
+  sub->add_flag("--json", args->json, "print the geometry block a capture records, as JSON");
+  sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
+  sub->callback([args, &action] { action = [args] { return runAlpha(*args); }; });
+}
+
+void addInclinometerCommand(CLI::App& app, Action& action) {
+  CLI::App* sub = app.add_subcommand(
+      "inclinometer", "Read the inclinometer, or calibrate its zero offset (docs/rig.md)");
+  sub->require_subcommand(1);
+  auto read_args = std::make_shared<InclinometerArgs>();
+  CLI::App* read = sub->add_subcommand("read", "Average a tilt reading and print it");
+  addInclinometerSource(read, *read_args);
+  read->add_flag("--json", read_args->json, "print the reading as JSON");
+  read->add_option("--out", read_args->out, "also write the reading (JSON) to this file");
+  read->callback(
+      [read_args, &action] { action = [read_args] { return runInclinometerRead(*read_args); }; });
+  auto flip_args = std::make_shared<InclinometerArgs>();
+  CLI::App* flip = sub->add_subcommand(
+      "flip",
+      "Zero-offset calibration by the flip method: a reading, the sensor turned 180° about the "
+      "vertical, a second reading; stores the offset in the calibration file");
+  addInclinometerSource(flip, *flip_args);
+  flip->add_option("--from", flip_args->from,
+                   "compute from two saved readings (inclinometer read --out) instead")
+      ->expected(2);
+  flip->callback(
+      [flip_args, &action] { action = [flip_args] { return runInclinometerFlip(*flip_args); }; });
+}
+
+}  // namespace glarecam::apps

@@ -1,0 +1,148 @@
+#include "capture/inclinometer/tilt.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace glarecam::capture {
+
+namespace {
+
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+
+double toRad(double deg) { return deg / kDegPerRad; }
+
+using Vector = std::array<double, 3>;
+
+// Rotation about x then y by the zero offset: the inverse of the mounting rotation that makes a
+// level module read `offset` (sensor gravity = Rx(-ox) Ry(-oy) e_z).
+Vector unmount(const Vector& g, const AxisTilt& offset) {
+  const double cx = std::cos(toRad(offset.x_deg)), sx = std::sin(toRad(offset.x_deg));
+  const double cy = std::cos(toRad(offset.y_deg)), sy = std::sin(toRad(offset.y_deg));
+  const Vector about_x{g[0], cx * g[1] - sx * g[2], sx * g[1] + cx * g[2]};  // Rx(ox)
+  return {cy * about_x[0] + sy * about_x[2], about_x[1], -sy * about_x[0] + cy * about_x[2]};
+}
+
+// The mounting rotation itself: Ry(-oy) then Rx(-ox), undoing unmount().
+Vector mount(const Vector& g, const AxisTilt& offset) {
+  const double cx = std::cos(toRad(offset.x_deg)), sx = std::sin(toRad(offset.x_deg));
+  const double cy = std::cos(toRad(offset.y_deg)), sy = std::sin(toRad(offset.y_deg));
+  const Vector about_y{cy * g[0] - sy * g[2], g[1], sy * g[0] + cy * g[2]};
+  return {about_y[0], cx * about_y[1] + sx * about_y[2], -sx * about_y[1] + cx * about_y[2]};
+}
+
+AxisTilt tiltOf(const Vector& g) {
+  return {std::atan2(g[1], g[2]) * kDegPerRad,
+          std::atan2(-g[0], std::hypot(g[1], g[2])) * kDegPerRad};
+}
+
+double magnitudeG(const AccelerationSample& s) {
+  return std::sqrt(s.x_g * s.x_g + s.y_g * s.y_g + s.z_g * s.z_g);
+}
+
+// Running mean and variance (Welford): numerically safe for the tiny scatter of a still rig.
+struct RunningStats {
+  int n = 0;
+  double mean = 0.0;
+  double m2 = 0.0;
+  void add(double x) {
+    ++n;
+    const double delta = x - mean;
+    mean += delta / n;
+    m2 += delta * (x - mean);
+  }
+  double stddev() const { return n > 1 ? std::sqrt(m2 / (n - 1)) : 0.0; }
+};
+
+}  // namespace
+
+Status TiltOptions::validate() const {
+  if (samples < 2)
+    return badInput(fmt::format("inclinometer samples {} must be at least 2", samples));
+  if (!(max_tilt_std_deg > 0.0))
+    return badInput(
+        fmt::format("inclinometer max_tilt_std_deg {} must be positive", max_tilt_std_deg));
+  if (!(gravity_tolerance_g > 0.0 && gravity_tolerance_g < 1.0))
+    return badInput(
+        fmt::format("inclinometer gravity tolerance {} g must be in (0, 1)", gravity_tolerance_g));
+  return {};
+}
+
+AxisTilt axisTilt(const AccelerationSample& s) { return tiltOf({s.x_g, s.y_g, s.z_g}); }
+
+double moduleTiltDeg(const AxisTilt& tilt) {
+  const double c = std::cos(toRad(tilt.x_deg)) * std::cos(toRad(tilt.y_deg));
+  return std::acos(std::clamp(c, -1.0, 1.0)) * kDegPerRad;
+}
+
+AxisTilt correctedTilt(const AccelerationSample& s, const InclinometerZeroOffset& zero) {
+  return tiltOf(unmount({s.x_g, s.y_g, s.z_g}, zero.offset));
+}
+
+AccelerationSample mountedGravity(const AxisTilt& tilt, const AxisTilt& mounting_offset) {
+  const double cx = std::cos(toRad(tilt.x_deg)), sx = std::sin(toRad(tilt.x_deg));
+  const double cy = std::cos(toRad(tilt.y_deg)), sy = std::sin(toRad(tilt.y_deg));
+  const Vector g = mount({-sy, cy * sx, cy * cx}, mounting_offset);
+  return {g[0], g[1], g[2], std::nullopt};
+}
+
+Result<TiltReading> measureTilt(Inclinometer& inclinometer, const TiltOptions& options,
+                                const InclinometerZeroOffset& zero,
+                                const std::function<void()>& on_sample) {
+  GLARECAM_CHECK(options.validate());
+  const std::string& uri = inclinometer.info().uri;
+  RunningStats x, y, z, tilt_x, tilt_y, temperature;
+  for (int i = 0; i < options.samples; ++i) {
+    AccelerationSample sample;
+    GLARECAM_ASSIGN(sample, inclinometer.read());
+    const double magnitude_g = magnitudeG(sample);
+    if (!(std::abs(magnitude_g - 1.0) <= options.gravity_tolerance_g))
+      return hardwareError(fmt::format(
+          "inclinometer {}: sample {} measures {:.3f} g, not gravity alone (±{} g): the rig is "
+          "being moved, or the sensor's range or scale is wrong",
+          uri, i + 1, magnitude_g, options.gravity_tolerance_g));
+    x.add(sample.x_g);
+    y.add(sample.y_g);
+    z.add(sample.z_g);
+    const AxisTilt t = axisTilt(sample);
+    tilt_x.add(t.x_deg);
+    tilt_y.add(t.y_deg);
+    if (sample.temperature_c) temperature.add(*sample.temperature_c);
+    if (on_sample) on_sample();
+  }
+  const double scatter_deg = std::max(tilt_x.stddev(), tilt_y.stddev());
+  if (scatter_deg > options.max_tilt_std_deg)
+    return hardwareError(fmt::format(
+        "inclinometer {}: the rig is moving (tilt scatter {:.3f}° over {} samples, more than the "
+        "{}° allowed); wait for it to settle",
+        uri, scatter_deg, options.samples, options.max_tilt_std_deg));
+
+  TiltReading reading;
+  reading.samples = options.samples;
+  reading.mean = {x.mean, y.mean, z.mean,
+                  temperature.n > 0 ? std::optional(temperature.mean) : std::nullopt};
+  reading.raw_tilt = axisTilt(reading.mean);
+  reading.tilt = correctedTilt(reading.mean, zero);
+  reading.module_tilt_deg = moduleTiltDeg(reading.tilt);
+  reading.tilt_std_deg = scatter_deg;
+  const double mean_uncertainty_deg = scatter_deg / std::sqrt(double(options.samples));
+  reading.tilt_uncertainty_deg = std::hypot(mean_uncertainty_deg, zero.uncertainty_deg);
+  return reading;
+}
+
+InclinometerZeroOffset flipZeroOffset(const TiltReading& first, const TiltReading& second) {
+  InclinometerZeroOffset zero;
+  zero.offset = {(first.raw_tilt.x_deg + second.raw_tilt.x_deg) / 2.0,
+                 (first.raw_tilt.y_deg + second.raw_tilt.y_deg) / 2.0};
+  // Each reading's mean has σ/√N; the half-sum of two has the root-sum-square over two.
+  const auto sem = [](const TiltReading& r) {
+    return r.tilt_std_deg / std::sqrt(double(r.samples));
+  };
+  zero.uncertainty_deg = std::hypot(sem(first), sem(second)) / 2.0;
+  return zero;
+}
+
+}  // namespace glarecam::capture

@@ -1,0 +1,77 @@
+// Tilt from an inclinometer's gravity vector. The sensor sits on the module frame with its z axis
+// along the module's normal; its x and y axes lie in the module plane. Two signed axis tilts
+// describe its attitude (tilt_x_deg: rotation about the sensor's x axis, atan2(y, z); tilt_y_deg:
+// about y, atan2(-x, hypot(y, z))), and the module tilt is the angle between the normal and the
+// vertical, whatever the direction of the slope (the facing azimuth comes from the config).
+//
+// A reading averages N samples and rejects a moving rig (tilt scatter above a bound). The
+// sensor's mounting error is removed by a zero offset measured with the flip method: two readings
+// on the same surface, the sensor turned 180° about the vertical in between; the true tilts change
+// sign, the mounting offset does not, so offset = (A + B) / 2.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "capture/inclinometer/inclinometer.h"
+#include "core/error.h"
+
+namespace glarecam::capture {
+
+struct AxisTilt {
+  double x_deg = 0.0;
+  double y_deg = 0.0;
+};
+
+// The sensor's mounting error as the axis tilts it reads on a level surface.
+struct InclinometerZeroOffset {
+  AxisTilt offset;
+  double uncertainty_deg = 0.0;  // standard uncertainty of each axis's offset
+};
+
+struct TiltOptions {
+  int samples = 50;
+  // ADXL355 noise at 15.6 Hz output data rate: 25 µg/√Hz × √(3.9 Hz × 1.6) ≈ 60 µg ≈ 0.004°
+  // (datasheet, noise density and LPF bandwidth). Ten times that means the frame is moving (wind,
+  // an operator) and the mean is not the tilt during the capture.
+  double max_tilt_std_deg = 0.05;
+  // A sample whose magnitude is off 1 g by more than this is not gravity alone: the rig is being
+  // moved, or the range/scale is wrong. ADXL355 0 g offset ±75 mg + sensitivity ±2 % (datasheet).
+  double gravity_tolerance_g = 0.15;
+  Status validate() const;
+};
+
+struct TiltReading {
+  AxisTilt tilt;                      // zero offset removed
+  AxisTilt raw_tilt;                  // as the sensor reads it
+  double module_tilt_deg = 0.0;       // normal vs vertical, zero offset removed
+  double tilt_std_deg = 0.0;          // per-sample scatter (the larger axis)
+  double tilt_uncertainty_deg = 0.0;  // standard uncertainty of module_tilt_deg (mean + offset)
+  int samples = 0;
+  AccelerationSample mean;  // raw mean vector, as recorded in a stack's geometry block
+};
+
+AxisTilt axisTilt(const AccelerationSample& sample);
+
+// The module tilt of an (offset-corrected) attitude: acos(cos x · cos y).
+double moduleTiltDeg(const AxisTilt& tilt);
+
+// Removes the mounting error: rotates the sensor's gravity vector back by the offset.
+AxisTilt correctedTilt(const AccelerationSample& sample, const InclinometerZeroOffset& zero);
+
+// The inverse: the gravity vector (1 g) a sensor mounted with `mounting_offset` reads on a surface
+// with the attitude `tilt`. What a simulator or a test feeds the maths above.
+AccelerationSample mountedGravity(const AxisTilt& tilt, const AxisTilt& mounting_offset);
+
+// Averages options.samples readings. Errors: a failing read (its error), a sample that is not
+// gravity (magnitude), a moving rig (scatter above the bound), each naming the inclinometer.
+// `on_sample` (optional) is called after each sample, for progress.
+Result<TiltReading> measureTilt(Inclinometer& inclinometer, const TiltOptions& options,
+                                const InclinometerZeroOffset& zero = {},
+                                const std::function<void()>& on_sample = {});
+
+// The flip method: `first` and `second` are raw readings taken 180° apart about the vertical.
+InclinometerZeroOffset flipZeroOffset(const TiltReading& first, const TiltReading& second);
+
+}  // namespace glarecam::capture

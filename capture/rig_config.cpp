@@ -1,0 +1,207 @@
+#include "capture/rig_config.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <set>
+
+namespace glarecam::capture {
+
+namespace {
+
+// ICAO standard atmosphere below 11 km: p = p0 (1 − L h / T0)^(g M / (R L)) with the sea-level
+// pressure 1013.25 hPa, lapse rate 0.0065 K/m and 288.15 K (ISO 2533).
+constexpr double kSeaLevelPressureHpa = 1013.25;
+constexpr double kLapseRatePerMetre = 0.0065 / 288.15;
+constexpr double kBarometricExponent = 5.25588;
+
+// Reads typed, range-checked values out of one TOML table; every error names FILE:LINE.
+class TableReader {
+ public:
+  TableReader(const std::filesystem::path& file, const toml::table& table, std::string name)
+      : file_(file), table_(table), name_(std::move(name)) {}
+
+  Result<std::optional<double>> number(const char* key, double min, double max) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return std::nullopt;
+    const std::optional<double> value = node->value<double>();
+    if (!node->is_number() || !value || !std::isfinite(*value))
+      return error(*node, fmt::format("{} must be a number", qualified(key)));
+    if (*value < min || *value > max)
+      return error(*node, fmt::format("{} = {:g} is outside [{:g}, {:g}]", qualified(key), *value,
+                                      min, max));
+    return value;
+  }
+
+  Result<double> requiredNumber(const char* key, double min, double max) {
+    std::optional<double> value;
+    GLARECAM_ASSIGN(value, number(key, min, max));
+    if (!value)
+      return fail(ErrorCode::kBadInput,
+                  fmt::format("{}:{}: [{}] needs {}", file_.string(), line(table_), name_, key));
+    return *value;
+  }
+
+  Result<std::optional<std::string>> string(const char* key) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return std::nullopt;
+    const std::optional<std::string> value = node->value<std::string>();
+    if (!node->is_string() || !value || value->empty())
+      return error(*node, fmt::format("{} must be a non-empty string", qualified(key)));
+    return value;
+  }
+
+  // After all reads: a key nobody asked for is a typo or a key of another version.
+  Status checkNoUnknownKeys() const {
+    for (auto&& [key, node] : table_) {
+      if (used_.count(std::string(key.str())) || node.is_table()) continue;
+      std::string known;
+      for (const std::string& k : used_) known += (known.empty() ? "" : ", ") + k;
+      return error(node, fmt::format("unknown key {} (known: {})", qualified(key.str()), known));
+    }
+    return {};
+  }
+
+ private:
+  static int line(const toml::node& node) { return int(node.source().begin.line); }
+
+  std::string qualified(std::string_view key) const {
+    return name_.empty() ? std::string(key) : name_ + "." + std::string(key);
+  }
+
+  std::unexpected<Error> error(const toml::node& node, const std::string& message) const {
+    return badInput(fmt::format("{}:{}: {}", file_.string(), line(node), message));
+  }
+
+  const std::filesystem::path& file_;
+  const toml::table& table_;
+  std::string name_;
+  std::set<std::string> used_;
+};
+
+// Each sub-table named in the file must be one we know.
+Status checkSections(const std::filesystem::path& file, const toml::table& root) {
+  static const std::set<std::string> kSections{"site", "module", "source", "inclinometer", "gpio"};
+  for (auto&& [key, node] : root) {
+    if (!node.is_table() || kSections.count(std::string(key.str()))) continue;
+    return badInput(
+        fmt::format("{}:{}: unknown section [{}] (known: gpio, inclinometer, "
+                    "module, site, source)",
+                    file.string(), node.source().begin.line, key.str()));
+  }
+  return {};
+}
+
+Result<std::optional<SiteLocation>> readSite(const std::filesystem::path& file,
+                                             const toml::table* table) {
+  if (!table) return std::nullopt;
+  TableReader site(file, *table, "site");
+  SiteLocation location;
+  GLARECAM_ASSIGN(location.latitude_deg, site.requiredNumber("latitude_deg", -90, 90));
+  GLARECAM_ASSIGN(location.longitude_deg, site.requiredNumber("longitude_deg", -180, 180));
+  std::optional<double> altitude, pressure, temperature;
+  GLARECAM_ASSIGN(altitude, site.number("altitude_m", -500, 9000));
+  GLARECAM_ASSIGN(pressure, site.number("pressure_hpa", 1, 1100));
+  GLARECAM_ASSIGN(temperature, site.number("temperature_c", -90, 70));
+  GLARECAM_CHECK(site.checkNoUnknownKeys());
+  location.altitude_m = altitude.value_or(0.0);
+  location.pressure_hpa = pressure.value_or(standardPressureHpa(location.altitude_m));
+  if (temperature) location.temperature_c = *temperature;
+  return location;
+}
+
+Result<std::optional<SkyDirection>> readSource(const std::filesystem::path& file,
+                                               const toml::table* table) {
+  if (!table) return std::nullopt;
+  TableReader source(file, *table, "source");
+  SkyDirection direction;
+  GLARECAM_ASSIGN(direction.elevation_deg, source.requiredNumber("elevation_deg", -90, 90));
+  GLARECAM_ASSIGN(direction.azimuth_deg, source.requiredNumber("azimuth_deg", 0, 360));
+  GLARECAM_CHECK(source.checkNoUnknownKeys());
+  return direction;
+}
+
+Result<std::optional<InclinometerConfig>> readInclinometer(const std::filesystem::path& file,
+                                                           const toml::table* table) {
+  if (!table) return std::nullopt;
+  TableReader reader(file, *table, "inclinometer");
+  InclinometerConfig config;
+  std::optional<std::string> uri;
+  GLARECAM_ASSIGN(uri, reader.string("uri"));
+  if (!uri)
+    return badInput(
+        fmt::format("{}:{}: [inclinometer] needs uri", file.string(), table->source().begin.line));
+  config.uri = *uri;
+  std::optional<double> samples, max_std, tolerance;
+  GLARECAM_ASSIGN(samples, reader.number("samples", 2, 100000));
+  GLARECAM_ASSIGN(max_std, reader.number("max_tilt_std_deg", 1e-6, 10));
+  GLARECAM_ASSIGN(tolerance, reader.number("gravity_tolerance_g", 1e-3, 0.9));
+  GLARECAM_CHECK(reader.checkNoUnknownKeys());
+  if (samples) config.tilt.samples = int(*samples);
+  if (max_std) config.tilt.max_tilt_std_deg = *max_std;
+  if (tolerance) config.tilt.gravity_tolerance_g = *tolerance;
+  return config;
+}
+
+Status readModule(const std::filesystem::path& file, const toml::table* table, RigConfig& rig) {
+  if (!table) return {};
+  TableReader module(file, *table, "module");
+  GLARECAM_ASSIGN(rig.module_azimuth_deg, module.number("azimuth_deg", 0, 360));
+  GLARECAM_ASSIGN(rig.module_tilt_deg, module.number("tilt_deg", 0, 180));
+  return module.checkNoUnknownKeys();
+}
+
+Status checkConsistent(const RigConfig& rig) {
+  const std::string file = rig.path.string();
+  if (rig.site && rig.fixed_source)
+    return badInput(file +
+                    ": give either [site] (α against the sun) or [source] (a fixed lamp), "
+                    "not both");
+  if ((rig.site || rig.fixed_source) && !rig.module_azimuth_deg)
+    return badInput(file + ": [module] azimuth_deg is needed to compute α");
+  return {};
+}
+
+Result<RigConfig> parseRigConfig(const std::filesystem::path& path, const toml::table& root) {
+  RigConfig rig;
+  rig.path = path;
+  GLARECAM_CHECK(checkSections(path, root));
+  TableReader top(path, root, "");
+  GLARECAM_ASSIGN(rig.camera, top.string("camera"));
+  std::optional<std::string> calibration;
+  GLARECAM_ASSIGN(calibration, top.string("calibration"));
+  GLARECAM_CHECK(top.checkNoUnknownKeys());
+  if (calibration) rig.calibration = path.parent_path() / *calibration;
+  GLARECAM_ASSIGN(rig.site, readSite(path, root["site"].as_table()));
+  GLARECAM_ASSIGN(rig.fixed_source, readSource(path, root["source"].as_table()));
+  GLARECAM_ASSIGN(rig.inclinometer, readInclinometer(path, root["inclinometer"].as_table()));
+  GLARECAM_CHECK(readModule(path, root["module"].as_table(), rig));
+  GLARECAM_CHECK(checkConsistent(rig));
+  return rig;
+}
+
+}  // namespace
+
+double standardPressureHpa(double altitude_m) {
+  return kSeaLevelPressureHpa *
+         std::pow(1.0 - kLapseRatePerMetre * altitude_m, kBarometricExponent);
+}
+
+Result<RigConfig> readRigConfig(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    return badInput(path.string() + ": " +
+                    (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
+  try {
+    const toml::table root = toml::parse_file(path.string());
+    return parseRigConfig(path, root);
+  } catch (const toml::parse_error& e) {
+    return badInput(
+        fmt::format("{}:{}: {}", path.string(), e.source().begin.line, e.description()));
+  }
+}
+
+}  // namespace glarecam::capture

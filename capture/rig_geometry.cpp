@@ -1,0 +1,177 @@
+#include "capture/rig_geometry.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "capture/inclinometer/inclinometer_registry.h"
+#include "capture/inclinometer/zero_offset_file.h"
+#include "capture/sun/utc_time.h"
+
+namespace glarecam::capture {
+
+namespace {
+
+// Steps of the numerical derivatives of α: small against the scales α varies on (degrees of tilt,
+// minutes of time), large against double rounding.
+constexpr double kTiltStepDeg = 0.01;
+constexpr std::chrono::seconds kTimeStep{1};
+
+// |dα/dx| from one-sided differences on both sides: the central difference vanishes at α's
+// minimum (normal incidence), where α still moves one-for-one with the tilt.
+double slope(const std::function<double(double)>& alpha_at, double x, double step) {
+  const double centre = alpha_at(x);
+  return std::max(std::abs(alpha_at(x + step) - centre), std::abs(alpha_at(x - step) - centre)) /
+         step;
+}
+
+Result<SkyDirection> sunDirection(const SiteLocation& site, UtcTime time,
+                                  std::optional<SolarPosition>* position = nullptr) {
+  SolarPosition sun;
+  GLARECAM_ASSIGN(sun, solarPosition(time, site));
+  if (position) *position = sun;
+  return SkyDirection{sun.elevation_deg, sun.azimuth_deg};
+}
+
+// A config α can be computed from: a source, and a tilt (measured or fixed).
+Status checkGivesAlpha(const RigConfig& config) {
+  if (!config.site && !config.fixed_source)
+    return badInput(config.path.string() +
+                    ": cannot compute α: give [site] (the sun) or [source] (a fixed lamp)");
+  if (!config.inclinometer && !config.module_tilt_deg)
+    return badInput(config.path.string() +
+                    ": no module tilt: configure [inclinometer] uri, or [module] tilt_deg");
+  return {};
+}
+
+Result<double> moduleTilt(const RigConfig& config, const std::optional<TiltReading>& tilt) {
+  if (tilt) return tilt->module_tilt_deg;
+  if (config.module_tilt_deg) return *config.module_tilt_deg;
+  return badInput(config.path.string() + ": the inclinometer's tilt reading is missing");
+}
+
+void addWarnings(RigGeometry& g) {
+  if (g.sun && g.sun->elevation_deg < 0)
+    g.warnings.push_back(
+        fmt::format("the sun is below the horizon (elevation {:.2f}°)", g.sun->elevation_deg));
+  if (g.alpha_deg > 90)
+    g.warnings.push_back(
+        fmt::format("the source is behind the module (α {:.2f}° > 90°)", g.alpha_deg));
+  if (g.clock && !g.clock->synchronised)
+    g.warnings.push_back("the system clock is not synchronised: " + g.clock->detail +
+                         fmt::format("; α's uncertainty assumes the kernel's bound of {:g} s",
+                                     g.clock->max_error_s));
+}
+
+}  // namespace
+
+Result<RigGeometry> computeRigGeometry(const RigConfig& config,
+                                       const std::optional<TiltReading>& tilt, UtcTime time,
+                                       const ClockStatus& clock) {
+  GLARECAM_CHECK(checkGivesAlpha(config));
+  RigGeometry g;
+  g.time = time;
+  g.tilt = tilt;
+  GLARECAM_ASSIGN(g.module.tilt_deg, moduleTilt(config, tilt));
+  g.module.azimuth_deg = config.module_azimuth_deg.value_or(0.0);
+  if (config.site) {
+    g.source = "sun";
+    g.clock = clock;
+    GLARECAM_ASSIGN(g.source_direction, sunDirection(*config.site, time, &g.sun));
+  } else {
+    g.source = "fixed";
+    g.source_direction = *config.fixed_source;
+  }
+  g.alpha_deg = incidenceAngleDeg(g.module, g.source_direction);
+
+  const double tilt_sigma_deg = tilt ? tilt->tilt_uncertainty_deg : 0.0;
+  const auto alpha_at_tilt = [&](double tilt_deg) {
+    return incidenceAngleDeg({tilt_deg, g.module.azimuth_deg}, g.source_direction);
+  };
+  g.alpha_uncertainty_tilt_deg =
+      slope(alpha_at_tilt, g.module.tilt_deg, kTiltStepDeg) * tilt_sigma_deg;
+  if (config.site) {
+    // α moves with the sun: the clock's error in seconds times dα/dt.
+    const auto alpha_at_offset_s = [&](double offset_s) {
+      const auto shifted = time + std::chrono::round<std::chrono::microseconds>(
+                                      std::chrono::duration<double>(offset_s));
+      const auto direction = sunDirection(*config.site, shifted);
+      return direction ? incidenceAngleDeg(g.module, *direction) : g.alpha_deg;
+    };
+    const double step_s = std::chrono::duration<double>(kTimeStep).count();
+    g.alpha_uncertainty_clock_deg = slope(alpha_at_offset_s, 0.0, step_s) * clock.uncertaintyS();
+  }
+  g.alpha_uncertainty_deg = std::hypot(g.alpha_uncertainty_tilt_deg, g.alpha_uncertainty_clock_deg);
+  addWarnings(g);
+  return g;
+}
+
+nlohmann::json geometryJson(const RigGeometry& g) {
+  nlohmann::json block{{"module_tilt_deg", g.module.tilt_deg},
+                       {"module_azimuth_deg", g.module.azimuth_deg},
+                       {"alpha_deg", g.alpha_deg},
+                       {"alpha_uncertainty_deg", g.alpha_uncertainty_deg},
+                       {"source", g.source},
+                       {"time", formatIsoTime(g.time)}};
+  if (g.sun) {
+    block["sun_elevation_deg"] = g.sun->elevation_deg;
+    block["sun_azimuth_deg"] = g.sun->azimuth_deg;
+    block["sun_zenith_deg"] = g.sun->zenith_deg;
+  } else {
+    block["source_elevation_deg"] = g.source_direction.elevation_deg;
+    block["source_azimuth_deg"] = g.source_direction.azimuth_deg;
+  }
+  if (g.clock) block["clock_synchronised"] = g.clock->synchronised;
+  if (g.tilt) {
+    nlohmann::json inclinometer{
+        {"x_g", g.tilt->mean.x_g},          {"y_g", g.tilt->mean.y_g},
+        {"z_g", g.tilt->mean.z_g},          {"uri", g.inclinometer_uri},
+        {"samples", g.tilt->samples},       {"tilt_std_deg", g.tilt->tilt_std_deg},
+        {"tilt_x_deg", g.tilt->tilt.x_deg}, {"tilt_y_deg", g.tilt->tilt.y_deg}};
+    if (g.tilt->mean.temperature_c) inclinometer["temperature_c"] = *g.tilt->mean.temperature_c;
+    block["inclinometer"] = inclinometer;
+  }
+  if (!g.warnings.empty()) block["warnings"] = g.warnings;
+  return block;
+}
+
+RigSensors::RigSensors(RigConfig config, std::unique_ptr<Inclinometer> inclinometer,
+                       InclinometerZeroOffset zero)
+    : config_(std::move(config)), inclinometer_(std::move(inclinometer)), zero_(zero) {}
+
+Result<std::unique_ptr<RigSensors>> RigSensors::open(const RigConfig& config) {
+  GLARECAM_CHECK(checkGivesAlpha(config));
+  std::unique_ptr<Inclinometer> inclinometer;
+  InclinometerZeroOffset zero;
+  if (config.inclinometer) {
+    GLARECAM_ASSIGN(inclinometer, openInclinometer(config.inclinometer->uri));
+    std::optional<InclinometerZeroOffset> stored;
+    if (config.calibration) GLARECAM_ASSIGN(stored, readZeroOffset(*config.calibration));
+    if (stored) {
+      zero = *stored;
+    } else {
+      spdlog::warn(
+          "{}: no inclinometer zero offset{}: tilts are not corrected for the sensor's "
+          "mounting (run `glarecam inclinometer flip`)",
+          config.path.string(), config.calibration ? " in " + config.calibration->string() : "");
+    }
+  }
+  return std::unique_ptr<RigSensors>(new RigSensors(config, std::move(inclinometer), zero));
+}
+
+Result<RigGeometry> RigSensors::measure(UtcTime time, const std::function<void()>& on_sample) {
+  std::optional<TiltReading> tilt;
+  if (inclinometer_) {
+    GLARECAM_ASSIGN(tilt,
+                    measureTilt(*inclinometer_, config_.inclinometer->tilt, zero_, on_sample));
+  }
+  RigGeometry geometry;
+  GLARECAM_ASSIGN(geometry, computeRigGeometry(config_, tilt, time, systemClockStatus()));
+  if (inclinometer_) geometry.inclinometer_uri = inclinometer_->info().uri;
+  return geometry;
+}
+
+}  // namespace glarecam::capture

@@ -1,0 +1,74 @@
+// The rig's geometry at one moment: the module's orientation (tilt from the inclinometer or the
+// config, facing azimuth from the config), the light source's direction (the sun at the site and
+// time, or a fixed lab lamp) and the angle of incidence α between them, with α's standard
+// uncertainty from the tilt's (inclinometer noise + zero offset) and the clock's. This is what a
+// capture records in its manifest's `geometry` block and `glarecam alpha` prints.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "capture/inclinometer/inclinometer.h"
+#include "capture/inclinometer/tilt.h"
+#include "capture/rig_config.h"
+#include "capture/sun/clock_sync.h"
+#include "capture/sun/incidence_angle.h"
+#include "capture/sun/solar_position.h"
+#include "capture/sun/utc_time.h"
+#include "core/error.h"
+
+namespace glarecam::capture {
+
+struct RigGeometry {
+  UtcTime time;
+  std::string source;  // "sun" or "fixed"
+  ModuleOrientation module;
+  SkyDirection source_direction;
+  std::optional<SolarPosition> sun;  // when the source is the sun
+  double alpha_deg = 0.0;
+  double alpha_uncertainty_deg = 0.0;
+  double alpha_uncertainty_tilt_deg = 0.0;   // the tilt's share
+  double alpha_uncertainty_clock_deg = 0.0;  // the clock's share
+  std::optional<TiltReading> tilt;           // when an inclinometer measured the tilt
+  std::string inclinometer_uri;
+  std::optional<ClockStatus> clock;   // when the source is the sun
+  std::vector<std::string> warnings;  // sun below the horizon or behind the module, ...
+};
+
+// α from the config and, when given, a tilt reading (else the config's fixed module tilt).
+// kBadInput when the config cannot give α (no [site] nor [source], no tilt).
+Result<RigGeometry> computeRigGeometry(const RigConfig& config,
+                                       const std::optional<TiltReading>& tilt, UtcTime time,
+                                       const ClockStatus& clock);
+
+// The manifest's `geometry` block (stack-format.md): module_tilt_deg, module_azimuth_deg,
+// sun_elevation_deg, sun_azimuth_deg, inclinometer {x_g, y_g, z_g, temperature_c}, and the
+// provenance of α.
+nlohmann::json geometryJson(const RigGeometry& geometry);
+
+// The rig's sensors as a capture uses them: the inclinometer named in the config (opened once)
+// with its zero offset from the calibration file. measure() reads the tilt and computes α now.
+class RigSensors {
+ public:
+  // kBadInput when the config cannot give α; the inclinometer's errors when it cannot be opened.
+  static Result<std::unique_ptr<RigSensors>> open(const RigConfig& config);
+
+  Result<RigGeometry> measure(UtcTime time, const std::function<void()>& on_sample = {});
+  const RigConfig& config() const { return config_; }
+  const InclinometerZeroOffset& zeroOffset() const { return zero_; }
+  bool hasInclinometer() const { return inclinometer_ != nullptr; }
+
+ private:
+  RigSensors(RigConfig config, std::unique_ptr<Inclinometer> inclinometer,
+             InclinometerZeroOffset zero);
+
+  RigConfig config_;
+  std::unique_ptr<Inclinometer> inclinometer_;
+  InclinometerZeroOffset zero_;
+};
+
+}  // namespace glarecam::capture

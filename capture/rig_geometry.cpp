@@ -36,21 +36,21 @@ Result<SkyDirection> sunDirection(const SiteLocation& site, UtcTime time,
   return SkyDirection{sun.elevation_deg, sun.azimuth_deg};
 }
 
-// A config α can be computed from: a source, and a tilt (measured or fixed).
-Status checkGivesAlpha(const RigConfig& config) {
-  if (!config.site && !config.fixed_source)
-    return badInput(config.path.string() +
-                    ": cannot compute α: give [site] (the sun) or [source] (a fixed lamp)");
-  if (!config.inclinometer && !config.module_tilt_deg)
-    return badInput(config.path.string() +
-                    ": no module tilt: configure [inclinometer] uri, or [module] tilt_deg");
-  return {};
+Status checkHasSource(const RigConfig& config) {
+  if (config.site || config.fixed_source) return {};
+  return badInput(config.path.string() +
+                  ": cannot compute α: give [site] (the sun) or [source] (a fixed lamp)");
+}
+
+std::unexpected<Error> noTiltError(const RigConfig& config) {
+  return badInput(config.path.string() +
+                  ": no module tilt: configure [inclinometer] uri, or [module] tilt_deg");
 }
 
 Result<double> moduleTilt(const RigConfig& config, const std::optional<TiltReading>& tilt) {
   if (tilt) return tilt->module_tilt_deg;
   if (config.module_tilt_deg) return *config.module_tilt_deg;
-  return badInput(config.path.string() + ": the inclinometer's tilt reading is missing");
+  return noTiltError(config);
 }
 
 void addWarnings(RigGeometry& g) {
@@ -71,7 +71,7 @@ void addWarnings(RigGeometry& g) {
 Result<RigGeometry> computeRigGeometry(const RigConfig& config,
                                        const std::optional<TiltReading>& tilt, UtcTime time,
                                        const ClockStatus& clock) {
-  GLARECAM_CHECK(checkGivesAlpha(config));
+  GLARECAM_CHECK(checkHasSource(config));
   RigGeometry g;
   g.time = time;
   g.tilt = tilt;
@@ -143,7 +143,8 @@ RigSensors::RigSensors(RigConfig config, std::unique_ptr<Inclinometer> inclinome
     : config_(std::move(config)), inclinometer_(std::move(inclinometer)), zero_(zero) {}
 
 Result<std::unique_ptr<RigSensors>> RigSensors::open(const RigConfig& config) {
-  GLARECAM_CHECK(checkGivesAlpha(config));
+  GLARECAM_CHECK(checkHasSource(config));
+  if (!config.inclinometer && !config.module_tilt_deg) return noTiltError(config);
   std::unique_ptr<Inclinometer> inclinometer;
   InclinometerZeroOffset zero;
   if (config.inclinometer) {

@@ -20,6 +20,26 @@ constexpr double kDefaultNoiseG = 60e-6;
 constexpr double kMaxSimTiltDeg = 180.0;
 constexpr double kMaxSeed = 0x1p53;  // whole numbers a double holds exactly
 
+// The simulator needs no real-time wait for data: a short bound keeps a never-ready fault quick.
+constexpr std::chrono::milliseconds kSimDataReadyTimeout{200};
+
+// The driver over the simulator, introduced as what it is.
+class SimInclinometer final : public Inclinometer {
+ public:
+  SimInclinometer(std::unique_ptr<Inclinometer> driver, std::string uri)
+      : driver_(std::move(driver)), info_(driver_->info()) {
+    info_.uri = std::move(uri);
+    info_.backend = "sim";
+    info_.detail = "ADXL355 register simulator: " + info_.detail;
+  }
+  const InclinometerInfo& info() const override { return info_; }
+  Result<AccelerationSample> read() override { return driver_->read(); }
+
+ private:
+  std::unique_ptr<Inclinometer> driver_;
+  InclinometerInfo info_;
+};
+
 struct SimAttitude {
   AxisTilt tilt;
   AxisTilt mounting_offset;
@@ -105,8 +125,14 @@ Result<std::unique_ptr<Inclinometer>> openSimInclinometer(std::string_view id) {
   Adxl355SimulatorOptions options;
   GLARECAM_ASSIGN(options, parseSimInclinometerId(id));
   const std::uint8_t address = options.address;
-  return openAdxl355(std::make_unique<Adxl355Simulator>(options), address, Adxl355Options{},
-                     "sim:" + std::string(id));
+  const std::string uri = "sim:" + std::string(id);
+  options.bus_name = uri;  // errors then name the URI: "ADXL355 at 0x1d on sim:30,...: ..."
+  Adxl355Options driver_options;
+  driver_options.data_ready_timeout = kSimDataReadyTimeout;
+  std::unique_ptr<Inclinometer> driver;
+  GLARECAM_ASSIGN(driver, openAdxl355(std::make_unique<Adxl355Simulator>(options), address,
+                                      driver_options, uri));
+  return std::make_unique<SimInclinometer>(std::move(driver), uri);
 }
 
 }  // namespace glarecam::capture

@@ -15,6 +15,7 @@ namespace {
 constexpr double kSeaLevelPressureHpa = 1013.25;
 constexpr double kLapseRatePerMetre = 0.0065 / 288.15;
 constexpr double kBarometricExponent = 5.25588;
+constexpr std::int64_t kMaxGpioOffset = 65535;  // far beyond any chip; the chip itself checks
 
 // Reads typed, range-checked values out of one TOML table; every error names FILE:LINE.
 class TableReader {
@@ -42,6 +43,36 @@ class TableReader {
       return fail(ErrorCode::kBadInput,
                   fmt::format("{}:{}: [{}] needs {}", file_.string(), line(table_), name_, key));
     return *value;
+  }
+
+  Result<std::optional<bool>> boolean(const char* key) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return std::nullopt;
+    if (!node->is_boolean())
+      return error(*node, fmt::format("{} must be true or false", qualified(key)));
+    return node->value<bool>();
+  }
+
+  // A GPIO line: its offset (an integer) or its name (a string), with `KEY_active_low`.
+  Result<std::optional<GpioLine>> gpioLine(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return std::nullopt;
+    GpioLine line;
+    if (node->is_integer() && *node->value<std::int64_t>() >= 0 &&
+        *node->value<std::int64_t>() <= kMaxGpioOffset) {
+      line.line = static_cast<unsigned>(*node->value<std::int64_t>());
+    } else if (node->is_string() && !node->value<std::string>()->empty()) {
+      line.line = *node->value<std::string>();
+    } else {
+      return error(*node, fmt::format("{} must be a line offset (0..{}) or a line name",
+                                      qualified(key), kMaxGpioOffset));
+    }
+    std::optional<bool> active_low;
+    GLARECAM_ASSIGN(active_low, boolean((key + "_active_low").c_str()));
+    line.active_low = active_low.value_or(false);
+    return line;
   }
 
   Result<std::optional<std::string>> string(const char* key) {
@@ -146,6 +177,33 @@ Result<std::optional<InclinometerConfig>> readInclinometer(const std::filesystem
   return config;
 }
 
+Result<std::optional<RigIoConfig>> readGpio(const std::filesystem::path& file,
+                                            const toml::table* table) {
+  if (!table) return std::nullopt;
+  TableReader reader(file, *table, "gpio");
+  RigIoConfig gpio;
+  std::optional<std::string> chip;
+  GLARECAM_ASSIGN(chip, reader.string("chip"));
+  if (chip) gpio.chip = *chip;
+  GLARECAM_ASSIGN(gpio.trigger, reader.gpioLine("trigger"));
+  GLARECAM_ASSIGN(gpio.led, reader.gpioLine("led"));
+  GLARECAM_ASSIGN(gpio.button, reader.gpioLine("button"));
+  std::optional<bool> pull_up;
+  GLARECAM_ASSIGN(pull_up, reader.boolean("button_pull_up"));
+  if (pull_up) gpio.button_pull_up = *pull_up;
+  std::optional<double> debounce_ms, pulse_us;
+  GLARECAM_ASSIGN(debounce_ms, reader.number("debounce_ms", 0, double(kMaxDebounce.count())));
+  GLARECAM_ASSIGN(pulse_us, reader.number("trigger_pulse_us", 1, double(kMaxTriggerPulse.count())));
+  GLARECAM_CHECK(reader.checkNoUnknownKeys());
+  if (debounce_ms) gpio.debounce = std::chrono::milliseconds(std::llround(*debounce_ms));
+  if (pulse_us) gpio.trigger_pulse = std::chrono::microseconds(std::llround(*pulse_us));
+  const Status valid = gpio.validate();
+  if (!valid)
+    return badInput(fmt::format("{}:{}: [gpio] {}", file.string(), table->source().begin.line,
+                                valid.error().message));
+  return gpio;
+}
+
 Status readModule(const std::filesystem::path& file, const toml::table* table, RigConfig& rig) {
   if (!table) return {};
   TableReader module(file, *table, "module");
@@ -179,6 +237,7 @@ Result<RigConfig> parseRigConfig(const std::filesystem::path& path, const toml::
   GLARECAM_ASSIGN(rig.fixed_source, readSource(path, root["source"].as_table()));
   GLARECAM_ASSIGN(rig.inclinometer, readInclinometer(path, root["inclinometer"].as_table()));
   GLARECAM_CHECK(readModule(path, root["module"].as_table(), rig));
+  GLARECAM_ASSIGN(rig.gpio, readGpio(path, root["gpio"].as_table()));
   GLARECAM_CHECK(checkConsistent(rig));
   return rig;
 }

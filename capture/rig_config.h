@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "capture/gpio/rig_io.h"
 #include "capture/inclinometer/tilt.h"
 #include "capture/sun/incidence_angle.h"
 #include "capture/sun/solar_position.h"
@@ -40,6 +41,9 @@ struct RigConfig {
   std::optional<double> module_tilt_deg;
 
   std::optional<InclinometerConfig> inclinometer;
+
+  // [gpio]: trigger, status LED and button lines (chip "sim" for the simulated rig's).
+  std::optional<RigIoConfig> gpio;
 };
 
 // The standard atmosphere's pressure at `altitude_m` (the default when the config gives none).

@@ -13,11 +13,11 @@
 #include <optional>
 #include <thread>
 
+#include "apps/glarecam/capture_rig.h"
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
 #include "capture/bracketer.h"
 #include "capture/camera_registry.h"
-#include "capture/rig_geometry.h"
 #include "core/atomic_file.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
@@ -77,6 +77,7 @@ struct CaptureArgs {
   double interval_s = 0;
   std::string max_retries = "5";
   bool no_progress = false;
+  bool on_button = false;
 };
 
 Result<capture::CaptureSettings> captureSettings(const CaptureArgs& args) {
@@ -124,61 +125,25 @@ Result<capture::CameraOptions> cameraOptions(const CaptureArgs& args,
 }
 
 Status checkAgainstCamera(const capture::Camera& camera, const capture::CaptureSettings& settings);
-Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
-                     capture::RigSensors* sensors, const std::string& out, std::uint64_t count,
-                     double interval_s);
-
-// The rig's calibration file serves the camera when it holds a camera calibration (it may hold
-// only the inclinometer's zero offset).
-Result<std::optional<Calibration>> rigCameraCalibration(const capture::RigConfig& rig) {
-  if (!rig.calibration) return std::nullopt;
-  nlohmann::json document;
-  GLARECAM_ASSIGN(document, readJsonFile(rig.calibration->string()));
-  if (!document.is_object() || !document.contains("black_level_dn")) return std::nullopt;
-  return readCalibrationFile(rig.calibration->string());
-}
-
-// With a --config: the camera and calibration it names (unless given as options), and its
-// sensors when it can measure α, whose first measurement sets the stack's α.
-Result<std::unique_ptr<capture::RigSensors>> applyRigConfig(const CaptureArgs& args,
-                                                            std::string& camera_uri,
-                                                            capture::CaptureSettings& settings) {
-  if (!args.config) return nullptr;
-  capture::RigConfig rig;
-  GLARECAM_ASSIGN(rig, capture::readRigConfig(*args.config));
-  if (!args.camera && rig.camera) camera_uri = *rig.camera;
-  if (!args.calibration) GLARECAM_ASSIGN(settings.calibration, rigCameraCalibration(rig));
-  if (!rig.site && !rig.fixed_source) return nullptr;
-  if (args.alpha)
-    return badInput(fmt::format("capture: --alpha contradicts {}, whose [{}] gives α; give one",
-                                *args.config, rig.site ? "site" : "source"));
-  std::unique_ptr<capture::RigSensors> sensors;
-  GLARECAM_ASSIGN(sensors, capture::RigSensors::open(rig));
-  return sensors;
-}
-
-// Measures the rig's geometry now and records it (α and the geometry block) in `settings`.
-Status measureGeometryInto(capture::RigSensors& sensors, capture::CaptureSettings& settings) {
-  capture::RigGeometry geometry;
-  GLARECAM_ASSIGN(geometry, sensors.measure(std::chrono::time_point_cast<std::chrono::microseconds>(
-                                std::chrono::system_clock::now())));
-  for (const std::string& warning : geometry.warnings) spdlog::warn("capture: {}", warning);
-  spdlog::info("capture: α {:.3f}° ± {:.3f}° (module tilt {:.3f}°)", geometry.alpha_deg,
-               geometry.alpha_uncertainty_deg, geometry.module.tilt_deg);
-  settings.alpha_deg = geometry.alpha_deg;
-  settings.geometry = capture::geometryJson(geometry);
-  return {};
-}
+Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings, CaptureRig* rig,
+                     const std::string& out, std::uint64_t count, double interval_s);
 
 Status runCapture(const CaptureArgs& args) {
   capture::CaptureSettings settings;
   GLARECAM_ASSIGN(settings, captureSettings(args));
   std::string camera_uri = args.camera.value_or("");
-  std::unique_ptr<capture::RigSensors> sensors;
-  GLARECAM_ASSIGN(sensors, applyRigConfig(args, camera_uri, settings));
+  std::unique_ptr<CaptureRig> rig;
+  if (args.config) {
+    GLARECAM_ASSIGN(rig, CaptureRig::open(*args.config, args.alpha.has_value(), args.on_button));
+    if (!args.camera && rig->config().camera) camera_uri = *rig->config().camera;
+    if (!args.calibration) GLARECAM_ASSIGN(settings.calibration, rig->cameraCalibration());
+    // The scene a simulated camera renders needs α before the camera opens.
+    if (rig->measuresAlpha()) GLARECAM_CHECK(rig->measureInto(settings));
+  } else if (args.on_button) {
+    return badInput("capture: --on-button needs a --config with a [gpio] button line");
+  }
   if (camera_uri.empty())
     return badInput("capture: give --camera URI (or a --config with camera = \"URI\")");
-  if (sensors) GLARECAM_CHECK(measureGeometryInto(*sensors, settings));
   capture::CameraOptions options;
   GLARECAM_ASSIGN(options, cameraOptions(args, settings));
   std::uint64_t count = 0;
@@ -199,8 +164,7 @@ Status runCapture(const CaptureArgs& args) {
   std::unique_ptr<capture::Camera> camera;
   GLARECAM_ASSIGN(camera, capture::openCamera(camera_uri, options));
   GLARECAM_CHECK(checkAgainstCamera(*camera, settings));
-  return captureSeries(*camera, std::move(settings), sensors.get(), args.out, count,
-                       args.interval_s);
+  return captureSeries(*camera, std::move(settings), rig.get(), args.out, count, args.interval_s);
 }
 
 // What the camera itself knows must not be contradicted, and what it lacks is warned about.
@@ -250,23 +214,39 @@ void sleepUntil(std::chrono::steady_clock::time_point deadline) {
   }
 }
 
-Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
-                     capture::RigSensors* sensors, const std::string& out, std::uint64_t count,
-                     double interval_s) {
+// Before each stack of a series with a rig: the operator's press when asked for, and the
+// geometry (the first stack's was measured before the camera opened, unless a press came since).
+Result<bool> prepareRigStack(CaptureRig& rig, capture::CaptureSettings& settings, bool first) {
+  bool pressed = false;
+  GLARECAM_ASSIGN(pressed, rig.waitForButton([] { return g_stop_requested != 0; }));
+  if (!pressed) return false;
+  if (rig.measuresAlpha() && (!first || rig.waitsForButton()))
+    GLARECAM_CHECK(rig.measureInto(settings));
+  rig.showCapturing(true);
+  return true;
+}
+
+Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings, CaptureRig* rig,
+                     const std::string& out, std::uint64_t count, double interval_s) {
   stopGracefullyOnSignals();
   auto next = std::chrono::steady_clock::now();
   for (std::uint64_t i = 0; i < count; ++i) {
     sleepUntil(next);
-    if (g_stop_requested) {
+    const auto interrupted = [&] {
       return fail(ErrorCode::kInternal,
                   fmt::format("capture: interrupted after {} of {} stacks", i, count));
-    }
+    };
+    if (g_stop_requested) return interrupted();
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(interval_s));
-    // The first stack's geometry was measured before the camera opened; later ones anew.
-    if (sensors && i > 0) GLARECAM_CHECK(measureGeometryInto(*sensors, settings));
+    if (rig) {
+      bool go = false;
+      GLARECAM_ASSIGN(go, prepareRigStack(*rig, settings, i == 0));
+      if (!go) return interrupted();  // stopped while waiting for the button
+    }
     capture::CapturedStack stack;
     GLARECAM_ASSIGN(stack, capture::captureStack(camera, settings));
+    if (rig) rig->showCapturing(false);
     std::filesystem::path written;
     GLARECAM_ASSIGN(written, capture::writeCapturedStack(out, stack));
     std::printf("%s\n", written.c_str());
@@ -398,6 +378,8 @@ void addCaptureCommand(CLI::App& app, Action& action) {
   sub->add_option("--max-retries", args->max_retries,
                   "incomplete or timed-out frames retried per exposure")
       ->capture_default_str();
+  sub->add_flag("--on-button", args->on_button,
+                "wait for the operator's button (the --config's [gpio]) before each stack");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runCapture(*args); }; });
 }

@@ -70,6 +70,7 @@ int runGlarecam(int argc, char** argv) {
   addSunCommand(app, action);
   addAlphaCommand(app, action);
   addInclinometerCommand(app, action);
+  addGpioCommand(app, action);
 
   try {
     app.parse(argc, argv);

@@ -5,14 +5,19 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
+#include "capture/gpio/button_debouncer.h"
+#include "capture/gpio/rig_io_registry.h"
+#include "capture/gpio/status_led.h"
 #include "capture/inclinometer/inclinometer_registry.h"
 #include "capture/inclinometer/zero_offset_file.h"
 #include "capture/rig_config.h"
@@ -325,7 +330,121 @@ void addInclinometerSource(CLI::App* sub, InclinometerArgs& args) {
   sub->add_flag("--no-progress", args.no_progress, "no progress on stderr");
 }
 
+// ---- gpio ----------------------------------------------------------------------------------
+
+struct GpioArgs {
+  std::string config = capture::kDefaultRigConfigPath;
+  std::optional<std::string> led;
+  double seconds = 5;
+  std::optional<std::string> trigger;
+  bool wait_button = false;
+  double timeout_s = 30;
+};
+
+constexpr double kMaxGpioSeconds = 3600;  // a wiring check, not a service
+constexpr std::uint64_t kMaxTriggerPulses = 10000;
+constexpr auto kTriggerSpacing = std::chrono::milliseconds(100);  // 10 Hz: visible on a scope
+
+Result<capture::RigState> parseLedState(const std::string& text) {
+  if (text == "ready") return capture::RigState::ready();
+  if (text == "capturing") return capture::RigState::capturing();
+  for (const auto code : {capture::FaultCode::kCamera, capture::FaultCode::kInclinometer,
+                          capture::FaultCode::kDisk, capture::FaultCode::kClock}) {
+    if (text == "fault-" + std::string(capture::faultName(code)))
+      return capture::RigState::faulted(code);
+  }
+  return badInput(
+      fmt::format("gpio: --led {} is unknown (known: ready, capturing, fault-camera, "
+                  "fault-inclinometer, fault-disk, fault-clock)",
+                  text));
+}
+
+Status showLed(capture::RigIo& io, capture::RigState state, double seconds) {
+  if (!io.hasLed()) return badInput("gpio: --led, but the config's [gpio] has no led line");
+  capture::StatusLed led(io);
+  led.setStatus(state);
+  led.start();
+  std::fprintf(stderr, "gpio: showing the LED pattern for %g s\n", seconds);
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  GLARECAM_CHECK(led.stop());
+  if (auto error = led.lastError()) return std::unexpected(*error);
+  return {};
+}
+
+Status pulseTriggers(capture::RigIo& io, std::uint64_t count) {
+  if (!io.hasTrigger())
+    return badInput("gpio: --trigger, but the config's [gpio] has no trigger line");
+  for (std::uint64_t i = 0; i < count; ++i) {
+    if (i > 0) std::this_thread::sleep_for(kTriggerSpacing);
+    GLARECAM_CHECK(io.pulseTrigger());
+  }
+  std::printf("trigger: %llu pulse(s)\n", static_cast<unsigned long long>(count));
+  return {};
+}
+
+Status waitForButton(capture::RigIo& io, const capture::RigIoConfig& config, double timeout_s) {
+  capture::ButtonWatcher watcher(io, config.debounce);
+  std::fprintf(stderr, "gpio: press the button (waiting %g s)\n", timeout_s);
+  const auto deadline =
+      capture::RigClock::now() + std::chrono::duration_cast<capture::RigClock::duration>(
+                                     std::chrono::duration<double>(timeout_s));
+  bool pressed = false;
+  GLARECAM_ASSIGN(pressed, watcher.waitForPress(deadline));
+  if (!pressed)
+    return fail(ErrorCode::kHardware,
+                fmt::format("gpio: no button press within {:g} s", timeout_s));
+  std::printf("button: pressed\n");
+  return {};
+}
+
+Status runGpio(const GpioArgs& args) {
+  if (!(args.seconds > 0 && args.seconds <= kMaxGpioSeconds) ||
+      !(args.timeout_s > 0 && args.timeout_s <= kMaxGpioSeconds))
+    return badInput("gpio: --seconds and --timeout must be in (0, 3600]");
+  std::optional<capture::RigState> led_state;
+  if (args.led) GLARECAM_ASSIGN(led_state, parseLedState(*args.led));
+  std::uint64_t pulses = 0;
+  if (args.trigger) {
+    GLARECAM_ASSIGN(pulses, parseUnsigned(*args.trigger, "--trigger"));
+    if (pulses < 1 || pulses > kMaxTriggerPulses)
+      return badInput("gpio: --trigger must be a count in [1, 10000]");
+  }
+  capture::RigConfig config;
+  GLARECAM_ASSIGN(config, capture::readRigConfig(args.config));
+  if (!config.gpio) return badInput(args.config + ": no [gpio] section");
+  std::unique_ptr<capture::RigIo> io;
+  GLARECAM_ASSIGN(io, capture::openRigIo(*config.gpio));
+  std::printf("%s\n", io->description().c_str());
+  if (led_state) GLARECAM_CHECK(showLed(*io, *led_state, args.seconds));
+  if (pulses > 0) GLARECAM_CHECK(pulseTriggers(*io, pulses));
+  if (args.wait_button) GLARECAM_CHECK(waitForButton(*io, *config.gpio, args.timeout_s));
+  if (!led_state && pulses == 0 && !args.wait_button && io->hasButton()) {
+    bool pressed = false;
+    GLARECAM_ASSIGN(pressed, io->buttonPressed());
+    std::printf("button: %s\n", pressed ? "pressed" : "released");
+  }
+  return {};
+}
+
 }  // namespace
+
+void addGpioCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<GpioArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "gpio",
+      "Check the rig's GPIO wiring: show an LED pattern, pulse the trigger, wait for the button "
+      "(the config's [gpio]; docs/rig.md)");
+  sub->add_option("--config", args->config, "rig config (TOML)")->capture_default_str();
+  sub->add_option("--led", args->led,
+                  "show a status: ready, capturing, fault-camera, fault-inclinometer, fault-disk, "
+                  "fault-clock");
+  sub->add_option("--seconds", args->seconds, "how long --led shows it")->capture_default_str();
+  sub->add_option("--trigger", args->trigger, "pulse the trigger line this many times (10 Hz)");
+  sub->add_flag("--wait-button", args->wait_button, "wait for a debounced button press");
+  sub->add_option("--timeout", args->timeout_s, "seconds --wait-button waits (exit 1 after)")
+      ->capture_default_str();
+  sub->callback([args, &action] { action = [args] { return runGpio(*args); }; });
+}
 
 void addSunCommand(CLI::App& app, Action& action) {
   auto args = std::make_shared<SunArgs>();

@@ -174,4 +174,46 @@ check "capture: no camera anywhere" 2 "$GLARECAM" capture --config "$WORK/lab.to
 check "capture: bad config" 2 "$GLARECAM" capture --camera sim: --config "$WORK/bad.toml" --out "$WORK/stacks4"
 expect "capture: nothing written on a bad config" test ! -e "$WORK/stacks4"
 
+# ---- gpio (the simulated chip) and capture --on-button ---------------------------------------
+cat >"$WORK/gpio.toml" <<TOML
+[gpio]
+chip = "sim:button_period_s=0.5"
+led = 17
+trigger = "GPIO22"
+button = 27
+button_active_low = true
+debounce_ms = 20
+TOML
+check "gpio: LED pattern, trigger, button" 0 "$GLARECAM" gpio --config "$WORK/gpio.toml" --led fault-disk --seconds 0.2 \
+  --trigger 2 --wait-button --timeout 5
+expect "gpio: trigger pulses reported" grep -q "trigger: 2 pulse" "$WORK/out"
+expect "gpio: the press seen" grep -q "button: pressed" "$WORK/out"
+check "gpio: status readout" 0 "$GLARECAM" gpio --config "$WORK/gpio.toml"
+expect "gpio: describes the lines" grep -q "trigger, LED, button" "$WORK/out"
+printf '[gpio]\nchip = "sim"\nbutton = 3\n' >"$WORK/nopress.toml"
+check "gpio: no press before the timeout" 1 "$GLARECAM" gpio --config "$WORK/nopress.toml" --wait-button --timeout 0.2
+expect "gpio: timeout named" grep -q "no button press within 0.2 s" "$WORK/err"
+check "gpio: unknown LED status" 2 "$GLARECAM" gpio --config "$WORK/gpio.toml" --led disco
+expect "gpio: LED error lists the statuses" one_line_naming "fault-inclinometer"
+check "gpio: LED without a led line" 2 "$GLARECAM" gpio --config "$WORK/nopress.toml" --led ready --seconds 0.1
+check "gpio: zero trigger pulses" 2 "$GLARECAM" gpio --config "$WORK/gpio.toml" --trigger 0
+check "gpio: no [gpio] section" 2 "$GLARECAM" gpio --config "$WORK/lab.toml"
+printf '[gpio]\nled = 17\n' >"$WORK/realchip.toml"
+check "gpio: no GPIO chip on this machine" 1 "$GLARECAM" gpio --config "$WORK/realchip.toml"
+expect "gpio: the chip is named" one_line_naming "GPIO chip gpiochip0 not found"
+printf '[gpio]\nchip = "sim"\nled = 17\nbutton = 17\n' >"$WORK/twice.toml"
+check "gpio: one line in two roles" 2 "$GLARECAM" gpio --config "$WORK/twice.toml"
+expect "gpio: config error has file and line" one_line_naming "twice.toml:1:"
+printf '[gpio]\nchip = "sim"\nled = -1\n' >"$WORK/negative.toml"
+check "gpio: negative offset" 2 "$GLARECAM" gpio --config "$WORK/negative.toml"
+expect "gpio: offset error has file and line" one_line_naming "negative.toml:3:"
+
+cat "$WORK/lab.toml" "$WORK/gpio.toml" >"$WORK/lab-gpio.toml"
+check "capture: one stack per button press" 0 "$GLARECAM" capture --camera "sim:size=160x128" \
+  --config "$WORK/lab-gpio.toml" --on-button --count 2 --out "$WORK/pressed" --no-progress
+expect "capture: two stacks from two presses" test "$(wc -l <"$WORK/out")" -eq 2
+check "capture: --on-button without a button" 2 "$GLARECAM" capture --camera sim: --config "$WORK/lab.toml" \
+  --on-button --out "$WORK/nobutton"
+check "capture: --on-button without a config" 2 "$GLARECAM" capture --camera sim: --on-button --out "$WORK/nobutton"
+
 finish

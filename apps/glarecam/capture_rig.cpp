@@ -1,0 +1,95 @@
+#include "apps/glarecam/capture_rig.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <stop_token>
+#include <thread>
+
+#include "capture/gpio/button_debouncer.h"
+#include "capture/gpio/rig_io_registry.h"
+#include "core/stack_io.h"
+#include "core/stack_manifest.h"
+
+namespace glarecam::apps {
+
+namespace {
+
+// How soon a Ctrl-C ends the wait for the button.
+constexpr std::chrono::milliseconds kStopPoll{100};
+
+}  // namespace
+
+Result<std::unique_ptr<CaptureRig>> CaptureRig::open(const std::string& config_path,
+                                                     bool alpha_given, bool on_button) {
+  std::unique_ptr<CaptureRig> rig(new CaptureRig);
+  GLARECAM_ASSIGN(rig->config_, capture::readRigConfig(config_path));
+  const capture::RigConfig& config = rig->config_;
+  if (config.site || config.fixed_source) {
+    if (alpha_given)
+      return badInput(fmt::format("capture: --alpha contradicts {}, whose [{}] gives α; give one",
+                                  config_path, config.site ? "site" : "source"));
+    GLARECAM_ASSIGN(rig->sensors_, capture::RigSensors::open(config));
+  }
+  if (on_button && !(config.gpio && config.gpio->button))
+    return badInput(
+        fmt::format("capture: --on-button, but {} has no [gpio] button line", config_path));
+  if (config.gpio) {
+    GLARECAM_ASSIGN(rig->io_, capture::openRigIo(*config.gpio));
+    spdlog::info("capture: GPIO {}", rig->io_->description());
+    rig->led_ = std::make_unique<capture::StatusLed>(*rig->io_);
+    rig->led_->start();
+  }
+  rig->on_button_ = on_button;
+  return rig;
+}
+
+CaptureRig::~CaptureRig() {
+  if (led_) {
+    const Status stopped = led_->stop();  // the LED dark: glarecam no longer drives it
+    if (!stopped) spdlog::warn("capture: {}", stopped.error().message);
+  }
+}
+
+Result<std::optional<Calibration>> CaptureRig::cameraCalibration() const {
+  if (!config_.calibration) return std::nullopt;
+  nlohmann::json document;
+  GLARECAM_ASSIGN(document, readJsonFile(config_.calibration->string()));
+  if (!document.is_object() || !document.contains("black_level_dn")) return std::nullopt;
+  return readCalibrationFile(config_.calibration->string());
+}
+
+Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
+  capture::RigGeometry geometry;
+  GLARECAM_ASSIGN(geometry,
+                  sensors_->measure(std::chrono::time_point_cast<std::chrono::microseconds>(
+                      std::chrono::system_clock::now())));
+  for (const std::string& warning : geometry.warnings) spdlog::warn("capture: {}", warning);
+  spdlog::info("capture: α {:.3f}° ± {:.3f}° (module tilt {:.3f}°)", geometry.alpha_deg,
+               geometry.alpha_uncertainty_deg, geometry.module.tilt_deg);
+  settings.alpha_deg = geometry.alpha_deg;
+  settings.geometry = capture::geometryJson(geometry);
+  return {};
+}
+
+Result<bool> CaptureRig::waitForButton(const std::function<bool()>& stop_requested) {
+  if (!on_button_) return true;
+  std::fprintf(stderr, "capture: waiting for the button\n");
+  // One wait (a press may straddle any slicing), stopped from a thread that watches for Ctrl-C.
+  std::stop_source stop;
+  std::jthread signal_watch([&](std::stop_token done) {
+    while (!done.stop_requested() && !stop_requested()) std::this_thread::sleep_for(kStopPoll);
+    stop.request_stop();
+  });
+  capture::ButtonWatcher watcher(*io_, config_.gpio->debounce);
+  return watcher.waitForPress(capture::RigClock::time_point::max(), stop.get_token());
+}
+
+void CaptureRig::showCapturing(bool capturing) {
+  if (led_)
+    led_->setStatus(capturing ? capture::RigState::capturing() : capture::RigState::ready());
+}
+
+}  // namespace glarecam::apps

@@ -1,0 +1,54 @@
+// The rig around `glarecam capture --config`: the camera and calibration the config names, the
+// sensors that give each stack its α and geometry block, the status LED (capturing during a
+// bracket, ready between) and the operator's button (--on-button: one stack per press).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "capture/bracketer.h"
+#include "capture/gpio/rig_io.h"
+#include "capture/gpio/status_led.h"
+#include "capture/rig_config.h"
+#include "capture/rig_geometry.h"
+#include "core/error.h"
+
+namespace glarecam::apps {
+
+class CaptureRig {
+ public:
+  // Reads the config and opens its sensors and GPIO. kBadInput when --alpha contradicts a config
+  // that gives α, or --on-button is asked of a config without a button.
+  static Result<std::unique_ptr<CaptureRig>> open(const std::string& config_path, bool alpha_given,
+                                                  bool on_button);
+  ~CaptureRig();
+
+  const capture::RigConfig& config() const { return config_; }
+  bool measuresAlpha() const { return sensors_ != nullptr; }
+  bool waitsForButton() const { return on_button_; }
+
+  // The config's camera calibration, when its calibration file holds one (it may hold only the
+  // inclinometer's zero offset).
+  Result<std::optional<Calibration>> cameraCalibration() const;
+
+  // Measures the geometry now and records it in `settings` (α and the geometry block).
+  Status measureInto(capture::CaptureSettings& settings);
+
+  // With --on-button: waits for a press (true) or until `stop_requested` (false). Without: true.
+  Result<bool> waitForButton(const std::function<bool()>& stop_requested);
+
+  void showCapturing(bool capturing);
+
+ private:
+  CaptureRig() = default;
+
+  capture::RigConfig config_;
+  std::unique_ptr<capture::RigSensors> sensors_;
+  std::unique_ptr<capture::RigIo> io_;
+  std::unique_ptr<capture::StatusLed> led_;
+  bool on_button_ = false;
+};
+
+}  // namespace glarecam::apps

@@ -1,0 +1,66 @@
+#include "capture/gpio/rig_io_registry.h"
+
+#include <fmt/format.h>
+
+#include <string_view>
+
+#include "capture/gpio/sim_rig_io.h"
+#include "core/uri_parameters.h"
+
+namespace glarecam::capture {
+
+namespace {
+
+constexpr std::string_view kSimChip = "sim";
+constexpr std::string_view kUriName = "GPIO chip sim:";
+// The simulated operator holds the button this long per press: well above any debounce.
+constexpr std::chrono::milliseconds kSimPressLength{100};
+constexpr int kSimScriptedPresses = 10000;    // hours of presses at any sensible period
+constexpr double kMinSimButtonPeriodS = 0.5;  // a press and a release must both debounce
+
+Result<double> parseButtonPeriod(std::string_view parameters) {
+  double period_s = 0;
+  GLARECAM_CHECK(forEachUriParameter(
+      parameters, kUriName, [&](std::string_view key, std::string_view value) -> Status {
+        if (key != "button_period_s")
+          return badInput(
+              fmt::format("{} unknown key '{}' (known: button_period_s)", kUriName, key));
+        GLARECAM_ASSIGN(period_s, parseUriNumber(value, key, kUriName));
+        if (!(period_s >= kMinSimButtonPeriodS && period_s <= 86400))
+          return badInput(fmt::format("{} button_period_s={} must be in [{}, 86400]", kUriName,
+                                      value, kMinSimButtonPeriodS));
+        return {};
+      }));
+  return period_s;
+}
+
+Result<std::unique_ptr<RigIo>> openSimRigIo(const RigIoConfig& config,
+                                            std::string_view parameters) {
+  double period_s = 0;
+  GLARECAM_ASSIGN(period_s, parseButtonPeriod(parameters));
+  auto io = std::make_unique<SimRigIo>(config);
+  if (period_s > 0) {
+    const auto period =
+        std::chrono::duration_cast<RigClock::duration>(std::chrono::duration<double>(period_s));
+    std::vector<SimRigIo::ButtonStep> steps;
+    const RigClock::time_point start = RigClock::now();
+    for (int k = 1; k <= kSimScriptedPresses; ++k) {
+      steps.push_back({start + k * period, true});
+      steps.push_back({start + k * period + kSimPressLength, false});
+    }
+    io->scriptButton(std::move(steps));
+  }
+  return io;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<RigIo>> openRigIo(const RigIoConfig& config) {
+  GLARECAM_CHECK(config.validate());
+  const std::string_view chip = config.chip;
+  if (chip == kSimChip) return openSimRigIo(config, {});
+  if (chip.starts_with("sim:")) return openSimRigIo(config, chip.substr(kSimChip.size() + 1));
+  return openGpiodRigIo(config);
+}
+
+}  // namespace glarecam::capture

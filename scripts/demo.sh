@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# make demo: a simulated rig sweeps the angle of incidence α = 5…80° over the standard module
-# (`glarecam capture` from the sim: camera, auto-bracketed, with sensor noise and the scene's
-# truth.json in each stack), then glarecam sweeps the stacks, fits the
+# make demo: a simulated rig sweeps the angle of incidence α = 5…80° over the standard module: its
+# inclinometer is calibrated by the flip method, then for each tilt of the table the rig measures α
+# (`glarecam capture --config`: sim: inclinometer, lab source) and captures an auto-bracketed stack
+# from the sim: camera (sensor noise, the scene's truth.json), then glarecam sweeps the stacks, fits the
 # method's functions and writes the module glare data sheet. Prints where the sheet is, a short
 # table of measured and fitted values beside the simulator's truth, and the fits' worst deviation.
 # Usage: scripts/demo.sh BIN_DIR OUT_DIR
@@ -11,16 +12,47 @@ OUT=${2:-demo-out}
 MODULE=standard
 ALPHAS=$(seq 5 5 80)
 TRUTH_TOLERANCE_PERCENT=2  # what the fits must reproduce of the simulator's truth (issue 6)
+MOUNTING_OFFSET_DEG=0.2    # the simulated inclinometer's mounting error, found by the flip
 
-rm -rf "$OUT/stacks.tmp"
-mkdir -p "$OUT/stacks.tmp"
+rm -rf "$OUT/stacks.tmp" "$OUT/rig"
+mkdir -p "$OUT/stacks.tmp" "$OUT/rig"
+
+# The rig: a lamp on the horizon due south (the lab's sun), the module on a tilting table facing
+# it, and an inclinometer on the module frame mounted 0.2° off. α = 90° − tilt (docs/rig.md).
+rig_config() {  # rig_config TILT_DEG SEED
+  cat <<TOML
+calibration = "calibration.json"
+[source]
+elevation_deg = 0
+azimuth_deg = 180
+[module]
+azimuth_deg = 180
+[inclinometer]
+uri = "sim:$1,offset_x_deg=$MOUNTING_OFFSET_DEG,seed=$2"
+TOML
+}
+
+echo "demo: calibrating the inclinometer's zero offset (flip method)" >&2
+rig_config 0 0 >"$OUT/rig/rig.toml"
+"$BIN/glarecam" inclinometer read -q --no-progress --inclinometer "sim:1,offset_x_deg=$MOUNTING_OFFSET_DEG,seed=101" \
+  --out "$OUT/rig/flip-first.json" >/dev/null
+"$BIN/glarecam" inclinometer read -q --no-progress --inclinometer "sim:-1,offset_x_deg=$MOUNTING_OFFSET_DEG,seed=102" \
+  --out "$OUT/rig/flip-second.json" >/dev/null
+"$BIN/glarecam" inclinometer flip --from "$OUT/rig/flip-first.json" "$OUT/rig/flip-second.json" \
+  --calibration "$OUT/rig/calibration.json" >&2
+
 count=$(wc -w <<<"$ALPHAS")
 i=0
 for alpha in $ALPHAS; do
   i=$((i + 1))
-  echo "demo: [$i/$count] the rig captures at α = $alpha° (auto-bracketed, sim: camera)" >&2
-  stack=$("$BIN/glarecam" capture --no-progress --camera "sim:module=$MODULE,seed=$i" \
-    --alpha "$alpha" --out "$OUT/stacks.tmp/captured")
+  # The limit curve ends at α = 80°: the top step aims 0.01° short, so that the inclinometer's
+  # noise (±0.001°) cannot carry the measured α past it.
+  tilt=$((90 - alpha))
+  [[ $alpha -eq 80 ]] && tilt=10.01
+  rig_config "$tilt" "$i" >"$OUT/rig/rig.toml"
+  echo "demo: [$i/$count] the table tilts the module to $tilt°; the rig measures α and captures" >&2
+  stack=$("$BIN/glarecam" capture -q --no-progress --camera "sim:module=$MODULE,seed=$i" \
+    --config "$OUT/rig/rig.toml" --out "$OUT/stacks.tmp/captured")
   mv "$stack" "$OUT/stacks.tmp/alpha-$(printf %02d "$alpha")"
 done
 rm -rf "$OUT/stacks" "$OUT/sweep" "$OUT/summary.csv"  # summary.csv: the previous demo's output
@@ -56,9 +88,10 @@ truth() {
 
 # One line per stack: α, measured (sweep.csv), fitted (profile), true (truth.json).
 rows=$(grep -v '^#' "$sweep_csv" | tail -n +2 | while IFS=, read -r alpha limit lmax vertical horizontal _; do
-  stack="$OUT/stacks/alpha-$(printf %02d "${alpha%.*}")"
+  # α as measured by the rig (30.0004): its stack and the profile's row are the nearest degree's.
+  stack="$OUT/stacks/alpha-$(printf %02.0f "$alpha")"
   echo "$alpha $lmax ${vertical:-nan} ${horizontal:-nan} \
-$(awk -v a="$alpha" '$1 == a { print $2, $3, $4 }' <<<"$fitted") \
+$(awk -v a="$alpha" 'int($1 + 0.5) == int(a + 0.5) { print $2, $3, $4 }' <<<"$fitted") \
 $(truth "$stack/truth.json" luminance_max_cd_m2) $(truth "$stack/truth.json" vertical limit_axes_deg) \
 $(truth "$stack/truth.json" horizontal limit_axes_deg)"
 done)
@@ -67,11 +100,11 @@ awk -v tolerance="$TRUTH_TOLERANCE_PERCENT" '
   function dev(fit, truth) { d = 100 * (fit / truth - 1); return d < 0 ? -d : d }
   function si(v) { return v >= 1e6 ? sprintf("%.3gM", v / 1e6) : sprintf("%.3gk", v / 1e3) }
   BEGIN {
-    printf "\n%-5s  %-24s  %-22s  %-22s\n", "α (°)", "Lmax cd/m²: meas/fit/true",
+    printf "\n%-7s  %-24s  %-22s  %-22s\n", "α (°)", "Lmax cd/m²: meas/fit/true",
            "vertical °: meas/fit/true", "horizontal °: meas/fit/true"
   }
   {
-    printf "%-5s  %6s / %6s / %6s     %5.2f / %5.2f / %5.2f    %5.2f / %5.2f / %5.2f\n",
+    printf "%7.3f  %6s / %6s / %6s     %5.2f / %5.2f / %5.2f    %5.2f / %5.2f / %5.2f\n",
            $1, si($2), si($5), si($8), $3, $6, $9, $4, $7, $10
     if (dev($5, $8) > worst_l) worst_l = dev($5, $8)
     if (dev($6, $9) > worst_v) worst_v = dev($6, $9)

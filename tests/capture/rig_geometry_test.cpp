@@ -337,6 +337,59 @@ TEST(RigConfig, BadConfigsNameTheFileLineAndProblem) {
   EXPECT_NE(missing.error().message.find("/nonexistent/rig.toml: no such file"), std::string::npos);
 }
 
+TEST(RigConfig, TheShippedExampleIsValid) {
+  const auto example = testing::testDataDir() / ".." / ".." / "firmware-config" / "glarecam.toml";
+  const auto config = readRigConfig(example);
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_TRUE(config->site && config->inclinometer && config->gpio && config->module_azimuth_deg);
+}
+
+TEST(RigConfig, ReadsTheGpioLines) {
+  TempDir dir;
+  const auto config = readRigConfig(writeText(dir, "rig.toml", R"([gpio]
+chip = "pinctrl-bcm2711"
+led = 17
+trigger = "GPIO22"
+trigger_active_low = true
+button = 27
+button_active_low = true
+button_pull_up = false
+debounce_ms = 30
+trigger_pulse_us = 500
+)"));
+  ASSERT_TRUE(config) << config.error().message;
+  ASSERT_TRUE(config->gpio);
+  EXPECT_EQ(config->gpio->chip, "pinctrl-bcm2711");
+  EXPECT_EQ(std::get<unsigned>(config->gpio->led->line), 17u);
+  EXPECT_FALSE(config->gpio->led->active_low);
+  EXPECT_EQ(std::get<std::string>(config->gpio->trigger->line), "GPIO22");
+  EXPECT_TRUE(config->gpio->trigger->active_low);
+  EXPECT_TRUE(config->gpio->button->active_low);
+  EXPECT_FALSE(config->gpio->button_pull_up);
+  EXPECT_EQ(config->gpio->debounce, std::chrono::milliseconds(30));
+  EXPECT_EQ(config->gpio->trigger_pulse, std::chrono::microseconds(500));
+}
+
+TEST(RigConfig, BadGpioLinesNameTheLine) {
+  const BadConfig cases[] = {
+      {"[gpio]\nled = 1.5\n", "rig.toml:2: gpio.led must be a line offset"},
+      {"[gpio]\nled = \"\"\n", "rig.toml:2: gpio.led must be a line offset"},
+      {"[gpio]\nled = 3\nled_active_low = 1\n",
+       "rig.toml:3: gpio.led_active_low must be true or false"},
+      {"[gpio]\nbuton = 3\n", "rig.toml:2: unknown key gpio.buton"},
+      {"[gpio]\nled = 3\nbutton = 3\n", "rig.toml:1: [gpio]"},
+      {"[gpio]\ndebounce_ms = 5000\n", "gpio.debounce_ms = 5000 is outside [0, 1000]"},
+      {"[gpio]\ntrigger_pulse_us = 0\n", "gpio.trigger_pulse_us = 0 is outside"},
+  };
+  for (const BadConfig& c : cases) {
+    TempDir dir;
+    const auto config = readRigConfig(writeText(dir, "rig.toml", c.text));
+    ASSERT_FALSE(config) << c.text;
+    EXPECT_NE(config.error().message.find(c.message), std::string::npos)
+        << "got: " << config.error().message << "\nwant: " << c.message;
+  }
+}
+
 // -------------------------------------------------------------------------- rig geometry
 
 RigConfig labConfig() {

@@ -39,10 +39,20 @@ class TableReader {
   Result<double> requiredNumber(const char* key, double min, double max) {
     std::optional<double> value;
     GLARECAM_ASSIGN(value, number(key, min, max));
-    if (!value)
-      return fail(ErrorCode::kBadInput,
-                  fmt::format("{}:{}: [{}] needs {}", file_.string(), line(table_), name_, key));
+    if (!value) return missing(key);
     return *value;
+  }
+
+  Result<std::string> requiredString(const char* key) {
+    std::optional<std::string> value;
+    GLARECAM_ASSIGN(value, string(key));
+    if (!value) return missing(key);
+    return *value;
+  }
+
+  // An error about the whole table: "FILE:LINE: [gpio] ...".
+  std::unexpected<Error> tableError(const std::string& message) const {
+    return badInput(fmt::format("{}:{}: [{}] {}", file_.string(), line(table_), name_, message));
   }
 
   Result<std::optional<bool>> boolean(const char* key) {
@@ -103,6 +113,10 @@ class TableReader {
     return name_.empty() ? std::string(key) : name_ + "." + std::string(key);
   }
 
+  std::unexpected<Error> missing(const char* key) const {
+    return tableError(fmt::format("needs {}", key));
+  }
+
   std::unexpected<Error> error(const toml::node& node, const std::string& message) const {
     return badInput(fmt::format("{}:{}: {}", file_.string(), line(node), message));
   }
@@ -160,12 +174,7 @@ Result<std::optional<InclinometerConfig>> readInclinometer(const std::filesystem
   if (!table) return std::nullopt;
   TableReader reader(file, *table, "inclinometer");
   InclinometerConfig config;
-  std::optional<std::string> uri;
-  GLARECAM_ASSIGN(uri, reader.string("uri"));
-  if (!uri)
-    return badInput(
-        fmt::format("{}:{}: [inclinometer] needs uri", file.string(), table->source().begin.line));
-  config.uri = *uri;
+  GLARECAM_ASSIGN(config.uri, reader.requiredString("uri"));
   std::optional<double> samples, max_std, tolerance;
   GLARECAM_ASSIGN(samples, reader.number("samples", 2, 100000));
   GLARECAM_ASSIGN(max_std, reader.number("max_tilt_std_deg", 1e-6, 10));
@@ -198,9 +207,7 @@ Result<std::optional<RigIoConfig>> readGpio(const std::filesystem::path& file,
   if (debounce_ms) gpio.debounce = std::chrono::milliseconds(std::llround(*debounce_ms));
   if (pulse_us) gpio.trigger_pulse = std::chrono::microseconds(std::llround(*pulse_us));
   const Status valid = gpio.validate();
-  if (!valid)
-    return badInput(fmt::format("{}:{}: [gpio] {}", file.string(), table->source().begin.line,
-                                valid.error().message));
+  if (!valid) return reader.tableError(valid.error().message);
   return gpio;
 }
 

@@ -18,6 +18,8 @@ inline constexpr const char* kSweepOneThread = "sweep/20_stacks/1_thread";
 inline constexpr const char* kSweepAllThreads = "sweep/20_stacks/all_threads";
 inline constexpr const char* kCaptureFakeGvBracket = "capture/fake_gv_bracket";
 inline constexpr const char* kCaptureLinkFloor = "capture/link_floor";
+inline constexpr const char* kSunGlarecamSpa = "sun/glarecam_spa";
+inline constexpr const char* kSunLibnova = "sun/libnova";
 
 // Each returns the names it registered.
 std::vector<std::string> registerMergeBenchmarks();     // merge/*
@@ -25,5 +27,6 @@ std::vector<std::string> registerAnalysisBenchmarks();  // analysis/*
 std::vector<std::string> registerProcessBenchmarks();   // process/end_to_end
 std::vector<std::string> registerSweepBenchmarks();     // sweep/*
 std::vector<std::string> registerCaptureBenchmarks();   // capture/* (with Aravis only)
+std::vector<std::string> registerSunBenchmarks();       // sun/* (with libnova only)
 
 }  // namespace glarecam::bench

@@ -7,6 +7,8 @@
 //                                                      contours, angles and uncertainties)
 //   capture/fake_gv_bracket ÷ capture/link_floor target <= 0.1x: the capture's overhead at
 //                                                most 10 % of exposure plus transfer
+//   sun/glarecam_spa ÷ sun/libnova               (no target: the price of SPA's accuracy, 0.0003°
+//                                                against libnova's 0.07°)
 // A ratio is printed only when both of its benchmarks ran (--benchmark_filter may skip some).
 // The console report is always used (it records the times); for machine-readable results add
 // --benchmark_out=FILE --benchmark_out_format=json.
@@ -121,6 +123,9 @@ int main(int argc, char** argv) {
 #if GLARECAM_WITH_ARAVIS
   for (std::string& name : registerCaptureBenchmarks()) names.push_back(std::move(name));
 #endif
+#if GLARECAM_WITH_LIBNOVA
+  for (std::string& name : registerSunBenchmarks()) names.push_back(std::move(name));
+#endif
   std::size_t longest_name = 0;
   for (const std::string& name : names) longest_name = std::max(longest_name, name.size());
 
@@ -141,6 +146,7 @@ int main(int argc, char** argv) {
   printRatio(reporter, kSweepOneThread, kSweepAllThreads, 2, Target::kNone, 0);
   printRatio(reporter, kCaptureFakeGvBracket, kCaptureLinkFloor, 3, Target::kAtMost,
              kCaptureOverheadTargetRatio);
+  printRatio(reporter, kSunGlarecamSpa, kSunLibnova, 2, Target::kNone, 0);
   benchmark::Shutdown();
   return 0;
 }

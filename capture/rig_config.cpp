@@ -15,7 +15,8 @@ namespace {
 constexpr double kSeaLevelPressureHpa = 1013.25;
 constexpr double kLapseRatePerMetre = 0.0065 / 288.15;
 constexpr double kBarometricExponent = 5.25588;
-constexpr std::int64_t kMaxGpioOffset = 65535;  // far beyond any chip; the chip itself checks
+constexpr std::int64_t kMaxGpioOffset = 65535;    // far beyond any chip; the chip itself checks
+constexpr std::int64_t kMaxTiltSamples = 100000;  // ≈ 2 h at the ADXL355's 15.6 Hz
 
 // Reads typed, range-checked values out of one TOML table; every error names FILE:LINE.
 class TableReader {
@@ -55,6 +56,20 @@ class TableReader {
     return badInput(fmt::format("{}:{}: [{}] {}", file_.string(), line(table_), name_, message));
   }
 
+  // A whole number: a count or a time in whole units (a fraction would be silently cut).
+  Result<std::optional<std::int64_t>> integer(const char* key, std::int64_t min, std::int64_t max) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (!node) return std::nullopt;
+    if (!node->is_integer())
+      return error(*node, fmt::format("{} must be a whole number", qualified(key)));
+    const std::int64_t value = *node->value<std::int64_t>();
+    if (value < min || value > max)
+      return error(*node,
+                   fmt::format("{} = {} is outside [{}, {}]", qualified(key), value, min, max));
+    return value;
+  }
+
   Result<std::optional<bool>> boolean(const char* key) {
     used_.insert(key);
     const toml::node* node = table_.get(key);
@@ -67,8 +82,16 @@ class TableReader {
   // A GPIO line: its offset (an integer) or its name (a string), with `KEY_active_low`.
   Result<std::optional<GpioLine>> gpioLine(const std::string& key) {
     used_.insert(key);
+    const std::string active_low_key = key + "_active_low";
+    std::optional<bool> active_low;
+    GLARECAM_ASSIGN(active_low, boolean(active_low_key.c_str()));
     const toml::node* node = table_.get(key);
-    if (!node) return std::nullopt;
+    if (!node) {
+      if (active_low)
+        return error(*table_.get(active_low_key),
+                     fmt::format("{} without {}", qualified(active_low_key), qualified(key)));
+      return std::nullopt;
+    }
     GpioLine line;
     if (node->is_integer() && *node->value<std::int64_t>() >= 0 &&
         *node->value<std::int64_t>() <= kMaxGpioOffset) {
@@ -79,8 +102,6 @@ class TableReader {
       return error(*node, fmt::format("{} must be a line offset (0..{}) or a line name",
                                       qualified(key), kMaxGpioOffset));
     }
-    std::optional<bool> active_low;
-    GLARECAM_ASSIGN(active_low, boolean((key + "_active_low").c_str()));
     line.active_low = active_low.value_or(false);
     return line;
   }
@@ -148,13 +169,16 @@ Result<std::optional<SiteLocation>> readSite(const std::filesystem::path& file,
   GLARECAM_ASSIGN(location.latitude_deg, site.requiredNumber("latitude_deg", -90, 90));
   GLARECAM_ASSIGN(location.longitude_deg, site.requiredNumber("longitude_deg", -180, 180));
   std::optional<double> altitude, pressure, temperature;
-  GLARECAM_ASSIGN(altitude, site.number("altitude_m", -500, 9000));
-  GLARECAM_ASSIGN(pressure, site.number("pressure_hpa", 1, 1100));
-  GLARECAM_ASSIGN(temperature, site.number("temperature_c", -90, 70));
+  // The ranges SPA accepts (solar_position.h); validate() below has the last word.
+  GLARECAM_ASSIGN(altitude, site.number("altitude_m", -1000, 10000));
+  GLARECAM_ASSIGN(pressure, site.number("pressure_hpa", 0, 5000));
+  GLARECAM_ASSIGN(temperature, site.number("temperature_c", -273, 100));
   GLARECAM_CHECK(site.checkNoUnknownKeys());
   location.altitude_m = altitude.value_or(0.0);
   location.pressure_hpa = pressure.value_or(standardPressureHpa(location.altitude_m));
   if (temperature) location.temperature_c = *temperature;
+  const Status valid = validate(location);
+  if (!valid) return site.tableError(valid.error().message);
   return location;
 }
 
@@ -175,12 +199,13 @@ Result<std::optional<InclinometerConfig>> readInclinometer(const std::filesystem
   TableReader reader(file, *table, "inclinometer");
   InclinometerConfig config;
   GLARECAM_ASSIGN(config.uri, reader.requiredString("uri"));
-  std::optional<double> samples, max_std, tolerance;
-  GLARECAM_ASSIGN(samples, reader.number("samples", 2, 100000));
+  std::optional<std::int64_t> samples;
+  std::optional<double> max_std, tolerance;
+  GLARECAM_ASSIGN(samples, reader.integer("samples", 2, kMaxTiltSamples));
   GLARECAM_ASSIGN(max_std, reader.number("max_tilt_std_deg", 1e-6, 10));
   GLARECAM_ASSIGN(tolerance, reader.number("gravity_tolerance_g", 1e-3, 0.9));
   GLARECAM_CHECK(reader.checkNoUnknownKeys());
-  if (samples) config.tilt.samples = int(*samples);
+  if (samples) config.tilt.samples = static_cast<int>(*samples);
   if (max_std) config.tilt.max_tilt_std_deg = *max_std;
   if (tolerance) config.tilt.gravity_tolerance_g = *tolerance;
   return config;
@@ -200,12 +225,12 @@ Result<std::optional<RigIoConfig>> readGpio(const std::filesystem::path& file,
   std::optional<bool> pull_up;
   GLARECAM_ASSIGN(pull_up, reader.boolean("button_pull_up"));
   if (pull_up) gpio.button_pull_up = *pull_up;
-  std::optional<double> debounce_ms, pulse_us;
-  GLARECAM_ASSIGN(debounce_ms, reader.number("debounce_ms", 0, double(kMaxDebounce.count())));
-  GLARECAM_ASSIGN(pulse_us, reader.number("trigger_pulse_us", 1, double(kMaxTriggerPulse.count())));
+  std::optional<std::int64_t> debounce_ms, pulse_us;
+  GLARECAM_ASSIGN(debounce_ms, reader.integer("debounce_ms", 0, kMaxDebounce.count()));
+  GLARECAM_ASSIGN(pulse_us, reader.integer("trigger_pulse_us", 1, kMaxTriggerPulse.count()));
   GLARECAM_CHECK(reader.checkNoUnknownKeys());
-  if (debounce_ms) gpio.debounce = std::chrono::milliseconds(std::llround(*debounce_ms));
-  if (pulse_us) gpio.trigger_pulse = std::chrono::microseconds(std::llround(*pulse_us));
+  if (debounce_ms) gpio.debounce = std::chrono::milliseconds(*debounce_ms);
+  if (pulse_us) gpio.trigger_pulse = std::chrono::microseconds(*pulse_us);
   const Status valid = gpio.validate();
   if (!valid) return reader.tableError(valid.error().message);
   return gpio;
@@ -225,6 +250,10 @@ Status checkConsistent(const RigConfig& rig) {
     return badInput(file +
                     ": give either [site] (α against the sun) or [source] (a fixed lamp), "
                     "not both");
+  if (rig.inclinometer && rig.module_tilt_deg)
+    return badInput(file +
+                    ": give [module] tilt_deg (a fixed tilt) or an [inclinometer] that "
+                    "measures it, not both");
   if ((rig.site || rig.fixed_source) && !rig.module_azimuth_deg)
     return badInput(file + ": [module] azimuth_deg is needed to compute α");
   return {};

@@ -47,9 +47,12 @@ std::unexpected<Error> noTiltError(const RigConfig& config) {
                   ": no module tilt: configure [inclinometer] uri, or [module] tilt_deg");
 }
 
-Result<double> moduleTilt(const RigConfig& config, const std::optional<TiltReading>& tilt) {
-  if (tilt) return tilt->module_tilt_deg;
-  if (config.module_tilt_deg) return *config.module_tilt_deg;
+// From the inclinometer's attitude when there is a reading, else the config's fixed tilt.
+Result<ModuleOrientation> moduleOrientationOf(const RigConfig& config,
+                                              const std::optional<TiltReading>& tilt) {
+  const double facing_deg = config.module_azimuth_deg.value_or(0.0);
+  if (tilt) return moduleOrientation(tilt->tilt, facing_deg);
+  if (config.module_tilt_deg) return ModuleOrientation{*config.module_tilt_deg, facing_deg};
   return noTiltError(config);
 }
 
@@ -70,13 +73,12 @@ void addWarnings(RigGeometry& g) {
 
 Result<RigGeometry> computeRigGeometry(const RigConfig& config,
                                        const std::optional<TiltReading>& tilt, UtcTime time,
-                                       const ClockStatus& clock) {
+                                       const std::optional<ClockStatus>& clock) {
   GLARECAM_CHECK(checkHasSource(config));
   RigGeometry g;
   g.time = time;
   g.tilt = tilt;
-  GLARECAM_ASSIGN(g.module.tilt_deg, moduleTilt(config, tilt));
-  g.module.azimuth_deg = config.module_azimuth_deg.value_or(0.0);
+  GLARECAM_ASSIGN(g.module, moduleOrientationOf(config, tilt));
   if (config.site) {
     g.source = "sun";
     g.clock = clock;
@@ -93,7 +95,7 @@ Result<RigGeometry> computeRigGeometry(const RigConfig& config,
   };
   g.alpha_uncertainty_tilt_deg =
       slope(alpha_at_tilt, g.module.tilt_deg, kTiltStepDeg) * tilt_sigma_deg;
-  if (config.site) {
+  if (config.site && clock) {
     // α moves with the sun: the clock's error in seconds times dα/dt.
     const auto alpha_at_offset_s = [&](double offset_s) {
       const auto shifted = time + std::chrono::round<std::chrono::microseconds>(
@@ -102,7 +104,7 @@ Result<RigGeometry> computeRigGeometry(const RigConfig& config,
       return direction ? incidenceAngleDeg(g.module, *direction) : g.alpha_deg;
     };
     const double step_s = std::chrono::duration<double>(kTimeStep).count();
-    g.alpha_uncertainty_clock_deg = slope(alpha_at_offset_s, 0.0, step_s) * clock.uncertaintyS();
+    g.alpha_uncertainty_clock_deg = slope(alpha_at_offset_s, 0.0, step_s) * clock->uncertaintyS();
   }
   g.alpha_uncertainty_deg = std::hypot(g.alpha_uncertainty_tilt_deg, g.alpha_uncertainty_clock_deg);
   addWarnings(g);
@@ -132,6 +134,14 @@ nlohmann::json geometryJson(const RigGeometry& g) {
         {"samples", g.tilt->samples},       {"tilt_std_deg", g.tilt->tilt_std_deg},
         {"tilt_x_deg", g.tilt->tilt.x_deg}, {"tilt_y_deg", g.tilt->tilt.y_deg}};
     if (g.tilt->mean.temperature_c) inclinometer["temperature_c"] = *g.tilt->mean.temperature_c;
+    // x_g, y_g, z_g are as read; tilt_x_deg and tilt_y_deg have this offset removed.
+    if (g.zero_offset) {
+      inclinometer["zero_offset_x_deg"] = g.zero_offset->offset.x_deg;
+      inclinometer["zero_offset_y_deg"] = g.zero_offset->offset.y_deg;
+    } else {
+      inclinometer["zero_offset_x_deg"] = nullptr;
+      inclinometer["zero_offset_y_deg"] = nullptr;
+    }
     block["inclinometer"] = inclinometer;
   }
   if (!g.warnings.empty()) block["warnings"] = g.warnings;
@@ -139,39 +149,84 @@ nlohmann::json geometryJson(const RigGeometry& g) {
 }
 
 RigSensors::RigSensors(RigConfig config, std::unique_ptr<Inclinometer> inclinometer,
-                       InclinometerZeroOffset zero)
-    : config_(std::move(config)), inclinometer_(std::move(inclinometer)), zero_(zero) {}
+                       std::optional<InclinometerZeroOffset> zero,
+                       std::vector<std::string> standing_warnings)
+    : config_(std::move(config)),
+      inclinometer_(std::move(inclinometer)),
+      zero_(std::move(zero)),
+      standing_warnings_(std::move(standing_warnings)) {}
+
+namespace {
+
+// The zero offset the config's calibration file holds for `uri`, and what is wrong with it as
+// warnings (none stored yet, stored for another sensor): a rig still measures without one.
+Result<std::optional<InclinometerZeroOffset>> storedZeroOffset(const RigConfig& config,
+                                                               const std::string& uri,
+                                                               std::vector<std::string>& warnings) {
+  const std::string flip_hint =
+      "tilts are not corrected for the sensor's mounting (run `glarecam "
+      "inclinometer flip`)";
+  std::error_code ec;
+  if (!config.calibration || !std::filesystem::exists(*config.calibration, ec)) {
+    warnings.push_back(
+        config.calibration
+            ? fmt::format("no inclinometer zero offset: {} (the config's calibration) does not "
+                          "exist yet; {}",
+                          config.calibration->string(), flip_hint)
+            : fmt::format("no inclinometer zero offset: {} names no calibration file; {}",
+                          config.path.string(), flip_hint));
+    return std::nullopt;
+  }
+  std::optional<InclinometerZeroOffset> zero;
+  GLARECAM_ASSIGN(zero, readZeroOffset(*config.calibration));
+  if (!zero) {
+    warnings.push_back(fmt::format("no inclinometer zero offset in {}; {}",
+                                   config.calibration->string(), flip_hint));
+  } else if (!zero->measured_with.empty() && zero->measured_with != uri) {
+    warnings.push_back(fmt::format("the zero offset in {} was measured with {}, not {}",
+                                   config.calibration->string(), zero->measured_with, uri));
+  }
+  return zero;
+}
+
+}  // namespace
 
 Result<std::unique_ptr<RigSensors>> RigSensors::open(const RigConfig& config) {
   GLARECAM_CHECK(checkHasSource(config));
   if (!config.inclinometer && !config.module_tilt_deg) return noTiltError(config);
   std::unique_ptr<Inclinometer> inclinometer;
-  InclinometerZeroOffset zero;
+  std::optional<InclinometerZeroOffset> zero;
+  std::vector<std::string> warnings;
   if (config.inclinometer) {
-    GLARECAM_ASSIGN(inclinometer, openInclinometer(config.inclinometer->uri));
-    std::optional<InclinometerZeroOffset> stored;
-    if (config.calibration) GLARECAM_ASSIGN(stored, readZeroOffset(*config.calibration));
-    if (stored) {
-      zero = *stored;
-    } else {
-      spdlog::warn(
-          "{}: no inclinometer zero offset{}: tilts are not corrected for the sensor's "
-          "mounting (run `glarecam inclinometer flip`)",
-          config.path.string(), config.calibration ? " in " + config.calibration->string() : "");
-    }
+    auto opened = openInclinometer(config.inclinometer->uri);
+    if (!opened && opened.error().code == ErrorCode::kBadInput)
+      return std::unexpected(
+          withContext(opened.error(), config.path.string() + ": [inclinometer] uri"));
+    if (!opened) return std::unexpected(opened.error());
+    inclinometer = std::move(*opened);
+    GLARECAM_ASSIGN(zero, storedZeroOffset(config, config.inclinometer->uri, warnings));
   }
-  return std::unique_ptr<RigSensors>(new RigSensors(config, std::move(inclinometer), zero));
+  return std::unique_ptr<RigSensors>(
+      new RigSensors(config, std::move(inclinometer), std::move(zero), std::move(warnings)));
 }
 
-Result<RigGeometry> RigSensors::measure(UtcTime time, const std::function<void()>& on_sample) {
+Result<RigGeometry> RigSensors::measure(UtcTime time, const std::function<void()>& on_sample,
+                                        bool time_from_clock) {
   std::optional<TiltReading> tilt;
   if (inclinometer_) {
-    GLARECAM_ASSIGN(tilt,
-                    measureTilt(*inclinometer_, config_.inclinometer->tilt, zero_, on_sample));
+    GLARECAM_ASSIGN(tilt, measureTilt(*inclinometer_, config_.inclinometer->tilt,
+                                      zero_.value_or(InclinometerZeroOffset{}), on_sample));
   }
+  std::optional<ClockStatus> clock;
+  if (time_from_clock) clock = systemClockStatus();
   RigGeometry geometry;
-  GLARECAM_ASSIGN(geometry, computeRigGeometry(config_, tilt, time, systemClockStatus()));
-  if (inclinometer_) geometry.inclinometer_uri = inclinometer_->info().uri;
+  GLARECAM_ASSIGN(geometry, computeRigGeometry(config_, tilt, time, clock));
+  if (inclinometer_) {
+    geometry.inclinometer_uri = inclinometer_->info().uri;
+    geometry.zero_offset = zero_;
+  }
+  geometry.warnings.insert(geometry.warnings.begin(), standing_warnings_.begin(),
+                           standing_warnings_.end());
   return geometry;
 }
 

@@ -35,15 +35,18 @@ struct RigGeometry {
   double alpha_uncertainty_clock_deg = 0.0;  // the clock's share
   std::optional<TiltReading> tilt;           // when an inclinometer measured the tilt
   std::string inclinometer_uri;
-  std::optional<ClockStatus> clock;   // when the source is the sun
+  std::optional<InclinometerZeroOffset> zero_offset;  // removed from the tilt, when stored
+  std::optional<ClockStatus> clock;   // when the source is the sun and the time the clock's
   std::vector<std::string> warnings;  // sun below the horizon or behind the module, ...
 };
 
 // α from the config and, when given, a tilt reading (else the config's fixed module tilt).
-// kBadInput when the config cannot give α (no [site] nor [source], no tilt).
+// `clock`: the system clock's state when `time` was read from it (its error then widens α's
+// uncertainty); nullopt for a time given by the user. kBadInput when the config cannot give α
+// (no [site] nor [source], no tilt).
 Result<RigGeometry> computeRigGeometry(const RigConfig& config,
                                        const std::optional<TiltReading>& tilt, UtcTime time,
-                                       const ClockStatus& clock);
+                                       const std::optional<ClockStatus>& clock);
 
 // The manifest's `geometry` block (stack-format.md): module_tilt_deg, module_azimuth_deg,
 // sun_elevation_deg, sun_azimuth_deg, inclinometer {x_g, y_g, z_g, temperature_c}, and the
@@ -51,24 +54,30 @@ Result<RigGeometry> computeRigGeometry(const RigConfig& config,
 nlohmann::json geometryJson(const RigGeometry& geometry);
 
 // The rig's sensors as a capture uses them: the inclinometer named in the config (opened once)
-// with its zero offset from the calibration file. measure() reads the tilt and computes α now.
+// with its zero offset from the calibration file. measure() reads the tilt and computes α; what
+// is wrong with the setup (no zero offset stored, one measured with another sensor) is repeated
+// in every geometry's warnings, so that each stack records it.
 class RigSensors {
  public:
   // kBadInput when the config cannot give α; the inclinometer's errors when it cannot be opened.
   static Result<std::unique_ptr<RigSensors>> open(const RigConfig& config);
 
-  Result<RigGeometry> measure(UtcTime time, const std::function<void()>& on_sample = {});
+  // `time_from_clock`: `time` is the system clock's now (false: the user's, no clock error).
+  Result<RigGeometry> measure(UtcTime time, const std::function<void()>& on_sample = {},
+                              bool time_from_clock = true);
   const RigConfig& config() const { return config_; }
-  const InclinometerZeroOffset& zeroOffset() const { return zero_; }
+  const std::optional<InclinometerZeroOffset>& zeroOffset() const { return zero_; }
   bool hasInclinometer() const { return inclinometer_ != nullptr; }
 
  private:
   RigSensors(RigConfig config, std::unique_ptr<Inclinometer> inclinometer,
-             InclinometerZeroOffset zero);
+             std::optional<InclinometerZeroOffset> zero,
+             std::vector<std::string> standing_warnings);
 
   RigConfig config_;
   std::unique_ptr<Inclinometer> inclinometer_;
-  InclinometerZeroOffset zero_;
+  std::optional<InclinometerZeroOffset> zero_;
+  std::vector<std::string> standing_warnings_;
 };
 
 }  // namespace glarecam::capture

@@ -15,6 +15,7 @@
 
 #include "apps/glarecam/capture_rig.h"
 #include "apps/glarecam/commands.h"
+#include "apps/glarecam/interruption.h"
 #include "apps/glarecam/option_parsing.h"
 #include "capture/bracketer.h"
 #include "capture/camera_registry.h"
@@ -190,35 +191,11 @@ Status checkAgainstCamera(const capture::Camera& camera, const capture::CaptureS
   return {};
 }
 
-// Set by the first SIGINT / SIGTERM: the series stops after the stack being captured (a second
-// signal ends the process at once).
-volatile std::sig_atomic_t g_stop_requested = 0;
-
-void requestStop(int) { g_stop_requested = 1; }
-
-void stopGracefullyOnSignals() {
-  struct sigaction action {};
-  action.sa_handler = requestStop;
-  action.sa_flags = SA_RESETHAND;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
-
-// Sleeps until `deadline` or a stop request, whichever comes first.
-void sleepUntil(std::chrono::steady_clock::time_point deadline) {
-  constexpr auto kSlice = std::chrono::milliseconds(100);
-  while (!g_stop_requested && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::min<std::chrono::steady_clock::duration>(
-        kSlice, deadline - std::chrono::steady_clock::now()));
-  }
-}
-
 // Before each stack of a series with a rig: the operator's press when asked for, and the
 // geometry (the first stack's was measured before the camera opened, unless a press came since).
 Result<bool> prepareRigStack(CaptureRig& rig, capture::CaptureSettings& settings, bool first) {
   bool pressed = false;
-  GLARECAM_ASSIGN(pressed, rig.waitForButton([] { return g_stop_requested != 0; }));
+  GLARECAM_ASSIGN(pressed, rig.waitForButton());
   if (!pressed) return false;
   if (rig.measuresAlpha() && (!first || rig.waitsForButton()))
     GLARECAM_CHECK(rig.measureInto(settings));
@@ -236,7 +213,7 @@ Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
       return fail(ErrorCode::kInternal,
                   fmt::format("capture: interrupted after {} of {} stacks", i, count));
     };
-    if (g_stop_requested) return interrupted();
+    if (stopRequested()) return interrupted();
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(interval_s));
     if (rig) {

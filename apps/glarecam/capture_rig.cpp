@@ -5,22 +5,13 @@
 
 #include <chrono>
 #include <cstdio>
-#include <stop_token>
-#include <thread>
 
-#include "capture/gpio/button_debouncer.h"
+#include "apps/glarecam/interruption.h"
 #include "capture/gpio/rig_io_registry.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
 
 namespace glarecam::apps {
-
-namespace {
-
-// How soon a Ctrl-C ends the wait for the button.
-constexpr std::chrono::milliseconds kStopPoll{100};
-
-}  // namespace
 
 Result<std::unique_ptr<CaptureRig>> CaptureRig::open(const std::string& config_path,
                                                      bool alpha_given, bool on_button) {
@@ -74,17 +65,10 @@ Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
   return {};
 }
 
-Result<bool> CaptureRig::waitForButton(const std::function<bool()>& stop_requested) {
+Result<bool> CaptureRig::waitForButton() {
   if (!on_button_) return true;
   std::fprintf(stderr, "capture: waiting for the button\n");
-  // One wait (a press may straddle any slicing), stopped from a thread that watches for Ctrl-C.
-  std::stop_source stop;
-  std::jthread signal_watch([&](std::stop_token done) {
-    while (!done.stop_requested() && !stop_requested()) std::this_thread::sleep_for(kStopPoll);
-    stop.request_stop();
-  });
-  capture::ButtonWatcher watcher(*io_, config_.gpio->debounce);
-  return watcher.waitForPress(capture::RigClock::time_point::max(), stop.get_token());
+  return waitForButtonPress(*io_, config_.gpio->debounce, capture::RigClock::time_point::max());
 }
 
 void CaptureRig::showCapturing(bool capturing) {

@@ -36,8 +36,8 @@ class CaptureRig {
   // Measures the geometry now and records it in `settings` (α and the geometry block).
   Status measureInto(capture::CaptureSettings& settings);
 
-  // With --on-button: waits for a press (true) or until `stop_requested` (false). Without: true.
-  Result<bool> waitForButton(const std::function<bool()>& stop_requested);
+  // With --on-button: waits for a press (true) or a stop request (false). Without: true.
+  Result<bool> waitForButton();
 
   void showCapturing(bool capturing);
 

@@ -11,11 +11,10 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 
 #include "apps/glarecam/commands.h"
+#include "apps/glarecam/interruption.h"
 #include "apps/glarecam/option_parsing.h"
-#include "capture/gpio/button_debouncer.h"
 #include "capture/gpio/rig_io_registry.h"
 #include "capture/gpio/status_led.h"
 #include "capture/inclinometer/inclinometer_registry.h"
@@ -54,6 +53,7 @@ void printJson(const nlohmann::json& document) { std::fputs(jsonText(document).c
 
 struct SunArgs {
   std::optional<std::string> latitude, longitude, time, pressure, temperature, altitude;
+  std::optional<std::string> delta_t, delta_ut1;
   bool json = false;
 };
 
@@ -90,8 +90,13 @@ Status runSun(const SunArgs& args) {
   GLARECAM_ASSIGN(site, siteFromArgs(args));
   UtcTime time;
   GLARECAM_ASSIGN(time, timeOption(args.time));
+  capture::SolarPositionOptions options;
+  GLARECAM_ASSIGN(options.delta_t_s, parseOptionalNumber(args.delta_t, "--delta-t-s"));
+  std::optional<double> delta_ut1;
+  GLARECAM_ASSIGN(delta_ut1, parseOptionalNumber(args.delta_ut1, "--delta-ut1-s"));
+  options.delta_ut1_s = delta_ut1.value_or(0.0);
   capture::SolarPosition sun;
-  GLARECAM_ASSIGN(sun, capture::solarPosition(time, site));
+  GLARECAM_ASSIGN(sun, capture::solarPosition(time, site, options));
   if (args.json) {
     printJson(sunJson(sun, site, time));
     return {};
@@ -115,19 +120,21 @@ struct AlphaArgs {
 
 // Opens the config's sensors and measures once, showing progress over the inclinometer samples.
 Result<capture::RigGeometry> measureGeometry(capture::RigSensors& sensors, UtcTime time,
-                                             bool show_progress) {
+                                             bool time_from_clock, bool show_progress) {
   const auto& inclinometer = sensors.config().inclinometer;
   Progress progress("inclinometer", inclinometer ? inclinometer->tilt.samples : 0,
                     show_progress && sensors.hasInclinometer());
-  auto geometry = sensors.measure(time, [&progress] { progress.advance(); });
+  auto geometry = sensors.measure(
+      time, [&progress] { progress.advance(); }, time_from_clock);
   progress.finish();
   return geometry;
 }
 
 void printGeometry(const capture::RigGeometry& g) {
-  std::printf("alpha %.3f° ± %.3f° (%s; tilt's share %.4f°, clock's %.4f°)\n", g.alpha_deg,
-              g.alpha_uncertainty_deg, g.source == "sun" ? "the sun" : "a fixed source",
-              g.alpha_uncertainty_tilt_deg, g.alpha_uncertainty_clock_deg);
+  std::printf("alpha %.3f° ± %.2g° (%s; from the tilt %.2g°", g.alpha_deg, g.alpha_uncertainty_deg,
+              g.source == "sun" ? "the sun" : "a fixed source", g.alpha_uncertainty_tilt_deg);
+  if (g.clock) std::printf(", from the clock %.2g°", g.alpha_uncertainty_clock_deg);
+  std::printf(")\n");
   if (g.tilt) {
     std::printf("module tilt %.3f° (inclinometer %s, σ %.4f° over %d samples), facing %.2f°\n",
                 g.module.tilt_deg, g.inclinometer_uri.c_str(), g.tilt->tilt_std_deg,
@@ -149,7 +156,7 @@ Status runAlpha(const AlphaArgs& args) {
   std::unique_ptr<capture::RigSensors> sensors;
   GLARECAM_ASSIGN(sensors, capture::RigSensors::open(config));
   capture::RigGeometry geometry;
-  GLARECAM_ASSIGN(geometry, measureGeometry(*sensors, time, !args.no_progress));
+  GLARECAM_ASSIGN(geometry, measureGeometry(*sensors, time, !args.time, !args.no_progress));
   for (const std::string& warning : geometry.warnings) spdlog::warn("alpha: {}", warning);
   if (args.json) {
     printJson(capture::geometryJson(geometry));
@@ -217,7 +224,7 @@ Result<capture::TiltReading> readTilt(capture::Inclinometer& sensor,
 }
 
 void printReading(const capture::TiltReading& r) {
-  std::printf("tilt x %.4f°, y %.4f°; module tilt %.4f° ± %.4f° (σ %.4f° over %d samples",
+  std::printf("tilt x %.4f°, y %.4f°; module tilt %.4f° ± %.2g° (σ %.2g° over %d samples",
               r.tilt.x_deg, r.tilt.y_deg, r.module_tilt_deg, r.tilt_uncertainty_deg, r.tilt_std_deg,
               r.samples);
   if (r.mean.temperature_c) std::printf(", %.1f °C", *r.mean.temperature_c);
@@ -228,12 +235,11 @@ Status runInclinometerRead(const InclinometerArgs& args) {
   GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
   InclinometerChoice choice;
   GLARECAM_ASSIGN(choice, chooseInclinometer(args, "read"));
-  capture::InclinometerZeroOffset zero;
-  if (choice.calibration) {
-    std::optional<capture::InclinometerZeroOffset> stored;
+  std::optional<capture::InclinometerZeroOffset> stored;
+  std::error_code ec;
+  if (choice.calibration && std::filesystem::exists(*choice.calibration, ec))
     GLARECAM_ASSIGN(stored, capture::readZeroOffset(*choice.calibration));
-    if (stored) zero = *stored;
-  }
+  const capture::InclinometerZeroOffset zero = stored.value_or(capture::InclinometerZeroOffset{});
   std::unique_ptr<capture::Inclinometer> sensor;
   GLARECAM_ASSIGN(sensor, capture::openInclinometer(choice.uri));
   capture::TiltReading reading;
@@ -241,50 +247,100 @@ Status runInclinometerRead(const InclinometerArgs& args) {
   nlohmann::json document = capture::tiltReadingJson(reading);
   document["uri"] = choice.uri;
   document["time"] = capture::formatIsoTime(now());
+  document["zero_offset_applied"] = stored.has_value();
   if (args.out) GLARECAM_CHECK(writeFileAtomic(*args.out, jsonText(document)));
   if (args.json) {
     printJson(document);
   } else {
     printReading(reading);
+    if (stored)
+      std::printf("zero offset x %.4f°, y %.4f° removed (from %s)\n", zero.offset.x_deg,
+                  zero.offset.y_deg, choice.calibration->c_str());
+    else
+      std::printf("no zero offset removed (none stored: glarecam inclinometer flip)\n");
   }
   return {};
 }
 
-Result<capture::TiltReading> readSavedReading(const std::string& path) {
-  nlohmann::json document;
-  GLARECAM_ASSIGN(document, readJsonFile(path));
-  return capture::parseTiltReading(document, path);
+// One reading of the flip: the reading, its record as stored in the calibration file, the sensor.
+struct FlipReading {
+  capture::TiltReading reading;
+  nlohmann::json record;
+  std::string uri;
+};
+
+Result<FlipReading> readSavedReading(const std::string& path) {
+  FlipReading flip;
+  GLARECAM_ASSIGN(flip.record, readJsonFile(path));
+  GLARECAM_ASSIGN(flip.reading, capture::parseTiltReading(flip.record, path));
+  const auto uri = flip.record.find("uri");
+  if (uri != flip.record.end() && uri->is_string()) flip.uri = uri->get<std::string>();
+  return flip;
 }
 
-// The two readings of the flip: from --from files, or taken now with the operator turning the
-// sensor in between.
-Result<std::pair<capture::TiltReading, capture::TiltReading>> flipReadings(
-    const InclinometerArgs& args, const InclinometerChoice& choice) {
-  if (!args.from.empty()) {
-    capture::TiltReading first, second;
-    GLARECAM_ASSIGN(first, readSavedReading(args.from[0]));
-    GLARECAM_ASSIGN(second, readSavedReading(args.from[1]));
-    return std::pair{first, second};
-  }
+Result<std::pair<FlipReading, FlipReading>> savedFlipReadings(
+    const std::vector<std::string>& from) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(from[0], from[1], ec))
+    return badInput("inclinometer flip: --from names the same reading twice (" + from[0] + ")");
+  FlipReading first, second;
+  GLARECAM_ASSIGN(first, readSavedReading(from[0]));
+  GLARECAM_ASSIGN(second, readSavedReading(from[1]));
+  if (first.record == second.record)
+    return badInput(
+        fmt::format("inclinometer flip: {} and {} hold the same reading", from[0], from[1]));
+  // Different URIs: different sensors, unless a simulator stands on two surfaces (docs/rig.md).
+  if (!first.uri.empty() && !second.uri.empty() && first.uri != second.uri)
+    spdlog::warn("inclinometer flip: the readings name different sensors ({} and {})", first.uri,
+                 second.uri);
+  return std::pair{first, second};
+}
+
+Result<FlipReading> liveFlipReading(capture::Inclinometer& sensor, const InclinometerChoice& choice,
+                                    bool show_progress) {
+  FlipReading flip;
+  GLARECAM_ASSIGN(flip.reading, readTilt(sensor, choice, {}, show_progress));
+  flip.uri = choice.uri;
+  flip.record = capture::tiltReadingJson(flip.reading);
+  flip.record["uri"] = choice.uri;
+  flip.record["time"] = capture::formatIsoTime(now());
+  return flip;
+}
+
+// The flip needs a surface near level: its error is second order in the surface's tilt, and a
+// reading beyond the plausible offset means the sensor is not on the surface it should be.
+Status checkNearLevel(const capture::TiltReading& reading) {
+  const double worst = std::max(std::abs(reading.raw_tilt.x_deg), std::abs(reading.raw_tilt.y_deg));
+  if (worst <= capture::kMaxPlausibleZeroOffsetDeg) return {};
+  return badInput(fmt::format(
+      "inclinometer flip: the sensor reads tilt x {:.2f}°, y {:.2f}°; the flip needs a surface "
+      "within a few degrees of level (at most {:g}°)",
+      reading.raw_tilt.x_deg, reading.raw_tilt.y_deg, capture::kMaxPlausibleZeroOffsetDeg));
+}
+
+// The two readings taken now, the operator turning the sensor in between.
+Result<std::pair<FlipReading, FlipReading>> liveFlipReadings(const InclinometerArgs& args,
+                                                             const InclinometerChoice& choice) {
   std::unique_ptr<capture::Inclinometer> sensor;
   GLARECAM_ASSIGN(sensor, capture::openInclinometer(choice.uri));
-  capture::TiltReading first, second;
-  GLARECAM_ASSIGN(first, readTilt(*sensor, choice, {}, !args.no_progress));
+  FlipReading first, second;
+  GLARECAM_ASSIGN(first, liveFlipReading(*sensor, choice, !args.no_progress));
+  GLARECAM_CHECK(checkNearLevel(first.reading));
   std::fprintf(stderr,
-               "First reading: tilt x %.4f°, y %.4f°. Turn the sensor (or the rig) 180° about the "
-               "vertical on the same surface, let it settle, then press Enter.\n",
-               first.raw_tilt.x_deg, first.raw_tilt.y_deg);
+               "First reading: tilt x %.4f°, y %.4f°.\nTurn the sensor (or the rig) 180° about "
+               "the vertical on the same spot, let it settle, then press Enter.\n",
+               first.reading.raw_tilt.x_deg, first.reading.raw_tilt.y_deg);
   std::string line;
   if (!std::getline(std::cin, line))
     return badInput(
         "inclinometer flip: stdin closed before the second reading (to compute from "
         "saved readings: --from FIRST.json SECOND.json)");
-  GLARECAM_ASSIGN(second, readTilt(*sensor, choice, {}, !args.no_progress));
+  GLARECAM_ASSIGN(second, liveFlipReading(*sensor, choice, !args.no_progress));
   return std::pair{first, second};
 }
 
-Status runInclinometerFlip(const InclinometerArgs& args) {
-  InclinometerChoice choice;
+Result<std::filesystem::path> flipCalibrationFile(const InclinometerArgs& args,
+                                                  InclinometerChoice& choice) {
   if (args.from.empty()) {
     GLARECAM_ASSIGN(choice, chooseInclinometer(args, "flip"));
   } else if (args.calibration) {
@@ -298,31 +354,48 @@ Status runInclinometerFlip(const InclinometerArgs& args) {
     return badInput(
         "inclinometer flip: give --calibration FILE (or a --config naming one) to "
         "store the zero offset in");
-  std::pair<capture::TiltReading, capture::TiltReading> readings;
-  GLARECAM_ASSIGN(readings, flipReadings(args, choice));
-  const capture::InclinometerZeroOffset zero =
-      capture::flipZeroOffset(readings.first, readings.second);
+  // Before anybody turns a sensor: the file must be one the offset can be written into.
+  GLARECAM_CHECK(capture::checkZeroOffsetWritable(*choice.calibration));
+  return *choice.calibration;
+}
+
+Status runInclinometerFlip(const InclinometerArgs& args) {
+  InclinometerChoice choice;
+  std::filesystem::path calibration;
+  GLARECAM_ASSIGN(calibration, flipCalibrationFile(args, choice));
+  std::pair<FlipReading, FlipReading> readings;
+  GLARECAM_ASSIGN(
+      readings, args.from.empty() ? liveFlipReadings(args, choice) : savedFlipReadings(args.from));
+  const capture::TiltReading& first = readings.first.reading;
+  const capture::TiltReading& second = readings.second.reading;
+  const capture::InclinometerZeroOffset zero = capture::flipZeroOffset(first, second);
   if (std::abs(zero.offset.x_deg) > capture::kMaxPlausibleZeroOffsetDeg ||
       std::abs(zero.offset.y_deg) > capture::kMaxPlausibleZeroOffsetDeg)
     return badInput(fmt::format(
         "inclinometer flip: the readings give a zero offset of ({:.2f}°, {:.2f}°), beyond the "
         "plausible {:g}°: the sensor was not turned 180° about the vertical, or the surface moved",
         zero.offset.x_deg, zero.offset.y_deg, capture::kMaxPlausibleZeroOffsetDeg));
-  const nlohmann::json provenance{
-      {"method", "flip"},
-      {"date", capture::formatIsoTime(now())},
-      {"uri", choice.uri},
-      {"readings",
-       {capture::tiltReadingJson(readings.first), capture::tiltReadingJson(readings.second)}}};
-  GLARECAM_CHECK(capture::writeZeroOffset(*choice.calibration, zero, provenance));
-  std::printf("zero offset x %.4f°, y %.4f° (± %.4f°) written to %s\n", zero.offset.x_deg,
-              zero.offset.y_deg, zero.uncertainty_deg, choice.calibration->c_str());
+  const std::string uri = readings.first.uri.empty() ? readings.second.uri : readings.first.uri;
+  const nlohmann::json provenance{{"method", "flip"},
+                                  {"date", capture::formatIsoTime(now())},
+                                  {"uri", uri},
+                                  {"readings", {readings.first.record, readings.second.record}}};
+  GLARECAM_CHECK(capture::writeZeroOffset(calibration, zero, provenance));
+  std::printf(
+      "readings: tilt x %.4f°, y %.4f° and x %.4f°, y %.4f°; surface tilt x %.4f°, y %.4f°\n"
+      "zero offset x %.4f°, y %.4f° (± %.2g°) written to %s\n",
+      first.raw_tilt.x_deg, first.raw_tilt.y_deg, second.raw_tilt.x_deg, second.raw_tilt.y_deg,
+      (first.raw_tilt.x_deg - second.raw_tilt.x_deg) / 2,
+      (first.raw_tilt.y_deg - second.raw_tilt.y_deg) / 2, zero.offset.x_deg, zero.offset.y_deg,
+      zero.uncertainty_deg, calibration.c_str());
   return {};
 }
 
 void addInclinometerSource(CLI::App* sub, InclinometerArgs& args) {
   sub->add_option("--inclinometer", args.uri,
-                  "inclinometer URI: adxl355:/dev/i2c-1@0x1d, iio:iio:device0, sim:TILT_DEG");
+                  "inclinometer URI: adxl355:/dev/i2c-1@0x1d, iio:iio:device0, or the simulator "
+                  "sim:TILT_DEG[,roll_deg=,offset_x_deg=,offset_y_deg=,noise_g=,seed=,"
+                  "temperature_c=,fault=] (docs/rig.md)");
   sub->add_option("--config", args.config, "rig config (TOML) naming the inclinometer");
   sub->add_option("--calibration", args.calibration,
                   "calibration file holding the zero offset (default: the config's)");
@@ -364,8 +437,10 @@ Status showLed(capture::RigIo& io, capture::RigState state, double seconds) {
   capture::StatusLed led(io);
   led.setStatus(state);
   led.start();
-  std::fprintf(stderr, "gpio: showing the LED pattern for %g s\n", seconds);
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  std::fprintf(stderr, "gpio: showing the LED pattern for %g s (Ctrl-C stops)\n", seconds);
+  sleepUntil(std::chrono::steady_clock::now() +
+             std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                 std::chrono::duration<double>(seconds)));
   GLARECAM_CHECK(led.stop());
   if (auto error = led.lastError()) return std::unexpected(*error);
   return {};
@@ -383,13 +458,15 @@ Status pulseTriggers(capture::RigIo& io, std::uint64_t count) {
 }
 
 Status waitForButton(capture::RigIo& io, const capture::RigIoConfig& config, double timeout_s) {
-  capture::ButtonWatcher watcher(io, config.debounce);
+  if (!io.hasButton())
+    return badInput("gpio: --wait-button, but the config's [gpio] has no button line");
   std::fprintf(stderr, "gpio: press the button (waiting %g s)\n", timeout_s);
   const auto deadline =
       capture::RigClock::now() + std::chrono::duration_cast<capture::RigClock::duration>(
                                      std::chrono::duration<double>(timeout_s));
   bool pressed = false;
-  GLARECAM_ASSIGN(pressed, watcher.waitForPress(deadline));
+  GLARECAM_ASSIGN(pressed, waitForButtonPress(io, config.debounce, deadline));
+  if (stopRequested()) return fail(ErrorCode::kInternal, "gpio: interrupted");
   if (!pressed)
     return fail(ErrorCode::kHardware,
                 fmt::format("gpio: no button press within {:g} s", timeout_s));
@@ -415,7 +492,9 @@ Status runGpio(const GpioArgs& args) {
   std::unique_ptr<capture::RigIo> io;
   GLARECAM_ASSIGN(io, capture::openRigIo(*config.gpio));
   std::printf("%s\n", io->description().c_str());
+  stopGracefullyOnSignals();  // Ctrl-C ends a pattern or a wait with the lines released
   if (led_state) GLARECAM_CHECK(showLed(*io, *led_state, args.seconds));
+  if (stopRequested()) return fail(ErrorCode::kInternal, "gpio: interrupted");
   if (pulses > 0) GLARECAM_CHECK(pulseTriggers(*io, pulses));
   if (args.wait_button) GLARECAM_CHECK(waitForButton(*io, *config.gpio, args.timeout_s));
   if (!led_state && pulses == 0 && !args.wait_button && io->hasButton()) {
@@ -460,6 +539,11 @@ void addSunCommand(CLI::App& app, Action& action) {
                   "air pressure for refraction (default: the standard atmosphere at the altitude)");
   sub->add_option("--temperature-c", args->temperature,
                   "air temperature for refraction (default 12)");
+  sub->add_option("--delta-t-s", args->delta_t,
+                  "ΔT = TT − UT1 in seconds (default: Espenak & Meeus's polynomial; 1 s moves the "
+                  "sun 0.00001°)");
+  sub->add_option("--delta-ut1-s", args->delta_ut1,
+                  "UT1 − UTC in seconds, |x| < 1 (IERS Bulletin A; default 0; 1 s is 0.004°)");
   sub->add_flag("--json", args->json,
                 "print JSON: elevation_deg, zenith_deg, azimuth_deg (clockwise from north), ...");
   sub->callback([args, &action] { action = [args] { return runSun(*args); }; });
@@ -483,7 +567,8 @@ void addInclinometerCommand(CLI::App& app, Action& action) {
       "inclinometer", "Read the inclinometer, or calibrate its zero offset (docs/rig.md)");
   sub->require_subcommand(1);
   auto read_args = std::make_shared<InclinometerArgs>();
-  CLI::App* read = sub->add_subcommand("read", "Average a tilt reading and print it");
+  CLI::App* read = sub->add_subcommand(
+      "read", "Average a tilt reading (the stored zero offset removed) and print it");
   addInclinometerSource(read, *read_args);
   read->add_flag("--json", read_args->json, "print the reading as JSON");
   read->add_option("--out", read_args->out, "also write the reading (JSON) to this file");
@@ -492,8 +577,9 @@ void addInclinometerCommand(CLI::App& app, Action& action) {
   auto flip_args = std::make_shared<InclinometerArgs>();
   CLI::App* flip = sub->add_subcommand(
       "flip",
-      "Zero-offset calibration by the flip method: a reading, the sensor turned 180° about the "
-      "vertical, a second reading; stores the offset in the calibration file");
+      "Zero-offset calibration by the flip method: a reading, then you turn the sensor 180° "
+      "about the vertical and press Enter, a second reading; stores the offset in the "
+      "calibration file (docs/rig.md)");
   addInclinometerSource(flip, *flip_args);
   flip->add_option("--from", flip_args->from,
                    "compute from two saved readings (inclinometer read --out) instead")

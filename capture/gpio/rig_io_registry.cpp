@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
 
 #include "capture/gpio/sim_rig_io.h"
 #include "core/uri_parameters.h"
@@ -34,8 +38,52 @@ Result<double> parseButtonPeriod(std::string_view parameters) {
   return period_s;
 }
 
+// The simulated chip has a Raspberry Pi 4's lines (gpiochip0, pinctrl-bcm2711: 58 lines named
+// GPIO0..GPIO57), so that a config's lines are checked as on the rig.
+constexpr unsigned kSimChipLines = 58;
+constexpr std::string_view kSimLinePrefix = "GPIO";
+
+Result<unsigned> simLineOffset(const GpioLine& line, std::string_view role) {
+  if (const unsigned* offset = std::get_if<unsigned>(&line.line)) {
+    if (*offset < kSimChipLines) return *offset;
+    return hardwareError(fmt::format("line {} ({}) is beyond the simulated chip's {} lines (0..{})",
+                                     *offset, role, kSimChipLines, kSimChipLines - 1));
+  }
+  const std::string_view name = std::get<std::string>(line.line);
+  unsigned number = 0;
+  if (name.starts_with(kSimLinePrefix) && name.size() > kSimLinePrefix.size()) {
+    const std::string_view digits = name.substr(kSimLinePrefix.size());
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), number);
+    if (error == std::errc() && end == digits.data() + digits.size() && number < kSimChipLines)
+      return number;
+  }
+  return hardwareError(
+      fmt::format("line '{}' ({}) not found on the simulated chip (its lines: GPIO0..GPIO{})", name,
+                  role, kSimChipLines - 1));
+}
+
+// Each configured line exists on the simulated chip, and no line serves two roles.
+Status checkSimLines(const RigIoConfig& config) {
+  std::vector<std::pair<unsigned, std::string_view>> used;
+  for (const auto& [line, role] :
+       {std::pair{&config.trigger, "trigger"}, std::pair{&config.led, "LED"},
+        std::pair{&config.button, "button"}}) {
+    if (!*line) continue;
+    unsigned offset = 0;
+    GLARECAM_ASSIGN(offset, simLineOffset(**line, role));
+    for (const auto& [other, other_role] : used) {
+      if (other == offset)
+        return badInput(fmt::format("GPIO {} and {} are the same line {} of the simulated chip",
+                                    other_role, role, offset));
+    }
+    used.emplace_back(offset, role);
+  }
+  return {};
+}
+
 Result<std::unique_ptr<RigIo>> openSimRigIo(const RigIoConfig& config,
                                             std::string_view parameters) {
+  GLARECAM_CHECK(checkSimLines(config));
   double period_s = 0;
   GLARECAM_ASSIGN(period_s, parseButtonPeriod(parameters));
   auto io = std::make_unique<SimRigIo>(config);

@@ -1,5 +1,7 @@
 #include "capture/gpio/sim_rig_io.h"
 
+#include <spdlog/spdlog.h>
+
 #include <utility>
 
 namespace glarecam::capture {
@@ -11,14 +13,14 @@ SimRigIo::SimRigIo(const RigIoConfig& config, RigClockFunction clock)
       has_button_(config.button.has_value()),
       trigger_pulse_(config.trigger_pulse) {
   std::string lines;
-  for (const auto& [present, name] :
-       {std::pair{has_trigger_, "trigger"}, std::pair{has_led_, "LED"},
-        std::pair{has_button_, "button"}}) {
-    if (!present) continue;
+  for (const auto& [line, role] :
+       {std::pair{&config.trigger, "trigger"}, std::pair{&config.led, "LED"},
+        std::pair{&config.button, "button"}}) {
+    if (!*line) continue;
     if (!lines.empty()) lines += ", ";
-    lines += name;
+    lines += std::string(role) + " " + describeGpioLine(**line);
   }
-  description_ = "simulated " + config.chip + ": " + (lines.empty() ? "no lines" : lines);
+  description_ = "simulated chip " + config.chip + ": " + (lines.empty() ? "no lines" : lines);
 }
 
 Status SimRigIo::setLed(bool on) {
@@ -27,6 +29,7 @@ Status SimRigIo::setLed(bool on) {
   if (!has_led_ || on == led_on_) return {};
   led_on_ = on;
   led_changes_.push_back({clock_(), on});
+  spdlog::debug("simulated GPIO: LED {}", on ? "on" : "off");
   return {};
 }
 
@@ -35,6 +38,7 @@ Status SimRigIo::pulseTrigger() {
   if (failure_) return std::unexpected(*failure_);
   if (!has_trigger_) return {};
   trigger_pulses_.push_back({clock_(), trigger_pulse_});
+  spdlog::info("simulated GPIO: trigger pulse of {} µs", trigger_pulse_.count());
   return {};
 }
 

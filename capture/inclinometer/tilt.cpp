@@ -17,6 +17,10 @@ double toRad(double deg) { return deg / kDegPerRad; }
 
 using Vector = std::array<double, 3>;
 
+// Below this a horizontal direction is lost in rounding: the edge stands vertical, or the module
+// lies flat and its normal has no azimuth (both keep the configured facing).
+constexpr double kDegenerateHorizontal = 1e-9;
+
 // Rotation about x then y by the zero offset: the inverse of the mounting rotation that makes a
 // level module read `offset` (sensor gravity = Rx(-ox) Ry(-oy) e_z).
 Vector unmount(const Vector& g, const AxisTilt& offset) {
@@ -87,6 +91,28 @@ AccelerationSample mountedGravity(const AxisTilt& tilt, const AxisTilt& mounting
   const double cy = std::cos(toRad(tilt.y_deg)), sy = std::sin(toRad(tilt.y_deg));
   const Vector g = mount({-sy, cy * sx, cy * cx}, mounting_offset);
   return {g[0], g[1], g[2], std::nullopt};
+}
+
+ModuleOrientation moduleOrientation(const AxisTilt& tilt, double facing_azimuth_deg) {
+  const AccelerationSample up_sample = mountedGravity(tilt, {});  // "up", in the sensor's frame
+  const Vector up{up_sample.x_g, up_sample.y_g, up_sample.z_g};
+  ModuleOrientation module{moduleTiltDeg(tilt), facing_azimuth_deg};
+  // The edge (sensor x) made horizontal: x − (x·up) up. It heads 90° anticlockwise of the facing.
+  Vector edge{1.0 - up[0] * up[0], -up[0] * up[1], -up[0] * up[2]};
+  const double edge_norm = std::sqrt(edge[0] * edge[0] + edge[1] * edge[1] + edge[2] * edge[2]);
+  const double horizontal_normal = std::sin(toRad(module.tilt_deg));
+  if (edge_norm < kDegenerateHorizontal || horizontal_normal < kDegenerateHorizontal) return module;
+  for (double& c : edge) c /= edge_norm;
+  // up × edge: horizontal, 90° anticlockwise of the edge, i.e. facing away from the module.
+  const Vector back{up[1] * edge[2] - up[2] * edge[1], up[2] * edge[0] - up[0] * edge[2],
+                    up[0] * edge[1] - up[1] * edge[0]};
+  // The normal (sensor z) along the edge and along `back`, turned into the world's azimuths.
+  const double edge_azimuth = toRad(facing_azimuth_deg - 90.0);
+  const double back_azimuth = toRad(facing_azimuth_deg - 180.0);
+  const double east = edge[2] * std::sin(edge_azimuth) + back[2] * std::sin(back_azimuth);
+  const double north = edge[2] * std::cos(edge_azimuth) + back[2] * std::cos(back_azimuth);
+  module.azimuth_deg = std::fmod(std::atan2(east, north) * kDegPerRad + 360.0, 360.0);
+  return module;
 }
 
 Result<TiltReading> measureTilt(Inclinometer& inclinometer, const TiltOptions& options,

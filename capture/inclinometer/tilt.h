@@ -15,6 +15,7 @@
 #include <string>
 
 #include "capture/inclinometer/inclinometer.h"
+#include "capture/sun/incidence_angle.h"
 #include "core/error.h"
 
 namespace glarecam::capture {
@@ -28,6 +29,7 @@ struct AxisTilt {
 struct InclinometerZeroOffset {
   AxisTilt offset;
   double uncertainty_deg = 0.0;  // standard uncertainty of each axis's offset
+  std::string measured_with;     // the sensor's URI, when recorded
 };
 
 struct TiltOptions {
@@ -63,6 +65,14 @@ AxisTilt correctedTilt(const AccelerationSample& sample, const InclinometerZeroO
 // The inverse: the gravity vector (1 g) a sensor mounted with `mounting_offset` reads on a surface
 // with the attitude `tilt`. What a simulator or a test feeds the maths above.
 AccelerationSample mountedGravity(const AxisTilt& tilt, const AxisTilt& mounting_offset);
+
+// The module's orientation (its normal's tilt and azimuth) from the sensor's corrected attitude
+// and the module's facing azimuth. The facing azimuth is taken as 90° clockwise from the heading
+// of the module's horizontal edge (the sensor's x axis): for a module that is not rolled sideways
+// (tilt y = 0) it is simply the azimuth its normal points to; for a rolled one (a tracker turning
+// about another axis, a frame out of true) the normal swings sideways and this finds where.
+// Exact for any attitude but an x axis standing vertical, where the edge has no heading.
+ModuleOrientation moduleOrientation(const AxisTilt& tilt, double facing_azimuth_deg);
 
 // Averages options.samples readings. Errors: a failing read (its error), a sample that is not
 // gravity (magnitude), a moving rig (scatter above the bound), each naming the inclinometer.

@@ -1,8 +1,11 @@
 #include "capture/inclinometer/zero_offset_file.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 
 #include "core/atomic_file.h"
 #include "core/stack_manifest.h"
@@ -66,6 +69,8 @@ Result<std::optional<InclinometerZeroOffset>> readZeroOffset(const std::filesyst
   InclinometerZeroOffset zero;
   GLARECAM_ASSIGN(zero.offset.x_deg, finiteNumber(*block, "zero_offset_x_deg", where));
   GLARECAM_ASSIGN(zero.offset.y_deg, finiteNumber(*block, "zero_offset_y_deg", where));
+  const auto uri = block->find("uri");
+  if (uri != block->end() && uri->is_string()) zero.measured_with = uri->get<std::string>();
   if (block->contains("uncertainty_deg"))
     GLARECAM_ASSIGN(zero.uncertainty_deg, finiteNumber(*block, "uncertainty_deg", where));
   if (std::abs(zero.offset.x_deg) > kMaxPlausibleZeroOffsetDeg ||
@@ -76,15 +81,33 @@ Result<std::optional<InclinometerZeroOffset>> readZeroOffset(const std::filesyst
   return zero;
 }
 
-Status writeZeroOffset(const std::filesystem::path& file, const InclinometerZeroOffset& zero,
-                       const json& provenance) {
-  json document = json::object();
+Status checkZeroOffsetWritable(const std::filesystem::path& file) {
   std::error_code ec;
   if (std::filesystem::exists(file, ec)) {
+    json document;
     GLARECAM_ASSIGN(document, readJsonFile(file.string()));
     if (!document.is_object())
       return badInput(file.string() + ": not a JSON object; refusing to overwrite it");
+    if (::access(file.c_str(), W_OK) != 0)
+      return ioError(file.string() + ": not writable (" + std::strerror(errno) + ")");
+    return {};
   }
+  const std::filesystem::path directory =
+      file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(directory, ec))
+    return badInput(file.string() + ": its directory " + directory.string() + " does not exist");
+  if (::access(directory.c_str(), W_OK) != 0)
+    return ioError(file.string() + ": cannot create it in " + directory.string() + " (" +
+                   std::strerror(errno) + ")");
+  return {};
+}
+
+Status writeZeroOffset(const std::filesystem::path& file, const InclinometerZeroOffset& zero,
+                       const json& provenance) {
+  GLARECAM_CHECK(checkZeroOffsetWritable(file));
+  json document = json::object();
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec)) GLARECAM_ASSIGN(document, readJsonFile(file.string()));
   json block = provenance.is_object() ? provenance : json::object();
   block["zero_offset_x_deg"] = zero.offset.x_deg;
   block["zero_offset_y_deg"] = zero.offset.y_deg;

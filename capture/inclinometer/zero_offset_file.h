@@ -28,6 +28,10 @@ Result<TiltReading> parseTiltReading(const nlohmann::json& document, const std::
 // JSON or holds a malformed block (naming the file and key).
 Result<std::optional<InclinometerZeroOffset>> readZeroOffset(const std::filesystem::path& file);
 
+// Whether writeZeroOffset() can write `file`: an existing file must be a JSON object, a new one's
+// directory must exist and be writable. So that an operator does not flip a sensor for nothing.
+Status checkZeroOffsetWritable(const std::filesystem::path& file);
+
 // Sets the file's `inclinometer` block to `zero` with `provenance` merged in (method, date,
 // uri, readings); creates the file when absent, refuses to replace one that is not JSON.
 Status writeZeroOffset(const std::filesystem::path& file, const InclinometerZeroOffset& zero,

@@ -181,7 +181,8 @@ Result<SimulationOptions> parseSimCameraId(std::string_view id, const CameraOpti
       }));
   if (options.simulated_alpha_deg && sim.alpha_deg != *options.simulated_alpha_deg) {
     return badInput(
-        fmt::format("camera URI sim: alpha={:g} contradicts --alpha {:g}; give the scene's α once",
+        fmt::format("camera URI sim: alpha={:g} contradicts the capture's α {:g} (--alpha, or "
+                    "measured through --config); give the scene's α once",
                     sim.alpha_deg, *options.simulated_alpha_deg));
   }
   if (!(sim.alpha_deg >= 0 && sim.alpha_deg <= pipeline::kMaxLimitAlphaDeg)) {

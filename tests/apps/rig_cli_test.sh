@@ -90,10 +90,22 @@ expect "flip: interactive y offset" near "$(json_number zero_offset_y_deg "$WORK
 check "flip: stdin closed" 2 bash -c "'$GLARECAM' inclinometer flip --inclinometer sim:0 --calibration '$WORK/c3.json' --no-progress </dev/null"
 expect "flip: stdin error names --from" grep -q -- "--from" "$WORK/err"
 expect "flip: nothing written when it failed" test ! -e "$WORK/c3.json"
-"$GLARECAM" inclinometer read --inclinometer sim:30 --out "$WORK/steep.json" --no-progress >/dev/null
-check "flip: not turned 180° (offset implausible)" 2 "$GLARECAM" inclinometer flip --from "$WORK/steep.json" \
-  "$WORK/steep.json" --calibration "$WORK/c4.json"
-expect "flip: implausible offset explained" one_line_naming "not turned 180°"
+"$GLARECAM" inclinometer read --inclinometer sim:30,seed=1 --out "$WORK/steep1.json" --no-progress >/dev/null
+"$GLARECAM" inclinometer read --inclinometer sim:30,seed=2 --out "$WORK/steep2.json" --no-progress >/dev/null
+check "flip: not turned 180° (offset implausible)" 2 "$GLARECAM" inclinometer flip --from "$WORK/steep1.json" \
+  "$WORK/steep2.json" --calibration "$WORK/c4.json"
+expect "flip: implausible offset explained" grep -q "not turned 180°" "$WORK/err"
+check "flip: the same reading twice" 2 "$GLARECAM" inclinometer flip --from "$WORK/a.json" "$WORK/a.json" \
+  --calibration "$WORK/c4.json"
+expect "flip: same reading named" one_line_naming "the same reading twice"
+check "flip: interactive on a steep surface stops before the turn" 2 bash -c "echo | '$GLARECAM' inclinometer flip \
+  --inclinometer sim:25 --calibration '$WORK/c6.json' --no-progress"
+expect "flip: steep surface explained" grep -q "within a few degrees of level" "$WORK/err"
+expect "flip: no turn asked for on a steep surface" bash -c "! grep -q 'Turn the sensor' '$WORK/err'"
+echo 'not json' >"$WORK/notjson.json"
+check "flip: a calibration file that is not JSON is refused before the readings" 2 bash -c "echo | '$GLARECAM' \
+  inclinometer flip --inclinometer sim:0 --calibration '$WORK/notjson.json' --no-progress"
+expect "flip: refused before asking to turn" bash -c "! grep -q 'Turn the sensor' '$WORK/err'"
 echo '{not json' >"$WORK/broken.json"
 check "flip: a calibration that is not JSON is not overwritten" 2 "$GLARECAM" inclinometer flip \
   --from "$WORK/a.json" "$WORK/b.json" --calibration "$WORK/broken.json"
@@ -189,7 +201,7 @@ check "gpio: LED pattern, trigger, button" 0 "$GLARECAM" gpio --config "$WORK/gp
 expect "gpio: trigger pulses reported" grep -q "trigger: 2 pulse" "$WORK/out"
 expect "gpio: the press seen" grep -q "button: pressed" "$WORK/out"
 check "gpio: status readout" 0 "$GLARECAM" gpio --config "$WORK/gpio.toml"
-expect "gpio: describes the lines" grep -q "trigger, LED, button" "$WORK/out"
+expect "gpio: describes the lines" grep -q "trigger line 'GPIO22', LED line 17, button line 27, active-low" "$WORK/out"
 printf '[gpio]\nchip = "sim"\nbutton = 3\n' >"$WORK/nopress.toml"
 check "gpio: no press before the timeout" 1 "$GLARECAM" gpio --config "$WORK/nopress.toml" --wait-button --timeout 0.2
 expect "gpio: timeout named" grep -q "no button press within 0.2 s" "$WORK/err"

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <sys/timex.h>
 
+#include <array>
 #include <cmath>
 #include <deque>
 #include <fstream>
@@ -93,7 +94,7 @@ TEST(Tilt, MountingCorrectionUndoesTheMountingRotation) {
   const AxisTilt offset{0.7, -0.4};
   for (const AxisTilt tilt : {AxisTilt{30, 0}, AxisTilt{-60, 5}, AxisTilt{10, 80}}) {
     const AccelerationSample read = mountedGravity(tilt, offset);
-    const AxisTilt corrected = correctedTilt(read, {offset, 0});
+    const AxisTilt corrected = correctedTilt(read, {offset, 0, ""});
     EXPECT_NEAR(corrected.x_deg, tilt.x_deg, kExactDeg);
     EXPECT_NEAR(corrected.y_deg, tilt.y_deg, kExactDeg);
   }
@@ -101,6 +102,69 @@ TEST(Tilt, MountingCorrectionUndoesTheMountingRotation) {
   const AxisTilt level = axisTilt(mountedGravity({0, 0}, offset));
   EXPECT_NEAR(level.x_deg, offset.x_deg, kExactDeg);
   EXPECT_NEAR(level.y_deg, offset.y_deg, kExactDeg);
+}
+
+using Vec3 = std::array<double, 3>;  // east, north, up
+
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+Vec3 direction(double elevation_deg, double azimuth_deg) {
+  return {std::cos(rad(elevation_deg)) * std::sin(rad(azimuth_deg)),
+          std::cos(rad(elevation_deg)) * std::cos(rad(azimuth_deg)), std::sin(rad(elevation_deg))};
+}
+
+// Any attitude, built in the world: a normal, and an edge (sensor x) turned `edge_turn_deg` about
+// it from the horizontal. The facing azimuth is by definition 90° clockwise from the edge's
+// heading; the sensor reads "up" in its own axes. moduleOrientation() must find the normal again.
+TEST(ModuleOrientation, RecoversTheNormalOfAnyAttitude) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> elevation(-30, 89), azimuth(0, 360), turn(-40, 40);
+  for (int i = 0; i < 1000; ++i) {
+    const double normal_elevation = elevation(random), normal_azimuth = azimuth(random);
+    const Vec3 z = direction(normal_elevation, normal_azimuth);
+    const Vec3 level_edge = direction(0, normal_azimuth - 90);  // horizontal, ⟂ z
+    const Vec3 z_cross_edge = cross(z, level_edge);
+    const double t = rad(turn(random));
+    const Vec3 x{std::cos(t) * level_edge[0] + std::sin(t) * z_cross_edge[0],
+                 std::cos(t) * level_edge[1] + std::sin(t) * z_cross_edge[1],
+                 std::cos(t) * level_edge[2] + std::sin(t) * z_cross_edge[2]};
+    const Vec3 y = cross(z, x);
+    const double facing = std::fmod(deg(std::atan2(x[0], x[1])) + 90 + 360, 360);
+    const AccelerationSample up{x[2], y[2], z[2], {}};
+    const ModuleOrientation module = moduleOrientation(axisTilt(up), facing);
+    // Round trips through atan2/acos in doubles: 1e-9° is rounding.
+    EXPECT_NEAR(module.tilt_deg, 90 - normal_elevation, 1e-9);
+    EXPECT_NEAR(std::remainder(module.azimuth_deg - normal_azimuth, 360.0), 0, 1e-9)
+        << "normal " << normal_elevation << "/" << normal_azimuth << " turn " << deg(t);
+  }
+}
+
+TEST(ModuleOrientation, AModuleThatIsNotRolledFacesItsConfiguredAzimuth) {
+  for (const double tilt : {0.5, 30.0, 89.0, 90.0, 120.0}) {
+    const ModuleOrientation module = moduleOrientation({tilt, 0}, 200);
+    EXPECT_NEAR(module.tilt_deg, tilt, kExactDeg);
+    EXPECT_NEAR(module.azimuth_deg, 200, 1e-9);
+  }
+  EXPECT_EQ(moduleOrientation({0, 0}, 123).azimuth_deg, 123);  // flat: the normal has no azimuth
+}
+
+TEST(ModuleOrientation, ARolledModuleTurnsItsNormalSideways) {
+  // Lamp on the normal of a module tilted 60° facing south; rolled 10° about its up-slope axis
+  // (the edge no longer level), the normal swings 10° off the lamp: α = 10°.
+  const Vec3 z = direction(30, 180);
+  const Vec3 level_edge = direction(0, 90);
+  const Vec3 y = cross(z, level_edge);
+  const double roll = rad(10);
+  const Vec3 z_rolled{std::cos(roll) * z[0] + std::sin(roll) * level_edge[0],
+                      std::cos(roll) * z[1] + std::sin(roll) * level_edge[1],
+                      std::cos(roll) * z[2] + std::sin(roll) * level_edge[2]};
+  const Vec3 x_rolled = cross(y, z_rolled);
+  const double facing = std::fmod(deg(std::atan2(x_rolled[0], x_rolled[1])) + 90 + 360, 360);
+  const AxisTilt read = axisTilt({x_rolled[2], y[2], z_rolled[2], {}});
+  EXPECT_GT(std::abs(read.y_deg), 4);  // the sensor sees the roll
+  EXPECT_NEAR(incidenceAngleDeg(moduleOrientation(read, facing), {30, 180}), 10, 1e-9);
 }
 
 // ----------------------------------------------------------------------------- measureTilt
@@ -392,6 +456,15 @@ TEST(RigConfig, BadGpioLinesNameTheLine) {
 
 // -------------------------------------------------------------------------- rig geometry
 
+// A reading of a module tilted `tilt_deg` about the sensor's x axis (not rolled).
+TiltReading readingOf(double tilt_deg, double uncertainty_deg = 0) {
+  TiltReading reading;
+  reading.tilt = reading.raw_tilt = {tilt_deg, 0};
+  reading.module_tilt_deg = tilt_deg;
+  reading.tilt_uncertainty_deg = uncertainty_deg;
+  return reading;
+}
+
 RigConfig labConfig() {
   RigConfig config;
   config.path = "lab.toml";
@@ -402,9 +475,8 @@ RigConfig labConfig() {
 
 TEST(RigGeometry, LabModeTakesAlphaFromTheTiltAlone) {
   RigConfig config = labConfig();
-  TiltReading tilt;
-  tilt.module_tilt_deg = 60;  // normal at 30° elevation: 30° from the horizontal lamp
-  tilt.tilt_uncertainty_deg = 0.01;
+  // Normal at 30° elevation: 30° from the horizontal lamp.
+  const TiltReading tilt = readingOf(60, 0.01);
   const auto g = computeRigGeometry(config, tilt, {}, ClockStatus{});
   ASSERT_TRUE(g) << g.error().message;
   EXPECT_EQ(g->source, "fixed");
@@ -419,9 +491,8 @@ TEST(RigGeometry, LabModeTakesAlphaFromTheTiltAlone) {
 }
 
 TEST(RigGeometry, NormalIncidenceStillCarriesTheTiltUncertainty) {
-  TiltReading tilt;
-  tilt.module_tilt_deg = 90;  // normal on the lamp: α = 0, where a central difference is 0
-  tilt.tilt_uncertainty_deg = 0.02;
+  // Normal on the lamp: α = 0, where a central difference is 0.
+  const TiltReading tilt = readingOf(90, 0.02);
   const auto g = computeRigGeometry(labConfig(), tilt, {}, ClockStatus{});
   ASSERT_TRUE(g);
   EXPECT_NEAR(g->alpha_deg, 0, 1e-6);
@@ -435,8 +506,7 @@ TEST(RigGeometry, SunModeUsesTheSolarPositionAndTheClock) {
   // NREL SPA's test case (Reda & Andreas 2008, table A4.1): zenith 50.11162°, azimuth 194.34024°.
   const auto time = parseIsoTime("2003-10-17T12:30:30-07:00");
   ASSERT_TRUE(time);
-  TiltReading tilt;
-  tilt.module_tilt_deg = 50.11162;  // a module facing the sun exactly: α = 0 up to the model
+  const TiltReading tilt = readingOf(50.11162);  // facing the sun exactly: α = 0 up to the model
   config->module_azimuth_deg = 194.34024;
   const ClockStatus synced = interpretClockState(TIME_OK, 0, 1000, 1000);
   const auto g = computeRigGeometry(*config, tilt, *time, synced);
@@ -463,9 +533,7 @@ TEST(RigGeometry, SunModeUsesTheSolarPositionAndTheClock) {
 TEST(RigGeometry, WarnsWhenTheSunIsBelowTheHorizonOrBehind) {
   RigConfig config = labConfig();
   config.fixed_source = SkyDirection{10, 0};  // north, behind a south-facing upright module
-  TiltReading tilt;
-  tilt.module_tilt_deg = 90;
-  const auto g = computeRigGeometry(config, tilt, {}, ClockStatus{});
+  const auto g = computeRigGeometry(config, readingOf(90), {}, ClockStatus{});
   ASSERT_TRUE(g);
   EXPECT_GT(g->alpha_deg, 90);
   ASSERT_EQ(g->warnings.size(), 1u);
@@ -492,7 +560,7 @@ TEST(RigSensors, MeasuresThroughTheSimulatedInclinometerWithTheStoredOffset) {
             "[module]\nazimuth_deg = 180\n[inclinometer]\nuri = \"sim:60,offset_x_deg=0.5\"\n");
   const auto config = readRigConfig(dir / "rig.toml");
   ASSERT_TRUE(config) << config.error().message;
-  ASSERT_TRUE(writeZeroOffset(dir / "calib.json", {{0.5, 0}, 0.001}, {{"method", "flip"}}));
+  ASSERT_TRUE(writeZeroOffset(dir / "calib.json", {{0.5, 0}, 0.001, ""}, {{"method", "flip"}}));
   auto sensors = RigSensors::open(*config);
   ASSERT_TRUE(sensors) << sensors.error().message;
   const auto g = (*sensors)->measure({});
@@ -509,7 +577,7 @@ TEST(RigSensors, MeasuresThroughTheSimulatedInclinometerWithTheStoredOffset) {
 TEST(ZeroOffsetFile, MergesIntoAnExistingCalibrationAndReadsBack) {
   TempDir dir;
   writeText(dir, "calib.json", R"({"black_level_dn": 64, "luminance_factor": 2.5})");
-  ASSERT_TRUE(writeZeroOffset(dir / "calib.json", {{0.25, -0.125}, 0.002},
+  ASSERT_TRUE(writeZeroOffset(dir / "calib.json", {{0.25, -0.125}, 0.002, ""},
                               {{"method", "flip"}, {"date", "2026-11-26T08:00:00Z"}}));
   const auto document = readJsonFile((dir / "calib.json").string());
   ASSERT_TRUE(document);

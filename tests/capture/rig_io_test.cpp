@@ -195,7 +195,9 @@ TEST(SimRigIo, RecordsLedChangesAndTriggerPulsesWithTheirTimes) {
   const RigClock::time_point t0 = clock.now;
   SimRigIo io(allLines(), clock.function());
   EXPECT_TRUE(io.hasTrigger() && io.hasLed() && io.hasButton());
-  EXPECT_EQ(io.description(), "simulated gpiochip0: trigger, LED, button");
+  EXPECT_EQ(
+      io.description(),
+      "simulated chip gpiochip0: trigger line 17, LED line 27, button line 'BUTTON', active-low");
 
   ASSERT_TRUE(io.setLed(false));  // already dark: no change
   clock.now += 10ms;
@@ -224,7 +226,7 @@ TEST(SimRigIo, RecordsLedChangesAndTriggerPulsesWithTheirTimes) {
 TEST(SimRigIo, AbsentLinesAreNoOps) {
   SimRigIo io(RigIoConfig{});
   EXPECT_FALSE(io.hasTrigger() || io.hasLed() || io.hasButton());
-  EXPECT_EQ(io.description(), "simulated gpiochip0: no lines");
+  EXPECT_EQ(io.description(), "simulated chip gpiochip0: no lines");
   EXPECT_TRUE(io.setLed(true));
   EXPECT_TRUE(io.pulseTrigger());
   io.setButtonPressed(true);

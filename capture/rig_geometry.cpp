@@ -63,10 +63,10 @@ void addWarnings(RigGeometry& g) {
   if (g.alpha_deg > 90)
     g.warnings.push_back(
         fmt::format("the source is behind the module (α {:.2f}° > 90°)", g.alpha_deg));
-  if (g.clock && !g.clock->synchronised)
+  if (g.clock_error_unknown)
     g.warnings.push_back("the system clock is not synchronised: " + g.clock->detail +
-                         fmt::format("; α's uncertainty assumes the kernel's bound of {:g} s",
-                                     g.clock->max_error_s));
+                         "; α is only as good as the clock, whose error is unknown (its "
+                         "uncertainty leaves it out)");
 }
 
 }  // namespace
@@ -104,7 +104,10 @@ Result<RigGeometry> computeRigGeometry(const RigConfig& config,
       return direction ? incidenceAngleDeg(g.module, *direction) : g.alpha_deg;
     };
     const double step_s = std::chrono::duration<double>(kTimeStep).count();
-    g.alpha_uncertainty_clock_deg = slope(alpha_at_offset_s, 0.0, step_s) * clock->uncertaintyS();
+    const std::optional<double> clock_sigma_s = clock->uncertaintyS();
+    if (clock_sigma_s)
+      g.alpha_uncertainty_clock_deg = slope(alpha_at_offset_s, 0.0, step_s) * *clock_sigma_s;
+    g.clock_error_unknown = !clock_sigma_s;
   }
   g.alpha_uncertainty_deg = std::hypot(g.alpha_uncertainty_tilt_deg, g.alpha_uncertainty_clock_deg);
   addWarnings(g);
@@ -127,6 +130,7 @@ nlohmann::json geometryJson(const RigGeometry& g) {
     block["source_azimuth_deg"] = g.source_direction.azimuth_deg;
   }
   if (g.clock) block["clock_synchronised"] = g.clock->synchronised;
+  if (g.clock_error_unknown) block["alpha_uncertainty_excludes_clock"] = true;
   if (g.tilt) {
     nlohmann::json inclinometer{
         {"x_g", g.tilt->mean.x_g},          {"y_g", g.tilt->mean.y_g},
@@ -217,6 +221,15 @@ Result<RigGeometry> RigSensors::measure(UtcTime time, const std::function<void()
     GLARECAM_ASSIGN(tilt, measureTilt(*inclinometer_, config_.inclinometer->tilt,
                                       zero_.value_or(InclinometerZeroOffset{}), on_sample));
   }
+  return geometryAt(tilt, time, time_from_clock);
+}
+
+Result<RigGeometry> RigSensors::retime(const RigGeometry& measured, UtcTime time) const {
+  return geometryAt(measured.tilt, time, measured.clock.has_value());
+}
+
+Result<RigGeometry> RigSensors::geometryAt(const std::optional<TiltReading>& tilt, UtcTime time,
+                                           bool time_from_clock) const {
   std::optional<ClockStatus> clock;
   if (time_from_clock) clock = systemClockStatus();
   RigGeometry geometry;

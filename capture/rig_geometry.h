@@ -33,7 +33,8 @@ struct RigGeometry {
   double alpha_uncertainty_deg = 0.0;
   double alpha_uncertainty_tilt_deg = 0.0;   // the tilt's share
   double alpha_uncertainty_clock_deg = 0.0;  // the clock's share
-  std::optional<TiltReading> tilt;           // when an inclinometer measured the tilt
+  bool clock_error_unknown = false;  // the clock is not synchronised: its share is not known
+  std::optional<TiltReading> tilt;   // when an inclinometer measured the tilt
   std::string inclinometer_uri;
   std::optional<InclinometerZeroOffset> zero_offset;  // removed from the tilt, when stored
   std::optional<ClockStatus> clock;   // when the source is the sun and the time the clock's
@@ -65,11 +66,18 @@ class RigSensors {
   // `time_from_clock`: `time` is the system clock's now (false: the user's, no clock error).
   Result<RigGeometry> measure(UtcTime time, const std::function<void()>& on_sample = {},
                               bool time_from_clock = true);
+  // The same reading at another time (the sun moved; the module did not): for α at the middle
+  // of a bracket that followed the reading.
+  Result<RigGeometry> retime(const RigGeometry& measured, UtcTime time) const;
+
   const RigConfig& config() const { return config_; }
   const std::optional<InclinometerZeroOffset>& zeroOffset() const { return zero_; }
   bool hasInclinometer() const { return inclinometer_ != nullptr; }
 
  private:
+  Result<RigGeometry> geometryAt(const std::optional<TiltReading>& tilt, UtcTime time,
+                                 bool time_from_clock) const;
+
   RigSensors(RigConfig config, std::unique_ptr<Inclinometer> inclinometer,
              std::optional<InclinometerZeroOffset> zero,
              std::vector<std::string> standing_warnings);

@@ -193,14 +193,27 @@ Status checkAgainstCamera(const capture::Camera& camera, const capture::CaptureS
 
 // Before each stack of a series with a rig: the operator's press when asked for, and the
 // geometry (the first stack's was measured before the camera opened, unless a press came since).
+// With the button, an inclinometer that cannot read (the rig moving in a gust) shows its fault
+// code and waits for the next press instead of ending the session.
 Result<bool> prepareRigStack(CaptureRig& rig, capture::CaptureSettings& settings, bool first) {
-  bool pressed = false;
-  GLARECAM_ASSIGN(pressed, rig.waitForButton());
-  if (!pressed) return false;
-  if (rig.measuresAlpha() && (!first || rig.waitsForButton()))
-    GLARECAM_CHECK(rig.measureInto(settings));
+  for (;;) {
+    bool pressed = false;
+    GLARECAM_ASSIGN(pressed, rig.waitForButton());
+    if (!pressed) return false;
+    if (!rig.measuresAlpha() || (first && !rig.waitsForButton())) break;
+    const Status measured = rig.measureInto(settings);
+    if (measured) break;
+    if (!rig.waitsForButton() || measured.error().code != ErrorCode::kHardware)
+      return std::unexpected(measured.error());
+    spdlog::error("capture: {}; press the button to try again", measured.error().message);
+    rig.showFault(capture::FaultCode::kInclinometer);
+  }
   rig.showCapturing(true);
   return true;
+}
+
+capture::UtcTime utcNow() {
+  return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
 }
 
 Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings, CaptureRig* rig,
@@ -222,8 +235,12 @@ Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
       if (!go) return interrupted();  // stopped while waiting for the button
     }
     capture::CapturedStack stack;
+    const capture::UtcTime bracket_start = utcNow();
     GLARECAM_ASSIGN(stack, capture::captureStack(camera, settings));
-    if (rig) rig->showCapturing(false);
+    if (rig) {
+      rig->showCapturing(false);
+      GLARECAM_CHECK(rig->finishStack(stack, bracket_start, utcNow()));
+    }
     std::filesystem::path written;
     GLARECAM_ASSIGN(written, capture::writeCapturedStack(out, stack));
     std::printf("%s\n", written.c_str());

@@ -18,6 +18,11 @@ Result<std::unique_ptr<CaptureRig>> CaptureRig::open(const std::string& config_p
   std::unique_ptr<CaptureRig> rig(new CaptureRig);
   GLARECAM_ASSIGN(rig->config_, capture::readRigConfig(config_path));
   const capture::RigConfig& config = rig->config_;
+  if (config.inclinometer && !config.site && !config.fixed_source)
+    spdlog::warn(
+        "capture: {} has an [inclinometer] but neither [site] nor [source]: α is not "
+        "measured",
+        config_path);
   if (config.site || config.fixed_source) {
     if (alpha_given)
       return badInput(fmt::format("capture: --alpha contradicts {}, whose [{}] gives α; give one",
@@ -62,6 +67,18 @@ Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
                geometry.alpha_uncertainty_deg, geometry.module.tilt_deg);
   settings.alpha_deg = geometry.alpha_deg;
   settings.geometry = capture::geometryJson(geometry);
+  measured_ = std::move(geometry);
+  return {};
+}
+
+Status CaptureRig::finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
+                               capture::UtcTime bracket_end) {
+  if (!measured_ || !measured_->sun) return {};  // a fixed source does not move
+  capture::RigGeometry geometry;
+  GLARECAM_ASSIGN(geometry,
+                  sensors_->retime(*measured_, bracket_start + (bracket_end - bracket_start) / 2));
+  stack.manifest.alpha_deg = geometry.alpha_deg;
+  stack.manifest.source["geometry"] = capture::geometryJson(geometry);
   return {};
 }
 
@@ -74,6 +91,10 @@ Result<bool> CaptureRig::waitForButton() {
 void CaptureRig::showCapturing(bool capturing) {
   if (led_)
     led_->setStatus(capturing ? capture::RigState::capturing() : capture::RigState::ready());
+}
+
+void CaptureRig::showFault(capture::FaultCode fault) {
+  if (led_) led_->setStatus(capture::RigState::faulted(fault));
 }
 
 }  // namespace glarecam::apps

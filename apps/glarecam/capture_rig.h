@@ -36,10 +36,16 @@ class CaptureRig {
   // Measures the geometry now and records it in `settings` (α and the geometry block).
   Status measureInto(capture::CaptureSettings& settings);
 
+  // After the bracket: α again at the bracket's middle (the sun moved while the inclinometer
+  // was read and the frames exposed), into the stack's manifest.
+  Status finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
+                     capture::UtcTime bracket_end);
+
   // With --on-button: waits for a press (true) or a stop request (false). Without: true.
   Result<bool> waitForButton();
 
   void showCapturing(bool capturing);
+  void showFault(capture::FaultCode fault);
 
  private:
   CaptureRig() = default;
@@ -48,6 +54,7 @@ class CaptureRig {
   std::unique_ptr<capture::RigSensors> sensors_;
   std::unique_ptr<capture::RigIo> io_;
   std::unique_ptr<capture::StatusLed> led_;
+  std::optional<capture::RigGeometry> measured_;  // the last geometry measured
   bool on_button_ = false;
 };
 

@@ -3,7 +3,7 @@
 #include <signal.h>
 
 #include <algorithm>
-#include <csignal>
+#include <atomic>
 #include <stop_token>
 #include <thread>
 
@@ -13,9 +13,12 @@ namespace glarecam::apps {
 
 namespace {
 
-volatile std::sig_atomic_t g_stop_requested = 0;
+// Set from a signal handler (on whichever thread the signal lands) and read from any thread: an
+// atomic that needs no lock is both async-signal-safe and free of data races.
+std::atomic<bool> g_stop_requested{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
 
-void requestStop(int) { g_stop_requested = 1; }
+void requestStop(int) { g_stop_requested.store(true); }
 
 // How soon a stop request ends a sleep or a wait.
 constexpr std::chrono::milliseconds kStopPoll{100};
@@ -31,7 +34,7 @@ void stopGracefullyOnSignals() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-bool stopRequested() { return g_stop_requested != 0; }
+bool stopRequested() { return g_stop_requested.load(); }
 
 void sleepUntil(std::chrono::steady_clock::time_point deadline) {
   while (!stopRequested() && std::chrono::steady_clock::now() < deadline) {

@@ -133,7 +133,10 @@ Result<capture::RigGeometry> measureGeometry(capture::RigSensors& sensors, UtcTi
 void printGeometry(const capture::RigGeometry& g) {
   std::printf("alpha %.3f° ± %.2g° (%s; from the tilt %.2g°", g.alpha_deg, g.alpha_uncertainty_deg,
               g.source == "sun" ? "the sun" : "a fixed source", g.alpha_uncertainty_tilt_deg);
-  if (g.clock) std::printf(", from the clock %.2g°", g.alpha_uncertainty_clock_deg);
+  if (g.clock_error_unknown)
+    std::printf(", from the clock: unknown, not synchronised");
+  else if (g.clock)
+    std::printf(", from the clock %.2g°", g.alpha_uncertainty_clock_deg);
   std::printf(")\n");
   if (g.tilt) {
     std::printf("module tilt %.3f° (inclinometer %s, σ %.4f° over %d samples), facing %.2f°\n",

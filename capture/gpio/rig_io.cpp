@@ -43,6 +43,14 @@ Status RigIoConfig::validate() const {
       }
     }
   }
+  // The pull-up holds an idle button line high: unless that level counts as released
+  // (active-low), the button reads pressed for ever and no press is ever seen.
+  if (button && button_pull_up && !button->active_low) {
+    return badInput(
+        "GPIO button: the pull-up holds the line high at rest, so a button to ground is "
+        "active-low (button_active_low = true); for a button to 3.3 V with an external "
+        "pull-down set button_pull_up = false");
+  }
   if (debounce < std::chrono::milliseconds::zero() || debounce > kMaxDebounce) {
     return badInput("GPIO button debounce " + std::to_string(debounce.count()) +
                     " ms: outside 0.." + std::to_string(kMaxDebounce.count()) + " ms");

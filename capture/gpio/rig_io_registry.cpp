@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <string_view>
 #include <utility>
@@ -17,7 +18,7 @@ namespace {
 
 constexpr std::string_view kSimChip = "sim";
 constexpr std::string_view kUriName = "GPIO chip sim:";
-// The simulated operator holds the button this long per press: well above any debounce.
+// The simulated operator holds the button this long per press, or twice the debounce if longer.
 constexpr std::chrono::milliseconds kSimPressLength{100};
 constexpr int kSimScriptedPresses = 10000;    // hours of presses at any sensible period
 constexpr double kMinSimButtonPeriodS = 0.5;  // a press and a release must both debounce
@@ -90,11 +91,19 @@ Result<std::unique_ptr<RigIo>> openSimRigIo(const RigIoConfig& config,
   if (period_s > 0) {
     const auto period =
         std::chrono::duration_cast<RigClock::duration>(std::chrono::duration<double>(period_s));
+    // A press, and the release after it, must each outlast the debounce (twice, for margin).
+    const auto press = std::max<RigClock::duration>(kSimPressLength, 2 * config.debounce);
+    if (period < 2 * press)
+      return badInput(
+          fmt::format("{} button_period_s={:g} is too short for debounce_ms = {}: "
+                      "at least {:g} s",
+                      kUriName, period_s, config.debounce.count(),
+                      2 * std::chrono::duration<double>(press).count()));
     std::vector<SimRigIo::ButtonStep> steps;
     const RigClock::time_point start = RigClock::now();
     for (int k = 1; k <= kSimScriptedPresses; ++k) {
       steps.push_back({start + k * period, true});
-      steps.push_back({start + k * period + kSimPressLength, false});
+      steps.push_back({start + k * period + press, false});
     }
     io->scriptButton(std::move(steps));
   }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace glarecam::capture {
 
@@ -64,8 +65,9 @@ struct RunningStats {
 }  // namespace
 
 Status TiltOptions::validate() const {
-  if (samples < 2)
-    return badInput(fmt::format("inclinometer samples {} must be at least 2", samples));
+  if (samples < kMinTiltSamples || samples > kMaxTiltSamples)
+    return badInput(fmt::format("inclinometer samples {} must be in [{}, {}]", samples,
+                                kMinTiltSamples, kMaxTiltSamples));
   if (!(max_tilt_std_deg > 0.0))
     return badInput(
         fmt::format("inclinometer max_tilt_std_deg {} must be positive", max_tilt_std_deg));
@@ -115,12 +117,37 @@ ModuleOrientation moduleOrientation(const AxisTilt& tilt, double facing_azimuth_
   return module;
 }
 
+namespace {
+
+double angleBetweenDeg(const Vector& a, const Vector& b) {
+  const Vector c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  return std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+                    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) *
+         kDegPerRad;
+}
+
+// The scatter of the samples' directions about their mean, per direction: the RMS angle over √2
+// (two perpendicular directions share it), so that it compares with one axis's noise. Angles to
+// the mean vector, unlike axis tilts (atan2), mean the same whatever the sensor's attitude.
+double tiltScatterDeg(const std::vector<Vector>& samples, const Vector& mean) {
+  double sum_squares = 0.0;
+  for (const Vector& sample : samples) {
+    const double angle = angleBetweenDeg(sample, mean);
+    sum_squares += angle * angle;
+  }
+  return std::sqrt(sum_squares / (2.0 * double(samples.size() - 1)));
+}
+
+}  // namespace
+
 Result<TiltReading> measureTilt(Inclinometer& inclinometer, const TiltOptions& options,
                                 const InclinometerZeroOffset& zero,
                                 const std::function<void()>& on_sample) {
   GLARECAM_CHECK(options.validate());
   const std::string& uri = inclinometer.info().uri;
-  RunningStats x, y, z, tilt_x, tilt_y, temperature;
+  std::vector<Vector> samples;
+  samples.reserve(options.samples);
+  RunningStats x, y, z, temperature;
   for (int i = 0; i < options.samples; ++i) {
     AccelerationSample sample;
     GLARECAM_ASSIGN(sample, inclinometer.read());
@@ -133,13 +160,11 @@ Result<TiltReading> measureTilt(Inclinometer& inclinometer, const TiltOptions& o
     x.add(sample.x_g);
     y.add(sample.y_g);
     z.add(sample.z_g);
-    const AxisTilt t = axisTilt(sample);
-    tilt_x.add(t.x_deg);
-    tilt_y.add(t.y_deg);
+    samples.push_back({sample.x_g, sample.y_g, sample.z_g});
     if (sample.temperature_c) temperature.add(*sample.temperature_c);
     if (on_sample) on_sample();
   }
-  const double scatter_deg = std::max(tilt_x.stddev(), tilt_y.stddev());
+  const double scatter_deg = tiltScatterDeg(samples, {x.mean, y.mean, z.mean});
   if (scatter_deg > options.max_tilt_std_deg)
     return hardwareError(fmt::format(
         "inclinometer {}: the rig is moving (tilt scatter {:.3f}° over {} samples, more than the "

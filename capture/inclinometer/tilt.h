@@ -32,6 +32,10 @@ struct InclinometerZeroOffset {
   std::string measured_with;     // the sensor's URI, when recorded
 };
 
+// Samples per reading: two give a scatter; 100 000 take ≈ 2 h at the ADXL355's 15.6 Hz.
+inline constexpr int kMinTiltSamples = 2;
+inline constexpr int kMaxTiltSamples = 100000;
+
 struct TiltOptions {
   int samples = 50;
   // ADXL355 noise at 15.6 Hz output data rate: 25 µg/√Hz × √(3.9 Hz × 1.6) ≈ 60 µg ≈ 0.004°

@@ -48,11 +48,13 @@ Result<TiltReading> parseTiltReading(const json& document, const std::string& wh
   GLARECAM_ASSIGN(r.raw_tilt.x_deg, finiteNumber(document, "raw_tilt_x_deg", where));
   GLARECAM_ASSIGN(r.raw_tilt.y_deg, finiteNumber(document, "raw_tilt_y_deg", where));
   GLARECAM_ASSIGN(r.tilt_std_deg, finiteNumber(document, "tilt_std_deg", where));
+  if (r.tilt_std_deg < 0) return badInput(where + ": \"tilt_std_deg\" must not be negative");
   double samples = 0;
   GLARECAM_ASSIGN(samples, finiteNumber(document, "samples", where));
-  if (samples < 1 || samples != std::floor(samples))
-    return badInput(where + ": \"samples\" must be a positive integer");
-  r.samples = int(samples);
+  if (!(samples >= kMinTiltSamples && samples <= kMaxTiltSamples) || samples != std::floor(samples))
+    return badInput(fmt::format("{}: \"samples\" must be a whole number in [{}, {}]", where,
+                                kMinTiltSamples, kMaxTiltSamples));
+  r.samples = static_cast<int>(samples);
   r.tilt = r.raw_tilt;
   r.module_tilt_deg = moduleTiltDeg(r.tilt);
   return r;
@@ -73,6 +75,8 @@ Result<std::optional<InclinometerZeroOffset>> readZeroOffset(const std::filesyst
   if (uri != block->end() && uri->is_string()) zero.measured_with = uri->get<std::string>();
   if (block->contains("uncertainty_deg"))
     GLARECAM_ASSIGN(zero.uncertainty_deg, finiteNumber(*block, "uncertainty_deg", where));
+  if (zero.uncertainty_deg < 0)
+    return badInput(where + ": \"uncertainty_deg\" must not be negative");
   if (std::abs(zero.offset.x_deg) > kMaxPlausibleZeroOffsetDeg ||
       std::abs(zero.offset.y_deg) > kMaxPlausibleZeroOffsetDeg)
     return badInput(fmt::format("{}: zero offset ({:g}°, {:g}°) is implausibly large (> {:g}°)",
@@ -104,6 +108,9 @@ Status checkZeroOffsetWritable(const std::filesystem::path& file) {
 
 Status writeZeroOffset(const std::filesystem::path& file, const InclinometerZeroOffset& zero,
                        const json& provenance) {
+  if (!std::isfinite(zero.offset.x_deg) || !std::isfinite(zero.offset.y_deg) ||
+      !(zero.uncertainty_deg >= 0))
+    return badInput(file.string() + ": refusing to store a zero offset that is not a number");
   GLARECAM_CHECK(checkZeroOffsetWritable(file));
   json document = json::object();
   std::error_code ec;

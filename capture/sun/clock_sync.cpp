@@ -31,9 +31,10 @@ ClockStatus interpretClockState(int state, int status_flags, long max_error_us, 
 ClockStatus systemClockStatus() {
   timex tx{};  // modes 0: read only
   const int state = adjtimex(&tx);
-  if (state < 0) {
+  if (state < 0) {  // the state is unknown: as good as unsynchronised
     ClockStatus clock;
-    clock.detail = std::string("adjtimex failed: ") + std::strerror(errno);
+    clock.detail =
+        std::string("its state is unknown (adjtimex failed: ") + std::strerror(errno) + ")";
     return clock;
   }
   return interpretClockState(state, tx.status, tx.maxerror, tx.esterror);

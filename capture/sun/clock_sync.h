@@ -4,18 +4,24 @@
 // uncertainty by the kernel's error estimate.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace glarecam::capture {
 
 struct ClockStatus {
   bool synchronised = false;
-  double max_error_s = 0.0;        // the kernel's bound on the clock error (timex.maxerror)
+  double max_error_s = 0.0;        // the kernel's bound while synchronised (timex.maxerror)
   double estimated_error_s = 0.0;  // its estimate (timex.esterror)
   std::string detail;              // for a warning: why it is not synchronised
 
-  // The clock's standard uncertainty for α: the estimate when synchronised, else the bound.
-  double uncertaintyS() const { return synchronised ? estimated_error_s : max_error_s; }
+  // The clock's standard uncertainty for α: the kernel's estimate while synchronised. Unknown
+  // otherwise: the kernel stops growing maxerror at 16 s, a cap and not a bound, and a clock
+  // that was never synchronised (a board without a battery-backed clock) can be hours off.
+  std::optional<double> uncertaintyS() const {
+    if (!synchronised) return std::nullopt;
+    return estimated_error_s;
+  }
 };
 
 // What adjtimex(2) returned: `state` (TIME_OK, TIME_ERROR, ...), timex.status flags and the two

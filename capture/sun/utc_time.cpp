@@ -96,7 +96,8 @@ Result<UtcTime> parseIsoTime(std::string_view raw_text) {
   if (!(hour = cursor.digits(2)) || !cursor.consume(':') || !(minute = cursor.digits(2))) {
     return malformed("no time hh:mm:ss");
   }
-  if (cursor.consume(':') && !(second = cursor.digits(2))) return malformed("no seconds after ':'");
+  const bool has_seconds = cursor.consume(':');
+  if (has_seconds && !(second = cursor.digits(2))) return malformed("no seconds after ':'");
   if (*hour > 23) return badInput(quoted + ": hour " + std::to_string(*hour) + " is not 00..23");
   if (*minute > 59) {
     return badInput(quoted + ": minute " + std::to_string(*minute) + " is not 00..59");
@@ -107,6 +108,8 @@ Result<UtcTime> parseIsoTime(std::string_view raw_text) {
   }
   microseconds fraction{0};
   if (cursor.consume('.') || cursor.consume(',')) {
+    // ISO 8601 reads 12:30.5 as half a minute; a fraction is taken after the seconds only.
+    if (!has_seconds) return malformed("a fraction is allowed after the seconds only (hh:mm:ss.s)");
     const std::string_view fraction_digits = cursor.digitRun();
     if (fraction_digits.empty() || fraction_digits.size() > 9) {
       return malformed("a fraction of a second needs 1 to 9 digits");

@@ -202,7 +202,7 @@ expect "gpio: trigger pulses reported" grep -q "trigger: 2 pulse" "$WORK/out"
 expect "gpio: the press seen" grep -q "button: pressed" "$WORK/out"
 check "gpio: status readout" 0 "$GLARECAM" gpio --config "$WORK/gpio.toml"
 expect "gpio: describes the lines" grep -q "trigger line 'GPIO22', LED line 17, button line 27, active-low" "$WORK/out"
-printf '[gpio]\nchip = "sim"\nbutton = 3\n' >"$WORK/nopress.toml"
+printf '[gpio]\nchip = "sim"\nbutton = 3\nbutton_active_low = true\n' >"$WORK/nopress.toml"
 check "gpio: no press before the timeout" 1 "$GLARECAM" gpio --config "$WORK/nopress.toml" --wait-button --timeout 0.2
 expect "gpio: timeout named" grep -q "no button press within 0.2 s" "$WORK/err"
 check "gpio: unknown LED status" 2 "$GLARECAM" gpio --config "$WORK/gpio.toml" --led disco

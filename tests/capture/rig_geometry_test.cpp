@@ -298,10 +298,11 @@ TEST(IncidenceAngle, AgreesWithTheTextbookFormula) {
 TEST(ClockStatus, InterpretsAdjtimex) {
   const ClockStatus synced = interpretClockState(TIME_OK, 0, 250000, 1200);
   EXPECT_TRUE(synced.synchronised);
-  EXPECT_DOUBLE_EQ(synced.uncertaintyS(), 0.0012);
+  EXPECT_DOUBLE_EQ(*synced.uncertaintyS(), 0.0012);
+  // Unsynchronised, the kernel's 16 s is a cap, not a bound: the error is unknown.
   const ClockStatus error = interpretClockState(TIME_ERROR, STA_UNSYNC, 16000000, 16000000);
   EXPECT_FALSE(error.synchronised);
-  EXPECT_DOUBLE_EQ(error.uncertaintyS(), 16.0);
+  EXPECT_FALSE(error.uncertaintyS());
   EXPECT_NE(error.detail.find("unsynchronised"), std::string::npos);
   EXPECT_FALSE(interpretClockState(TIME_OK, STA_UNSYNC, 0, 0).synchronised);
   EXPECT_FALSE(interpretClockState(TIME_ERROR, 0, 0, 0).synchronised);
@@ -516,17 +517,29 @@ TEST(RigGeometry, SunModeUsesTheSolarPositionAndTheClock) {
   ASSERT_TRUE(g->sun);
   EXPECT_NEAR(g->sun->zenith_deg, 50.11162, 1e-4);
   EXPECT_TRUE(g->warnings.empty());
-  // An unsynchronised clock (the kernel's 16 s bound): the sun moves ≈ 0.004°/s, α's share of
-  // it is at most that (α is at its minimum here, one-sided slopes: still ≈ the sun's rate).
+  // A clock synchronised to ±0.5 s: the sun moves at most 15°/h = 0.0042°/s, α no faster.
+  const ClockStatus half_second = interpretClockState(TIME_OK, 0, 1000000, 500000);
+  const auto h = computeRigGeometry(*config, tilt, *time, half_second);
+  ASSERT_TRUE(h);
+  EXPECT_GT(h->alpha_uncertainty_clock_deg, 0.0005);
+  EXPECT_LT(h->alpha_uncertainty_clock_deg, 0.5 * 0.0042 * 1.05);
+  // Unsynchronised: the clock's share is unknown, left out and said so.
   const ClockStatus unsynced = interpretClockState(TIME_ERROR, STA_UNSYNC, 16000000, 16000000);
   const auto u = computeRigGeometry(*config, tilt, *time, unsynced);
   ASSERT_TRUE(u);
-  EXPECT_GT(u->alpha_uncertainty_clock_deg, 0.01);
-  EXPECT_LT(u->alpha_uncertainty_clock_deg, 16 * 0.0042 * 1.05);  // 15°/h is the upper bound
+  EXPECT_TRUE(u->clock_error_unknown);
+  EXPECT_EQ(u->alpha_uncertainty_clock_deg, 0);
   ASSERT_EQ(u->warnings.size(), 1u);
   EXPECT_NE(u->warnings[0].find("not synchronised"), std::string::npos);
+  // A time given by the user: no clock involved at all.
+  const auto given = computeRigGeometry(*config, tilt, *time, std::nullopt);
+  ASSERT_TRUE(given);
+  EXPECT_FALSE(given->clock);
+  EXPECT_TRUE(given->warnings.empty());
+  EXPECT_FALSE(geometryJson(*given).contains("clock_synchronised"));
   const nlohmann::json block = geometryJson(*u);
   EXPECT_EQ(block["clock_synchronised"], false);
+  EXPECT_EQ(block["alpha_uncertainty_excludes_clock"], true);
   EXPECT_NEAR(block["sun_azimuth_deg"].get<double>(), 194.34024, 1e-4);
 }
 

@@ -342,6 +342,8 @@ TEST(UtcTimeTest, RefusesTextWithoutZoneOrWithInvalidFields) {
   expectBad("2003-10-17T12:00:00 UTC", "no time zone");
   expectBad("2003-10-17T12:00:00Zjunk", "unexpected text");
   expectBad("2003-10-17T12:00:00.Z", "fraction");
+  // ISO 8601 would read this as 12:30:30; a fraction after the minutes is refused, not misread.
+  expectBad("2003-10-17T12:30.5Z", "after the seconds only");
   expectBad("2003-10-17", "no time of day");
   expectBad("03-10-17T12:00:00Z", "4-digit year");
   expectBad("20031017T120000Z", "expected ISO 8601");

@@ -8,6 +8,7 @@
 #include <expected>
 #include <new>
 #include <string>
+#include <system_error>
 #include <utility>
 
 namespace glarecam {
@@ -63,6 +64,9 @@ inline Error currentExceptionError() {
     return {ErrorCode::kInternal, "internal error"};
   }
 }
+
+// The text of an errno value ("No such file or directory"), for messages.
+inline std::string errnoText(int error) { return std::system_category().message(error); }
 
 // Prefixes the message with context ("frame-03.png: " + message), keeping the code.
 inline Error withContext(Error error, const std::string& context) {

@@ -135,7 +135,8 @@ Status runCapture(const CaptureArgs& args) {
   std::string camera_uri = args.camera.value_or("");
   std::unique_ptr<CaptureRig> rig;
   if (args.config) {
-    GLARECAM_ASSIGN(rig, CaptureRig::open(*args.config, args.alpha.has_value(), args.on_button));
+    GLARECAM_ASSIGN(rig, CaptureRig::open(*args.config, args.alpha.has_value(), args.on_button,
+                                          !args.no_progress));
     if (!args.camera && rig->config().camera) camera_uri = *rig->config().camera;
     if (!args.calibration) GLARECAM_ASSIGN(settings.calibration, rig->cameraCalibration());
     // The scene a simulated camera renders needs α before the camera opens.

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "apps/glarecam/interruption.h"
+#include "apps/glarecam/sample_progress.h"
 #include "capture/gpio/rig_io_registry.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
@@ -14,8 +15,10 @@
 namespace glarecam::apps {
 
 Result<std::unique_ptr<CaptureRig>> CaptureRig::open(const std::string& config_path,
-                                                     bool alpha_given, bool on_button) {
+                                                     bool alpha_given, bool on_button,
+                                                     bool show_progress) {
   std::unique_ptr<CaptureRig> rig(new CaptureRig);
+  rig->show_progress_ = show_progress;
   GLARECAM_ASSIGN(rig->config_, capture::readRigConfig(config_path));
   const capture::RigConfig& config = rig->config_;
   if (config.inclinometer && !config.site && !config.fixed_source)
@@ -59,9 +62,14 @@ Result<std::optional<Calibration>> CaptureRig::cameraCalibration() const {
 
 Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
   capture::RigGeometry geometry;
+  const auto now =
+      std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
   GLARECAM_ASSIGN(geometry,
-                  sensors_->measure(std::chrono::time_point_cast<std::chrono::microseconds>(
-                      std::chrono::system_clock::now())));
+                  withSampleProgress(config_.inclinometer ? config_.inclinometer->tilt.samples : 0,
+                                     show_progress_ && config_.inclinometer.has_value(),
+                                     [&](const std::function<void()>& on_sample) {
+                                       return sensors_->measure(now, on_sample);
+                                     }));
   for (const std::string& warning : geometry.warnings) spdlog::warn("capture: {}", warning);
   spdlog::info("capture: α {:.3f}° ± {:.3f}° (module tilt {:.3f}°)", geometry.alpha_deg,
                geometry.alpha_uncertainty_deg, geometry.module.tilt_deg);

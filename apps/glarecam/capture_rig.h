@@ -22,7 +22,7 @@ class CaptureRig {
   // Reads the config and opens its sensors and GPIO. kBadInput when --alpha contradicts a config
   // that gives α, or --on-button is asked of a config without a button.
   static Result<std::unique_ptr<CaptureRig>> open(const std::string& config_path, bool alpha_given,
-                                                  bool on_button);
+                                                  bool on_button, bool show_progress);
   ~CaptureRig();
 
   const capture::RigConfig& config() const { return config_; }
@@ -56,6 +56,7 @@ class CaptureRig {
   std::unique_ptr<capture::StatusLed> led_;
   std::optional<capture::RigGeometry> measured_;  // the last geometry measured
   bool on_button_ = false;
+  bool show_progress_ = false;
 };
 
 }  // namespace glarecam::apps

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/interruption.h"
 #include "apps/glarecam/option_parsing.h"
+#include "apps/glarecam/sample_progress.h"
 #include "capture/gpio/rig_io_registry.h"
 #include "capture/gpio/status_led.h"
 #include "capture/inclinometer/inclinometer_registry.h"
@@ -25,7 +27,6 @@
 #include "capture/sun/solar_position.h"
 #include "capture/sun/utc_time.h"
 #include "core/atomic_file.h"
-#include "core/progress.h"
 #include "core/stack_manifest.h"
 
 namespace glarecam::apps {
@@ -122,12 +123,11 @@ struct AlphaArgs {
 Result<capture::RigGeometry> measureGeometry(capture::RigSensors& sensors, UtcTime time,
                                              bool time_from_clock, bool show_progress) {
   const auto& inclinometer = sensors.config().inclinometer;
-  Progress progress("inclinometer", inclinometer ? inclinometer->tilt.samples : 0,
-                    show_progress && sensors.hasInclinometer());
-  auto geometry = sensors.measure(
-      time, [&progress] { progress.advance(); }, time_from_clock);
-  progress.finish();
-  return geometry;
+  return withSampleProgress(inclinometer ? inclinometer->tilt.samples : 0,
+                            show_progress && sensors.hasInclinometer(),
+                            [&](const std::function<void()>& on_sample) {
+                              return sensors.measure(time, on_sample, time_from_clock);
+                            });
 }
 
 void printGeometry(const capture::RigGeometry& g) {
@@ -204,14 +204,12 @@ Result<InclinometerChoice> chooseInclinometer(const InclinometerArgs& args, cons
         fmt::format("inclinometer {}: give --inclinometer URI, or --config with an "
                     "[inclinometer] uri",
                     command));
-  std::optional<double> samples;
-  GLARECAM_ASSIGN(samples, parseOptionalNumber(args.samples, "--samples"));
-  if (samples) {
-    if (!(*samples >= 2 && *samples <= 100000 && *samples == std::floor(*samples)))
-      return badInput("inclinometer: --samples must be a whole number in [2, 100000]");
-    choice.tilt.samples = int(*samples);
+  if (args.samples) {
+    std::uint64_t samples = 0;
+    GLARECAM_ASSIGN(samples, parseUnsigned(*args.samples, "--samples"));
+    choice.tilt.samples = static_cast<int>(std::min<std::uint64_t>(samples, INT_MAX));
   }
-  GLARECAM_CHECK(choice.tilt.validate());
+  GLARECAM_CHECK(choice.tilt.validate());  // the range, as for the config's
   return choice;
 }
 
@@ -219,11 +217,10 @@ Result<capture::TiltReading> readTilt(capture::Inclinometer& sensor,
                                       const InclinometerChoice& choice,
                                       const capture::InclinometerZeroOffset& zero,
                                       bool show_progress) {
-  Progress progress("inclinometer", choice.tilt.samples, show_progress);
-  auto reading =
-      capture::measureTilt(sensor, choice.tilt, zero, [&progress] { progress.advance(); });
-  progress.finish();
-  return reading;
+  return withSampleProgress(choice.tilt.samples, show_progress,
+                            [&](const std::function<void()>& on_sample) {
+                              return capture::measureTilt(sensor, choice.tilt, zero, on_sample);
+                            });
 }
 
 void printReading(const capture::TiltReading& r) {

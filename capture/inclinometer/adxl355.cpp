@@ -90,12 +90,6 @@ constexpr std::chrono::milliseconds kMaxDataReadyTimeout{60'000};
 // Burst from TEMP2 to ZDATA1: temperature and the three axes of one sample.
 constexpr std::size_t kBurstBytes = kRegZData1 - kRegTemp2 + 1;
 
-std::string hex(unsigned value) {
-  std::array<char, 8> text{};
-  std::snprintf(text.data(), text.size(), "0x%02x", value);
-  return text.data();
-}
-
 std::int32_t decodeAxis(const std::uint8_t* bytes) {
   const std::uint32_t raw = (std::uint32_t{bytes[0]} << 12) | (std::uint32_t{bytes[1]} << 4) |
                             (std::uint32_t{bytes[2]} >> 4);
@@ -124,7 +118,7 @@ class Adxl355 final : public Inclinometer {
   Result<AccelerationSample> read() override;
 
  private:
-  std::string where() const { return "ADXL355 at " + hex(address_) + " on " + bus_->name(); }
+  std::string where() const { return "ADXL355 at " + i2cHex(address_) + " on " + bus_->name(); }
   Result<std::uint8_t> readRegister(std::uint8_t reg);
   Status readRegisters(std::uint8_t first, std::span<std::uint8_t> values);
   Status writeRegister(std::uint8_t reg, std::uint8_t value);
@@ -156,10 +150,10 @@ Status Adxl355::setUp() {
   std::array<std::uint8_t, 4> ids{};  // DEVID_AD, DEVID_MST, PARTID, REVID
   GLARECAM_CHECK(readRegisters(kRegDevIdAd, ids));
   if (ids[0] != kDevIdAd || ids[1] != kDevIdMst || ids[2] != kPartId) {
-    return hardwareError("device at " + hex(address_) + " on " + bus_->name() +
-                         " is not an ADXL355 (DEVID_AD " + hex(ids[0]) + ", DEVID_MST " +
-                         hex(ids[1]) + ", PARTID " + hex(ids[2]) + "; expected " + hex(kDevIdAd) +
-                         ", " + hex(kDevIdMst) + ", " + hex(kPartId) + ")");
+    return hardwareError(
+        "device at " + i2cHex(address_) + " on " + bus_->name() + " is not an ADXL355 (DEVID_AD " +
+        i2cHex(ids[0]) + ", DEVID_MST " + i2cHex(ids[1]) + ", PARTID " + i2cHex(ids[2]) +
+        "; expected " + i2cHex(kDevIdAd) + ", " + i2cHex(kDevIdMst) + ", " + i2cHex(kPartId) + ")");
   }
 
   GLARECAM_CHECK(writeRegister(kRegReset, kResetCode));
@@ -192,9 +186,9 @@ Status Adxl355::setUp() {
   GLARECAM_ASSIGN(filter_applied, readRegister(kRegFilter));
   if ((range_applied & kRangeMask) != rangeCode(options_.range_g) ||
       filter_applied != filter_wanted) {
-    return hardwareError(where() + ": settings did not take (RANGE " + hex(range_applied) +
-                         ", FILTER " + hex(filter_applied) + "; wrote " + hex(range_wanted) + ", " +
-                         hex(filter_wanted) + ")");
+    return hardwareError(where() + ": settings did not take (RANGE " + i2cHex(range_applied) +
+                         ", FILTER " + i2cHex(filter_applied) + "; wrote " + i2cHex(range_wanted) +
+                         ", " + i2cHex(filter_wanted) + ")");
   }
 
   // Measurement mode, temperature on, DRDY pin on.
@@ -202,14 +196,14 @@ Status Adxl355::setUp() {
   std::uint8_t power = 0;
   GLARECAM_ASSIGN(power, readRegister(kRegPowerCtl));
   if (power & kPowerCtlStandby) {
-    return hardwareError(where() + ": stays in standby (POWER_CTL " + hex(power) + ")");
+    return hardwareError(where() + ": stays in standby (POWER_CTL " + i2cHex(power) + ")");
   }
 
   char odr_text[32];
   std::snprintf(odr_text, sizeof odr_text, "%g", outputDataRateHz(odr_code));
   info_.detail = "±" + std::to_string(options_.range_g) + " g, ODR " + odr_text +
-                 " Hz (low-pass ODR/4, high-pass off), " + hex(address_) + " on " + bus_->name() +
-                 ", REVID " + hex(ids[3]);
+                 " Hz (low-pass ODR/4, high-pass off), " + i2cHex(address_) + " on " +
+                 bus_->name() + ", REVID " + i2cHex(ids[3]);
   return {};
 }
 

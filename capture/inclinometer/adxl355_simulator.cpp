@@ -22,12 +22,6 @@ constexpr std::uint8_t kPowerCtlWritableMask = 0x07;
 // What the wrong_id fault answers: an ADXL345's DEVID (0xE5 at register 0x00, ADXL345 data sheet).
 constexpr std::uint8_t kOtherPartDevId = 0xE5;
 
-std::string hex(unsigned value) {
-  char text[8];
-  std::snprintf(text, sizeof text, "0x%02x", value);
-  return text;
-}
-
 void encodeAxis(std::int32_t code, std::uint8_t* registers) {
   const auto bits = static_cast<std::uint32_t>(code) & 0xFFFFFu;
   registers[0] = static_cast<std::uint8_t>(bits >> 12);
@@ -168,7 +162,7 @@ Status Adxl355Simulator::transfer(std::uint8_t address, std::span<const std::uin
                                   std::span<std::uint8_t> read) {
   ++transactions_;
   if (options_.fault == Adxl355SimulatorFault::kAbsent || address != options_.address) {
-    return hardwareError("no device answers at " + hex(address) + " on " + options_.bus_name +
+    return hardwareError("no device answers at " + i2cHex(address) + " on " + options_.bus_name +
                          " (simulated NACK)");
   }
   if (!write.empty()) {

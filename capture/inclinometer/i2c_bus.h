@@ -3,7 +3,9 @@
 // bus is /dev/i2c-N; tests inject a register-level device simulator behind the same interface.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <span>
 #include <string>
@@ -11,6 +13,13 @@
 #include "core/error.h"
 
 namespace glarecam::capture {
+
+// "0x1d": an address or a register value as the data sheets and i2cdetect write them.
+inline std::string i2cHex(unsigned value) {
+  std::array<char, 16> text{};
+  std::snprintf(text.data(), text.size(), "0x%02x", value);
+  return text.data();
+}
 
 class I2cBus {
  public:

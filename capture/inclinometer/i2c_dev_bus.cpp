@@ -19,14 +19,6 @@ namespace {
 // The largest 7-bit address (the I2C specification's address space).
 constexpr std::uint8_t kMaxSevenBitAddress = 0x7f;
 
-std::string errnoText(int error) { return std::system_category().message(error); }
-
-std::string hexAddress(std::uint8_t address) {
-  std::array<char, 8> text{};
-  std::snprintf(text.data(), text.size(), "0x%02x", address);
-  return text.data();
-}
-
 class I2cDevBus final : public I2cBus {
  public:
   I2cDevBus(std::string path, UniqueFd fd) : path_(std::move(path)), fd_(std::move(fd)) {}
@@ -35,9 +27,9 @@ class I2cDevBus final : public I2cBus {
 
   Status transfer(std::uint8_t address, std::span<const std::uint8_t> write,
                   std::span<std::uint8_t> read) override {
-    const std::string where = hexAddress(address) + " on " + path_;
+    const std::string where = i2cHex(address) + " on " + path_;
     if (address > kMaxSevenBitAddress) {
-      return badInput("I2C address " + hexAddress(address) + " on " + path_ +
+      return badInput("I2C address " + i2cHex(address) + " on " + path_ +
                       " is not a 7-bit address");
     }
     // i2c_msg::len is 16 bits.
@@ -69,7 +61,7 @@ class I2cDevBus final : public I2cBus {
     }
     if (error == ENOTTY) {
       // Not an i2c-dev node at all: a regular file, /dev/null, another character device.
-      return hardwareError(path_ + " is not an I2C bus (I2C_RDWR to " + hexAddress(address) + ": " +
+      return hardwareError(path_ + " is not an I2C bus (I2C_RDWR to " + i2cHex(address) + ": " +
                            errnoText(error) + ")");
     }
     if (error == ENODEV)

@@ -6,10 +6,12 @@
 #include <array>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "capture/inclinometer/unique_fd.h"
@@ -92,8 +94,11 @@ Result<std::optional<double>> readOptionalNumber(std::initializer_list<fs::path>
 
 class IioInclinometer final : public Inclinometer {
  public:
-  IioInclinometer(fs::path directory, InclinometerInfo info)
-      : directory_(std::move(directory)), info_(std::move(info)) {}
+  IioInclinometer(fs::path directory, InclinometerInfo info,
+                  std::chrono::steady_clock::duration sampling_period)
+      : directory_(std::move(directory)),
+        info_(std::move(info)),
+        sampling_period_(sampling_period) {}
 
   const InclinometerInfo& info() const override { return info_; }
   Result<AccelerationSample> read() override;
@@ -102,9 +107,21 @@ class IioInclinometer final : public Inclinometer {
   Result<double> readAxisM_s2(std::string_view axis);
   Result<std::optional<double>> readTemperatureC();
 
+  // Waits until one sampling period has passed since the previous read.
+  void pace();
+
   fs::path directory_;
   InclinometerInfo info_;
+  std::chrono::steady_clock::duration sampling_period_;  // zero: unknown, reads not paced
+  std::optional<std::chrono::steady_clock::time_point> last_read_;
 };
+
+void IioInclinometer::pace() {
+  const auto now = std::chrono::steady_clock::now();
+  if (last_read_ && sampling_period_ > std::chrono::steady_clock::duration::zero())
+    std::this_thread::sleep_until(*last_read_ + sampling_period_);
+  last_read_ = std::max(now, last_read_ ? *last_read_ + sampling_period_ : now);
+}
 
 Result<double> IioInclinometer::readAxisM_s2(std::string_view axis) {
   const std::string channel = "in_accel_" + std::string(axis);
@@ -138,6 +155,7 @@ Result<std::optional<double>> IioInclinometer::readTemperatureC() {
 }
 
 Result<AccelerationSample> IioInclinometer::read() {
+  pace();
   std::array<double, 3> m_s2{};
   for (std::size_t i = 0; i < kAxes.size(); ++i) {
     GLARECAM_ASSIGN(m_s2[i], readAxisM_s2(kAxes[i]));
@@ -216,8 +234,13 @@ Result<std::unique_ptr<Inclinometer>> openIioInclinometer(std::string_view devic
   info.detail = described;
   if (scale) info.detail += ", scale " + formatNumber(*scale) + " m/s² per LSB";
   if (frequency_hz) info.detail += ", sampling frequency " + formatNumber(*frequency_hz) + " Hz";
+  // The period of the driver's sampling frequency; a nonsensical one (0, negative) paces nothing.
+  std::chrono::steady_clock::duration period{0};
+  if (frequency_hz && *frequency_hz > 0)
+    period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(1.0 / *frequency_hz));
   return std::unique_ptr<Inclinometer>(
-      std::make_unique<IioInclinometer>(directory, std::move(info)));
+      std::make_unique<IioInclinometer>(directory, std::move(info), period));
 }
 
 }  // namespace glarecam::capture

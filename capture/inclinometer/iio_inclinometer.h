@@ -8,10 +8,12 @@
 // temperature, when the driver exposes in_temp_input or in_temp_raw (+ in_temp_offset,
 // in_temp_scale), is in milli °C by the same rule.
 //
-// sysfs has no data-ready flag: each read() reads the attributes once, and two reads in quick
-// succession may return the same conversion (the driver decides; many trigger a fresh one per
-// read of a _raw file). The driver's in_accel_sampling_frequency, when present, is recorded in
-// info().detail; reads are not paced by it.
+// sysfs has no data-ready flag: two reads in quick succession may return the same conversion
+// (the driver decides). So reads are paced by the driver's in_accel_sampling_frequency (or
+// sampling_frequency), when it has one: each read() comes at least one sampling period after the
+// previous one, and a reading's samples are distinct conversions whose scatter means something.
+// Set that frequency low (tens of Hz: docs/rig.md), or the sensor's noise at kHz rates makes a
+// still rig look like a moving one.
 //
 // Errors name the file: no such device (listing the devices present), not an accelerometer (no
 // in_accel_x_raw), and an empty, unparsable or non-finite value ("nan") are kHardware; all three

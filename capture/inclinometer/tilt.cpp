@@ -5,16 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <vector>
+
+#include "core/angles.h"
 
 namespace glarecam::capture {
 
 namespace {
-
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-
-double toRad(double deg) { return deg / kDegPerRad; }
 
 using Vector = std::array<double, 3>;
 
@@ -25,23 +22,22 @@ constexpr double kDegenerateHorizontal = 1e-9;
 // Rotation about x then y by the zero offset: the inverse of the mounting rotation that makes a
 // level module read `offset` (sensor gravity = Rx(-ox) Ry(-oy) e_z).
 Vector unmount(const Vector& g, const AxisTilt& offset) {
-  const double cx = std::cos(toRad(offset.x_deg)), sx = std::sin(toRad(offset.x_deg));
-  const double cy = std::cos(toRad(offset.y_deg)), sy = std::sin(toRad(offset.y_deg));
+  const double cx = std::cos(radians(offset.x_deg)), sx = std::sin(radians(offset.x_deg));
+  const double cy = std::cos(radians(offset.y_deg)), sy = std::sin(radians(offset.y_deg));
   const Vector about_x{g[0], cx * g[1] - sx * g[2], sx * g[1] + cx * g[2]};  // Rx(ox)
   return {cy * about_x[0] + sy * about_x[2], about_x[1], -sy * about_x[0] + cy * about_x[2]};
 }
 
 // The mounting rotation itself: Ry(-oy) then Rx(-ox), undoing unmount().
 Vector mount(const Vector& g, const AxisTilt& offset) {
-  const double cx = std::cos(toRad(offset.x_deg)), sx = std::sin(toRad(offset.x_deg));
-  const double cy = std::cos(toRad(offset.y_deg)), sy = std::sin(toRad(offset.y_deg));
+  const double cx = std::cos(radians(offset.x_deg)), sx = std::sin(radians(offset.x_deg));
+  const double cy = std::cos(radians(offset.y_deg)), sy = std::sin(radians(offset.y_deg));
   const Vector about_y{cy * g[0] - sy * g[2], g[1], sy * g[0] + cy * g[2]};
   return {about_y[0], cx * about_y[1] + sx * about_y[2], -sx * about_y[1] + cx * about_y[2]};
 }
 
 AxisTilt tiltOf(const Vector& g) {
-  return {std::atan2(g[1], g[2]) * kDegPerRad,
-          std::atan2(-g[0], std::hypot(g[1], g[2])) * kDegPerRad};
+  return {degrees(std::atan2(g[1], g[2])), degrees(std::atan2(-g[0], std::hypot(g[1], g[2])))};
 }
 
 double magnitudeG(const AccelerationSample& s) {
@@ -80,8 +76,8 @@ Status TiltOptions::validate() const {
 AxisTilt axisTilt(const AccelerationSample& s) { return tiltOf({s.x_g, s.y_g, s.z_g}); }
 
 double moduleTiltDeg(const AxisTilt& tilt) {
-  const double c = std::cos(toRad(tilt.x_deg)) * std::cos(toRad(tilt.y_deg));
-  return std::acos(std::clamp(c, -1.0, 1.0)) * kDegPerRad;
+  const double c = std::cos(radians(tilt.x_deg)) * std::cos(radians(tilt.y_deg));
+  return degrees(std::acos(std::clamp(c, -1.0, 1.0)));
 }
 
 AxisTilt correctedTilt(const AccelerationSample& s, const InclinometerZeroOffset& zero) {
@@ -89,8 +85,8 @@ AxisTilt correctedTilt(const AccelerationSample& s, const InclinometerZeroOffset
 }
 
 AccelerationSample mountedGravity(const AxisTilt& tilt, const AxisTilt& mounting_offset) {
-  const double cx = std::cos(toRad(tilt.x_deg)), sx = std::sin(toRad(tilt.x_deg));
-  const double cy = std::cos(toRad(tilt.y_deg)), sy = std::sin(toRad(tilt.y_deg));
+  const double cx = std::cos(radians(tilt.x_deg)), sx = std::sin(radians(tilt.x_deg));
+  const double cy = std::cos(radians(tilt.y_deg)), sy = std::sin(radians(tilt.y_deg));
   const Vector g = mount({-sy, cy * sx, cy * cx}, mounting_offset);
   return {g[0], g[1], g[2], std::nullopt};
 }
@@ -102,18 +98,18 @@ ModuleOrientation moduleOrientation(const AxisTilt& tilt, double facing_azimuth_
   // The edge (sensor x) made horizontal: x − (x·up) up. It heads 90° anticlockwise of the facing.
   Vector edge{1.0 - up[0] * up[0], -up[0] * up[1], -up[0] * up[2]};
   const double edge_norm = std::sqrt(edge[0] * edge[0] + edge[1] * edge[1] + edge[2] * edge[2]);
-  const double horizontal_normal = std::sin(toRad(module.tilt_deg));
+  const double horizontal_normal = std::sin(radians(module.tilt_deg));
   if (edge_norm < kDegenerateHorizontal || horizontal_normal < kDegenerateHorizontal) return module;
   for (double& c : edge) c /= edge_norm;
   // up × edge: horizontal, 90° anticlockwise of the edge, i.e. facing away from the module.
   const Vector back{up[1] * edge[2] - up[2] * edge[1], up[2] * edge[0] - up[0] * edge[2],
                     up[0] * edge[1] - up[1] * edge[0]};
   // The normal (sensor z) along the edge and along `back`, turned into the world's azimuths.
-  const double edge_azimuth = toRad(facing_azimuth_deg - 90.0);
-  const double back_azimuth = toRad(facing_azimuth_deg - 180.0);
+  const double edge_azimuth = radians(facing_azimuth_deg - 90.0);
+  const double back_azimuth = radians(facing_azimuth_deg - 180.0);
   const double east = edge[2] * std::sin(edge_azimuth) + back[2] * std::sin(back_azimuth);
   const double north = edge[2] * std::cos(edge_azimuth) + back[2] * std::cos(back_azimuth);
-  module.azimuth_deg = std::fmod(std::atan2(east, north) * kDegPerRad + 360.0, 360.0);
+  module.azimuth_deg = std::fmod(degrees(std::atan2(east, north)) + 360.0, 360.0);
   return module;
 }
 
@@ -121,9 +117,8 @@ namespace {
 
 double angleBetweenDeg(const Vector& a, const Vector& b) {
   const Vector c{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  return std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
-                    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) *
-         kDegPerRad;
+  return degrees(std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+                            a[0] * b[0] + a[1] * b[1] + a[2] * b[2]));
 }
 
 // The scatter of the samples' directions about their mean, per direction: the RMS angle over √2

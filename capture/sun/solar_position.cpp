@@ -10,6 +10,7 @@
 #include <string>
 
 #include "capture/sun/spa_tables.h"
+#include "core/angles.h"
 
 namespace glarecam::capture {
 namespace {
@@ -22,9 +23,6 @@ constexpr double kSunRadiusDeg = 0.26667;         // SPA's apparent solar radius
 constexpr double kHorizonRefractionDeg = 0.5667;  // SPA's refraction at the horizon
 constexpr int kFirstYear = -2000;                 // SPA's range
 constexpr int kLastYear = 6000;
-
-double radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
-double degrees(double radians) { return radians * (180.0 / std::numbers::pi); }
 
 // x mod 360 in [0, 360): fmod keeps the sign, and adding 360 to a tiny negative can round to 360.
 double wrap360(double x_deg) {

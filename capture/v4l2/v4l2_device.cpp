@@ -68,8 +68,6 @@ std::uint32_t controlId(V4l2Control control) {
   return 0;
 }
 
-std::string errnoText(int error) { return std::system_category().message(error); }
-
 // ioctl() retried when a signal interrupts it; returns 0 or the errno.
 int xioctl(int fd, unsigned long request, void* argument) {
   int result = 0;

@@ -154,6 +154,13 @@ check "alpha: sun mode at a given time" 0 "$GLARECAM" alpha --config "$WORK/sun.
 expect "alpha: module facing the sun, α ≈ 0" near "$(json_number alpha_deg "$WORK/out")" 0 0.001
 expect "alpha: sun azimuth recorded" near "$(json_number sun_azimuth_deg "$WORK/out")" 194.34024 1e-4
 
+expect "alpha: a given --time involves no clock" bash -c "! grep -q 'not synchronised' '$WORK/err'"
+expect "alpha: a given --time records no clock state" bash -c "! grep -q clock_synchronised '$WORK/out'"
+sed 's/calibration = "calib.json"/calibration = "not-yet.json"/' "$WORK/lab.toml" >"$WORK/fresh.toml"
+check "alpha: a rig whose calibration file does not exist yet" 0 "$GLARECAM" alpha --config "$WORK/fresh.toml" \
+  --json --no-progress
+expect "alpha: the missing zero offset is warned about" grep -q "not-yet.json" "$WORK/err"
+expect "alpha: and recorded" grep -q '"warnings"' "$WORK/out"
 check "alpha: missing config" 2 "$GLARECAM" alpha --config "$WORK/none.toml"
 expect "alpha: missing config named" one_line_naming "none.toml"
 printf '[site]\nlatitude_deg = 95\nlongitude_deg = 0\n[module]\nazimuth_deg = 0\ntilt_deg = 0\n' >"$WORK/bad.toml"
@@ -216,6 +223,12 @@ expect "gpio: the chip is named" one_line_naming "GPIO chip gpiochip0 not found"
 printf '[gpio]\nchip = "sim"\nled = 17\nbutton = 17\n' >"$WORK/twice.toml"
 check "gpio: one line in two roles" 2 "$GLARECAM" gpio --config "$WORK/twice.toml"
 expect "gpio: config error has file and line" one_line_naming "twice.toml:1:"
+printf '[gpio]\nchip = "sim"\nled = 17\ntrigger = "GPIO17"\n' >"$WORK/byname.toml"
+check "gpio: one line by offset and by name" 2 "$GLARECAM" gpio --config "$WORK/byname.toml"
+expect "gpio: the shared line is named" one_line_naming "same line 17"
+printf '[gpio]\nchip = "sim"\nled = 60\n' >"$WORK/beyond.toml"
+check "gpio: a line beyond the chip" 1 "$GLARECAM" gpio --config "$WORK/beyond.toml"
+expect "gpio: the chip's size is named" one_line_naming "58 lines"
 printf '[gpio]\nchip = "sim"\nled = -1\n' >"$WORK/negative.toml"
 check "gpio: negative offset" 2 "$GLARECAM" gpio --config "$WORK/negative.toml"
 expect "gpio: offset error has file and line" one_line_naming "negative.toml:3:"

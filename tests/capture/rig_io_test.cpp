@@ -15,6 +15,7 @@
 
 #include "capture/gpio/button_debouncer.h"
 #include "capture/gpio/gpio_errors.h"
+#include "capture/gpio/rig_io_registry.h"
 #include "capture/gpio/sim_rig_io.h"
 #include "capture/gpio/status_led.h"
 #include "support/test_support.h"
@@ -570,6 +571,51 @@ TEST(GpioErrors, NameTheChipAndLineAndSayWhatToDo) {
   EXPECT_NE(bias.find("button_pull_up = false"), std::string::npos) << bias;
   EXPECT_EQ(gpioLineRequestError("gpiochip0", "line 22 (button)", EINVAL, "", false).message,
             "line 22 (button) of gpiochip0: Invalid argument");
+}
+
+TEST(RigIoConfig, APulledUpButtonMustBeActiveLow) {
+  RigIoConfig config;
+  config.button = GpioLine{22u, false};  // the pull-up holds it high: it would read pressed
+  const Status refused = config.validate();
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("button_active_low = true"), std::string::npos);
+  config.button->active_low = true;
+  EXPECT_TRUE(config.validate());
+  config.button->active_low = false;
+  config.button_pull_up = false;  // an external pull-down, a button to 3.3 V
+  EXPECT_TRUE(config.validate());
+}
+
+// The simulated chip checks lines as a Raspberry Pi 4's gpiochip0 would (58 lines, GPIOn).
+TEST(SimChip, ChecksLinesLikeARealChip) {
+  RigIoConfig config;
+  config.chip = "sim";
+  config.led = GpioLine{17u, false};
+  config.trigger = GpioLine{std::string("GPIO22"), false};
+  ASSERT_TRUE(openRigIo(config));
+  config.trigger = GpioLine{std::string("GPIO17"), false};  // the LED's line by name
+  EXPECT_EQ(openRigIo(config).error().code, ErrorCode::kBadInput);
+  config.trigger = GpioLine{58u, false};
+  const auto beyond = openRigIo(config);
+  ASSERT_FALSE(beyond);
+  EXPECT_NE(beyond.error().message.find("beyond the simulated chip's 58 lines"), std::string::npos);
+  config.trigger = GpioLine{std::string("STATUS"), false};
+  EXPECT_NE(openRigIo(config).error().message.find("'STATUS' (trigger) not found"),
+            std::string::npos);
+}
+
+TEST(SimChip, ScriptedPressesOutlastTheDebounce) {
+  RigIoConfig config;
+  config.chip = "sim:button_period_s=0.5";
+  config.button = GpioLine{27u, true};
+  config.debounce = std::chrono::milliseconds(300);  // presses of 600 ms do not fit in 0.5 s
+  const auto refused = openRigIo(config);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("too short for debounce_ms = 300"), std::string::npos);
+  config.chip = "sim:button_period_s=2";
+  EXPECT_TRUE(openRigIo(config));
+  config.chip = "sim:wobble=1";
+  EXPECT_EQ(openRigIo(config).error().code, ErrorCode::kBadInput);
 }
 
 TEST(GpioErrors, ListsPresentChipsSorted) {

@@ -186,7 +186,7 @@ Result<std::optional<InclinometerZeroOffset>> storedZeroOffset(const RigConfig& 
   if (!zero) {
     warnings.push_back(fmt::format("no inclinometer zero offset in {}; {}",
                                    config.calibration->string(), flip_hint));
-  } else if (!zero->measured_with.empty() && zero->measured_with != uri) {
+  } else if (!zero->measured_with.empty() && !sameInclinometer(zero->measured_with, uri)) {
     warnings.push_back(fmt::format("the zero offset in {} was measured with {}, not {}",
                                    config.calibration->string(), zero->measured_with, uri));
   }

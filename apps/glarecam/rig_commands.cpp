@@ -289,8 +289,8 @@ Result<std::pair<FlipReading, FlipReading>> savedFlipReadings(
   if (first.record == second.record)
     return badInput(
         fmt::format("inclinometer flip: {} and {} hold the same reading", from[0], from[1]));
-  // Different URIs: different sensors, unless a simulator stands on two surfaces (docs/rig.md).
-  if (!first.uri.empty() && !second.uri.empty() && first.uri != second.uri)
+  if (!first.uri.empty() && !second.uri.empty() &&
+      !capture::sameInclinometer(first.uri, second.uri))
     spdlog::warn("inclinometer flip: the readings name different sensors ({} and {})", first.uri,
                  second.uri);
   return std::pair{first, second};

@@ -41,4 +41,9 @@ Result<std::unique_ptr<Inclinometer>> openInclinometer(std::string_view uri) {
       uri));
 }
 
+bool sameInclinometer(std::string_view a, std::string_view b) {
+  constexpr std::string_view kSimScheme = "sim:";
+  return a == b || (a.starts_with(kSimScheme) && b.starts_with(kSimScheme));
+}
+
 }  // namespace glarecam::capture

@@ -18,4 +18,8 @@ namespace glarecam::capture {
 // the known ones), kHardware when the device is absent or does not answer.
 Result<std::unique_ptr<Inclinometer>> openInclinometer(std::string_view uri);
 
+// Whether two URIs name the same device: equal, or both the simulator (whose URI describes the
+// simulated surface, not a device).
+bool sameInclinometer(std::string_view a, std::string_view b);
+
 }  // namespace glarecam::capture

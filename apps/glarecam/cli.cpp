@@ -31,6 +31,16 @@ std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
   return error.what();
 }
 
+// "glarecam inclinometer read": the command line's chosen (sub)commands, for the help hint.
+std::string commandPath(const CLI::App& app) {
+  std::string path = "glarecam";
+  for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+    sub = sub->get_subcommands().front();
+    path += " " + sub->get_name();
+  }
+  return path;
+}
+
 // Runs the chosen command; a library exception (out of memory, a bug) becomes a one-line
 // error and exit status 1 instead of an abort.
 Status runAction(const std::function<Status()>& action) {
@@ -81,8 +91,8 @@ int runGlarecam(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "glarecam: %s (see glarecam --help)\n",
-                 parseErrorMessage(app, e, argc, argv).c_str());
+    std::fprintf(stderr, "glarecam: %s (see %s --help)\n",
+                 parseErrorMessage(app, e, argc, argv).c_str(), commandPath(app).c_str());
     return kExitBadInput;
   }
   initLogging(debug     ? Verbosity::kDebug

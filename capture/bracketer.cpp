@@ -197,6 +197,12 @@ nlohmann::json cameraJson(const Camera& camera) {
           {"width", format.width},   {"height", format.height}};
 }
 
+// "20260621T091203Z-a32.72": the capture's UTC time, and α when known.
+constexpr std::string_view kAlphaIdSeparator = "-a";
+std::string stackId(const std::string& stamp, std::optional<double> alpha_deg) {
+  return alpha_deg ? fmt::format("{}{}{:05.2f}", stamp, kAlphaIdSeparator, *alpha_deg) : stamp;
+}
+
 // α as given, else as a simulated camera knows it from its scene.
 std::optional<double> alphaFor(const Camera& camera, const CaptureSettings& settings) {
   if (settings.alpha_deg) return settings.alpha_deg;
@@ -213,7 +219,7 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
   StackManifest manifest;
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   const std::string stamp = utcTimestamp(now, "%Y%m%dT%H%M%SZ");
-  manifest.id = alpha_deg ? fmt::format("{}-a{:05.2f}", stamp, *alpha_deg) : stamp;
+  manifest.id = stackId(stamp, alpha_deg);
   manifest.captured_at = utcTimestamp(now, "%Y-%m-%dT%H:%M:%SZ");
   manifest.alpha_deg = alpha_deg;
   manifest.calibration = calibrationFor(camera, settings);
@@ -327,6 +333,15 @@ Result<std::filesystem::path> writeCapturedStack(const std::filesystem::path& pa
   }
   return fail(ErrorCode::kIo, fmt::format("{}: {} stacks named {} already exist", parent.string(),
                                           kMaxStackNameSuffix, id));
+}
+
+void recordAlpha(CapturedStack& stack, double alpha_deg, nlohmann::json geometry) {
+  stack.manifest.alpha_deg = alpha_deg;
+  stack.manifest.source["geometry"] = std::move(geometry);
+  if (stack.manifest.id) {
+    const std::string& id = *stack.manifest.id;
+    stack.manifest.id = stackId(id.substr(0, id.rfind(kAlphaIdSeparator)), alpha_deg);
+  }
 }
 
 }  // namespace glarecam::capture

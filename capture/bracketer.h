@@ -37,6 +37,10 @@ struct CapturedStack {
 
 Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settings);
 
+// α measured again after the bracket (for its middle): into the manifest, its geometry block and
+// the α in the stack's id.
+void recordAlpha(CapturedStack& stack, double alpha_deg, nlohmann::json geometry);
+
 // Writes the stack atomically to `parent`/<its id> and returns that path; an id already taken
 // gets a numeric suffix, so a series never overwrites a stack.
 Result<std::filesystem::path> writeCapturedStack(const std::filesystem::path& parent,

@@ -79,8 +79,10 @@ class TableReader {
     return node->value<bool>();
   }
 
-  // A GPIO line: its offset (an integer) or its name (a string), with `KEY_active_low`.
-  Result<std::optional<GpioLine>> gpioLine(const std::string& key) {
+  // A GPIO line: its offset (an integer) or its name (a string), with `KEY_active_low`
+  // (default `default_active_low`).
+  Result<std::optional<GpioLine>> gpioLine(const std::string& key,
+                                           bool default_active_low = false) {
     used_.insert(key);
     const std::string active_low_key = key + "_active_low";
     std::optional<bool> active_low;
@@ -102,7 +104,7 @@ class TableReader {
       return error(*node, fmt::format("{} must be a line offset (0..{}) or a line name",
                                       qualified(key), kMaxGpioOffset));
     }
-    line.active_low = active_low.value_or(false);
+    line.active_low = active_low.value_or(default_active_low);
     return line;
   }
 
@@ -219,12 +221,13 @@ Result<std::optional<RigIoConfig>> readGpio(const std::filesystem::path& file,
   std::optional<std::string> chip;
   GLARECAM_ASSIGN(chip, reader.string("chip"));
   if (chip) gpio.chip = *chip;
-  GLARECAM_ASSIGN(gpio.trigger, reader.gpioLine("trigger"));
-  GLARECAM_ASSIGN(gpio.led, reader.gpioLine("led"));
-  GLARECAM_ASSIGN(gpio.button, reader.gpioLine("button"));
   std::optional<bool> pull_up;
   GLARECAM_ASSIGN(pull_up, reader.boolean("button_pull_up"));
   if (pull_up) gpio.button_pull_up = *pull_up;
+  GLARECAM_ASSIGN(gpio.trigger, reader.gpioLine("trigger"));
+  GLARECAM_ASSIGN(gpio.led, reader.gpioLine("led"));
+  // A button on the pull-up goes to ground: active-low unless said otherwise.
+  GLARECAM_ASSIGN(gpio.button, reader.gpioLine("button", gpio.button_pull_up));
   std::optional<std::int64_t> debounce_ms, pulse_us;
   GLARECAM_ASSIGN(debounce_ms, reader.integer("debounce_ms", 0, kMaxDebounce.count()));
   GLARECAM_ASSIGN(pulse_us, reader.integer("trigger_pulse_us", 1, kMaxTriggerPulse.count()));

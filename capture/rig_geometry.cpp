@@ -15,13 +15,12 @@ namespace glarecam::capture {
 
 namespace {
 
-// Steps of the numerical derivatives of α: small against the scales α varies on (degrees of tilt,
-// minutes of time), large against double rounding.
-constexpr double kTiltStepDeg = 0.01;
+// Step of the numerical derivative of α over time: small against the minutes α varies over,
+// large against double rounding.
 constexpr std::chrono::seconds kTimeStep{1};
 
 // |dα/dx| from one-sided differences on both sides: the central difference vanishes at α's
-// minimum (normal incidence), where α still moves one-for-one with the tilt.
+// minimum (the sun passing the normal), where α still changes.
 double slope(const std::function<double(double)>& alpha_at, double x, double step) {
   const double centre = alpha_at(x);
   return std::max(std::abs(alpha_at(x + step) - centre), std::abs(alpha_at(x - step) - centre)) /
@@ -89,12 +88,10 @@ Result<RigGeometry> computeRigGeometry(const RigConfig& config,
   }
   g.alpha_deg = incidenceAngleDeg(g.module, g.source_direction);
 
-  const double tilt_sigma_deg = tilt ? tilt->tilt_uncertainty_deg : 0.0;
-  const auto alpha_at_tilt = [&](double tilt_deg) {
-    return incidenceAngleDeg({tilt_deg, g.module.azimuth_deg}, g.source_direction);
-  };
-  g.alpha_uncertainty_tilt_deg =
-      slope(alpha_at_tilt, g.module.tilt_deg, kTiltStepDeg) * tilt_sigma_deg;
+  // The reading's uncertainty is the same in every direction (per-direction scatter), and α is
+  // the angle from the normal to the source, whose gradient over the normal's direction has
+  // unit size: α inherits it one for one, whichever way the error points.
+  g.alpha_uncertainty_tilt_deg = tilt ? tilt->tilt_uncertainty_deg : 0.0;
   if (config.site && clock) {
     // α moves with the sun: the clock's error in seconds times dα/dt.
     const auto alpha_at_offset_s = [&](double offset_s) {

@@ -139,8 +139,14 @@ Status runCapture(const CaptureArgs& args) {
                                           !args.no_progress));
     if (!args.camera && rig->config().camera) camera_uri = *rig->config().camera;
     if (!args.calibration) GLARECAM_ASSIGN(settings.calibration, rig->cameraCalibration());
-    // The scene a simulated camera renders needs α before the camera opens.
-    if (rig->measuresAlpha()) GLARECAM_CHECK(rig->measureInto(settings));
+    // The scene a simulated camera renders needs α before the camera opens. With the button,
+    // each press measures again, so a rig still moving now only warns.
+    if (rig->measuresAlpha()) {
+      const Status measured = rig->measureInto(settings);
+      if (!measured && !(args.on_button && measured.error().code == ErrorCode::kHardware))
+        return measured;
+      if (!measured) spdlog::warn("capture: {}", measured.error().message);
+    }
   } else if (args.on_button) {
     return badInput("capture: --on-button needs a --config with a [gpio] button line");
   }
@@ -240,7 +246,7 @@ Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
     GLARECAM_ASSIGN(stack, capture::captureStack(camera, settings));
     if (rig) {
       rig->showCapturing(false);
-      GLARECAM_CHECK(rig->finishStack(stack, bracket_start, utcNow()));
+      rig->finishStack(stack, bracket_start, utcNow());
     }
     std::filesystem::path written;
     GLARECAM_ASSIGN(written, capture::writeCapturedStack(out, stack));

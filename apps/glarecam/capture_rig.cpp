@@ -53,7 +53,10 @@ CaptureRig::~CaptureRig() {
 }
 
 Result<std::optional<Calibration>> CaptureRig::cameraCalibration() const {
-  if (!config_.calibration) return std::nullopt;
+  std::error_code ec;
+  // Absent: not made yet (the flip creates it; RigSensors warns about the missing offset).
+  if (!config_.calibration || !std::filesystem::exists(*config_.calibration, ec))
+    return std::nullopt;
   nlohmann::json document;
   GLARECAM_ASSIGN(document, readJsonFile(config_.calibration->string()));
   if (!document.is_object() || !document.contains("black_level_dn")) return std::nullopt;
@@ -79,15 +82,16 @@ Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
   return {};
 }
 
-Status CaptureRig::finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
-                               capture::UtcTime bracket_end) {
-  if (!measured_ || !measured_->sun) return {};  // a fixed source does not move
-  capture::RigGeometry geometry;
-  GLARECAM_ASSIGN(geometry,
-                  sensors_->retime(*measured_, bracket_start + (bracket_end - bracket_start) / 2));
-  stack.manifest.alpha_deg = geometry.alpha_deg;
-  stack.manifest.source["geometry"] = capture::geometryJson(geometry);
-  return {};
+void CaptureRig::finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
+                             capture::UtcTime bracket_end) {
+  if (!measured_ || !measured_->sun) return;  // a fixed source does not move
+  const auto geometry =
+      sensors_->retime(*measured_, bracket_start + (bracket_end - bracket_start) / 2);
+  if (!geometry) {  // keep the stack, with α from before the bracket
+    spdlog::warn("capture: α for the bracket's middle: {}", geometry.error().message);
+    return;
+  }
+  capture::recordAlpha(stack, geometry->alpha_deg, capture::geometryJson(*geometry));
 }
 
 Result<bool> CaptureRig::waitForButton() {

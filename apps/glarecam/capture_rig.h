@@ -38,8 +38,9 @@ class CaptureRig {
 
   // After the bracket: α again at the bracket's middle (the sun moved while the inclinometer
   // was read and the frames exposed), into the stack's manifest.
-  Status finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
-                     capture::UtcTime bracket_end);
+  // A failure only warns: the stack keeps α from before the bracket.
+  void finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
+                   capture::UtcTime bracket_end);
 
   // With --on-button: waits for a press (true) or a stop request (false). Without: true.
   Result<bool> waitForButton();

@@ -327,8 +327,8 @@ Result<std::pair<FlipReading, FlipReading>> liveFlipReadings(const InclinometerA
   GLARECAM_ASSIGN(first, liveFlipReading(*sensor, choice, !args.no_progress));
   GLARECAM_CHECK(checkNearLevel(first.reading));
   std::fprintf(stderr,
-               "First reading: tilt x %.4f°, y %.4f°.\nTurn the sensor (or the rig) 180° about "
-               "the vertical on the same spot, let it settle, then press Enter.\n",
+               "First reading: tilt x %.4f°, y %.4f°.\nTurn the frame with the sensor 180° on the "
+               "surface, into the same outline; let it settle, then press Enter.\n",
                first.reading.raw_tilt.x_deg, first.reading.raw_tilt.y_deg);
   std::string line;
   if (!std::getline(std::cin, line))
@@ -349,7 +349,9 @@ Result<std::filesystem::path> flipCalibrationFile(const InclinometerArgs& args,
     capture::RigConfig config;
     GLARECAM_ASSIGN(config, capture::readRigConfig(*args.config));
     choice.calibration = config.calibration;
+    if (config.inclinometer) choice.uri = config.inclinometer->uri;
   }
+  if (!args.from.empty() && args.uri) choice.uri = *args.uri;  // the sensor the readings are of
   if (!choice.calibration)
     return badInput(
         "inclinometer flip: give --calibration FILE (or a --config naming one) to "
@@ -368,14 +370,20 @@ Status runInclinometerFlip(const InclinometerArgs& args) {
       readings, args.from.empty() ? liveFlipReadings(args, choice) : savedFlipReadings(args.from));
   const capture::TiltReading& first = readings.first.reading;
   const capture::TiltReading& second = readings.second.reading;
+  GLARECAM_CHECK(checkNearLevel(first));
+  GLARECAM_CHECK(checkNearLevel(second));
   const capture::InclinometerZeroOffset zero = capture::flipZeroOffset(first, second);
   if (std::abs(zero.offset.x_deg) > capture::kMaxPlausibleZeroOffsetDeg ||
       std::abs(zero.offset.y_deg) > capture::kMaxPlausibleZeroOffsetDeg)
     return badInput(fmt::format(
         "inclinometer flip: the readings give a zero offset of ({:.2f}°, {:.2f}°), beyond the "
-        "plausible {:g}°: the sensor was not turned 180° about the vertical, or the surface moved",
+        "plausible {:g}°: the frame was not turned 180° on the surface, or the surface moved",
         zero.offset.x_deg, zero.offset.y_deg, capture::kMaxPlausibleZeroOffsetDeg));
-  const std::string uri = readings.first.uri.empty() ? readings.second.uri : readings.first.uri;
+  std::string uri = readings.first.uri.empty() ? readings.second.uri : readings.first.uri;
+  if (uri.empty()) uri = choice.uri;
+  if (!choice.uri.empty() && !capture::sameInclinometer(uri, choice.uri))
+    spdlog::warn("inclinometer flip: the readings are of {}, the configured sensor is {}", uri,
+                 choice.uri);
   const nlohmann::json provenance{{"method", "flip"},
                                   {"date", capture::formatIsoTime(now())},
                                   {"uri", uri},
@@ -577,8 +585,8 @@ void addInclinometerCommand(CLI::App& app, Action& action) {
   auto flip_args = std::make_shared<InclinometerArgs>();
   CLI::App* flip = sub->add_subcommand(
       "flip",
-      "Zero-offset calibration by the flip method: a reading, then you turn the sensor 180° "
-      "about the vertical and press Enter, a second reading; stores the offset in the "
+      "Zero-offset calibration by the flip method: a reading, then you turn the frame 180° "
+      "on the surface and press Enter, a second reading; stores the offset in the "
       "calibration file (docs/rig.md)");
   addInclinometerSource(flip, *flip_args);
   flip->add_option("--from", flip_args->from,

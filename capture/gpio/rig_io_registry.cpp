@@ -55,7 +55,9 @@ Result<unsigned> simLineOffset(const GpioLine& line, std::string_view role) {
   if (name.starts_with(kSimLinePrefix) && name.size() > kSimLinePrefix.size()) {
     const std::string_view digits = name.substr(kSimLinePrefix.size());
     const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), number);
-    if (error == std::errc() && end == digits.data() + digits.size() && number < kSimChipLines)
+    const bool leading_zero = digits.size() > 1 && digits.front() == '0';  // no line "GPIO022"
+    if (error == std::errc() && end == digits.data() + digits.size() && !leading_zero &&
+        number < kSimChipLines)
       return number;
   }
   return hardwareError(

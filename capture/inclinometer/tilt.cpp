@@ -18,6 +18,14 @@ using Vector = std::array<double, 3>;
 // Below this a horizontal direction is lost in rounding: the edge stands vertical, or the module
 // lies flat and its normal has no azimuth (both keep the configured facing).
 constexpr double kDegenerateHorizontal = 1e-9;
+constexpr double kQuarterTurnDeg = 90.0;
+
+// x in [0, 360), and 359.9999999 printed as 360.00 becomes 0.
+double wrap360(double x_deg) {
+  double wrapped = std::fmod(x_deg, 360.0);
+  if (wrapped < 0) wrapped += 360.0;
+  return wrapped >= 360.0 - 1e-9 ? 0.0 : wrapped;
+}
 
 // Rotation about x then y by the zero offset: the inverse of the mounting rotation that makes a
 // level module read `offset` (sensor gravity = Rx(-ox) Ry(-oy) e_z).
@@ -109,7 +117,12 @@ ModuleOrientation moduleOrientation(const AxisTilt& tilt, double facing_azimuth_
   const double back_azimuth = radians(facing_azimuth_deg - 180.0);
   const double east = edge[2] * std::sin(edge_azimuth) + back[2] * std::sin(back_azimuth);
   const double north = edge[2] * std::cos(edge_azimuth) + back[2] * std::cos(back_azimuth);
-  module.azimuth_deg = std::fmod(degrees(std::atan2(east, north)) + 360.0, 360.0);
+  double azimuth_deg = degrees(std::atan2(east, north));
+  // A sensor mounted the other way round (y down the slope) puts the normal behind the facing
+  // azimuth: the facing azimuth is where the module faces, so the edge heads the other way.
+  if (std::abs(std::remainder(azimuth_deg - facing_azimuth_deg, 360.0)) > kQuarterTurnDeg)
+    azimuth_deg += 2 * kQuarterTurnDeg;
+  module.azimuth_deg = wrap360(azimuth_deg);
   return module;
 }
 
@@ -180,10 +193,18 @@ Result<TiltReading> measureTilt(Inclinometer& inclinometer, const TiltOptions& o
 }
 
 InclinometerZeroOffset flipZeroOffset(const TiltReading& first, const TiltReading& second) {
+  // Turned 180° on the surface (about its normal), the up direction's components along the
+  // module's x and y change sign and the one along its normal does not: the bisector of the two
+  // up directions, in the sensor's axes, is the normal itself, i.e. what a level surface reads.
+  // Exact for any surface tilt (the half-sum of axis tilts is only to first order).
+  const auto unit = [](const AccelerationSample& g) {
+    const double norm = magnitudeG(g);
+    return Vector{g.x_g / norm, g.y_g / norm, g.z_g / norm};
+  };
+  const Vector a = unit(first.mean), b = unit(second.mean);
   InclinometerZeroOffset zero;
-  zero.offset = {(first.raw_tilt.x_deg + second.raw_tilt.x_deg) / 2.0,
-                 (first.raw_tilt.y_deg + second.raw_tilt.y_deg) / 2.0};
-  // Each reading's mean has σ/√N; the half-sum of two has the root-sum-square over two.
+  zero.offset = tiltOf({a[0] + b[0], a[1] + b[1], a[2] + b[2]});
+  // Each reading's mean has σ/√N per direction; the bisector carries the root-sum-square over two.
   const auto sem = [](const TiltReading& r) {
     return r.tilt_std_deg / std::sqrt(double(r.samples));
   };

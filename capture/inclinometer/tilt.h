@@ -1,13 +1,13 @@
 // Tilt from an inclinometer's gravity vector. The sensor sits on the module frame with its z axis
 // along the module's normal; its x and y axes lie in the module plane. Two signed axis tilts
 // describe its attitude (tilt_x_deg: rotation about the sensor's x axis, atan2(y, z); tilt_y_deg:
-// about y, atan2(-x, hypot(y, z))), and the module tilt is the angle between the normal and the
-// vertical, whatever the direction of the slope (the facing azimuth comes from the config).
+// about y, atan2(-x, hypot(y, z))); the module tilt is the angle between the normal and the
+// vertical, and moduleOrientation() adds the normal's azimuth from the configured facing.
 //
 // A reading averages N samples and rejects a moving rig (tilt scatter above a bound). The
 // sensor's mounting error is removed by a zero offset measured with the flip method: two readings
-// on the same surface, the sensor turned 180° about the vertical in between; the true tilts change
-// sign, the mounting offset does not, so offset = (A + B) / 2.
+// on the same surface, the frame turned 180° on it in between; the surface's tilt changes sign in
+// the module's axes, the mounting error does not: the offset is the direction halfway between.
 #pragma once
 
 #include <functional>
@@ -49,10 +49,11 @@ struct TiltOptions {
 };
 
 struct TiltReading {
-  AxisTilt tilt;                      // zero offset removed
-  AxisTilt raw_tilt;                  // as the sensor reads it
-  double module_tilt_deg = 0.0;       // normal vs vertical, zero offset removed
-  double tilt_std_deg = 0.0;          // per-sample scatter (the larger axis)
+  AxisTilt tilt;                 // zero offset removed
+  AxisTilt raw_tilt;             // as the sensor reads it
+  double module_tilt_deg = 0.0;  // normal vs vertical, zero offset removed
+  double tilt_std_deg =
+      0.0;  // per-sample scatter in any one direction (RMS angle to the mean / √2)
   double tilt_uncertainty_deg = 0.0;  // standard uncertainty of module_tilt_deg (mean + offset)
   int samples = 0;
   AccelerationSample mean;  // raw mean vector, as recorded in a stack's geometry block
@@ -85,7 +86,8 @@ Result<TiltReading> measureTilt(Inclinometer& inclinometer, const TiltOptions& o
                                 const InclinometerZeroOffset& zero = {},
                                 const std::function<void()>& on_sample = {});
 
-// The flip method: `first` and `second` are raw readings taken 180° apart about the vertical.
+// The flip method: `first` and `second` are raw readings with the frame turned 180° on the same
+// surface in between. Uses the readings' mean vectors (exact at any surface tilt).
 InclinometerZeroOffset flipZeroOffset(const TiltReading& first, const TiltReading& second);
 
 }  // namespace glarecam::capture

@@ -57,6 +57,18 @@ Result<TiltReading> parseTiltReading(const json& document, const std::string& wh
   r.samples = static_cast<int>(samples);
   r.tilt = r.raw_tilt;
   r.module_tilt_deg = moduleTiltDeg(r.tilt);
+  // The raw mean vector (the flip's exact formula uses it); from the tilts when not recorded.
+  r.mean = mountedGravity(r.raw_tilt, {});
+  const auto mean = document.find("mean");
+  if (mean != document.end()) {
+    if (!mean->is_object()) return badInput(where + ": \"mean\" must be an object");
+    const std::string mean_where = where + ": mean";
+    GLARECAM_ASSIGN(r.mean.x_g, finiteNumber(*mean, "x_g", mean_where));
+    GLARECAM_ASSIGN(r.mean.y_g, finiteNumber(*mean, "y_g", mean_where));
+    GLARECAM_ASSIGN(r.mean.z_g, finiteNumber(*mean, "z_g", mean_where));
+    if (!(std::hypot(r.mean.x_g, r.mean.y_g, r.mean.z_g) > 0))
+      return badInput(mean_where + ": the vector is zero");
+  }
   return r;
 }
 

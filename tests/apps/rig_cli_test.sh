@@ -85,27 +85,27 @@ expect "flip: provenance recorded" grep -q '"method": "flip"' "$WORK/calib.json"
 # are the offset itself.
 check "flip: interactive" 0 bash -c "echo | '$GLARECAM' inclinometer flip --inclinometer 'sim:0,offset_y_deg=-0.4' \
   --calibration '$WORK/calib2.json' --no-progress"
-expect "flip: interactive prompt on stderr" grep -q "Turn the sensor" "$WORK/err"
+expect "flip: interactive prompt on stderr" grep -q "Turn the frame" "$WORK/err"
 expect "flip: interactive y offset" near "$(json_number zero_offset_y_deg "$WORK/calib2.json")" -0.4 0.002
 check "flip: stdin closed" 2 bash -c "'$GLARECAM' inclinometer flip --inclinometer sim:0 --calibration '$WORK/c3.json' --no-progress </dev/null"
 expect "flip: stdin error names --from" grep -q -- "--from" "$WORK/err"
 expect "flip: nothing written when it failed" test ! -e "$WORK/c3.json"
 "$GLARECAM" inclinometer read --inclinometer sim:30,seed=1 --out "$WORK/steep1.json" --no-progress >/dev/null
 "$GLARECAM" inclinometer read --inclinometer sim:30,seed=2 --out "$WORK/steep2.json" --no-progress >/dev/null
-check "flip: not turned 180° (offset implausible)" 2 "$GLARECAM" inclinometer flip --from "$WORK/steep1.json" \
+check "flip: readings of a steep surface" 2 "$GLARECAM" inclinometer flip --from "$WORK/steep1.json" \
   "$WORK/steep2.json" --calibration "$WORK/c4.json"
-expect "flip: implausible offset explained" grep -q "not turned 180°" "$WORK/err"
+expect "flip: steep readings explained" grep -q "within a few degrees of level" "$WORK/err"
 check "flip: the same reading twice" 2 "$GLARECAM" inclinometer flip --from "$WORK/a.json" "$WORK/a.json" \
   --calibration "$WORK/c4.json"
 expect "flip: same reading named" one_line_naming "the same reading twice"
 check "flip: interactive on a steep surface stops before the turn" 2 bash -c "echo | '$GLARECAM' inclinometer flip \
   --inclinometer sim:25 --calibration '$WORK/c6.json' --no-progress"
 expect "flip: steep surface explained" grep -q "within a few degrees of level" "$WORK/err"
-expect "flip: no turn asked for on a steep surface" bash -c "! grep -q 'Turn the sensor' '$WORK/err'"
+expect "flip: no turn asked for on a steep surface" bash -c "! grep -q 'Turn the frame' '$WORK/err'"
 echo 'not json' >"$WORK/notjson.json"
 check "flip: a calibration file that is not JSON is refused before the readings" 2 bash -c "echo | '$GLARECAM' \
   inclinometer flip --inclinometer sim:0 --calibration '$WORK/notjson.json' --no-progress"
-expect "flip: refused before asking to turn" bash -c "! grep -q 'Turn the sensor' '$WORK/err'"
+expect "flip: refused before asking to turn" bash -c "! grep -q 'Turn the frame' '$WORK/err'"
 echo '{not json' >"$WORK/broken.json"
 check "flip: a calibration that is not JSON is not overwritten" 2 "$GLARECAM" inclinometer flip \
   --from "$WORK/a.json" "$WORK/b.json" --calibration "$WORK/broken.json"

@@ -150,6 +150,21 @@ TEST(ModuleOrientation, AModuleThatIsNotRolledFacesItsConfiguredAzimuth) {
   EXPECT_EQ(moduleOrientation({0, 0}, 123).azimuth_deg, 123);  // flat: the normal has no azimuth
 }
 
+// The facing azimuth is where the module faces, whichever way round the sensor is mounted: y down
+// the slope reads a negative tilt x for the same module.
+TEST(ModuleOrientation, ASensorMountedTheOtherWayRoundFacesTheSameWay) {
+  for (const double facing : {0.0, 123.0, 200.0, 359.0}) {
+    const ModuleOrientation up_slope = moduleOrientation({30, 5}, facing);
+    const ModuleOrientation down_slope = moduleOrientation({-30, -5}, facing);
+    EXPECT_NEAR(down_slope.tilt_deg, up_slope.tilt_deg, 1e-9);
+    EXPECT_NEAR(std::remainder(down_slope.azimuth_deg - up_slope.azimuth_deg, 360.0), 0, 1e-9);
+    EXPECT_LT(std::abs(std::remainder(up_slope.azimuth_deg - facing, 360.0)), 90);
+  }
+  EXPECT_NEAR(moduleOrientation({-30, 0}, 200).azimuth_deg, 200, 1e-9);
+  EXPECT_NEAR(moduleOrientation({30, 0}, 0).azimuth_deg, 0, 1e-9);  // not 359.99999999
+  EXPECT_NEAR(moduleOrientation({30, 0}, 359.9999999999).azimuth_deg, 0, 1e-9);
+}
+
 TEST(ModuleOrientation, ARolledModuleTurnsItsNormalSideways) {
   // Lamp on the normal of a module tilted 60° facing south; rolled 10° about its up-slope axis
   // (the edge no longer level), the normal swings 10° off the lamp: α = 10°.
@@ -234,20 +249,19 @@ TEST(FlipCalibration, RecoversTheMountingOffset) {
   EXPECT_NEAR(zero.offset.x_deg, 0.3, kExactDeg);
   EXPECT_NEAR(zero.offset.y_deg, 0.0, kExactDeg);
 
-  // Both axes tilted (a surface 2° × 1° off level): the half-sum's error is of second order,
-  // about |t|² |o| / 2 with t and o in radians: (0.039)² × 0.36° / 2 ≈ 0.0003°. 0.002° keeps a
-  // margin and still fails for an offset taken to first order only; the flip is done on a
-  // near-level surface for this reason (docs/rig.md).
-  ScriptedInclinometer a(noisySamples({2, 1}, 50, 0, offset));
-  ScriptedInclinometer b(noisySamples({-2, -1}, 50, 0, offset));
+  // Both axes tilted, a surface 9° × 9° off level: the bisector of the two up directions is
+  // exact at any surface tilt (the half-sum of axis tilts would be 0.01° off here). Noise-free
+  // samples: 1e-9° is rounding.
+  ScriptedInclinometer a(noisySamples({9, 9}, 50, 0, offset));
+  ScriptedInclinometer b(noisySamples({-9, -9}, 50, 0, offset));
   const auto both = flipZeroOffset(*measureTilt(a, {}), *measureTilt(b, {}));
-  EXPECT_NEAR(both.offset.x_deg, offset.x_deg, 0.002);
-  EXPECT_NEAR(both.offset.y_deg, offset.y_deg, 0.002);
+  EXPECT_NEAR(both.offset.x_deg, offset.x_deg, 1e-9);
+  EXPECT_NEAR(both.offset.y_deg, offset.y_deg, 1e-9);
 
-  // After correction, a module tilted 30° reads 30° (within what the flip left).
+  // After correction, a module tilted 30° reads 30°.
   ScriptedInclinometer tilted(noisySamples({30, 0}, 50, 0, offset));
   const auto reading = measureTilt(tilted, {}, both);
-  EXPECT_NEAR(reading->module_tilt_deg, 30, 0.002);
+  EXPECT_NEAR(reading->module_tilt_deg, 30, 1e-9);
   // Uncorrected it is off by about the offset.
   ScriptedInclinometer raw(noisySamples({30, 0}, 50, 0, offset));
   EXPECT_GT(std::abs(measureTilt(raw, {})->module_tilt_deg - 30), 0.2);
@@ -436,6 +450,17 @@ trigger_pulse_us = 500
   EXPECT_EQ(config->gpio->trigger_pulse, std::chrono::microseconds(500));
 }
 
+TEST(RigConfig, AButtonOnThePullUpIsActiveLowByDefault) {
+  TempDir dir;
+  const auto pulled = readRigConfig(writeText(dir, "a.toml", "[gpio]\nbutton = 22\n"));
+  ASSERT_TRUE(pulled) << pulled.error().message;
+  EXPECT_TRUE(pulled->gpio->button->active_low);
+  const auto external =
+      readRigConfig(writeText(dir, "b.toml", "[gpio]\nbutton = 22\nbutton_pull_up = false\n"));
+  ASSERT_TRUE(external) << external.error().message;
+  EXPECT_FALSE(external->gpio->button->active_low);
+}
+
 TEST(RigConfig, BadGpioLinesNameTheLine) {
   const BadConfig cases[] = {
       {"[gpio]\nled = 1.5\n", "rig.toml:2: gpio.led must be a line offset"},
@@ -490,6 +515,16 @@ TEST(RigGeometry, LabModeTakesAlphaFromTheTiltAlone) {
   EXPECT_EQ(block["source"], "fixed");
   EXPECT_DOUBLE_EQ(block["module_tilt_deg"].get<double>(), 60);
   EXPECT_FALSE(block.contains("sun_elevation_deg"));
+}
+
+// The reading's uncertainty is the same in every direction: with the source side-on to the tilt
+// (where ∂α/∂β vanishes) α still inherits it, through the normal's sideways error.
+TEST(RigGeometry, TheTiltUncertaintyCountsInEveryDirection) {
+  RigConfig config = labConfig();
+  config.fixed_source = SkyDirection{0, 90};  // due east; the module faces south
+  const auto g = computeRigGeometry(config, readingOf(30, 0.01), {}, ClockStatus{});
+  ASSERT_TRUE(g);
+  EXPECT_NEAR(g->alpha_uncertainty_deg, 0.01, 1e-12);
 }
 
 TEST(RigGeometry, NormalIncidenceStillCarriesTheTiltUncertainty) {

@@ -599,6 +599,8 @@ TEST(SimChip, ChecksLinesLikeARealChip) {
   const auto beyond = openRigIo(config);
   ASSERT_FALSE(beyond);
   EXPECT_NE(beyond.error().message.find("beyond the simulated chip's 58 lines"), std::string::npos);
+  config.trigger = GpioLine{std::string("GPIO022"), false};  // no such name on a real chip
+  EXPECT_FALSE(openRigIo(config));
   config.trigger = GpioLine{std::string("STATUS"), false};
   EXPECT_NE(openRigIo(config).error().message.find("'STATUS' (trigger) not found"),
             std::string::npos);

@@ -217,7 +217,8 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
                            const Bracket& bracket) {
   const std::optional<double> alpha_deg = alphaFor(camera, settings);
   StackManifest manifest;
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  const std::time_t now = std::chrono::system_clock::to_time_t(
+      settings.start_time.value_or(std::chrono::system_clock::now()));
   const std::string stamp = utcTimestamp(now, "%Y%m%dT%H%M%SZ");
   manifest.id = stackId(stamp, alpha_deg);
   manifest.captured_at = utcTimestamp(now, "%Y-%m-%dT%H:%M:%SZ");

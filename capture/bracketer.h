@@ -4,6 +4,7 @@
 // stack is written atomically: a capture that fails leaves nothing behind.
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <vector>
@@ -26,6 +27,9 @@ struct CaptureSettings {
   CameraOptics optics;                     // overrides what the camera reports
   AutoBracketOptions auto_bracket;
   bool show_progress = false;
+  // The stack's time (its id and captured_at); default the system clock's when the bracket
+  // starts. The daemon's clock may differ (simulated time).
+  std::optional<std::chrono::system_clock::time_point> start_time;
 };
 
 struct CapturedStack {

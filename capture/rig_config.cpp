@@ -6,6 +6,10 @@
 #include <cmath>
 #include <set>
 
+#include "capture/config_table.h"
+#include "capture/daemon/daemon_config_reader.h"
+#include "core/stack_io.h"
+
 namespace glarecam::capture {
 
 namespace {
@@ -15,149 +19,18 @@ namespace {
 constexpr double kSeaLevelPressureHpa = 1013.25;
 constexpr double kLapseRatePerMetre = 0.0065 / 288.15;
 constexpr double kBarometricExponent = 5.25588;
-constexpr std::int64_t kMaxGpioOffset = 65535;    // far beyond any chip; the chip itself checks
 constexpr std::int64_t kMaxTiltSamples = 100000;  // ≈ 2 h at the ADXL355's 15.6 Hz
-
-// Reads typed, range-checked values out of one TOML table; every error names FILE:LINE.
-class TableReader {
- public:
-  TableReader(const std::filesystem::path& file, const toml::table& table, std::string name)
-      : file_(file), table_(table), name_(std::move(name)) {}
-
-  Result<std::optional<double>> number(const char* key, double min, double max) {
-    used_.insert(key);
-    const toml::node* node = table_.get(key);
-    if (!node) return std::nullopt;
-    const std::optional<double> value = node->value<double>();
-    if (!node->is_number() || !value || !std::isfinite(*value))
-      return error(*node, fmt::format("{} must be a number", qualified(key)));
-    if (*value < min || *value > max)
-      return error(*node, fmt::format("{} = {:g} is outside [{:g}, {:g}]", qualified(key), *value,
-                                      min, max));
-    return value;
-  }
-
-  Result<double> requiredNumber(const char* key, double min, double max) {
-    std::optional<double> value;
-    GLARECAM_ASSIGN(value, number(key, min, max));
-    if (!value) return missing(key);
-    return *value;
-  }
-
-  Result<std::string> requiredString(const char* key) {
-    std::optional<std::string> value;
-    GLARECAM_ASSIGN(value, string(key));
-    if (!value) return missing(key);
-    return *value;
-  }
-
-  // An error about the whole table: "FILE:LINE: [gpio] ...".
-  std::unexpected<Error> tableError(const std::string& message) const {
-    return badInput(fmt::format("{}:{}: [{}] {}", file_.string(), line(table_), name_, message));
-  }
-
-  // A whole number: a count or a time in whole units (a fraction would be silently cut).
-  Result<std::optional<std::int64_t>> integer(const char* key, std::int64_t min, std::int64_t max) {
-    used_.insert(key);
-    const toml::node* node = table_.get(key);
-    if (!node) return std::nullopt;
-    if (!node->is_integer())
-      return error(*node, fmt::format("{} must be a whole number", qualified(key)));
-    const std::int64_t value = *node->value<std::int64_t>();
-    if (value < min || value > max)
-      return error(*node,
-                   fmt::format("{} = {} is outside [{}, {}]", qualified(key), value, min, max));
-    return value;
-  }
-
-  Result<std::optional<bool>> boolean(const char* key) {
-    used_.insert(key);
-    const toml::node* node = table_.get(key);
-    if (!node) return std::nullopt;
-    if (!node->is_boolean())
-      return error(*node, fmt::format("{} must be true or false", qualified(key)));
-    return node->value<bool>();
-  }
-
-  // A GPIO line: its offset (an integer) or its name (a string), with `KEY_active_low`
-  // (default `default_active_low`).
-  Result<std::optional<GpioLine>> gpioLine(const std::string& key,
-                                           bool default_active_low = false) {
-    used_.insert(key);
-    const std::string active_low_key = key + "_active_low";
-    std::optional<bool> active_low;
-    GLARECAM_ASSIGN(active_low, boolean(active_low_key.c_str()));
-    const toml::node* node = table_.get(key);
-    if (!node) {
-      if (active_low)
-        return error(*table_.get(active_low_key),
-                     fmt::format("{} without {}", qualified(active_low_key), qualified(key)));
-      return std::nullopt;
-    }
-    GpioLine line;
-    if (node->is_integer() && *node->value<std::int64_t>() >= 0 &&
-        *node->value<std::int64_t>() <= kMaxGpioOffset) {
-      line.line = static_cast<unsigned>(*node->value<std::int64_t>());
-    } else if (node->is_string() && !node->value<std::string>()->empty()) {
-      line.line = *node->value<std::string>();
-    } else {
-      return error(*node, fmt::format("{} must be a line offset (0..{}) or a line name",
-                                      qualified(key), kMaxGpioOffset));
-    }
-    line.active_low = active_low.value_or(default_active_low);
-    return line;
-  }
-
-  Result<std::optional<std::string>> string(const char* key) {
-    used_.insert(key);
-    const toml::node* node = table_.get(key);
-    if (!node) return std::nullopt;
-    const std::optional<std::string> value = node->value<std::string>();
-    if (!node->is_string() || !value || value->empty())
-      return error(*node, fmt::format("{} must be a non-empty string", qualified(key)));
-    return value;
-  }
-
-  // After all reads: a key nobody asked for is a typo or a key of another version.
-  Status checkNoUnknownKeys() const {
-    for (auto&& [key, node] : table_) {
-      if (used_.count(std::string(key.str())) || node.is_table()) continue;
-      std::string known;
-      for (const std::string& k : used_) known += (known.empty() ? "" : ", ") + k;
-      return error(node, fmt::format("unknown key {} (known: {})", qualified(key.str()), known));
-    }
-    return {};
-  }
-
- private:
-  static int line(const toml::node& node) { return int(node.source().begin.line); }
-
-  std::string qualified(std::string_view key) const {
-    return name_.empty() ? std::string(key) : name_ + "." + std::string(key);
-  }
-
-  std::unexpected<Error> missing(const char* key) const {
-    return tableError(fmt::format("needs {}", key));
-  }
-
-  std::unexpected<Error> error(const toml::node& node, const std::string& message) const {
-    return badInput(fmt::format("{}:{}: {}", file_.string(), line(node), message));
-  }
-
-  const std::filesystem::path& file_;
-  const toml::table& table_;
-  std::string name_;
-  std::set<std::string> used_;
-};
 
 // Each sub-table named in the file must be one we know.
 Status checkSections(const std::filesystem::path& file, const toml::table& root) {
-  static const std::set<std::string> kSections{"site", "module", "source", "inclinometer", "gpio"};
+  static const std::set<std::string> kSections{"site",         "module", "source",
+                                               "inclinometer", "gpio",   "capture",
+                                               "schedule",     "output", "faults"};
   for (auto&& [key, node] : root) {
     if (!node.is_table() || kSections.count(std::string(key.str()))) continue;
     return badInput(
-        fmt::format("{}:{}: unknown section [{}] (known: gpio, inclinometer, "
-                    "module, site, source)",
+        fmt::format("{}:{}: unknown section [{}] (known: capture, faults, gpio, inclinometer, "
+                    "module, output, schedule, site, source)",
                     file.string(), node.source().begin.line, key.str()));
   }
   return {};
@@ -278,6 +151,7 @@ Result<RigConfig> parseRigConfig(const std::filesystem::path& path, const toml::
   GLARECAM_CHECK(readModule(path, root["module"].as_table(), rig));
   GLARECAM_ASSIGN(rig.gpio, readGpio(path, root["gpio"].as_table()));
   GLARECAM_CHECK(checkConsistent(rig));
+  GLARECAM_ASSIGN(rig.daemon, readDaemonSections(path, root, rig.site.has_value()));
   return rig;
 }
 
@@ -300,6 +174,15 @@ Result<RigConfig> readRigConfig(const std::filesystem::path& path) {
     return badInput(
         fmt::format("{}:{}: {}", path.string(), e.source().begin.line, e.description()));
   }
+}
+
+Result<std::optional<Calibration>> rigCameraCalibration(const RigConfig& config) {
+  std::error_code ec;
+  if (!config.calibration || !std::filesystem::exists(*config.calibration, ec)) return std::nullopt;
+  nlohmann::json document;
+  GLARECAM_ASSIGN(document, readJsonFile(config.calibration->string()));
+  if (!document.is_object() || !document.contains("black_level_dn")) return std::nullopt;
+  return readCalibrationFile(config.calibration->string());
 }
 
 }  // namespace glarecam::capture

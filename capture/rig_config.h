@@ -9,11 +9,13 @@
 #include <optional>
 #include <string>
 
+#include "capture/daemon/daemon_config.h"
 #include "capture/gpio/rig_io.h"
 #include "capture/inclinometer/tilt.h"
 #include "capture/sun/incidence_angle.h"
 #include "capture/sun/solar_position.h"
 #include "core/error.h"
+#include "core/stack_manifest.h"
 
 namespace glarecam::capture {
 
@@ -44,11 +46,18 @@ struct RigConfig {
 
   // [gpio]: trigger, status LED and button lines (chip "sim" for the simulated rig's).
   std::optional<RigIoConfig> gpio;
+
+  // [capture], [schedule], [output], [faults]: what glarecamd does with the rig.
+  DaemonConfig daemon;
 };
 
 // The standard atmosphere's pressure at `altitude_m` (the default when the config gives none).
 double standardPressureHpa(double altitude_m);
 
 Result<RigConfig> readRigConfig(const std::filesystem::path& path);
+
+// The camera calibration in the config's calibration file, when it holds one: the file may be
+// absent (the flip creates it) or hold only the inclinometer's zero offset.
+Result<std::optional<Calibration>> rigCameraCalibration(const RigConfig& config);
 
 }  // namespace glarecam::capture

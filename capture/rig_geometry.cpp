@@ -213,22 +213,27 @@ Result<std::unique_ptr<RigSensors>> RigSensors::open(const RigConfig& config) {
 
 Result<RigGeometry> RigSensors::measure(UtcTime time, const std::function<void()>& on_sample,
                                         bool time_from_clock) {
+  return measureWithClock(time, time_from_clock ? std::optional(systemClockStatus()) : std::nullopt,
+                          on_sample);
+}
+
+Result<RigGeometry> RigSensors::measureWithClock(UtcTime time,
+                                                 const std::optional<ClockStatus>& clock,
+                                                 const std::function<void()>& on_sample) {
   std::optional<TiltReading> tilt;
   if (inclinometer_) {
     GLARECAM_ASSIGN(tilt, measureTilt(*inclinometer_, config_.inclinometer->tilt,
                                       zero_.value_or(InclinometerZeroOffset{}), on_sample));
   }
-  return geometryAt(tilt, time, time_from_clock);
+  return geometryAt(tilt, time, clock);
 }
 
 Result<RigGeometry> RigSensors::retime(const RigGeometry& measured, UtcTime time) const {
-  return geometryAt(measured.tilt, time, measured.clock.has_value());
+  return geometryAt(measured.tilt, time, measured.clock);
 }
 
 Result<RigGeometry> RigSensors::geometryAt(const std::optional<TiltReading>& tilt, UtcTime time,
-                                           bool time_from_clock) const {
-  std::optional<ClockStatus> clock;
-  if (time_from_clock) clock = systemClockStatus();
+                                           const std::optional<ClockStatus>& clock) const {
   RigGeometry geometry;
   GLARECAM_ASSIGN(geometry, computeRigGeometry(config_, tilt, time, clock));
   if (inclinometer_) {

@@ -66,6 +66,9 @@ class RigSensors {
   // `time_from_clock`: `time` is the system clock's now (false: the user's, no clock error).
   Result<RigGeometry> measure(UtcTime time, const std::function<void()>& on_sample = {},
                               bool time_from_clock = true);
+  // The same with the state of the clock `time` was read from (nullopt: a time the user gave).
+  Result<RigGeometry> measureWithClock(UtcTime time, const std::optional<ClockStatus>& clock,
+                                       const std::function<void()>& on_sample = {});
   // The same reading at another time (the sun moved; the module did not): for α at the middle
   // of a bracket that followed the reading.
   Result<RigGeometry> retime(const RigGeometry& measured, UtcTime time) const;
@@ -76,7 +79,7 @@ class RigSensors {
 
  private:
   Result<RigGeometry> geometryAt(const std::optional<TiltReading>& tilt, UtcTime time,
-                                 bool time_from_clock) const;
+                                 const std::optional<ClockStatus>& clock) const;
 
   RigSensors(RigConfig config, std::unique_ptr<Inclinometer> inclinometer,
              std::optional<InclinometerZeroOffset> zero,

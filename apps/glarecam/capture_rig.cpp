@@ -9,6 +9,7 @@
 #include "apps/glarecam/interruption.h"
 #include "apps/glarecam/sample_progress.h"
 #include "capture/gpio/rig_io_registry.h"
+#include "capture/rig_stack.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
 
@@ -53,14 +54,7 @@ CaptureRig::~CaptureRig() {
 }
 
 Result<std::optional<Calibration>> CaptureRig::cameraCalibration() const {
-  std::error_code ec;
-  // Absent: not made yet (the flip creates it; RigSensors warns about the missing offset).
-  if (!config_.calibration || !std::filesystem::exists(*config_.calibration, ec))
-    return std::nullopt;
-  nlohmann::json document;
-  GLARECAM_ASSIGN(document, readJsonFile(config_.calibration->string()));
-  if (!document.is_object() || !document.contains("black_level_dn")) return std::nullopt;
-  return readCalibrationFile(config_.calibration->string());
+  return capture::rigCameraCalibration(config_);
 }
 
 Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
@@ -85,13 +79,10 @@ Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
 void CaptureRig::finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
                              capture::UtcTime bracket_end) {
   if (!measured_ || !measured_->sun) return;  // a fixed source does not move
-  const auto geometry =
-      sensors_->retime(*measured_, bracket_start + (bracket_end - bracket_start) / 2);
-  if (!geometry) {  // keep the stack, with α from before the bracket
-    spdlog::warn("capture: α for the bracket's middle: {}", geometry.error().message);
-    return;
-  }
-  capture::recordAlpha(stack, geometry->alpha_deg, capture::geometryJson(*geometry));
+  const Status recorded =
+      capture::recordBracketGeometry(*sensors_, *measured_, stack, bracket_start, bracket_end);
+  // On failure the stack keeps α from before the bracket.
+  if (!recorded) spdlog::warn("capture: α for the bracket's middle: {}", recorded.error().message);
 }
 
 Result<bool> CaptureRig::waitForButton() {

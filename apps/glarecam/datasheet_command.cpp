@@ -16,9 +16,8 @@
 #include "apps/glarecam/option_parsing.h"
 #include "core/atomic_file.h"
 #include "core/stack_manifest.h"
-#include "pipeline/datasheet.h"
+#include "pipeline/datasheet_publish.h"
 #include "pipeline/facet_model.h"
-#include "pipeline/glare_profile.h"
 
 namespace glarecam::apps {
 namespace {
@@ -92,16 +91,13 @@ Status runDatasheet(const DatasheetArgs& args) {
   const pipeline::GlareLimit limit = sheetLimit(args.sweep, table, threshold_cd_m2);
   const fs::path out = args.out ? fs::path(*args.out) : fs::path(args.sweep).parent_path();
   if (!out.empty()) GLARECAM_CHECK(ensureDirectory(out));
-  GLARECAM_CHECK(pipeline::writeDatasheet({.module = args.module,
-                                           .date = date,
-                                           .table = &table,
-                                           .fits = &fits,
-                                           .model_beta_deg = args.model_beta_deg,
-                                           .limit = limit},
-                                          out));
-  const auto profile = pipeline::glareProfileJson(
-      {.module = args.module, .date = date, .source = args.sweep}, table, fits, limit);
-  GLARECAM_CHECK(writeFileAtomic(out / pipeline::kGlareProfileFileName, jsonText(profile)));
+  GLARECAM_CHECK(pipeline::publishDatasheet({.module = args.module,
+                                             .date = date,
+                                             .table = &table,
+                                             .fits = &fits,
+                                             .model_beta_deg = args.model_beta_deg,
+                                             .limit = limit},
+                                            args.sweep, out));
   std::printf("%s\n", (out / pipeline::kDatasheetPdf).c_str());
   return {};
 }

@@ -1,0 +1,167 @@
+// glarecamd's core: the only long-lived owner of the rig's hardware. One event loop (one thread)
+// captures on schedule (a fixed interval, the α targets as the sun moves, the operator's button,
+// SIGUSR1), hands each bracket to the stack worker (written atomically, processed, the day's data
+// sheet updated) and survives what a field throws at it:
+//
+//   camera lost       the stack is discarded, the camera reopened with capped exponential
+//                     backoff (camera_supervisor.h); after camera_max_failures in a row run()
+//                     fails (kHardware) and systemd restarts the daemon
+//   inclinometer      a failed read or an implausible tilt: the stack is taken with α unknown,
+//                     or capture pauses, per [faults] inclinometer
+//   disk              below the reserve or read-only: capture pauses, resumes when space returns
+//   clock             not synchronised: said in STATUS, and every stack flagged
+//
+// systemd (service_notifier.h): READY=1 once the camera is open, STATUS= whenever the status
+// line changes, WATCHDOG=1 from the loop itself at half the watchdog interval, only while the loop
+// runs and the worker is not stuck (a wedged camera blocks the loop, so the heartbeat stops and
+// systemd restarts the daemon), STOPPING=1 on SIGTERM, after which queued stacks are written and
+// run() returns. SIGHUP reloads the config (a bad one is reported and the old one kept).
+//
+// Everything the daemon touches is injected (DaemonServices): tests run it on a manual clock with
+// a scripted camera, disk and notifier, one thread, no sleeping.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "capture/daemon/camera_supervisor.h"
+#include "capture/daemon/daemon_clock.h"
+#include "capture/daemon/daemon_events.h"
+#include "capture/daemon/daemon_status.h"
+#include "capture/daemon/disk_space.h"
+#include "capture/daemon/service_notifier.h"
+#include "capture/daemon/stack_worker.h"
+#include "capture/gpio/rig_io.h"
+#include "capture/gpio/status_led.h"
+#include "capture/rig_config.h"
+#include "capture/rig_geometry.h"
+#include "core/error.h"
+
+namespace glarecam::capture {
+
+using RigIoOpener = std::function<Result<std::unique_ptr<RigIo>>(const RigIoConfig&)>;
+
+struct DaemonServices {
+  DaemonClock* clock = nullptr;
+  ServiceNotifier* notifier = nullptr;
+  DiskProbe* disk = nullptr;
+  CameraOpener open_camera;  // default capture::openCamera
+  RigIoOpener open_rig_io;   // default capture::openRigIo
+  StackWorker::Mode worker_mode = StackWorker::Mode::kThread;
+  bool watch_button = true;  // a thread polls the button (tests post ButtonEvents instead)
+};
+
+struct DaemonOptions {
+  std::filesystem::path config_path = kDefaultRigConfigPath;
+  std::optional<std::filesystem::path> output_root;  // overrides [output] root
+  std::optional<std::chrono::seconds> interval;      // overrides [schedule]: a fixed interval
+  std::optional<std::uint64_t> max_stacks;  // stop once this many stacks are done (tests, demos)
+};
+
+// How often the loop looks at the disk while nothing else wakes it.
+inline constexpr std::chrono::seconds kDiskCheckPeriod{10};
+// A worker job running longer than this is stuck (a hung disk): the watchdog is no longer fed.
+inline constexpr std::chrono::minutes kWorkerStallLimit{15};
+// How far ahead the α targets are computed, and how soon again when none lies in it.
+inline constexpr std::chrono::hours kAlphaPlanHorizon{24};
+// While paused by the inclinometer, how soon it is read again.
+inline constexpr std::chrono::seconds kInclinometerRetry{30};
+
+// What asked for a stack: the schedule, the operator's button or SIGUSR1.
+enum class CaptureTrigger { kSchedule, kButton, kSignal };
+
+class CaptureDaemon {
+ public:
+  // Reads the config: kBadInput "FILE:LINE: problem" when it is invalid (glarecamd exits 78).
+  static Result<std::unique_ptr<CaptureDaemon>> create(DaemonOptions options,
+                                                       DaemonServices services);
+  ~CaptureDaemon();
+  CaptureDaemon(const CaptureDaemon&) = delete;
+  CaptureDaemon& operator=(const CaptureDaemon&) = delete;
+
+  // Runs until SIGTERM or SIGINT, or max_stacks. kBadInput when the config's camera cannot be
+  // opened as configured; kHardware when it failed camera_max_failures times in a row.
+  Status run();
+
+  // Signals, button presses and the worker's reports arrive here (from any thread).
+  EventQueue& events() { return events_; }
+  const DaemonState& state() const { return state_; }
+  const RigConfig& config() const { return config_; }
+
+ private:
+  CaptureDaemon(DaemonOptions options, DaemonServices services, RigConfig config);
+
+  Status start();
+  Status step();
+  void stop();
+
+  // Opening and reopening the hardware and the output.
+  void applyConfig();
+  void openSensors();
+  void openRigIo();
+  void closeRigIo();
+  void prepareOutput();
+  void catchUp();
+  Status reopenCamera(SteadyTime now);
+
+  // One capture, and its parts.
+  Status capture(CaptureTrigger trigger);
+  std::optional<RigGeometry> measureGeometry(CaptureSettings& settings, bool& pause);
+  CaptureSettings baseSettings() const;
+  Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
+  void finishStack(CapturedStack& stack, const std::optional<RigGeometry>& geometry,
+                   CaptureTrigger trigger, UtcTime bracket_start, UtcTime bracket_end);
+
+  // The schedule.
+  // `slot_taken`: the scheduled slot was just used (or skipped): the next one.
+  void planNext(SteadyTime now, bool slot_taken);
+  void planAlphaTargets(UtcTime from);
+  std::optional<ModuleOrientation> plannedModule();
+  bool scheduledDue(SteadyTime now) const;
+  SteadyTime nextDeadline(SteadyTime now) const;
+
+  void handle(const DaemonEvent& event);
+  void handleWorker(const WorkerEvent& event);
+  void reload();
+  void checkDisk(SteadyTime now);
+  void checkClock();
+  void feedWatchdog(SteadyTime now);
+  bool healthy(SteadyTime now) const;
+  void publishStatus();
+
+  DaemonOptions options_;
+  DaemonServices services_;
+  RigConfig config_;
+  DaemonClock& clock_;
+  EventQueue events_;
+  DaemonState state_;
+
+  CameraSupervisor camera_;
+  std::unique_ptr<RigSensors> sensors_;
+  std::optional<RigGeometry> last_geometry_;
+  std::optional<Calibration> calibration_;
+  std::unique_ptr<RigIo> io_;
+  std::unique_ptr<StatusLed> led_;
+  std::jthread button_thread_;
+  std::unique_ptr<StackWorker> worker_;
+
+  std::optional<std::chrono::microseconds> watchdog_interval_;
+  SteadyTime next_watchdog_{};
+  SteadyTime next_disk_check_{};
+  std::optional<SteadyTime> next_scheduled_;
+  std::optional<SteadyTime> replan_at_;
+  std::optional<SteadyTime> inclinometer_retry_at_;
+  std::optional<UtcTime> last_interval_start_;
+  std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
+  std::uint64_t stacks_done_ = 0;
+  bool stopping_ = false;
+};
+
+}  // namespace glarecam::capture

@@ -1,0 +1,42 @@
+#include "capture/daemon/daemon_clock.h"
+
+namespace glarecam::capture {
+
+namespace {
+
+UtcTime systemUtcNow() {
+  return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
+}
+
+}  // namespace
+
+void DaemonClock::waitUntil(std::unique_lock<std::mutex>& lock, std::condition_variable& wake,
+                            SteadyTime deadline, const std::function<bool()>& ready) {
+  wake.wait_until(lock, deadline, ready);
+}
+
+UtcTime SystemDaemonClock::utcNow() const { return systemUtcNow(); }
+
+SteadyTime SystemDaemonClock::steadyAt(UtcTime utc) const {
+  return now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(utc - utcNow());
+}
+
+TimeLapseClock::TimeLapseClock(UtcTime start, double factor)
+    : start_utc_(start), start_steady_(std::chrono::steady_clock::now()), factor_(factor) {}
+
+UtcTime TimeLapseClock::utcNow() const {
+  const std::chrono::duration<double> real = now() - start_steady_;
+  return start_utc_ + std::chrono::duration_cast<std::chrono::microseconds>(real * factor_);
+}
+
+ClockStatus TimeLapseClock::clockStatus() const {
+  return {.synchronised = true, .detail = "simulated time"};
+}
+
+SteadyTime TimeLapseClock::steadyAt(UtcTime utc) const {
+  const std::chrono::duration<double> simulated = utc - start_utc_;
+  return start_steady_ +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(simulated / factor_);
+}
+
+}  // namespace glarecam::capture

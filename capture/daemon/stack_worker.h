@@ -1,0 +1,92 @@
+// The daemon's worker: everything a stack needs after its bracket, off the capture loop so that
+// disk and CPU work never starve the camera stream. Each job writes the captured stack atomically
+// under OUTPUT/stacks/ (nothing half-written is ever visible), processes it into
+// OUTPUT/results/<id>/ and rebuilds its day's sweep table and data sheet (day_products.h),
+// reporting each stage to the event loop as a WorkerEvent. The thread runs at a lower priority
+// (nice kWorkerNice) than the capture loop.
+//
+// The backlog is bounded (frames are held in memory until written): submit() refuses a stack
+// beyond it and the loop skips the capture. stop() writes every stack still queued, so that no
+// captured stack is lost on shutdown, but processes none; the next start processes every stack
+// without a result (submitWritten()).
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "capture/bracketer.h"
+#include "capture/daemon/daemon_clock.h"
+#include "capture/daemon/daemon_events.h"
+#include "capture/daemon/day_products.h"
+
+namespace glarecam::capture {
+
+inline constexpr int kWorkerNice = 10;
+
+struct WorkerOptions {
+  DayProductsOptions day;
+  unsigned threads = 1;         // for processing
+  std::size_t max_backlog = 2;  // captured stacks waiting to be written
+};
+
+class StackWorker {
+ public:
+  // kInline runs each job inside submit() (tests: one thread, deterministic).
+  enum class Mode { kThread, kInline };
+
+  StackWorker(WorkerOptions options, EventQueue& events, DaemonClock& clock, Mode mode);
+  ~StackWorker();  // stop()
+  StackWorker(const StackWorker&) = delete;
+  StackWorker& operator=(const StackWorker&) = delete;
+
+  // For the jobs not yet started.
+  void reconfigure(WorkerOptions options);
+
+  // Queues a captured stack; false (and nothing queued) when the backlog is full.
+  bool submit(CapturedStack stack);
+  // Queues a stack already on disk for processing.
+  void submitWritten(std::filesystem::path stack);
+
+  bool full() const;
+  std::size_t pending() const;  // jobs queued or running
+  // Since when the running job has been running (nullopt when idle): a job that never ends (a
+  // hung disk) makes the daemon stop feeding the watchdog.
+  std::optional<SteadyTime> busySince() const;
+
+  // Writes the queued captured stacks, skips the rest, joins the thread. Idempotent.
+  void stop();
+
+ private:
+  struct Job {
+    std::optional<CapturedStack> stack{};  // to write; else `path` is on disk already
+    std::filesystem::path path{};
+  };
+
+  void run(std::stop_token stop);
+  void runJob(Job& job, bool stopping);
+  // `last`: nothing follows (stopping), the event says so.
+  std::optional<std::filesystem::path> write(const CapturedStack& stack,
+                                             const WorkerOptions& options, bool last);
+  void process(const std::filesystem::path& stack, const WorkerOptions& options);
+  WorkerOptions currentOptions() const;
+
+  EventQueue& events_;
+  DaemonClock& clock_;
+  Mode mode_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable_any wake_;
+  WorkerOptions options_;
+  std::deque<Job> jobs_;
+  std::size_t captured_queued_ = 0;
+  std::optional<SteadyTime> busy_since_;
+  bool running_job_ = false;
+  bool stopping_ = false;
+  std::jthread thread_;  // last: joined before the members it uses go
+};
+
+}  // namespace glarecam::capture

@@ -3,6 +3,7 @@
 // clean for results (paths, JSON).
 #pragma once
 
+#include <spdlog/common.h>
 #include <spdlog/spdlog.h>
 
 namespace glarecam {
@@ -10,5 +11,8 @@ namespace glarecam {
 enum class Verbosity { kQuiet, kNormal, kVerbose, kDebug };
 
 void initLogging(Verbosity verbosity);
+
+// The same levels to another sink (glarecamd's journal sink).
+void initLogging(Verbosity verbosity, spdlog::sink_ptr sink);
 
 }  // namespace glarecam

@@ -193,6 +193,7 @@ void CaptureDaemon::applyConfig() {
 
 void CaptureDaemon::openSensors() {
   sensors_.reset();
+  logged_warnings_.clear();
   if (!config_.site && !config_.fixed_source) return;  // α is not measured
   auto sensors = RigSensors::open(config_);
   if (!sensors) {
@@ -374,7 +375,8 @@ std::optional<RigGeometry> CaptureDaemon::measureGeometry(CaptureSettings& setti
   if (measured) {
     if (!state_.inclinometer_fault.empty()) spdlog::info("glarecamd: the inclinometer reads again");
     state_.inclinometer_fault.clear();
-    for (const std::string& warning : measured->warnings) spdlog::warn("glarecamd: {}", warning);
+    for (const std::string& warning : measured->warnings)
+      if (logged_warnings_.insert(warning).second) spdlog::warn("glarecamd: {}", warning);
     settings.alpha_deg = measured->alpha_deg;
     settings.geometry = geometryJson(*measured);
     last_geometry_ = *measured;
@@ -607,7 +609,7 @@ void CaptureDaemon::handleWorker(const WorkerEvent& event) {
         break;
       case WorkerEvent::Stage::kProcessed:
         ++state_.stacks_processed;
-        spdlog::info("glarecamd: {}: {}", event.stack_id, event.detail);
+        spdlog::info("glarecamd: processed {}", event.detail);
         break;
       case WorkerEvent::Stage::kPublished:
         state_.day = fmt::format("{}: {}", event.path.filename().string(), event.detail);

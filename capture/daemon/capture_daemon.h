@@ -28,6 +28,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -52,8 +53,8 @@ struct DaemonServices {
   DaemonClock* clock = nullptr;
   ServiceNotifier* notifier = nullptr;
   DiskProbe* disk = nullptr;
-  CameraOpener open_camera;  // default capture::openCamera
-  RigIoOpener open_rig_io;   // default capture::openRigIo
+  CameraOpener open_camera{};  // default capture::openCamera
+  RigIoOpener open_rig_io{};   // default capture::openRigIo
   StackWorker::Mode worker_mode = StackWorker::Mode::kThread;
   bool watch_button = true;  // a thread polls the button (tests post ButtonEvents instead)
 };
@@ -146,6 +147,7 @@ class CaptureDaemon {
   CameraSupervisor camera_;
   std::unique_ptr<RigSensors> sensors_;
   std::optional<RigGeometry> last_geometry_;
+  std::set<std::string> logged_warnings_;  // the sensors' standing warnings, logged once
   std::optional<Calibration> calibration_;
   std::unique_ptr<RigIo> io_;
   std::unique_ptr<StatusLed> led_;

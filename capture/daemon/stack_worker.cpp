@@ -105,7 +105,6 @@ void StackWorker::run(std::stop_token stop) {
     }
     runJob(job, stopping);
     const std::lock_guard lock(mutex_);
-    if (job.stack) --captured_queued_;
     running_job_ = false;
     busy_since_.reset();
   }
@@ -116,7 +115,11 @@ void StackWorker::runJob(Job& job, bool stopping) {
   try {
     if (job.stack) {
       const auto written = write(*job.stack, options, stopping);
-      job.stack.reset();  // the frames' memory back before processing
+      job.stack.reset();             // the frames' memory back before processing
+      if (mode_ == Mode::kThread) {  // room for the next captured stack
+        const std::lock_guard lock(mutex_);
+        --captured_queued_;
+      }
       if (!written) return;
       job.path = *written;
     }

@@ -205,7 +205,7 @@ std::string stackId(const std::string& stamp, std::optional<double> alpha_deg) {
 
 // α as given, else as a simulated camera knows it from its scene.
 std::optional<double> alphaFor(const Camera& camera, const CaptureSettings& settings) {
-  if (settings.alpha_deg) return settings.alpha_deg;
+  if (settings.alpha_deg || !settings.alpha_from_scene) return settings.alpha_deg;
   const auto truth = camera.sceneTruth();
   if (truth && truth->contains("alpha_deg") && (*truth)["alpha_deg"].is_number()) {
     return (*truth)["alpha_deg"].get<double>();

@@ -23,6 +23,9 @@ struct CaptureSettings {
   std::optional<Calibration> calibration;  // written inline; its black level and saturation
                                            // also guide the auto-bracket
   std::optional<double> alpha_deg;
+  // Without alpha_deg: a simulated camera's scene α (glarecam capture --camera sim:). Off where
+  // a rig measures α, so that an α it could not measure stays unknown.
+  bool alpha_from_scene = true;
   std::optional<nlohmann::json> geometry;  // the rig's geometry block (rig_geometry.h), as measured
   CameraOptics optics;                     // overrides what the camera reports
   AutoBracketOptions auto_bracket;

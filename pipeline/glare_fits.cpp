@@ -558,6 +558,15 @@ Result<SweepFits> fitSweep(const SweepTable& table) {
         fmt::format("{} rows: the fits need at least {} (the logistic has {} "
                     "parameters)",
                     rows, kLogisticParameters, kLogisticParameters));
+  // Repeated stacks at one α (a rig that does not move) do not make a function of α.
+  std::set<long> distinct_alpha;
+  for (const SweepRow& row : table.rows)
+    distinct_alpha.insert(std::lround(row.alpha_deg / kDistinctAlphaDeg));
+  if (static_cast<int>(distinct_alpha.size()) < kLogisticParameters)
+    return badInput(fmt::format(
+        "{} rows at only {} α {:g}° apart: the fits need at least {} (a function of α needs α "
+        "to vary)",
+        rows, distinct_alpha.size(), kDistinctAlphaDeg, kLogisticParameters));
   std::vector<double> alpha, ln_l;
   int bounds = 0;
   for (const SweepRow& row : table.rows) {

@@ -60,6 +60,8 @@ LogisticFit refineLogistic(std::span<const double> alpha_deg, std::span<const do
 inline constexpr int kCosineParameters = 3;
 inline constexpr int kBiquadraticParameters = 3;
 inline constexpr int kLogisticParameters = 4;
+// α values closer than this count as one for the fits (the paper sweeps in 5° steps).
+inline constexpr double kDistinctAlphaDeg = 1.0;
 
 struct AxisFit {
   std::optional<LogisticFit> logistic;  // none: fewer rows with an ellipse than parameters

@@ -20,6 +20,9 @@ namespace glarecam::capture {
 
 inline constexpr std::chrono::seconds kAlphaScanStep{120};
 inline constexpr std::chrono::milliseconds kAlphaCrossingTolerance{500};
+// A target just taken is not taken again this soon: each stack re-measures the tilt, and the
+// inclinometer's noise (0.004°) moves the predicted crossing by a second or so.
+inline constexpr std::chrono::minutes kAlphaTargetRepeatGuard{5};
 
 struct AlphaCrossing {
   UtcTime time;

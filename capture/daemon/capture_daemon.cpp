@@ -24,6 +24,9 @@ namespace {
 
 // After a failed button read, how long the button thread waits before reading again.
 constexpr std::chrono::seconds kButtonRetry{5};
+// The simulated scene exists up to the limit curve's 80°; the simulated inclinometer's noise
+// (0.004°) may carry a stack aimed at 80° just past it, where the scene is rendered at 80°.
+constexpr double kSimulatedAlphaSlackDeg = 0.05;
 
 const char* triggerName(CaptureTrigger trigger) {
   switch (trigger) {
@@ -352,6 +355,7 @@ CaptureSettings CaptureDaemon::baseSettings() const {
   settings.optics.f_number = capture.f_number;
   settings.optics.nd_transmission = capture.nd_transmission;
   settings.calibration = calibration_;
+  settings.alpha_from_scene = !config_.site && !config_.fixed_source;
   return settings;
 }
 
@@ -394,7 +398,10 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   ScopedLogFields fields(
       LogFields{{"GLARECAM_EVENT", "capture"}, {"GLARECAM_TRIGGER", triggerName(trigger)}});
   const std::optional<double> target_deg = state_.next_target_deg;
-  if (trigger == CaptureTrigger::kSchedule) planNext(clock_.now(), true);  // taken or skipped
+  if (trigger == CaptureTrigger::kSchedule) {  // this slot is used, or skipped for good
+    if (target_deg) taken_targets_[*target_deg] = clock_.utcNow();
+    planNext(clock_.now(), true);
+  }
   const auto skip = [this](std::string reason) -> Status {
     ++state_.captures_skipped;
     if (reason != state_.skip_reason) spdlog::warn("glarecamd: no stack: {}", reason);
@@ -410,19 +417,19 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   if (pause) return skip("capture paused for the inclinometer");
   if (trigger == CaptureTrigger::kSchedule && geometry) {
     if (geometry->sun && geometry->sun->elevation_deg <= 0) return skip("the sun is down");
-    if (geometry->alpha_deg >= config_.daemon.schedule.max_alpha_deg)
+    if (!target_deg && geometry->alpha_deg >= config_.daemon.schedule.max_alpha_deg)
       return skip(fmt::format("α {:.1f}° is beyond max_alpha_deg {:g}°", geometry->alpha_deg,
                               config_.daemon.schedule.max_alpha_deg));
   }
   const std::string& uri = *config_.camera;
   if (isSimulatedCamera(uri) && settings.alpha_deg) {
     // A simulated scene is rendered for one α: the camera is reopened at each stack's.
-    if (*settings.alpha_deg > pipeline::kMaxLimitAlphaDeg)
+    if (*settings.alpha_deg > pipeline::kMaxLimitAlphaDeg + kSimulatedAlphaSlackDeg)
       return skip(fmt::format("the simulated scene ends at {:g}°", pipeline::kMaxLimitAlphaDeg));
     CameraOptions options;
     options.pixel_format = config_.daemon.capture.pixel_format;
     options.max_frame_retries = config_.daemon.capture.max_frame_retries;
-    options.simulated_alpha_deg = *settings.alpha_deg;
+    options.simulated_alpha_deg = std::min(*settings.alpha_deg, pipeline::kMaxLimitAlphaDeg);
     camera_.configure(uri, options, config_.daemon.faults);
   }
   const SteadyTime now = clock_.now();
@@ -533,16 +540,18 @@ void CaptureDaemon::planAlphaTargets(UtcTime from) {
     state_.skip_reason = std::move(why);
   };
   if (!config_.site || !module) return retry("α targets need the module's tilt");
-  // A second past the last crossing taken, so that it is not found again.
-  const UtcTime after =
-      std::max(from, state_.last_capture_time.value_or(from)) + std::chrono::seconds(1);
-  const auto crossings = alphaCrossings(*config_.site, *module, after, kAlphaPlanHorizon,
+  const auto crossings = alphaCrossings(*config_.site, *module, from, kAlphaPlanHorizon,
                                         config_.daemon.schedule.alpha_targets_deg);
   if (!crossings) return retry(crossings.error().message);
-  if (crossings->empty()) return retry("no α target is crossed in the next 24 h");
-  const AlphaCrossing& next = crossings->front();
-  next_scheduled_ = clock_.steadyAt(next.time);
-  state_.next_target_deg = next.target_deg;
+  for (const AlphaCrossing& crossing : *crossings) {
+    const auto taken = taken_targets_.find(crossing.target_deg);
+    if (taken != taken_targets_.end() && crossing.time - taken->second < kAlphaTargetRepeatGuard)
+      continue;
+    next_scheduled_ = clock_.steadyAt(crossing.time);
+    state_.next_target_deg = crossing.target_deg;
+    return;
+  }
+  retry("no α target is crossed in the next 24 h");
 }
 
 bool CaptureDaemon::scheduledDue(SteadyTime now) const {

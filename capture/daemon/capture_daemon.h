@@ -26,6 +26,7 @@
 #include <deque>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -61,9 +62,9 @@ struct DaemonServices {
 
 struct DaemonOptions {
   std::filesystem::path config_path = kDefaultRigConfigPath;
-  std::optional<std::filesystem::path> output_root;  // overrides [output] root
-  std::optional<std::chrono::seconds> interval;      // overrides [schedule]: a fixed interval
-  std::optional<std::uint64_t> max_stacks;  // stop once this many stacks are done (tests, demos)
+  std::optional<std::filesystem::path> output_root{};  // overrides [output] root
+  std::optional<std::chrono::seconds> interval{};      // overrides [schedule]: a fixed interval
+  std::optional<std::uint64_t> max_stacks{};  // stop once this many stacks are done (tests, demos)
 };
 
 // How often the loop looks at the disk while nothing else wakes it.
@@ -161,7 +162,8 @@ class CaptureDaemon {
   std::optional<SteadyTime> replan_at_;
   std::optional<SteadyTime> inclinometer_retry_at_;
   std::optional<UtcTime> last_interval_start_;
-  std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
+  std::map<double, UtcTime> taken_targets_;  // when each α target's slot was last used
+  std::deque<CaptureTrigger> requests_;      // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;
 };

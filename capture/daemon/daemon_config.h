@@ -42,7 +42,8 @@ struct ScheduleConfig {
   std::vector<double> alpha_targets_deg;  // default 5, 10, ... 80 (the paper's sweep)
   bool button = true;
   // The limit curve of the method ends at 80° (method.md): a stack beyond it has no glare limit.
-  // Scheduled stacks are taken only below this α; the button and SIGUSR1 are not held back.
+  // Interval stacks are taken only below this α; the α targets, the button and SIGUSR1 are not
+  // held back.
   double max_alpha_deg = pipeline::kMaxLimitAlphaDeg;
 };
 

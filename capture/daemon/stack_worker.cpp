@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "core/atomic_file.h"
 #include "pipeline/process_stack.h"
 
 namespace glarecam::capture {
@@ -150,16 +151,29 @@ std::optional<fs::path> StackWorker::write(const CapturedStack& stack, const Wor
   return *written;
 }
 
-void StackWorker::process(const fs::path& stack, const WorkerOptions& options) {
-  const std::string id = stack.filename().string();
+// The result appears whole like the stack: processed in a staging directory, then renamed (over
+// the result of an earlier, interrupted processing).
+Result<pipeline::ProcessSummary> StackWorker::processInto(const fs::path& stack,
+                                                          const fs::path& target,
+                                                          const WorkerOptions& options) {
+  auto staging = StagingDirectory::create(target);
+  if (!staging) return std::unexpected(staging.error());
   pipeline::ProcessOptions process;
-  process.output_directory = options.day.root / kResultsDirectory / id;
+  process.output_directory = staging->path();
   process.threads = options.threads;
   process.show_progress = false;
-  auto processed = pipeline::processStack(stack, process);
+  pipeline::ProcessSummary summary;
+  GLARECAM_ASSIGN(summary, pipeline::processStack(stack, process));
+  GLARECAM_CHECK(staging->commit());
+  return summary;
+}
+
+void StackWorker::process(const fs::path& stack, const WorkerOptions& options) {
+  const std::string id = stack.filename().string();
+  const auto processed = processInto(stack, options.day.root / kResultsDirectory / id, options);
   WorkerEvent event{.stage = WorkerEvent::Stage::kProcessed, .stack_id = id};
   if (processed) {
-    event.path = processed->output_directory;
+    event.path = options.day.root / kResultsDirectory / id;
     event.detail = processed->briefReport();
   } else {
     event.error = processed.error();

@@ -22,6 +22,7 @@
 #include "capture/daemon/daemon_clock.h"
 #include "capture/daemon/daemon_events.h"
 #include "capture/daemon/day_products.h"
+#include "pipeline/process_stack.h"
 
 namespace glarecam::capture {
 
@@ -72,6 +73,9 @@ class StackWorker {
   std::optional<std::filesystem::path> write(const CapturedStack& stack,
                                              const WorkerOptions& options, bool last);
   void process(const std::filesystem::path& stack, const WorkerOptions& options);
+  Result<pipeline::ProcessSummary> processInto(const std::filesystem::path& stack,
+                                               const std::filesystem::path& target,
+                                               const WorkerOptions& options);
   WorkerOptions currentOptions() const;
 
   EventQueue& events_;

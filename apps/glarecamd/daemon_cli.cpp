@@ -51,7 +51,7 @@ void addOptions(CLI::App& app, DaemonArgs& args) {
       ->capture_default_str();
   app.add_option("--start", args.start,
                  "with --simulate: the simulated clock's start, ISO 8601 with a zone (default "
-                 "2026-06-21T05:25:00Z)");
+                 "2026-06-21T05:25:00Z, with --interval 06:30:00Z)");
   app.add_option("--log-target", args.log_target,
                  "auto (the journal when systemd connected stderr to it), journal or console")
       ->capture_default_str();
@@ -106,7 +106,7 @@ Result<Rig> rigFor(const DaemonArgs& args) {
     rig.clock = std::make_unique<capture::SystemDaemonClock>();
     return rig;
   }
-  capture::UtcTime start = capture::defaultSimulationStart();
+  capture::UtcTime start = capture::defaultSimulationStart(!rig.options.interval);
   if (args.start) GLARECAM_ASSIGN(start, capture::parseIsoTime(*args.start));
   capture::SimulatedRigOptions simulated{.output = *args.output,
                                          .camera = args.camera.value_or("sim:seed=1"),

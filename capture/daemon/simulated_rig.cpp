@@ -7,9 +7,11 @@
 
 namespace glarecam::capture {
 
-UtcTime defaultSimulationStart() {
+UtcTime defaultSimulationStart(bool alpha_targets) {
   using namespace std::chrono;
-  return time_point_cast<microseconds>(sys_days(year(2026) / June / 21) + hours(5) + minutes(25));
+  const auto day = sys_days(year(2026) / June / 21);
+  return time_point_cast<microseconds>(alpha_targets ? day + hours(5) + minutes(25)
+                                                     : day + hours(6) + minutes(30));
 }
 
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options) {

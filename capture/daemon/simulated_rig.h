@@ -32,8 +32,9 @@ struct SimulatedRigOptions {
   std::optional<std::chrono::seconds> interval;  // none: the α targets
 };
 
-// 2026-06-21 05:25 UTC: ten minutes of sun before α falls through 80° at the site.
-UtcTime defaultSimulationStart();
+// The simulated clock's start on 2026-06-21: for the α targets 05:25 UTC, ten minutes of sun
+// before α falls through 80° at the site; for a fixed interval 06:30 UTC, α already below 70°.
+UtcTime defaultSimulationStart(bool alpha_targets);
 
 // Writes OUTPUT/glarecamd-simulated.toml (atomically) and returns its path.
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options);

@@ -5,7 +5,7 @@ JOBS           ?= $(shell nproc)
 DEMO_DIR       ?= demo-out
 CMAKE_FLAGS    ?=
 
-.PHONY: deps configure build test test-asan demo bench clean format
+.PHONY: deps configure build test test-asan demo bench install clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -32,6 +32,15 @@ demo: build
 
 bench: build
 	$(BUILD_DIR)/bin/glarecam-bench --benchmark_counters_tabular=true
+
+# Binaries, systemd units, the service user, udev rules, the example config and the docs
+# (docs/operator.md, "Installing on a rig"). PREFIX: where (default /usr/local; the units name
+# the binaries there, so it is set at configure time); DESTDIR works.
+PREFIX ?= /usr/local
+install: build
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_INSTALL_PREFIX=$(PREFIX)
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+	cmake --install $(BUILD_DIR)
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

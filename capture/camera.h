@@ -75,6 +75,9 @@ struct CameraOptions {
   int max_frame_retries = 5;                  // incomplete / timed-out frames per request
   double frame_timeout_s = 5.0;               // beyond the exposure time
   std::optional<double> simulated_alpha_deg;  // sim: the α of the scene the rig looks at
+  // aravis: GenICam features set right after opening, before glarecam's own ("Feature=Value"
+  // separated by spaces, arv_device_set_features_from_string; a preset, daemon_config.h).
+  std::optional<std::string> genicam_features{};
 };
 
 class Camera {

@@ -92,6 +92,7 @@ class AravisCamera final : public Camera {
              .serial = orEmpty(arv_camera_get_device_serial_number(camera, error.out())),
              .detail = deviceDetail(camera),
              .optics = {}};
+    GLARECAM_CHECK(applyFeatures());
     GLARECAM_CHECK(choosePixelFormat());
     GLARECAM_CHECK(readLimits());
     GLARECAM_CHECK(chooseTrigger());
@@ -156,6 +157,20 @@ class AravisCamera final : public Camera {
   }
   Status checkConnected() const {
     if (control_lost_) return lostError();
+    return {};
+  }
+
+  // A preset's features first: glarecam's own settings (pixel format, manual exposure and gain,
+  // the trigger) then override whatever it says about them.
+  Status applyFeatures() {
+    if (!options_.genicam_features || options_.genicam_features->empty()) return {};
+    OwnedError error;
+    arv_device_set_features_from_string(arv_camera_get_device(camera_.get()),
+                                        options_.genicam_features->c_str(), error.out());
+    if (error)
+      return badInput(fmt::format("{}: GenICam features \"{}\": {}", info_.uri,
+                                  *options_.genicam_features, error.message()));
+    spdlog::info("{}: GenICam features set: {}", info_.uri, *options_.genicam_features);
     return {};
   }
 

@@ -8,7 +8,8 @@ namespace {
 
 bool sameOptions(const CameraOptions& a, const CameraOptions& b) {
   return a.pixel_format == b.pixel_format && a.max_frame_retries == b.max_frame_retries &&
-         a.frame_timeout_s == b.frame_timeout_s && a.simulated_alpha_deg == b.simulated_alpha_deg;
+         a.frame_timeout_s == b.frame_timeout_s && a.simulated_alpha_deg == b.simulated_alpha_deg &&
+         a.genicam_features == b.genicam_features;
 }
 
 }  // namespace

@@ -173,10 +173,7 @@ void CaptureDaemon::stop() {
 
 void CaptureDaemon::applyConfig() {
   const DaemonConfig& daemon = config_.daemon;
-  CameraOptions options;
-  options.pixel_format = daemon.capture.pixel_format;
-  options.max_frame_retries = daemon.capture.max_frame_retries;
-  camera_.configure(config_.camera.value_or(""), options, daemon.faults);
+  camera_.configure(config_.camera.value_or(""), cameraOptions(std::nullopt), daemon.faults);
   const auto calibration = rigCameraCalibration(config_);
   calibration_ = calibration ? *calibration : std::nullopt;
   if (!calibration) spdlog::error("glarecamd: {}", calibration.error().message);
@@ -347,6 +344,16 @@ void CaptureDaemon::reload() {
 
 // ---- one capture ----------------------------------------------------------------------------
 
+CameraOptions CaptureDaemon::cameraOptions(std::optional<double> simulated_alpha_deg) const {
+  const CaptureConfig& capture = config_.daemon.capture;
+  CameraOptions options;
+  options.pixel_format = capture.pixel_format;
+  options.max_frame_retries = capture.max_frame_retries;
+  options.genicam_features = capture.genicam_features;
+  options.simulated_alpha_deg = simulated_alpha_deg;
+  return options;
+}
+
 CaptureSettings CaptureDaemon::baseSettings() const {
   const CaptureConfig& capture = config_.daemon.capture;
   CaptureSettings settings;
@@ -426,11 +433,9 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
     // A simulated scene is rendered for one α: the camera is reopened at each stack's.
     if (*settings.alpha_deg > pipeline::kMaxLimitAlphaDeg + kSimulatedAlphaSlackDeg)
       return skip(fmt::format("the simulated scene ends at {:g}°", pipeline::kMaxLimitAlphaDeg));
-    CameraOptions options;
-    options.pixel_format = config_.daemon.capture.pixel_format;
-    options.max_frame_retries = config_.daemon.capture.max_frame_retries;
-    options.simulated_alpha_deg = std::min(*settings.alpha_deg, pipeline::kMaxLimitAlphaDeg);
-    camera_.configure(uri, options, config_.daemon.faults);
+    camera_.configure(uri,
+                      cameraOptions(std::min(*settings.alpha_deg, pipeline::kMaxLimitAlphaDeg)),
+                      config_.daemon.faults);
   }
   const SteadyTime now = clock_.now();
   const auto acquired = camera_.acquire(now);

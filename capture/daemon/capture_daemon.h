@@ -117,6 +117,7 @@ class CaptureDaemon {
   Status capture(CaptureTrigger trigger);
   std::optional<RigGeometry> measureGeometry(CaptureSettings& settings, bool& pause);
   CaptureSettings baseSettings() const;
+  CameraOptions cameraOptions(std::optional<double> simulated_alpha_deg) const;
   Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
   void finishStack(CapturedStack& stack, const std::optional<RigGeometry>& geometry,
                    CaptureTrigger trigger, UtcTime bracket_start, UtcTime bracket_end);

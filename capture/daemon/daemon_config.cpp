@@ -1,6 +1,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
+#include <fstream>
 
 #include "capture/config_table.h"
 #include "capture/daemon/daemon_config_reader.h"
@@ -42,8 +44,23 @@ Result<CaptureConfig> readCapture(const std::filesystem::path& file, const toml:
   std::optional<std::int64_t> retries;
   GLARECAM_ASSIGN(retries, reader.integer("max_frame_retries", 0, kMaxFrameRetries));
   if (retries) capture.max_frame_retries = static_cast<int>(*retries);
+  std::optional<std::string> preset;
+  GLARECAM_ASSIGN(preset, reader.string("genicam_preset"));
   GLARECAM_CHECK(reader.checkNoUnknownKeys());
+  if (preset) {
+    capture.genicam_preset = file.parent_path() / *preset;
+    std::string features;
+    GLARECAM_ASSIGN(features, readGenicamPreset(*capture.genicam_preset));
+    capture.genicam_features = std::move(features);
+  }
   return capture;
+}
+
+bool isFeatureName(std::string_view name) {
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
 }
 
 Result<ScheduleConfig> readSchedule(const std::filesystem::path& file, const toml::table* table,
@@ -136,6 +153,29 @@ Result<FaultConfig> readFaults(const std::filesystem::path& file, const toml::ta
 }
 
 }  // namespace
+
+Result<std::string> readGenicamPreset(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) return badInput(path.string() + ": cannot read the GenICam preset");
+  std::string features, line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::size_t begin = line.find_first_not_of(" \t");
+    if (begin == std::string::npos || line[begin] == '#') continue;
+    const std::string entry = line.substr(begin, line.find_last_not_of(" \t\r") - begin + 1);
+    const std::size_t equals = entry.find('=');
+    const bool valid = equals != std::string::npos && isFeatureName(entry.substr(0, equals)) &&
+                       equals + 1 < entry.size() &&
+                       entry.find_first_of(" \t", equals) == std::string::npos;
+    if (!valid)
+      return badInput(
+          fmt::format("{}:{}: expected Feature=Value (a GenICam feature name, a value "
+                      "without spaces), got \"{}\"",
+                      path.string(), number, entry));
+    features += (features.empty() ? "" : " ") + entry;
+  }
+  if (features.empty()) return badInput(path.string() + ": the GenICam preset sets no feature");
+  return features;
+}
 
 std::vector<double> defaultAlphaTargetsDeg() {
   std::vector<double> targets;

@@ -26,7 +26,15 @@ struct CaptureConfig {
   std::optional<double> f_number;           // lens, when the camera cannot know it
   std::optional<double> nd_transmission;    // ND filter in front of the lens, (0, 1]
   int max_frame_retries = 5;                // incomplete or timed-out frames per exposure
+  // A GenICam feature preset (firmware-config/genicam/): its file and the features it sets, for
+  // aravis: cameras (CameraOptions::genicam_features).
+  std::optional<std::filesystem::path> genicam_preset{};
+  std::optional<std::string> genicam_features{};
 };
+
+// Reads a preset: one "Feature=Value" a line, '#' comments, blank lines; the features joined as
+// arv_device_set_features_from_string() takes them. kBadInput naming FILE:LINE for anything else.
+Result<std::string> readGenicamPreset(const std::filesystem::path& path);
 
 enum class ScheduleMode {
   kInterval,      // a stack every interval

@@ -77,6 +77,23 @@ TEST(AravisFake, Mono8PathAndAnEightBitStack) {
   EXPECT_NE(read.error().message.find("calibration"), std::string::npos);
 }
 
+TEST(AravisFake, GenicamPresetFeaturesAreSetBeforeGlarecamsOwn) {
+  CameraOptions options;
+  options.genicam_features = "Width=320 Height=240 PixelFormat=Mono8";
+  auto camera = open("aravis:Fake_1", options);
+  ASSERT_TRUE(camera);
+  EXPECT_EQ(camera->format().width, 320);  // the preset's region
+  EXPECT_EQ(camera->format().height, 240);
+  EXPECT_EQ(camera->format().pixel_format, "Mono16");  // glarecam's choice wins
+  options.genicam_features = "Width=320 NoSuchFeature=1";
+  auto refused = openCamera("aravis:Fake_1", options);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(refused.error().message.find("GenICam features \"Width=320 NoSuchFeature=1\""),
+            std::string::npos)
+      << refused.error().message;
+}
+
 TEST(AravisFake, PixelFormatsItCannotUseAreBadInput) {
   CameraOptions options;
   options.pixel_format = "Mono12";  // one glarecam reads, but the fake camera lacks

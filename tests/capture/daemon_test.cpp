@@ -218,6 +218,57 @@ TEST_F(DaemonTest, ConfigErrorsNameTheFileAndLine) {
   expectError("[daemon]\n", "unknown section [daemon]");
 }
 
+TEST_F(DaemonTest, TheShippedExampleStatesTheDefaults) {
+  const fs::path firmware = testing::testDataDir() / ".." / ".." / "firmware-config";
+  const auto example = readRigConfig(firmware / "glarecam.toml");
+  ASSERT_TRUE(example) << example.error().message;
+  testing::writeText(config_path(), "camera = \"sim:\"\n");
+  const auto defaults = readRigConfig(config_path());
+  ASSERT_TRUE(defaults);
+  const DaemonConfig& a = example->daemon;
+  const DaemonConfig& b = defaults->daemon;
+  EXPECT_EQ(a.capture.exposures_us, b.capture.exposures_us);
+  EXPECT_EQ(a.capture.max_frame_retries, b.capture.max_frame_retries);
+  EXPECT_EQ(a.schedule.mode, b.schedule.mode);
+  EXPECT_EQ(a.schedule.interval, b.schedule.interval);
+  EXPECT_EQ(a.schedule.alpha_targets_deg, b.schedule.alpha_targets_deg);
+  EXPECT_EQ(a.schedule.max_alpha_deg, b.schedule.max_alpha_deg);
+  EXPECT_EQ(a.output.root, b.output.root);
+  EXPECT_EQ(a.output.reserve_bytes, b.output.reserve_bytes);
+  EXPECT_EQ(a.output.processing_threads, b.output.processing_threads);
+  EXPECT_EQ(a.faults.camera_max_failures, b.faults.camera_max_failures);
+  EXPECT_EQ(a.faults.camera_backoff, b.faults.camera_backoff);
+  EXPECT_EQ(a.faults.camera_backoff_max, b.faults.camera_backoff_max);
+  EXPECT_EQ(a.faults.max_tilt_deg, b.faults.max_tilt_deg);
+}
+
+TEST_F(DaemonTest, GenicamPresetsAreReadIntoOneFeatureString) {
+  const fs::path presets = testing::testDataDir() / ".." / ".." / "firmware-config" / "genicam";
+  int read = 0;
+  for (const auto& entry : fs::directory_iterator(presets)) {
+    const auto features = readGenicamPreset(entry.path());
+    ASSERT_TRUE(features) << features.error().message;
+    EXPECT_NE(features->find("ExposureAuto=Off"), std::string::npos) << entry.path();
+    ++read;
+  }
+  EXPECT_GE(read, 4);
+  testing::writeText(dir_ / "preset.conf", "# comment\n\n  Width=320\nGammaEnable=false\n");
+  testing::writeText(config_path(),
+                     "camera = \"aravis:\"\n[capture]\ngenicam_preset = \"preset.conf\"\n");
+  const auto config = readRigConfig(config_path());
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->daemon.capture.genicam_features, "Width=320 GammaEnable=false");
+  testing::writeText(dir_ / "preset.conf", "Width=320\nGamma Enable = false\n");
+  const auto bad = readRigConfig(config_path());
+  ASSERT_FALSE(bad);
+  EXPECT_NE(
+      bad.error().message.find((dir_ / "preset.conf").string() + ":2: expected Feature=Value"),
+      std::string::npos)
+      << bad.error().message;
+  fs::remove(dir_ / "preset.conf");
+  EXPECT_FALSE(readRigConfig(config_path()));
+}
+
 TEST_F(DaemonTest, InvalidConfigIsBadInputBeforeAnythingOpens) {
   testing::writeText(config_path(), "camera = \"sim:\"\n[schedule]\nmode = 3\n");
   auto daemon = CaptureDaemon::create({.config_path = config_path()},

@@ -58,7 +58,8 @@ int runGlarecam(int argc, char** argv) {
   CLI::App app{
       "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
       "Docs: docs/process.md, docs/sweep.md, docs/datasheet.md, docs/glare-profile.md,\n"
-      "docs/cameras.md, docs/rig.md, docs/simulate.md, docs/stack-format.md, docs/method.md"};
+      "docs/cameras.md, docs/rig.md, docs/operator.md, docs/simulate.md, docs/stack-format.md,\n"
+      "docs/method.md"};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
   app.fallthrough();  // global options (-v, -q) also after the subcommand
@@ -81,6 +82,7 @@ int runGlarecam(int argc, char** argv) {
   addAlphaCommand(app, action);
   addInclinometerCommand(app, action);
   addGpioCommand(app, action);
+  addDoctorCommand(app, action);
 
   try {
     app.parse(argc, argv);

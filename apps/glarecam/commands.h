@@ -25,6 +25,7 @@ void addSunCommand(CLI::App& app, Action& action);
 void addAlphaCommand(CLI::App& app, Action& action);
 void addInclinometerCommand(CLI::App& app, Action& action);
 void addGpioCommand(CLI::App& app, Action& action);
+void addDoctorCommand(CLI::App& app, Action& action);
 
 // Shared by fit and datasheet: reads the sweep table at `path` into `table` and fits it, logging
 // the fits' warnings; errors name the file.

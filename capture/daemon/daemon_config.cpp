@@ -101,7 +101,7 @@ Result<OutputConfig> readOutput(const std::filesystem::path& file, const toml::t
   TableReader reader(file, *table, "output");
   std::optional<std::string> root, module;
   GLARECAM_ASSIGN(root, reader.string("root"));
-  if (root) output.root = file.parent_path() / *root;
+  if (root) output.root = (file.parent_path() / *root).lexically_normal();
   std::optional<std::int64_t> reserve_mb, threads;
   GLARECAM_ASSIGN(reserve_mb, reader.integer("reserve_mb", 0, kMaxReserveMb));
   if (reserve_mb) output.reserve_bytes = static_cast<std::uint64_t>(*reserve_mb) << 20;

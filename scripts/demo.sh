@@ -5,6 +5,8 @@
 # from the sim: camera (sensor noise, the scene's truth.json), then glarecam sweeps the stacks, fits the
 # method's functions and writes the module glare data sheet. Prints where the sheet is, a short
 # table of measured and fitted values beside the simulator's truth, and the fits' worst deviation.
+# Then the same rig runs unattended: glarecamd --simulate captures at each α target as a
+# time-lapse sun moves, processes each stack and publishes the day's data sheet.
 # Usage: scripts/demo.sh BIN_DIR OUT_DIR
 set -euo pipefail
 BIN=${1:-build/bin}
@@ -121,3 +123,20 @@ echo "data sheet:      $pdf (also datasheet.svg, datasheet.png)"
 echo "glare profile:   $OUT/sweep/glare-profile.json"
 echo "sweep table:     $sweep_csv; fits: $OUT/sweep/fits.json"
 echo "per-stack results and pictures: $OUT/sweep/results/alpha-*/"
+
+# The same rig left to itself: glarecamd on the simulated rig (docs/operator.md), the sun
+# sweeping α in a time lapse (300 simulated seconds a second) on the solstice morning at 48° N,
+# a stack at each α target from 80° to 5°, each processed as it lands, the day's sheet redrawn.
+echo "demo: the rig unattended: glarecamd --simulate takes a stack as the sun carries α through" \
+  "each target, 80° to 5°" >&2
+rm -rf "$OUT/daemon"
+"$BIN/glarecamd" --simulate --output "$OUT/daemon" --count 16 --time-lapse 300 -q \
+  --camera "sim:module=$MODULE"
+day="$OUT/daemon/days/2026-06-21"
+daemon_stacks=$(find "$OUT/daemon/stacks" -mindepth 1 -maxdepth 1 -type d ! -name '.tmp-*' | wc -l)
+if [[ $daemon_stacks -ne 16 || ! -s $day/datasheet.pdf ]]; then
+  echo "demo: glarecamd took $daemon_stacks stacks (expected 16) or wrote no day sheet" >&2
+  exit 1
+fi
+echo "glarecamd:       $daemon_stacks stacks in $OUT/daemon/stacks/, results in $OUT/daemon/results/,"
+echo "                 the day's sheet $day/datasheet.pdf (sweep.csv, fits.json beside it)"

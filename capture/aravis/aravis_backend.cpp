@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include "capture/aravis/glib_ownership.h"
 
@@ -162,14 +163,21 @@ class AravisCamera final : public Camera {
 
   // A preset's features first: glarecam's own settings (pixel format, manual exposure and gain,
   // the trigger) then override whatever it says about them.
+  // A feature the camera lacks is the preset's fault (kBadInput); a write that fails, the link's.
   Status applyFeatures() {
     if (!options_.genicam_features || options_.genicam_features->empty()) return {};
+    ArvDevice* device = arv_camera_get_device(camera_.get());
+    std::istringstream entries(*options_.genicam_features);
+    for (std::string entry; entries >> entry;) {
+      const std::string name = entry.substr(0, entry.find('='));
+      if (arv_device_get_feature(device, name.c_str()) == nullptr)
+        return badInput(fmt::format("{}: GenICam features \"{}\": this camera has no feature {}",
+                                    info_.uri, *options_.genicam_features, name));
+    }
     OwnedError error;
-    arv_device_set_features_from_string(arv_camera_get_device(camera_.get()),
-                                        options_.genicam_features->c_str(), error.out());
+    arv_device_set_features_from_string(device, options_.genicam_features->c_str(), error.out());
     if (error)
-      return badInput(fmt::format("{}: GenICam features \"{}\": {}", info_.uri,
-                                  *options_.genicam_features, error.message()));
+      return failed("cannot set GenICam features \"" + *options_.genicam_features + "\"", error);
     spdlog::info("{}: GenICam features set: {}", info_.uri, *options_.genicam_features);
     return {};
   }

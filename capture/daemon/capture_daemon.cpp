@@ -108,12 +108,13 @@ Status CaptureDaemon::start() {
   watchdog_interval_ = services_.notifier->watchdogInterval();
   const SteadyTime now = clock_.now();
   next_watchdog_ = now;
-  worker_ = std::make_unique<StackWorker>(WorkerOptions{}, events_, clock_, services_.worker_mode);
+  GLARECAM_CHECK(checkConfig(config_));
+  worker_ = std::make_unique<StackWorker>(WorkerOptions{}, events_, clock_, services_.worker_mode,
+                                          services_.worker_job_hook);
+  prepareOutput(true);
   applyConfig();
   spdlog::info("glarecamd: {} with camera {}, output {}", scheduleText(config_.daemon.schedule),
-               config_.camera.value_or("(none)"), config_.daemon.output.root.string());
-  if (!config_.camera)
-    return badInput(config_.path.string() + ": glarecamd needs camera = \"URI\"");
+               *config_.camera, config_.daemon.output.root.string());
   catchUp();
   publishStatus();
   return {};
@@ -122,7 +123,12 @@ Status CaptureDaemon::start() {
 Status CaptureDaemon::step() {
   const SteadyTime now = clock_.now();
   feedWatchdog(now);
-  if (now >= next_disk_check_) checkDisk(now);
+  if (now >= next_disk_check_) {
+    checkDisk(now);
+    checkClock();
+    checkWallClock(now);
+  }
+  if (inclinometer_retry_at_ && now >= *inclinometer_retry_at_) retryInclinometer();
   const auto retry = camera_.retryAt();
   if (!camera_.camera() && (!retry || now >= *retry)) GLARECAM_CHECK(reopenCamera(now));
   if (replan_at_ && now >= *replan_at_) planNext(now, false);
@@ -183,7 +189,7 @@ void CaptureDaemon::applyConfig() {
                .longitude_deg =
                    config_.site ? std::optional(config_.site->longitude_deg) : std::nullopt},
        .threads = daemon.output.processing_threads});
-  prepareOutput();
+  prepareOutput(false);
   openSensors();
   closeRigIo();
   openRigIo();
@@ -248,7 +254,7 @@ void CaptureDaemon::closeRigIo() {
   io_.reset();
 }
 
-void CaptureDaemon::prepareOutput() {
+void CaptureDaemon::prepareOutput(bool clean) {
   const fs::path& root = config_.daemon.output.root;
   for (const char* directory : {kStacksDirectory, kResultsDirectory, kDaysDirectory}) {
     const Status made = ensureDirectory(root / directory);
@@ -258,7 +264,8 @@ void CaptureDaemon::prepareOutput() {
       return;
     }
   }
-  // Whatever a killed glarecamd left half-written: this daemon is the tree's only writer.
+  if (!clean) return;
+  // Whatever a killed glarecamd left half-written (the worker has not started yet).
   std::size_t removed = removeStaleTemporaries(root / kStacksDirectory);
   std::error_code error;
   for (const char* directory : {kResultsDirectory, kDaysDirectory}) {
@@ -267,6 +274,26 @@ void CaptureDaemon::prepareOutput() {
       if (entry.is_directory(error)) removed += removeStaleTemporaries(entry.path());
   }
   if (removed) spdlog::warn("glarecamd: removed {} half-written files of an earlier run", removed);
+}
+
+// After a failed write: do the directories exist, and does a directory made in stacks/ stick?
+bool CaptureDaemon::outputWritable() {
+  const fs::path& root = config_.daemon.output.root;
+  for (const char* directory : {kStacksDirectory, kResultsDirectory, kDaysDirectory})
+    if (!ensureDirectory(root / directory)) return false;
+  std::string probe =
+      (root / kStacksDirectory / (std::string(kTemporaryPrefix) + "probe-XXXXXX")).string();
+  if (!mkdtemp(probe.data())) return false;
+  std::error_code error;
+  fs::remove(probe, error);
+  return true;
+}
+
+Status CaptureDaemon::checkConfig(const RigConfig& config) const {
+  if (!config.camera) return badInput(config.path.string() + ": glarecamd needs camera = \"URI\"");
+  const auto uri = parseCameraUri(*config.camera);
+  if (!uri) return std::unexpected(withContext(uri.error(), config.path.string() + ": camera"));
+  return {};
 }
 
 void CaptureDaemon::catchUp() {
@@ -324,6 +351,10 @@ Status CaptureDaemon::cameraFailed(const Error& error, SteadyTime now, bool mid_
 void CaptureDaemon::reload() {
   ScopedLogFields fields(LogFields{{"GLARECAM_EVENT", "reload"}});
   auto config = readRigConfig(options_.config_path);
+  if (config) {
+    const Status checked = checkConfig(*config);
+    if (!checked) config = std::unexpected(checked.error());
+  }
   if (!config) {
     state_.config_warning =
         fmt::format("reload failed, the previous config stays: {}", config.error().message);
@@ -386,6 +417,7 @@ std::optional<RigGeometry> CaptureDaemon::measureGeometry(CaptureSettings& setti
   if (measured) {
     if (!state_.inclinometer_fault.empty()) spdlog::info("glarecamd: the inclinometer reads again");
     state_.inclinometer_fault.clear();
+    inclinometer_retry_at_.reset();
     for (const std::string& warning : measured->warnings)
       if (logged_warnings_.insert(warning).second) spdlog::warn("glarecamd: {}", warning);
     settings.alpha_deg = measured->alpha_deg;
@@ -394,6 +426,7 @@ std::optional<RigGeometry> CaptureDaemon::measureGeometry(CaptureSettings& setti
     return std::move(*measured);
   }
   state_.inclinometer_fault = measured.error().message;
+  inclinometer_retry_at_ = clock_.now() + kInclinometerRetry;
   pause = state_.inclinometer_pauses;
   spdlog::error("glarecamd: {}; {}", measured.error().message,
                 pause ? "capture pauses" : "the stack's α is unknown");
@@ -415,6 +448,7 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
     state_.skip_reason = std::move(reason);
     return {};
   };
+  checkDisk(clock_.now());  // before every capture: a disk that filled since the last look
   if (!state_.disk_fault.empty()) return skip("capture paused for the disk");
   if (worker_->full()) return skip("the worker is still writing the earlier stacks");
   checkClock();
@@ -518,6 +552,7 @@ void CaptureDaemon::planNext(SteadyTime now, bool slot_taken) {
       next_scheduled_.reset();
       break;
   }
+  plan_clock_ = {now, clock_.utcNow()};
   state_.next_capture_time.reset();
   if (next_scheduled_)
     state_.next_capture_time =
@@ -573,6 +608,7 @@ SteadyTime CaptureDaemon::nextDeadline(SteadyTime now) const {
   if (state_.ready && camera_.camera() && !requests_.empty()) earliest(now);
   if (!camera_.camera()) earliest(camera_.retryAt().value_or(now));
   earliest(replan_at_);
+  earliest(inclinometer_retry_at_);
   return std::max(deadline, now);
 }
 
@@ -596,6 +632,7 @@ void CaptureDaemon::handle(const DaemonEvent& event) {
       state_.gpio_fault = button->error->message;
       spdlog::error("glarecamd: button: {}", button->error->message);
     } else if (config_.daemon.schedule.button) {
+      if (io_) state_.gpio_fault.clear();  // the button reads again
       requests_.push_back(CaptureTrigger::kButton);
     } else {
       spdlog::info("glarecamd: button pressed; [schedule] button = false ignores it");
@@ -607,14 +644,15 @@ void CaptureDaemon::handle(const DaemonEvent& event) {
 
 void CaptureDaemon::handleWorker(const WorkerEvent& event) {
   ScopedLogFields fields(LogFields{{"GLARECAM_STACK", event.stack_id}});
-  if (event.error) {
+  if (event.error && event.stage == WorkerEvent::Stage::kWritten && !event.last) {
+    // Kept by the worker: capture pauses until the disk takes a write again.
+    state_.disk_fault = fmt::format(
+        "writing a stack failed: {}; it is kept until the disk takes it", event.error->message);
+    spdlog::error("glarecamd: {}: {}", event.stack_id, state_.disk_fault);
+  } else if (event.error) {
     ++state_.stacks_failed;
     state_.worker_fault = event.error->message;
     spdlog::error("glarecamd: {}: {}", event.stack_id, event.error->message);
-    if (event.stage == WorkerEvent::Stage::kWritten && event.error->code == ErrorCode::kIo) {
-      state_.disk_fault = "writing a stack failed: " + event.error->message;
-      next_disk_check_ = clock_.now() + kDiskCheckPeriod;
-    }
   } else {
     switch (event.stage) {
       case WorkerEvent::Stage::kWritten:
@@ -644,13 +682,35 @@ void CaptureDaemon::checkDisk(SteadyTime now) {
   const auto state = services_.disk->probe(root);
   std::string reason = state ? diskPauseReason(*state, config_.daemon.output.reserve_bytes, root)
                              : state.error().message;
-  if (reason.empty() && state_.disk_fault.starts_with("cannot")) prepareOutput();
+  // A failed write is over only once a write succeeds: statvfs cannot see every refusal.
+  const bool write_failed = worker_ && worker_->hasParked();
+  if (reason.empty() && (write_failed || !state_.disk_fault.empty()) && !outputWritable())
+    reason = state_.disk_fault.empty() ? root.string() + ": not writable" : state_.disk_fault;
+  if (reason.empty() && write_failed) worker_->retryParked();
   if (reason == state_.disk_fault) return;
   if (reason.empty())
     spdlog::info("glarecamd: disk: {} free; capture resumes", formatBytes(state->free_bytes));
   else
     spdlog::error("glarecamd: disk: {}; capture pauses", reason);
   state_.disk_fault = std::move(reason);
+}
+
+void CaptureDaemon::checkWallClock(SteadyTime now) {
+  if (!plan_clock_) return;
+  const auto expected = plan_clock_->second + std::chrono::duration_cast<std::chrono::microseconds>(
+                                                  now - plan_clock_->first);
+  const auto jump = clock_.utcNow() - expected;
+  if (std::chrono::abs(jump) < kWallClockJump) return;
+  spdlog::warn("glarecamd: the wall clock jumped by {:.0f} s; the schedule is planned again",
+               std::chrono::duration<double>(jump).count());
+  planNext(now, false);
+}
+
+void CaptureDaemon::retryInclinometer() {
+  inclinometer_retry_at_.reset();
+  CaptureSettings unused;
+  bool pause = false;
+  measureGeometry(unused, pause);  // clears the fault when it reads, else sets the next retry
 }
 
 void CaptureDaemon::checkClock() {
@@ -665,10 +725,11 @@ void CaptureDaemon::checkClock() {
 }
 
 void CaptureDaemon::feedWatchdog(SteadyTime now) {
-  if (!watchdog_interval_ || now < next_watchdog_ || !healthy(now)) return;
+  if (!watchdog_interval_ || now < next_watchdog_) return;
+  next_watchdog_ = now + *watchdog_interval_ / 2;
+  if (!healthy(now)) return;  // a stuck worker: systemd's watchdog will restart us
   services_.notifier->notify("WATCHDOG=1");
   ++state_.watchdog_pings;
-  next_watchdog_ = now + *watchdog_interval_ / 2;
 }
 
 bool CaptureDaemon::healthy(SteadyTime now) const {

@@ -58,6 +58,7 @@ struct DaemonServices {
   RigIoOpener open_rig_io{};   // default capture::openRigIo
   StackWorker::Mode worker_mode = StackWorker::Mode::kThread;
   bool watch_button = true;  // a thread polls the button (tests post ButtonEvents instead)
+  std::function<void()> worker_job_hook{};  // tests: runs at the start of every worker job
 };
 
 struct DaemonOptions {
@@ -71,6 +72,8 @@ struct DaemonOptions {
 inline constexpr std::chrono::seconds kDiskCheckPeriod{10};
 // A worker job running longer than this is stuck (a hung disk): the watchdog is no longer fed.
 inline constexpr std::chrono::minutes kWorkerStallLimit{15};
+// A wall clock that moved this much against the steady clock jumped: the schedule is replanned.
+inline constexpr std::chrono::seconds kWallClockJump{5};
 // How far ahead the α targets are computed, and how soon again when none lies in it.
 inline constexpr std::chrono::hours kAlphaPlanHorizon{24};
 // While paused by the inclinometer, how soon it is read again.
@@ -109,7 +112,13 @@ class CaptureDaemon {
   void openSensors();
   void openRigIo();
   void closeRigIo();
-  void prepareOutput();
+  // The output directories; `clean`: also remove what a killed run left half-written (at start
+  // only: later the worker may be writing).
+  void prepareOutput(bool clean);
+  bool outputWritable();
+  void retryInclinometer();
+  void checkWallClock(SteadyTime now);
+  Status checkConfig(const RigConfig& config) const;
   void catchUp();
   Status reopenCamera(SteadyTime now);
 
@@ -162,6 +171,9 @@ class CaptureDaemon {
   std::optional<SteadyTime> next_scheduled_;
   std::optional<SteadyTime> replan_at_;
   std::optional<SteadyTime> inclinometer_retry_at_;
+  // The wall clock against the steady clock when the schedule was planned: a jump (NTP's first
+  // synchronisation on a board without a clock) makes the plan wrong.
+  std::optional<std::pair<SteadyTime, UtcTime>> plan_clock_;
   std::optional<UtcTime> last_interval_start_;
   std::map<double, UtcTime> taken_targets_;  // when each α target's slot was last used
   std::deque<CaptureTrigger> requests_;      // button presses and SIGUSR1, in order

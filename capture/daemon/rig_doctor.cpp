@@ -159,6 +159,20 @@ DoctorCheck sunCheck(const RigGeometry& geometry) {
                                geometry.alpha_deg, geometry.alpha_uncertainty_deg));
 }
 
+// measureTilt() already refused a moving rig (scatter above the config's bound); the tilt must
+// also be plausible, as glarecamd judges it ([faults] min/max_tilt_deg).
+DoctorCheck tiltCheck(const RigConfig& config, const TiltReading& tilt) {
+  const FaultConfig& faults = config.daemon.faults;
+  const std::string reading =
+      fmt::format("{}: tilt {:.3f}°, scatter {:.4f}° over {} samples", config.inclinometer->uri,
+                  tilt.module_tilt_deg, tilt.tilt_std_deg, tilt.samples);
+  if (!(tilt.module_tilt_deg >= faults.min_tilt_deg && tilt.module_tilt_deg <= faults.max_tilt_deg))
+    return failed("inclinometer", fmt::format("{}: implausible (outside [{:g}, {:g}]°)", reading,
+                                              faults.min_tilt_deg, faults.max_tilt_deg));
+  return ok("inclinometer", fmt::format("{} (steady: below {:g}°)", reading,
+                                        config.inclinometer->tilt.max_tilt_std_deg));
+}
+
 SensorChecks checkSensors(const RigConfig& config) {
   SensorChecks checks;
   if (!config.site && !config.fixed_source) return checks;
@@ -174,11 +188,7 @@ SensorChecks checkSensors(const RigConfig& config) {
     return checks;
   }
   checks.alpha_deg = measured->alpha_deg;
-  if (measured->tilt)
-    checks.inclinometer =
-        ok("inclinometer", fmt::format("{}: tilt {:.3f}°, scatter {:.4f}° over {} samples (steady)",
-                                       config.inclinometer->uri, measured->tilt->module_tilt_deg,
-                                       measured->tilt->tilt_std_deg, measured->tilt->samples));
+  if (measured->tilt) checks.inclinometer = tiltCheck(config, *measured->tilt);
   if (measured->sun) checks.sun = sunCheck(*measured);
   return checks;
 }

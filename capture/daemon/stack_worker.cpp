@@ -11,8 +11,13 @@ namespace glarecam::capture {
 
 namespace fs = std::filesystem;
 
-StackWorker::StackWorker(WorkerOptions options, EventQueue& events, DaemonClock& clock, Mode mode)
-    : events_(events), clock_(clock), mode_(mode), options_(std::move(options)) {
+StackWorker::StackWorker(WorkerOptions options, EventQueue& events, DaemonClock& clock, Mode mode,
+                         std::function<void()> job_hook)
+    : events_(events),
+      clock_(clock),
+      mode_(mode),
+      job_hook_(std::move(job_hook)),
+      options_(std::move(options)) {
   if (mode_ == Mode::kThread) thread_ = std::jthread([this](std::stop_token stop) { run(stop); });
 }
 
@@ -30,12 +35,17 @@ WorkerOptions StackWorker::currentOptions() const {
 
 bool StackWorker::full() const {
   const std::lock_guard lock(mutex_);
-  return captured_queued_ >= options_.max_backlog;
+  return captured_queued_ + parked_.size() >= options_.max_backlog;
 }
 
 std::size_t StackWorker::pending() const {
   const std::lock_guard lock(mutex_);
-  return jobs_.size() + (running_job_ ? 1 : 0);
+  return jobs_.size() + parked_.size() + (running_job_ ? 1 : 0);
+}
+
+bool StackWorker::hasParked() const {
+  const std::lock_guard lock(mutex_);
+  return !parked_.empty();
 }
 
 std::optional<SteadyTime> StackWorker::busySince() const {
@@ -43,39 +53,56 @@ std::optional<SteadyTime> StackWorker::busySince() const {
   return busy_since_;
 }
 
-bool StackWorker::submit(CapturedStack stack) {
+void StackWorker::enqueue(Job job) {
   if (mode_ == Mode::kInline) {
-    Job job{.stack = std::move(stack)};
-    runJob(job, false);
-    return true;
-  }
-  {
-    const std::lock_guard lock(mutex_);
-    if (stopping_ || captured_queued_ >= options_.max_backlog) return false;
-    jobs_.push_back({.stack = std::move(stack)});
-    ++captured_queued_;
-  }
-  wake_.notify_one();
-  return true;
-}
-
-void StackWorker::submitWritten(fs::path stack) {
-  if (mode_ == Mode::kInline) {
-    Job job{.path = std::move(stack)};
     runJob(job, false);
     return;
   }
   {
     const std::lock_guard lock(mutex_);
-    jobs_.push_back({.path = std::move(stack)});
+    if (job.stack) ++captured_queued_;
+    jobs_.push_back(std::move(job));
   }
   wake_.notify_one();
+}
+
+bool StackWorker::submit(CapturedStack stack) {
+  {
+    const std::lock_guard lock(mutex_);
+    if (stopping_ || captured_queued_ + parked_.size() >= options_.max_backlog) return false;
+  }
+  enqueue({.stack = std::move(stack)});
+  return true;
+}
+
+void StackWorker::submitWritten(fs::path stack) { enqueue({.path = std::move(stack)}); }
+
+void StackWorker::retryParked() {
+  std::deque<Job> parked;
+  {
+    const std::lock_guard lock(mutex_);
+    parked.swap(parked_);
+    if (mode_ == Mode::kThread) {
+      captured_queued_ += parked.size();
+      for (auto job = parked.rbegin(); job != parked.rend(); ++job)
+        jobs_.push_front(std::move(*job));
+    }
+  }
+  if (mode_ == Mode::kThread) {
+    wake_.notify_one();
+    return;
+  }
+  for (Job& job : parked) runJob(job, false);
 }
 
 void StackWorker::stop() {
   {
     const std::lock_guard lock(mutex_);
     if (stopping_ && !thread_.joinable()) return;
+  }
+  retryParked();  // one more try for the kept stacks
+  {
+    const std::lock_guard lock(mutex_);
     stopping_ = true;
   }
   if (thread_.joinable()) {
@@ -101,6 +128,7 @@ void StackWorker::run(std::stop_token stop) {
       if (jobs_.empty()) return;
       job = std::move(jobs_.front());
       jobs_.pop_front();
+      if (job.stack) --captured_queued_;
       running_job_ = true;
       busy_since_ = clock_.now();
     }
@@ -112,43 +140,46 @@ void StackWorker::run(std::stop_token stop) {
 }
 
 void StackWorker::runJob(Job& job, bool stopping) {
+  if (job_hook_) job_hook_();
   const WorkerOptions options = currentOptions();
   try {
     if (job.stack) {
-      const auto written = write(*job.stack, options, stopping);
-      job.stack.reset();             // the frames' memory back before processing
-      if (mode_ == Mode::kThread) {  // room for the next captured stack
-        const std::lock_guard lock(mutex_);
-        --captured_queued_;
-      }
+      const auto written = write(job, options, stopping);
       if (!written) return;
       job.path = *written;
     }
     if (!stopping) process(job.path, options);  // else at the next start
   } catch (...) {  // a library's exception ends this job, not the daemon
-    events_.post(WorkerEvent{.stage = WorkerEvent::Stage::kProcessed,
-                             .stack_id = job.path.filename().string(),
-                             .error = currentExceptionError(),
-                             .last = true});
+    events_.post(WorkerEvent{
+        .stage = job.stack ? WorkerEvent::Stage::kWritten : WorkerEvent::Stage::kProcessed,
+        .stack_id =
+            job.stack ? job.stack->manifest.id.value_or("stack") : job.path.filename().string(),
+        .error = currentExceptionError(),
+        .last = true});
   }
 }
 
-std::optional<fs::path> StackWorker::write(const CapturedStack& stack, const WorkerOptions& options,
-                                           bool last) {
-  const std::string id = stack.manifest.id.value_or("stack");
-  auto written = writeCapturedStack(options.day.root / kStacksDirectory, stack);
-  WorkerEvent event{.stage = WorkerEvent::Stage::kWritten, .stack_id = id, .last = last};
+std::optional<fs::path> StackWorker::write(Job& job, const WorkerOptions& options, bool stopping) {
+  const std::string id = job.stack->manifest.id.value_or("stack");
+  auto written = writeCapturedStack(options.day.root / kStacksDirectory, *job.stack);
+  WorkerEvent event{.stage = WorkerEvent::Stage::kWritten, .stack_id = id, .last = stopping};
   if (written) {
+    job.stack.reset();  // the frames' memory back before processing
     event.stack_id = written->filename().string();
     event.path = *written;
-    if (last) event.detail = "processing left for the next start";
-  } else {
-    event.error = written.error();
-    event.last = true;
+    if (stopping) event.detail = "processing left for the next start";
+    events_.post(std::move(event));
+    return *written;
+  }
+  event.error = written.error();
+  if (stopping) {
+    event.error->message += "; the stack is lost (glarecamd is stopping)";
+  } else {  // kept for retryParked()
+    const std::lock_guard lock(mutex_);
+    parked_.push_back(std::move(job));
   }
   events_.post(std::move(event));
-  if (!written) return std::nullopt;
-  return *written;
+  return std::nullopt;
 }
 
 // The result appears whole like the stack: processed in a staging directory, then renamed (over

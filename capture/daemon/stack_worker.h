@@ -6,14 +6,17 @@
 // (nice kWorkerNice) than the capture loop.
 //
 // The backlog is bounded (frames are held in memory until written): submit() refuses a stack
-// beyond it and the loop skips the capture. stop() writes every stack still queued, so that no
-// captured stack is lost on shutdown, but processes none; the next start processes every stack
-// without a result (submitWritten()).
+// beyond it and the loop skips the capture. A stack whose write fails (a full or read-only disk)
+// is kept, not dropped: the loop pauses capture and calls retryParked() once the disk takes
+// writes again. stop() writes every stack still queued or kept, so that no captured stack is lost
+// on shutdown unless the disk refuses it then too, but processes none; the next start processes
+// every stack without a result (submitWritten()).
 #pragma once
 
 #include <condition_variable>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -39,7 +42,9 @@ class StackWorker {
   // kInline runs each job inside submit() (tests: one thread, deterministic).
   enum class Mode { kThread, kInline };
 
-  StackWorker(WorkerOptions options, EventQueue& events, DaemonClock& clock, Mode mode);
+  // `job_hook` (tests) runs on the worker's thread at the start of every job.
+  StackWorker(WorkerOptions options, EventQueue& events, DaemonClock& clock, Mode mode,
+              std::function<void()> job_hook = {});
   ~StackWorker();  // stop()
   StackWorker(const StackWorker&) = delete;
   StackWorker& operator=(const StackWorker&) = delete;
@@ -52,8 +57,12 @@ class StackWorker {
   // Queues a stack already on disk for processing.
   void submitWritten(std::filesystem::path stack);
 
-  bool full() const;
-  std::size_t pending() const;  // jobs queued or running
+  // Queues the stacks whose write failed again, first.
+  void retryParked();
+  bool hasParked() const;
+
+  bool full() const;            // captured stacks queued or kept reach the backlog
+  std::size_t pending() const;  // jobs queued, running or kept
   // Since when the running job has been running (nullopt when idle): a job that never ends (a
   // hung disk) makes the daemon stop feeding the watchdog.
   std::optional<SteadyTime> busySince() const;
@@ -67,11 +76,11 @@ class StackWorker {
     std::filesystem::path path{};
   };
 
+  void enqueue(Job job);
   void run(std::stop_token stop);
   void runJob(Job& job, bool stopping);
-  // `last`: nothing follows (stopping), the event says so.
-  std::optional<std::filesystem::path> write(const CapturedStack& stack,
-                                             const WorkerOptions& options, bool last);
+  // The written stack's path; on failure the job is parked (or, when stopping, the stack lost).
+  std::optional<std::filesystem::path> write(Job& job, const WorkerOptions& options, bool stopping);
   void process(const std::filesystem::path& stack, const WorkerOptions& options);
   Result<pipeline::ProcessSummary> processInto(const std::filesystem::path& stack,
                                                const std::filesystem::path& target,
@@ -81,12 +90,14 @@ class StackWorker {
   EventQueue& events_;
   DaemonClock& clock_;
   Mode mode_;
+  std::function<void()> job_hook_;
 
   mutable std::mutex mutex_;
   std::condition_variable_any wake_;
   WorkerOptions options_;
   std::deque<Job> jobs_;
-  std::size_t captured_queued_ = 0;
+  std::deque<Job> parked_;           // captured stacks whose write failed, oldest first
+  std::size_t captured_queued_ = 0;  // captured stacks in jobs_
   std::optional<SteadyTime> busy_since_;
   bool running_job_ = false;
   bool stopping_ = false;

@@ -5,13 +5,17 @@
 #include <signal.h>
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <fstream>
+#include <mutex>
 #include <thread>
 
 #include "capture/daemon/alpha_schedule.h"
 #include "capture/daemon/capture_daemon.h"
 #include "capture/daemon/day_products.h"
+#include "capture/daemon/journal_sink.h"
 #include "capture/daemon_test_support.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
@@ -358,8 +362,10 @@ TEST_F(DaemonTest, WatchdogIsFedAtHalfItsIntervalWhileTheLoopRuns) {
   // WATCHDOG_USEC 10 s: a ping every 5 s (systemd's advice: half the interval), however idle the
   // schedule; the manual clock makes the cadence exact.
   ASSERT_GE(pings.size(), 2u * 3600 / 5);
-  for (std::size_t i = 1; i < pings.size(); ++i)
+  for (std::size_t i = 1; i < pings.size(); ++i) {
     EXPECT_LE(pings[i].at - pings[i - 1].at, 5s) << "gap before ping " << i;
+    EXPECT_GE(pings[i].at - pings[i - 1].at, 5s) << "a ping on every wake-up, before ping " << i;
+  }
 }
 
 TEST_F(DaemonTest, AWedgedCameraStopsTheHeartbeat) {
@@ -371,6 +377,8 @@ TEST_F(DaemonTest, AWedgedCameraStopsTheHeartbeat) {
   cameras_.waitUntilWedged();
   const std::size_t before = notifier_.count("WATCHDOG=1");
   clock_.advance(10min);  // far past WATCHDOG_USEC: systemd would kill and restart us now
+  // Any other thread that pinged on its own (a timer thread's "heartbeat") has had its chance.
+  std::this_thread::sleep_for(300ms);
   EXPECT_EQ(notifier_.count("WATCHDOG=1"), before) << "nothing may ping for a wedged loop";
   cameras_.release();
   loop.join();
@@ -633,20 +641,43 @@ TEST_F(DaemonTest, ReadOnlyFilesystemIsReported) {
   EXPECT_EQ(led, RigState::faulted(FaultCode::kDisk));
 }
 
-TEST_F(DaemonTest, AnUnwritableOutputPausesInsteadOfLosingStacks) {
-  writeConfig();
+TEST_F(DaemonTest, AStackThatCannotBeWrittenIsKeptUntilTheDiskTakesIt) {
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 60"});
   auto daemon = makeDaemon();
-  // The stacks directory turns into a file between two stacks: the write fails (nothing half
-  // written is left), capture pauses for the disk.
-  clock_.at(300s, [&] {
+  // The stacks directory turns into a file (a refusal statvfs cannot see) between two stacks:
+  // the 120 s stack's write fails; it is kept in memory and capture pauses. At 500 s the file
+  // goes; the next disk check writes a probe, then the kept stack.
+  clock_.at(100s, [&] {
     fs::remove_all(out() / kStacksDirectory);
     testing::writeText(out() / kStacksDirectory, "not a directory");
   });
-  terminateAt(601s, *daemon);
+  clock_.at(500s, [&] { fs::remove(out() / kStacksDirectory); });
+  terminateAt(541s, *daemon);
   ASSERT_TRUE(daemon->run());
-  EXPECT_EQ(daemon->state().stacks_written, 1u);
-  EXPECT_EQ(daemon->state().stacks_failed, 1u);
   EXPECT_TRUE(statusMentioned("disk: writing a stack failed"));
+  EXPECT_TRUE(statusMentioned("it is kept until the disk takes it"));
+  EXPECT_EQ(daemon->state().stacks_failed, 0u);
+  const auto written = stacks();
+  ASSERT_EQ(written.size(), 2u);  // the one at 120 s, late, and the one at 540 s: none lost
+  EXPECT_EQ(manifest(written[0])["captured_at"], "2026-06-21T08:02:00Z");
+  EXPECT_TRUE(readStack(written[0]));
+  EXPECT_TRUE(daemon->state().disk_fault.empty());
+}
+
+TEST_F(DaemonTest, AWallClockJumpReplansTheAlphaTargets) {
+  // A rig without a real-time clock: it boots believing it is 05:00, then NTP steps the clock
+  // an hour ahead. The plan made before the step would take "80°" at 06:34, where α is 68°.
+  clock_.setUtcStart(utc("2026-06-21T05:00:00Z"));
+  writeConfig({.inclinometer = "sim:24.5", .schedule = "mode = \"alpha-targets\"", .site = true});
+  auto daemon = makeDaemon({.max_stacks = 2});
+  clock_.at(60s, [&] { clock_.setUtcStart(utc("2026-06-21T06:00:00Z")); });
+  terminateAt(24h, *daemon);
+  ASSERT_TRUE(daemon->run());
+  for (const fs::path& stack : stacks()) {
+    const nlohmann::json m = manifest(stack);
+    EXPECT_NEAR(m["alpha_deg"].get<double>(), m["daemon"]["target_alpha_deg"].get<double>(), 0.02)
+        << stack;
+  }
 }
 
 TEST_F(DaemonTest, UnsynchronisedClockIsInStatusAndFlagsEveryStack) {
@@ -681,21 +712,82 @@ TEST_F(DaemonTest, StartCleansUpAndProcessesWhatAKilledRunLeft) {
   EXPECT_TRUE(fs::exists(out() / kResultsDirectory / leftover.filename() / "result.json"));
 }
 
+// A worker on its own thread, held at the start of its first job until the test opens the gate.
+struct WorkerGate {
+  std::mutex mutex;
+  std::condition_variable opened_cv;
+  bool opened = false;
+  std::atomic<int> jobs{0};
+  void hold() {
+    if (jobs++ > 0) return;
+    std::unique_lock lock(mutex);
+    opened_cv.wait(lock, [this] { return opened; });
+  }
+  void open() {
+    const std::lock_guard lock(mutex);
+    opened = true;
+    opened_cv.notify_all();
+  }
+};
+
 TEST_F(DaemonTest, StopWritesTheStacksStillQueued) {
   writeConfig({.schedule = "mode = \"button\""});
+  WorkerGate gate;
   auto daemon = CaptureDaemon::create({.config_path = config_path()},
                                       {.clock = &clock_,
                                        .notifier = &notifier_,
                                        .disk = &disk_,
                                        .open_camera = cameras_.opener(),
                                        .worker_mode = StackWorker::Mode::kThread,
-                                       .watch_button = false});
+                                       .watch_button = false,
+                                       .worker_job_hook = [&gate] { gate.hold(); }});
   ASSERT_TRUE(daemon);
+  // Two stacks: the worker is held on the first, so the second is still queued, in memory, when
+  // SIGTERM arrives; the gate opens once the daemon is stopping.
   signalAt(10s, **daemon, SIGUSR1);
-  signalAt(10s, **daemon, SIGTERM);  // right behind it: the stack is still in memory
+  signalAt(20s, **daemon, SIGUSR1);
+  signalAt(30s, **daemon, SIGTERM);
+  std::thread opener([&] {
+    while (notifier_.count("STOPPING=1") == 0) std::this_thread::sleep_for(1ms);
+    gate.open();
+  });
   ASSERT_TRUE((*daemon)->run());
-  ASSERT_EQ(stacks().size(), 1u);
-  EXPECT_TRUE(readStack(stacks()[0]));
+  opener.join();
+  ASSERT_EQ(stacks().size(), 2u);
+  for (const fs::path& stack : stacks()) EXPECT_TRUE(readStack(stack)) << stack;
+}
+
+TEST_F(DaemonTest, AStuckWorkerStopsTheHeartbeat) {
+  writeConfig({.schedule = "mode = \"button\""});
+  WorkerGate gate;
+  auto daemon = CaptureDaemon::create({.config_path = config_path()},
+                                      {.clock = &clock_,
+                                       .notifier = &notifier_,
+                                       .disk = &disk_,
+                                       .open_camera = cameras_.opener(),
+                                       .worker_mode = StackWorker::Mode::kThread,
+                                       .watch_button = false,
+                                       .worker_job_hook = [&gate] { gate.hold(); }});
+  ASSERT_TRUE(daemon);
+  signalAt(10s, **daemon, SIGUSR1);         // the worker's first job hangs (a dead disk)
+  clock_.at(1h, [&gate] { gate.open(); });  // ... until an hour later
+  // While the worker thread works in real time, the loop races on through manual time: the end
+  // lies far enough ahead for the heartbeat to have come back by then.
+  terminateAt(100h, **daemon);
+  ASSERT_TRUE((*daemon)->run());
+  // The loop went on (the manual clock ran through the hour), but from kWorkerStallLimit into the
+  // stuck job it no longer fed the watchdog: systemd would have restarted the daemon. (The job's
+  // start is read on the worker's thread while the loop races ahead: the gap is at least half an
+  // hour of the 45 minutes, not exactly 45.)
+  const auto pings = notifier_.matching("WATCHDOG=1");
+  std::chrono::nanoseconds longest_gap{0}, gap_end{0};
+  for (std::size_t i = 1; i < pings.size(); ++i)
+    if (pings[i].at - pings[i - 1].at > longest_gap) {
+      longest_gap = pings[i].at - pings[i - 1].at;
+      gap_end = pings[i].at;
+    }
+  EXPECT_GE(longest_gap, 30min);
+  EXPECT_GE(gap_end, 1h);  // the heartbeat came back with the worker
 }
 
 // ---- the pure parts ---------------------------------------------------------------------------
@@ -783,6 +875,27 @@ TEST(DaemonClock, TimeLapseRunsTheWallClockFaster) {
   EXPECT_NEAR(std::chrono::duration<double>(real).count(), 6.0, 1e-6);
   EXPECT_TRUE(clock.clockStatus().synchronised);
   EXPECT_GE(clock.utcNow(), start);
+}
+
+TEST(JournalSink, EntriesCarryTheScopesFieldsAndDropInvalidNames) {
+  {
+    const ScopedLogFields outer(LogFields{{"GLARECAM_EVENT", "capture"}});
+    const ScopedLogFields inner(
+        LogFields{{"GLARECAM_STACK", "20260621T101503Z-a42.30"}, {"_PID", "1"}, {"lower", "x"}});
+    EXPECT_EQ(journalEntry("glarecamd", 4, "disk: full", currentLogFields()),
+              (std::vector<std::string>{"MESSAGE=disk: full", "PRIORITY=4",
+                                        "SYSLOG_IDENTIFIER=glarecamd", "GLARECAM_EVENT=capture",
+                                        "GLARECAM_STACK=20260621T101503Z-a42.30"}));
+  }
+  EXPECT_TRUE(currentLogFields().empty());  // the scopes are gone
+  // Not connected to the journal here: stderr is a terminal or a file, not $JOURNAL_STREAM's.
+  ::setenv("JOURNAL_STREAM", "1:1", 1);
+  EXPECT_FALSE(stderrIsJournal());
+  ::unsetenv("JOURNAL_STREAM");
+  EXPECT_FALSE(stderrIsJournal());
+  // Without a journal to send to, logging through the sink must not throw or stop anything.
+  auto logger = std::make_shared<spdlog::logger>("journal-test", makeJournalSink("glarecamd"));
+  EXPECT_NO_THROW(logger->error("no journald here"));
 }
 
 }  // namespace

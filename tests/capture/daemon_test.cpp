@@ -71,16 +71,29 @@ class DaemonTest : public ::testing::Test {
   fs::path config_path() const { return dir_ / "glarecam.toml"; }
   fs::path out() const { return dir_ / "out"; }
 
-  std::unique_ptr<CaptureDaemon> makeDaemon(DaemonOptions options = {}) {
+  // The daemon on the test's clock, notifier, disk and cameras, its worker inline; `adjust`
+  // changes the services (a worker thread, an opener of its own).
+  std::unique_ptr<CaptureDaemon> makeDaemon(
+      DaemonOptions options = {}, const std::function<void(DaemonServices&)>& adjust = {}) {
     if (options.config_path == kDefaultRigConfigPath) options.config_path = config_path();
-    auto daemon = CaptureDaemon::create(options, {.clock = &clock_,
-                                                  .notifier = &notifier_,
-                                                  .disk = &disk_,
-                                                  .open_camera = cameras_.opener(),
-                                                  .worker_mode = StackWorker::Mode::kInline,
-                                                  .watch_button = false});
+    DaemonServices services{.clock = &clock_,
+                            .notifier = &notifier_,
+                            .disk = &disk_,
+                            .open_camera = cameras_.opener(),
+                            .worker_mode = StackWorker::Mode::kInline,
+                            .watch_button = false};
+    if (adjust) adjust(services);
+    auto daemon = CaptureDaemon::create(options, std::move(services));
     EXPECT_TRUE(daemon) << daemon.error().message;
     return daemon ? std::move(*daemon) : nullptr;
+  }
+  // With its worker on a thread, held at the start of its first job by `gate`.
+  template <typename Gate>
+  std::unique_ptr<CaptureDaemon> makeGatedDaemon(Gate& gate) {
+    return makeDaemon({}, [&gate](DaemonServices& services) {
+      services.worker_mode = StackWorker::Mode::kThread;
+      services.worker_job_hook = [&gate] { gate.hold(); };
+    });
   }
 
   // SIGTERM (through the event queue, as the signal forwarder posts it) at `offset`.
@@ -494,27 +507,22 @@ TEST_F(DaemonTest, CameraLostMidBracketIsReopenedWithBackoff) {
   std::vector<std::chrono::nanoseconds> opens;
   auto script = cameras_.opener();
   cameras_.loseAtCall(3);  // mid-way through the first bracket; opens fail until healed
-  auto daemon = CaptureDaemon::create({.config_path = config_path()},
-                                      {.clock = &clock_,
-                                       .notifier = &notifier_,
-                                       .disk = &disk_,
-                                       .open_camera =
-                                           [&](std::string_view uri, const CameraOptions& options) {
-                                             opens.push_back(clock_.elapsed());
-                                             return script(uri, options);
-                                           },
-                                       .worker_mode = StackWorker::Mode::kInline,
-                                       .watch_button = false});
+  auto daemon = makeDaemon({}, [&](DaemonServices& services) {
+    services.open_camera = [&](std::string_view uri, const CameraOptions& options) {
+      opens.push_back(clock_.elapsed());
+      return script(uri, options);
+    };
+  });
   ASSERT_TRUE(daemon);
   RigState led_while_lost;
   std::string status_while_lost;
   clock_.at(10s, [&] {
-    led_while_lost = (*daemon)->state().led;
-    status_while_lost = (*daemon)->state().status;
+    led_while_lost = daemon->state().led;
+    status_while_lost = daemon->state().status;
   });
   clock_.at(20s, [&] { cameras_.heal(); });
-  terminateAt(601s, **daemon);
-  ASSERT_TRUE((*daemon)->run());
+  terminateAt(601s, *daemon);
+  ASSERT_TRUE(daemon->run());
   // Opened at 0 s (and again at 0 s: a simulated scene is rendered at the stack's α), lost
   // mid-bracket; reopened after 2 s, then 4 s (both fail: failures 2 and 3), then 8 s later at
   // 14 s (fails: 4 of 5)... healed at 20 s; the next try, 16 s after 14 s (the cap), at 30 s,
@@ -531,8 +539,8 @@ TEST_F(DaemonTest, CameraLostMidBracketIsReopenedWithBackoff) {
                       "discarded; reopening in 2 s (failure 1 of 5)"));
   EXPECT_NE(status_while_lost.find("failure 3 of 5"), std::string::npos) << status_while_lost;
   EXPECT_EQ(stacks().size(), 1u);  // only the 600 s stack: the lost bracket left nothing
-  EXPECT_TRUE((*daemon)->state().camera_fault.empty());
-  EXPECT_EQ((*daemon)->state().led, RigState::ready());
+  EXPECT_TRUE(daemon->state().camera_fault.empty());
+  EXPECT_EQ(daemon->state().led, RigState::ready());
 }
 
 TEST_F(DaemonTest, CameraLostForGoodEndsTheDaemonForSystemdToRestart) {
@@ -733,25 +741,18 @@ struct WorkerGate {
 TEST_F(DaemonTest, StopWritesTheStacksStillQueued) {
   writeConfig({.schedule = "mode = \"button\""});
   WorkerGate gate;
-  auto daemon = CaptureDaemon::create({.config_path = config_path()},
-                                      {.clock = &clock_,
-                                       .notifier = &notifier_,
-                                       .disk = &disk_,
-                                       .open_camera = cameras_.opener(),
-                                       .worker_mode = StackWorker::Mode::kThread,
-                                       .watch_button = false,
-                                       .worker_job_hook = [&gate] { gate.hold(); }});
+  auto daemon = makeGatedDaemon(gate);
   ASSERT_TRUE(daemon);
   // Two stacks: the worker is held on the first, so the second is still queued, in memory, when
   // SIGTERM arrives; the gate opens once the daemon is stopping.
-  signalAt(10s, **daemon, SIGUSR1);
-  signalAt(20s, **daemon, SIGUSR1);
-  signalAt(30s, **daemon, SIGTERM);
+  signalAt(10s, *daemon, SIGUSR1);
+  signalAt(20s, *daemon, SIGUSR1);
+  signalAt(30s, *daemon, SIGTERM);
   std::thread opener([&] {
     while (notifier_.count("STOPPING=1") == 0) std::this_thread::sleep_for(1ms);
     gate.open();
   });
-  ASSERT_TRUE((*daemon)->run());
+  ASSERT_TRUE(daemon->run());
   opener.join();
   ASSERT_EQ(stacks().size(), 2u);
   for (const fs::path& stack : stacks()) EXPECT_TRUE(readStack(stack)) << stack;
@@ -760,21 +761,14 @@ TEST_F(DaemonTest, StopWritesTheStacksStillQueued) {
 TEST_F(DaemonTest, AStuckWorkerStopsTheHeartbeat) {
   writeConfig({.schedule = "mode = \"button\""});
   WorkerGate gate;
-  auto daemon = CaptureDaemon::create({.config_path = config_path()},
-                                      {.clock = &clock_,
-                                       .notifier = &notifier_,
-                                       .disk = &disk_,
-                                       .open_camera = cameras_.opener(),
-                                       .worker_mode = StackWorker::Mode::kThread,
-                                       .watch_button = false,
-                                       .worker_job_hook = [&gate] { gate.hold(); }});
+  auto daemon = makeGatedDaemon(gate);
   ASSERT_TRUE(daemon);
-  signalAt(10s, **daemon, SIGUSR1);         // the worker's first job hangs (a dead disk)
+  signalAt(10s, *daemon, SIGUSR1);          // the worker's first job hangs (a dead disk)
   clock_.at(1h, [&gate] { gate.open(); });  // ... until an hour later
   // While the worker thread works in real time, the loop races on through manual time: the end
   // lies far enough ahead for the heartbeat to have come back by then.
-  terminateAt(100h, **daemon);
-  ASSERT_TRUE((*daemon)->run());
+  terminateAt(100h, *daemon);
+  ASSERT_TRUE(daemon->run());
   // The loop went on (the manual clock ran through the hour), but from kWorkerStallLimit into the
   // stuck job it no longer fed the watchdog: systemd would have restarted the daemon. (The job's
   // start is read on the worker's thread while the loop races ahead: the gap is at least half an

@@ -22,6 +22,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// How a disk fault from a failed write begins: it ends only when the kept stack is written.
+constexpr std::string_view kWriteFailed = "writing a stack failed: ";
 // After a failed button read, how long the button thread waits before reading again.
 constexpr std::chrono::seconds kButtonRetry{5};
 // The simulated scene exists up to the limit curve's 80°; the simulated inclinometer's noise
@@ -132,7 +134,8 @@ Status CaptureDaemon::step() {
   const auto retry = camera_.retryAt();
   if (!camera_.camera() && (!retry || now >= *retry)) GLARECAM_CHECK(reopenCamera(now));
   if (replan_at_ && now >= *replan_at_) planNext(now, false);
-  if (state_.ready && camera_.camera() && !stopping_) {
+  const bool enough = options_.max_stacks && state_.stacks_captured >= *options_.max_stacks;
+  if (state_.ready && camera_.camera() && !stopping_ && !enough) {
     if (!requests_.empty()) {
       const CaptureTrigger trigger = requests_.front();
       requests_.pop_front();
@@ -199,12 +202,14 @@ void CaptureDaemon::applyConfig() {
 
 void CaptureDaemon::openSensors() {
   sensors_.reset();
+  last_geometry_.reset();  // the module may have moved, or the config's geometry changed
   logged_warnings_.clear();
   if (!config_.site && !config_.fixed_source) return;  // α is not measured
   auto sensors = RigSensors::open(config_);
   if (!sensors) {
+    if (sensors.error().message != state_.inclinometer_fault)
+      spdlog::error("glarecamd: {}", sensors.error().message);
     state_.inclinometer_fault = sensors.error().message;
-    spdlog::error("glarecamd: {}", sensors.error().message);
     return;
   }
   sensors_ = std::move(*sensors);
@@ -289,6 +294,26 @@ bool CaptureDaemon::outputWritable() {
   return true;
 }
 
+// A new camera, or the camera with new options, must open as configured before the reload is
+// taken: the old camera is released first (a GigE camera has one controller). One that is absent
+// now may come back, like a camera lost at any other time.
+Status CaptureDaemon::checkReloadedCamera(const RigConfig& config) {
+  GLARECAM_CHECK(checkConfig(config));
+  CameraOptions options;
+  options.pixel_format = config.daemon.capture.pixel_format;
+  options.max_frame_retries = config.daemon.capture.max_frame_retries;
+  options.genicam_features = config.daemon.capture.genicam_features;
+  const CameraOptions current = cameraOptions(std::nullopt);
+  if (*config.camera == config_.camera && options.pixel_format == current.pixel_format &&
+      options.genicam_features == current.genicam_features)
+    return {};
+  camera_.close();
+  auto trial = services_.open_camera(*config.camera, options);
+  if (!trial && trial.error().code == ErrorCode::kBadInput)
+    return std::unexpected(withContext(trial.error(), config.path.string() + ": camera"));
+  return {};
+}
+
 Status CaptureDaemon::checkConfig(const RigConfig& config) const {
   if (!config.camera) return badInput(config.path.string() + ": glarecamd needs camera = \"URI\"");
   const auto uri = parseCameraUri(*config.camera);
@@ -301,9 +326,11 @@ void CaptureDaemon::catchUp() {
   std::error_code error;
   std::vector<fs::path> stacks;
   for (const auto& entry : fs::directory_iterator(root / kStacksDirectory, error)) {
-    const fs::path result = root / kResultsDirectory / entry.path().filename() / "result.json";
+    const fs::path results = root / kResultsDirectory;
+    const std::string id = entry.path().filename().string();
     if (entry.is_directory(error) && fs::exists(entry.path() / "stack.json", error) &&
-        !fs::exists(result, error))
+        !fs::exists(results / id / "result.json", error) &&
+        !fs::exists(results / (id + kFailedSuffix), error))
       stacks.push_back(entry.path());
   }
   std::sort(stacks.begin(), stacks.end());
@@ -352,7 +379,7 @@ void CaptureDaemon::reload() {
   ScopedLogFields fields(LogFields{{"GLARECAM_EVENT", "reload"}});
   auto config = readRigConfig(options_.config_path);
   if (config) {
-    const Status checked = checkConfig(*config);
+    const Status checked = checkReloadedCamera(*config);
     if (!checked) config = std::unexpected(checked.error());
   }
   if (!config) {
@@ -425,11 +452,12 @@ std::optional<RigGeometry> CaptureDaemon::measureGeometry(CaptureSettings& setti
     last_geometry_ = *measured;
     return std::move(*measured);
   }
+  pause = state_.inclinometer_pauses;
+  if (measured.error().message != state_.inclinometer_fault)
+    spdlog::error("glarecamd: {}; {}", measured.error().message,
+                  pause ? "capture pauses" : "the stack's α is unknown");
   state_.inclinometer_fault = measured.error().message;
   inclinometer_retry_at_ = clock_.now() + kInclinometerRetry;
-  pause = state_.inclinometer_pauses;
-  spdlog::error("glarecamd: {}; {}", measured.error().message,
-                pause ? "capture pauses" : "the stack's α is unknown");
   settings.geometry = nlohmann::json{{"alpha_unknown", measured.error().message}};
   return std::nullopt;
 }
@@ -552,7 +580,7 @@ void CaptureDaemon::planNext(SteadyTime now, bool slot_taken) {
       next_scheduled_.reset();
       break;
   }
-  plan_clock_ = {now, clock_.utcNow()};
+
   state_.next_capture_time.reset();
   if (next_scheduled_)
     state_.next_capture_time =
@@ -574,6 +602,7 @@ std::optional<ModuleOrientation> CaptureDaemon::plannedModule() {
 
 void CaptureDaemon::planAlphaTargets(UtcTime from) {
   next_scheduled_.reset();
+  planned_crossing_.reset();
   const std::optional<ModuleOrientation> module = plannedModule();
   const auto retry = [this](std::string why) {
     replan_at_ = clock_.now() + std::chrono::hours(1);
@@ -588,6 +617,7 @@ void CaptureDaemon::planAlphaTargets(UtcTime from) {
     if (taken != taken_targets_.end() && crossing.time - taken->second < kAlphaTargetRepeatGuard)
       continue;
     next_scheduled_ = clock_.steadyAt(crossing.time);
+    planned_crossing_ = crossing.time;
     state_.next_target_deg = crossing.target_deg;
     return;
   }
@@ -646,8 +676,8 @@ void CaptureDaemon::handleWorker(const WorkerEvent& event) {
   ScopedLogFields fields(LogFields{{"GLARECAM_STACK", event.stack_id}});
   if (event.error && event.stage == WorkerEvent::Stage::kWritten && !event.last) {
     // Kept by the worker: capture pauses until the disk takes a write again.
-    state_.disk_fault = fmt::format(
-        "writing a stack failed: {}; it is kept until the disk takes it", event.error->message);
+    state_.disk_fault =
+        fmt::format("{}{}; it is kept until the disk takes it", kWriteFailed, event.error->message);
     spdlog::error("glarecamd: {}: {}", event.stack_id, state_.disk_fault);
   } else if (event.error) {
     ++state_.stacks_failed;
@@ -657,6 +687,10 @@ void CaptureDaemon::handleWorker(const WorkerEvent& event) {
     switch (event.stage) {
       case WorkerEvent::Stage::kWritten:
         ++state_.stacks_written;
+        if (state_.disk_fault.starts_with(kWriteFailed) && !worker_->hasParked()) {
+          spdlog::info("glarecamd: disk: the kept stacks are written; capture resumes");
+          state_.disk_fault.clear();
+        }
         spdlog::info("glarecamd: wrote {}", event.path.string());
         break;
       case WorkerEvent::Stage::kProcessed:
@@ -670,7 +704,8 @@ void CaptureDaemon::handleWorker(const WorkerEvent& event) {
     }
     if (event.stage != WorkerEvent::Stage::kWritten) state_.worker_fault.clear();
   }
-  if (event.last && options_.max_stacks && ++stacks_done_ >= *options_.max_stacks && !stopping_) {
+  if (event.last && event.captured && options_.max_stacks &&
+      ++stacks_done_ >= *options_.max_stacks && !stopping_) {
     spdlog::info("glarecamd: {} stacks done: stopping", stacks_done_);
     stopping_ = true;
   }
@@ -682,11 +717,15 @@ void CaptureDaemon::checkDisk(SteadyTime now) {
   const auto state = services_.disk->probe(root);
   std::string reason = state ? diskPauseReason(*state, config_.daemon.output.reserve_bytes, root)
                              : state.error().message;
-  // A failed write is over only once a write succeeds: statvfs cannot see every refusal.
-  const bool write_failed = worker_ && worker_->hasParked();
-  if (reason.empty() && (write_failed || !state_.disk_fault.empty()) && !outputWritable())
-    reason = state_.disk_fault.empty() ? root.string() + ": not writable" : state_.disk_fault;
-  if (reason.empty() && write_failed) worker_->retryParked();
+  const bool kept = worker_ && worker_->hasParked();
+  if (kept && reason.empty()) {
+    // statvfs cannot see every refusal: a probe write first, then the kept stacks. The fault
+    // ends when they are written (handleWorker).
+    if (outputWritable()) worker_->retryParked();
+    return;
+  }
+  if (reason.empty() && state_.disk_fault.starts_with(kWriteFailed)) return;  // being retried
+  if (reason.empty() && !state_.disk_fault.empty() && !outputWritable()) reason = state_.disk_fault;
   if (reason == state_.disk_fault) return;
   if (reason.empty())
     spdlog::info("glarecamd: disk: {} free; capture resumes", formatBytes(state->free_bytes));
@@ -695,14 +734,14 @@ void CaptureDaemon::checkDisk(SteadyTime now) {
   state_.disk_fault = std::move(reason);
 }
 
+// The planned crossing's steady time, as the wall clock now maps it: a wall clock that jumped
+// (NTP's first synchronisation on a board without a clock) moved it.
 void CaptureDaemon::checkWallClock(SteadyTime now) {
-  if (!plan_clock_) return;
-  const auto expected = plan_clock_->second + std::chrono::duration_cast<std::chrono::microseconds>(
-                                                  now - plan_clock_->first);
-  const auto jump = clock_.utcNow() - expected;
-  if (std::chrono::abs(jump) < kWallClockJump) return;
-  spdlog::warn("glarecamd: the wall clock jumped by {:.0f} s; the schedule is planned again",
-               std::chrono::duration<double>(jump).count());
+  if (!planned_crossing_ || !next_scheduled_) return;
+  const auto moved = clock_.steadyAt(*planned_crossing_) - *next_scheduled_;
+  if (std::chrono::abs(moved) < kWallClockJump) return;
+  spdlog::warn("glarecamd: the wall clock jumped by {:.0f} s; the α targets are planned again",
+               -std::chrono::duration<double>(moved).count());
   planNext(now, false);
 }
 

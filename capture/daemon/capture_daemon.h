@@ -119,6 +119,7 @@ class CaptureDaemon {
   void retryInclinometer();
   void checkWallClock(SteadyTime now);
   Status checkConfig(const RigConfig& config) const;
+  Status checkReloadedCamera(const RigConfig& config);
   void catchUp();
   Status reopenCamera(SteadyTime now);
 
@@ -171,9 +172,7 @@ class CaptureDaemon {
   std::optional<SteadyTime> next_scheduled_;
   std::optional<SteadyTime> replan_at_;
   std::optional<SteadyTime> inclinometer_retry_at_;
-  // The wall clock against the steady clock when the schedule was planned: a jump (NTP's first
-  // synchronisation on a board without a clock) makes the plan wrong.
-  std::optional<std::pair<SteadyTime, UtcTime>> plan_clock_;
+  std::optional<UtcTime> planned_crossing_;  // the next α target's crossing, in wall time
   std::optional<UtcTime> last_interval_start_;
   std::map<double, UtcTime> taken_targets_;  // when each α target's slot was last used
   std::deque<CaptureTrigger> requests_;      // button presses and SIGUSR1, in order

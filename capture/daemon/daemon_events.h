@@ -33,8 +33,9 @@ struct WorkerEvent {
   std::string stack_id{};
   std::filesystem::path path{};  // the stack, its result or the day's directory
   std::optional<Error> error{};
-  std::string detail{};  // the result's brief report, the day's state
-  bool last = false;     // the job's last event: the stack is done, one way or the other
+  std::string detail{};   // the result's brief report, the day's state
+  bool last = false;      // the job's last event: the stack is done, one way or the other
+  bool captured = false;  // a stack captured by this run (not one found on disk at start)
 };
 
 using DaemonEvent = std::variant<SignalEvent, ButtonEvent, WorkerEvent>;

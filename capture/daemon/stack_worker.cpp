@@ -1,5 +1,6 @@
 #include "capture/daemon/stack_worker.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -35,12 +36,12 @@ WorkerOptions StackWorker::currentOptions() const {
 
 bool StackWorker::full() const {
   const std::lock_guard lock(mutex_);
-  return captured_queued_ + parked_.size() >= options_.max_backlog;
+  return writes_.size() + parked_.size() + (running_write_ ? 1 : 0) >= options_.max_backlog;
 }
 
 std::size_t StackWorker::pending() const {
   const std::lock_guard lock(mutex_);
-  return jobs_.size() + parked_.size() + (running_job_ ? 1 : 0);
+  return writes_.size() + processing_.size() + parked_.size() + (running_job_ ? 1 : 0);
 }
 
 bool StackWorker::hasParked() const {
@@ -60,8 +61,7 @@ void StackWorker::enqueue(Job job) {
   }
   {
     const std::lock_guard lock(mutex_);
-    if (job.stack) ++captured_queued_;
-    jobs_.push_back(std::move(job));
+    (job.stack ? writes_ : processing_).push_back(std::move(job));
   }
   wake_.notify_one();
 }
@@ -69,9 +69,9 @@ void StackWorker::enqueue(Job job) {
 bool StackWorker::submit(CapturedStack stack) {
   {
     const std::lock_guard lock(mutex_);
-    if (stopping_ || captured_queued_ + parked_.size() >= options_.max_backlog) return false;
+    if (stopping_) return false;
   }
-  enqueue({.stack = std::move(stack)});
+  enqueue({.stack = std::move(stack), .captured = true});
   return true;
 }
 
@@ -82,11 +82,9 @@ void StackWorker::retryParked() {
   {
     const std::lock_guard lock(mutex_);
     parked.swap(parked_);
-    if (mode_ == Mode::kThread) {
-      captured_queued_ += parked.size();
+    if (mode_ == Mode::kThread)
       for (auto job = parked.rbegin(); job != parked.rend(); ++job)
-        jobs_.push_front(std::move(*job));
-    }
+        writes_.push_front(std::move(*job));
   }
   if (mode_ == Mode::kThread) {
     wake_.notify_one();
@@ -96,14 +94,19 @@ void StackWorker::retryParked() {
 }
 
 void StackWorker::stop() {
+  std::deque<Job> parked;
   {
     const std::lock_guard lock(mutex_);
-    if (stopping_ && !thread_.joinable()) return;
+    if (stopping_ && !thread_.joinable() && parked_.empty()) return;
+    stopping_ = true;  // from here on every write is the last try
+    parked.swap(parked_);
+    if (mode_ == Mode::kThread)
+      for (auto job = parked.rbegin(); job != parked.rend(); ++job)
+        writes_.push_front(std::move(*job));
   }
-  retryParked();  // one more try for the kept stacks
-  {
-    const std::lock_guard lock(mutex_);
-    stopping_ = true;
+  if (mode_ == Mode::kInline) {
+    for (Job& job : parked) runJob(job, true);
+    return;
   }
   if (thread_.joinable()) {
     thread_.request_stop();
@@ -112,29 +115,38 @@ void StackWorker::stop() {
   }
 }
 
+std::optional<StackWorker::Job> StackWorker::nextJob(bool stopping) {
+  std::deque<Job>& queue = !writes_.empty() ? writes_ : processing_;
+  if (queue.empty() || (stopping && &queue == &processing_)) return std::nullopt;
+  Job job = std::move(queue.front());
+  queue.pop_front();
+  return job;
+}
+
 void StackWorker::run(std::stop_token stop) {
   // Linux nice values are per thread: this lowers only the worker's priority.
   if (setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kWorkerNice) != 0)
     spdlog::debug("glarecamd: worker priority unchanged: {}", errnoText(errno));
   for (;;) {
-    Job job;
+    std::optional<Job> job;
     bool stopping = false;
     {
       std::unique_lock lock(mutex_);
-      wake_.wait(lock, stop, [this] { return !jobs_.empty(); });
-      stopping = stop.stop_requested();
+      wake_.wait(lock, stop, [this] { return !writes_.empty() || !processing_.empty(); });
       // On stop: the captured stacks are still written; stacks on disk wait for the next start.
-      while (stopping && !jobs_.empty() && !jobs_.front().stack) jobs_.pop_front();
-      if (jobs_.empty()) return;
-      job = std::move(jobs_.front());
-      jobs_.pop_front();
-      if (job.stack) --captured_queued_;
+      stopping = stop.stop_requested() || stopping_;
+      job = nextJob(stopping);
+      if (!job) {
+        if (stop.stop_requested()) return;
+        continue;
+      }
       running_job_ = true;
+      running_write_ = job->stack.has_value();
       busy_since_ = clock_.now();
     }
-    runJob(job, stopping);
+    runJob(*job, stopping);
     const std::lock_guard lock(mutex_);
-    running_job_ = false;
+    running_job_ = running_write_ = false;
     busy_since_.reset();
   }
 }
@@ -145,24 +157,33 @@ void StackWorker::runJob(Job& job, bool stopping) {
   try {
     if (job.stack) {
       const auto written = write(job, options, stopping);
-      if (!written) return;
+      if (!written || stopping) return;  // unwritten stacks are kept; processed at the next start
+      if (mode_ == Mode::kThread) {      // behind the other writes
+        enqueue({.path = *written, .captured = job.captured});
+        return;
+      }
       job.path = *written;
     }
-    if (!stopping) process(job.path, options);  // else at the next start
+    process(job, options);
   } catch (...) {  // a library's exception ends this job, not the daemon
     events_.post(WorkerEvent{
         .stage = job.stack ? WorkerEvent::Stage::kWritten : WorkerEvent::Stage::kProcessed,
         .stack_id =
             job.stack ? job.stack->manifest.id.value_or("stack") : job.path.filename().string(),
         .error = currentExceptionError(),
-        .last = true});
+        .last = true,
+        .captured = job.captured});
   }
 }
 
 std::optional<fs::path> StackWorker::write(Job& job, const WorkerOptions& options, bool stopping) {
   const std::string id = job.stack->manifest.id.value_or("stack");
+  ++job.attempts;
   auto written = writeCapturedStack(options.day.root / kStacksDirectory, *job.stack);
-  WorkerEvent event{.stage = WorkerEvent::Stage::kWritten, .stack_id = id, .last = stopping};
+  WorkerEvent event{.stage = WorkerEvent::Stage::kWritten,
+                    .stack_id = id,
+                    .last = stopping,
+                    .captured = job.captured};
   if (written) {
     job.stack.reset();  // the frames' memory back before processing
     event.stack_id = written->filename().string();
@@ -172,8 +193,11 @@ std::optional<fs::path> StackWorker::write(Job& job, const WorkerOptions& option
     return *written;
   }
   event.error = written.error();
-  if (stopping) {
-    event.error->message += "; the stack is lost (glarecamd is stopping)";
+  if (stopping || job.attempts >= kMaxWriteAttempts) {
+    event.error->message +=
+        fmt::format("; the stack is lost ({})",
+                    stopping ? "glarecamd is stopping" : fmt::format("{} tries", job.attempts));
+    event.last = true;
   } else {  // kept for retryParked()
     const std::lock_guard lock(mutex_);
     parked_.push_back(std::move(job));
@@ -199,15 +223,21 @@ Result<pipeline::ProcessSummary> StackWorker::processInto(const fs::path& stack,
   return summary;
 }
 
-void StackWorker::process(const fs::path& stack, const WorkerOptions& options) {
+void StackWorker::process(const Job& job, const WorkerOptions& options) {
+  const fs::path& stack = job.path;
   const std::string id = stack.filename().string();
-  const auto processed = processInto(stack, options.day.root / kResultsDirectory / id, options);
-  WorkerEvent event{.stage = WorkerEvent::Stage::kProcessed, .stack_id = id};
+  const fs::path results = options.day.root / kResultsDirectory;
+  const auto processed = processInto(stack, results / id, options);
+  WorkerEvent event{
+      .stage = WorkerEvent::Stage::kProcessed, .stack_id = id, .captured = job.captured};
   if (processed) {
-    event.path = options.day.root / kResultsDirectory / id;
+    event.path = results / id;
     event.detail = processed->briefReport();
   } else {
     event.error = processed.error();
+    // Bad data stays bad: noted, so that no later start processes it again.
+    if (processed.error().code == ErrorCode::kBadInput)
+      (void)writeFileAtomic(results / (id + kFailedSuffix), processed.error().message + "\n");
   }
   const auto day = stackDay(id, options.day.longitude_deg);
   const bool last = !processed || !day;
@@ -215,7 +245,10 @@ void StackWorker::process(const fs::path& stack, const WorkerOptions& options) {
   events_.post(std::move(event));
   if (last) return;
   auto published = updateDayProducts(options.day, *day);
-  WorkerEvent report{.stage = WorkerEvent::Stage::kPublished, .stack_id = id, .last = true};
+  WorkerEvent report{.stage = WorkerEvent::Stage::kPublished,
+                     .stack_id = id,
+                     .last = true,
+                     .captured = job.captured};
   if (published) {
     report.path = published->directory;
     report.detail = published->detail;

@@ -1,16 +1,18 @@
 // The daemon's worker: everything a stack needs after its bracket, off the capture loop so that
-// disk and CPU work never starve the camera stream. Each job writes the captured stack atomically
-// under OUTPUT/stacks/ (nothing half-written is ever visible), processes it into
-// OUTPUT/results/<id>/ and rebuilds its day's sweep table and data sheet (day_products.h),
-// reporting each stage to the event loop as a WorkerEvent. The thread runs at a lower priority
+// disk and CPU work never starve the camera stream. Each captured stack is written atomically
+// under OUTPUT/stacks/ (nothing half-written is ever visible), then processed into
+// OUTPUT/results/<id>/ and its day's sweep table and data sheet rebuilt (day_products.h), each
+// stage reported to the event loop as a WorkerEvent. Writes go first: a captured stack, held in
+// memory, never waits behind the processing of another. The thread runs at a lower priority
 // (nice kWorkerNice) than the capture loop.
 //
-// The backlog is bounded (frames are held in memory until written): submit() refuses a stack
-// beyond it and the loop skips the capture. A stack whose write fails (a full or read-only disk)
-// is kept, not dropped: the loop pauses capture and calls retryParked() once the disk takes
-// writes again. stop() writes every stack still queued or kept, so that no captured stack is lost
-// on shutdown unless the disk refuses it then too, but processes none; the next start processes
-// every stack without a result (submitWritten()).
+// The loop bounds what is held in memory (full(), checked before a bracket); a stack whose write
+// fails (a full or read-only disk) is kept, not dropped: the loop pauses capture and calls
+// retryParked() once the disk takes writes again; after kMaxWriteAttempts it is given up, loudly.
+// stop() writes every stack still queued or kept, so that none is lost on shutdown unless the
+// disk refuses it then too (reported), and processes none; the next start processes every stack
+// without a result (submitWritten()). A stack that cannot be processed at all (bad data) gets a
+// `<id>.failed` note beside the results, and is not processed again.
 #pragma once
 
 #include <condition_variable>
@@ -30,6 +32,10 @@
 namespace glarecam::capture {
 
 inline constexpr int kWorkerNice = 10;
+// Writes of one kept stack tried while the disk looks fine, before it is given up.
+inline constexpr int kMaxWriteAttempts = 10;
+// Beside results/<id>/: the stack could not be processed (its reason inside).
+inline constexpr const char* kFailedSuffix = ".failed";
 
 struct WorkerOptions {
   DayProductsOptions day;
@@ -52,7 +58,8 @@ class StackWorker {
   // For the jobs not yet started.
   void reconfigure(WorkerOptions options);
 
-  // Queues a captured stack; false (and nothing queued) when the backlog is full.
+  // Queues a captured stack (the loop checked full() before the bracket: once captured, a stack
+  // is always taken). False only after stop().
   bool submit(CapturedStack stack);
   // Queues a stack already on disk for processing.
   void submitWritten(std::filesystem::path stack);
@@ -74,14 +81,18 @@ class StackWorker {
   struct Job {
     std::optional<CapturedStack> stack{};  // to write; else `path` is on disk already
     std::filesystem::path path{};
+    bool captured = false;  // a stack of this run (WorkerEvent::captured)
+    int attempts = 0;       // writes tried
   };
 
   void enqueue(Job job);
   void run(std::stop_token stop);
   void runJob(Job& job, bool stopping);
+  // The next job (writes first; none but writes when stopping), or nullopt to end.
+  std::optional<Job> nextJob(bool stopping);
   // The written stack's path; on failure the job is parked (or, when stopping, the stack lost).
   std::optional<std::filesystem::path> write(Job& job, const WorkerOptions& options, bool stopping);
-  void process(const std::filesystem::path& stack, const WorkerOptions& options);
+  void process(const Job& job, const WorkerOptions& options);
   Result<pipeline::ProcessSummary> processInto(const std::filesystem::path& stack,
                                                const std::filesystem::path& target,
                                                const WorkerOptions& options);
@@ -95,11 +106,12 @@ class StackWorker {
   mutable std::mutex mutex_;
   std::condition_variable_any wake_;
   WorkerOptions options_;
-  std::deque<Job> jobs_;
-  std::deque<Job> parked_;           // captured stacks whose write failed, oldest first
-  std::size_t captured_queued_ = 0;  // captured stacks in jobs_
+  std::deque<Job> writes_;      // captured stacks to write, oldest first
+  std::deque<Job> processing_;  // stacks on disk to process
+  std::deque<Job> parked_;      // captured stacks whose write failed, oldest first
   std::optional<SteadyTime> busy_since_;
   bool running_job_ = false;
+  bool running_write_ = false;
   bool stopping_ = false;
   std::jthread thread_;  // last: joined before the members it uses go
 };

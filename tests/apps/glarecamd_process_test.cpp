@@ -357,8 +357,10 @@ class GlarecamdKills : public ::testing::Test {
 };
 
 TEST_F(GlarecamdKills, SigkillWhileWritingLeavesNoPartialStack) {
-  constexpr int kKillsWhileWriting = 50;
-  constexpr int kMaxTrials = 200;
+  constexpr int kKillsWhileWriting = 25;  // of each kind: stacks and results, 50 in all
+  constexpr int kMaxTrials = 300;
+  // A staging time measured too short (both inotify events in one read) still leaves room.
+  constexpr std::chrono::microseconds kMinKillWindow{2000};
   fs::create_directories(out_ / "stacks");
   fs::create_directories(out_ / "results");
   const std::array<std::chrono::microseconds, 2> staging{stagingTime(out_ / "stacks"),
@@ -367,20 +369,25 @@ TEST_F(GlarecamdKills, SigkillWhileWritingLeavesNoPartialStack) {
               static_cast<long long>(staging[0].count()),
               static_cast<long long>(staging[1].count()));
   std::mt19937 random(20261201);
-  int trials = 0, landed = 0;
-  while (landed < kKillsWhileWriting && trials < kMaxTrials) {
-    const int kind = trials++ % 2;
+  int trials = 0;
+  std::array<int, 2> landed{0, 0};
+  while (std::min(landed[0], landed[1]) < kKillsWhileWriting && trials < kMaxTrials) {
+    const int kind =
+        landed[0] < kKillsWhileWriting && (landed[1] >= kKillsWhileWriting || trials % 2 == 0) ? 0
+                                                                                               : 1;
+    ++trials;
     const fs::path watched = out_ / (kind ? "results" : "stacks");
     {
       StagingWatch watch(watched);  // before the process starts: no staging can be missed
       Process process(simulated("1"), {}, dir_ / "glarecamd.log");
       if (!watch.waitForCreation(30s)) continue;
-      std::uniform_int_distribution<long long> delay_us(0, staging[kind].count());
+      std::uniform_int_distribution<long long> delay_us(
+          0, std::max(staging[kind], kMinKillWindow).count());
       std::this_thread::sleep_for(std::chrono::microseconds(delay_us(random)));
       process.signal(SIGKILL);
       process.wait(30s);
     }
-    landed += !entries(watched, true).empty();  // the kill left the staging directory behind
+    landed[kind] += !entries(watched, true).empty();  // the kill left its staging directory
     for (const fs::path& stack : entries(out_ / "stacks", false)) {
       const auto read = readStack(stack);
       ASSERT_TRUE(read) << "trial " << trials << ": " << read.error().message;
@@ -388,9 +395,12 @@ TEST_F(GlarecamdKills, SigkillWhileWritingLeavesNoPartialStack) {
     for (const fs::path& result : entries(out_ / "results", false))
       ASSERT_TRUE(fs::exists(result / "result.json")) << "trial " << trials << ": " << result;
   }
-  std::printf("SIGKILL: %d trials, %d while a stack or result was being written; %zu stacks\n",
-              trials, landed, entries(out_ / "stacks", false).size());
-  EXPECT_GE(landed, kKillsWhileWriting);
+  std::printf(
+      "SIGKILL: %d trials, %d while a stack and %d while a result was being written; %zu "
+      "stacks\n",
+      trials, landed[0], landed[1], entries(out_ / "stacks", false).size());
+  EXPECT_GE(landed[0], kKillsWhileWriting);
+  EXPECT_GE(landed[1], kKillsWhileWriting);
   // The next start removes what the kills left half-written, and processes what was not.
   std::vector<fs::path> left;
   for (const char* directory : {"stacks", "results"})

@@ -16,16 +16,20 @@ configure: deps
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-# The whole suite, then the bad-stack corpus again under AddressSanitizer + UBSan.
+# A test with no TIMEOUT of its own fails after this long (the slowest takes ~80 s under ASan):
+# a hang is a named failure, not a CI run that never ends.
+TEST_TIMEOUT_S ?= 300
+
+# The whole suite, then the tests labelled "sanitized" again under AddressSanitizer + UBSan.
 test: build test-asan
-	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS) --timeout $(TEST_TIMEOUT_S)
 
 test-asan: deps
 	cmake -S . -B $(ASAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DGLARECAM_SANITIZE=ON \
 	  -DGLARECAM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD_DIR) -j $(JOBS) --target sanitized_tests
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ctest --test-dir $(ASAN_BUILD_DIR) \
-	  --output-on-failure -j $(JOBS) -L sanitized
+	  --output-on-failure -j $(JOBS) --timeout $(TEST_TIMEOUT_S) -L sanitized
 
 demo: build
 	bash scripts/demo.sh $(BUILD_DIR)/bin $(DEMO_DIR)

@@ -193,14 +193,19 @@ std::optional<fs::path> StackWorker::write(Job& job, const WorkerOptions& option
     return *written;
   }
   event.error = written.error();
-  if (stopping || job.attempts >= kMaxWriteAttempts) {
+  const int attempts = job.attempts;
+  {
+    // stopping_ read under the lock stop() sets it with: a stack parked after stop() took the
+    // parked ones would be lost without a word.
+    const std::lock_guard lock(mutex_);
+    stopping = stopping || stopping_;
+    if (!stopping && attempts < kMaxWriteAttempts) parked_.push_back(std::move(job));
+  }
+  if (stopping || attempts >= kMaxWriteAttempts) {
     event.error->message +=
         fmt::format("; the stack is lost ({})",
-                    stopping ? "glarecamd is stopping" : fmt::format("{} tries", job.attempts));
+                    stopping ? "glarecamd is stopping" : fmt::format("{} tries", attempts));
     event.last = true;
-  } else {  // kept for retryParked()
-    const std::lock_guard lock(mutex_);
-    parked_.push_back(std::move(job));
   }
   events_.post(std::move(event));
   return std::nullopt;

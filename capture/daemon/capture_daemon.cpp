@@ -134,8 +134,7 @@ Status CaptureDaemon::step() {
   const auto retry = camera_.retryAt();
   if (!camera_.camera() && (!retry || now >= *retry)) GLARECAM_CHECK(reopenCamera(now));
   if (replan_at_ && now >= *replan_at_) planNext(now, false);
-  const bool enough = options_.max_stacks && state_.stacks_captured >= *options_.max_stacks;
-  if (state_.ready && camera_.camera() && !stopping_ && !enough) {
+  if (mayCapture()) {
     if (!requests_.empty()) {
       const CaptureTrigger trigger = requests_.front();
       requests_.pop_front();
@@ -624,6 +623,11 @@ void CaptureDaemon::planAlphaTargets(UtcTime from) {
   retry("no α target is crossed in the next 24 h");
 }
 
+bool CaptureDaemon::mayCapture() const {
+  const bool enough = options_.max_stacks && state_.stacks_captured >= *options_.max_stacks;
+  return state_.ready && camera_.camera() && !stopping_ && !enough;
+}
+
 bool CaptureDaemon::scheduledDue(SteadyTime now) const {
   return next_scheduled_ && now >= *next_scheduled_;
 }
@@ -634,8 +638,9 @@ SteadyTime CaptureDaemon::nextDeadline(SteadyTime now) const {
     if (t) deadline = std::min(deadline, *t);
   };
   if (watchdog_interval_) earliest(next_watchdog_);
-  if (state_.ready && camera_.camera()) earliest(next_scheduled_);
-  if (state_.ready && camera_.camera() && !requests_.empty()) earliest(now);
+  // Only a capture that can be taken wakes the loop: a due one that cannot would spin it.
+  if (mayCapture()) earliest(next_scheduled_);
+  if (mayCapture() && !requests_.empty()) earliest(now);
   if (!camera_.camera()) earliest(camera_.retryAt().value_or(now));
   earliest(replan_at_);
   earliest(inclinometer_retry_at_);

@@ -138,6 +138,8 @@ class CaptureDaemon {
   void planAlphaTargets(UtcTime from);
   std::optional<ModuleOrientation> plannedModule();
   bool scheduledDue(SteadyTime now) const;
+  // Ready, a camera open, not stopping and --count not reached: a due capture is taken now.
+  bool mayCapture() const;
   SteadyTime nextDeadline(SteadyTime now) const;
 
   void handle(const DaemonEvent& event);

@@ -89,8 +89,8 @@ class DaemonTest : public ::testing::Test {
   }
   // With its worker on a thread, held at the start of its first job by `gate`.
   template <typename Gate>
-  std::unique_ptr<CaptureDaemon> makeGatedDaemon(Gate& gate) {
-    return makeDaemon({}, [&gate](DaemonServices& services) {
+  std::unique_ptr<CaptureDaemon> makeGatedDaemon(Gate& gate, DaemonOptions options = {}) {
+    return makeDaemon(std::move(options), [&gate](DaemonServices& services) {
       services.worker_mode = StackWorker::Mode::kThread;
       services.worker_job_hook = [&gate] { gate.hold(); };
     });
@@ -810,6 +810,29 @@ TEST_F(DaemonTest, StopWritesTheStacksStillQueued) {
   opener.join();
   ASSERT_EQ(stacks().size(), 2u);
   for (const fs::path& stack : stacks()) EXPECT_TRUE(readStack(stack)) << stack;
+}
+
+TEST_F(DaemonTest, WithItsCountCapturedTheLoopWaitsForTheWorkerWithoutSpinning) {
+  // --count 1: the stack is captured at once and held in the worker for 20 minutes. Meanwhile a
+  // SIGUSR1 asks for a capture and the interval's next slot (600 s) comes due; neither can be
+  // taken, and neither may turn the loop into a busy one (the manual clock aborts on that).
+  writeConfig();
+  WorkerGate gate;
+  auto daemon = makeGatedDaemon(gate, {.max_stacks = 1});
+  ASSERT_TRUE(daemon);
+  signalAt(20s, *daemon, SIGUSR1);
+  clock_.at(20min, [&] {
+    gate.open();
+    while (results().empty()) std::this_thread::sleep_for(1ms);
+  });
+  // The count stops the daemon once the worker reports; the manual clock may run ahead to this
+  // while the worker's thread posts that report.
+  terminateAt(2h, *daemon);
+  ASSERT_TRUE(daemon->run());
+  EXPECT_EQ(daemon->state().stacks_captured, 1u);
+  EXPECT_EQ(daemon->state().stacks_processed, 1u);
+  EXPECT_EQ(stacks().size(), 1u);
+  EXPECT_GE(clock_.elapsed(), 20min);
 }
 
 TEST_F(DaemonTest, AStuckWorkerStopsTheHeartbeat) {

@@ -1,8 +1,18 @@
 #include "capture/daemon_test_support.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include "capture/camera_registry.h"
 
 namespace glarecam::testing {
+
+namespace {
+// Waits in a row that move no time before ManualClock calls it a busy loop. A daemon step is
+// tens of µs, so this is seconds of spinning; an honest loop waits for "now" a few times at most
+// (a request queued while a capture is due) before time has to move.
+constexpr int kMaxStalledWaits = 100'000;
+}  // namespace
 
 // ---- ManualClock ------------------------------------------------------------------------------
 
@@ -40,9 +50,16 @@ void ManualClock::waitUntil(std::unique_lock<std::mutex>& lock, std::condition_v
       now_ = std::max(now_, alarms_.begin()->first);
       alarm = std::move(alarms_.begin()->second);
       alarms_.erase(alarms_.begin());
+      stalled_waits_ = 0;
     } else {
+      stalled_waits_ = deadline <= now_ ? stalled_waits_ + 1 : 0;
       now_ = std::max(now_, deadline);
     }
+  }
+  if (stalled_waits_ > kMaxStalledWaits) {
+    // Aborting names the test; hanging would only end at ctest's timeout.
+    std::fputs("ManualClock: the loop waits for 'now' over and over (a busy loop)\n", stderr);
+    std::abort();
   }
   if (!alarm) return;
   lock.unlock();  // the alarm posts to the queue whose lock this is

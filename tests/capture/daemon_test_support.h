@@ -36,7 +36,8 @@ class ManualClock final : public capture::DaemonClock {
   capture::ClockStatus clockStatus() const override;
   SteadyTime steadyAt(UtcTime utc) const override;
   // Never waits while anything is ready; otherwise time jumps to the first alarm due by
-  // `deadline` (which runs, without the lock) or to the deadline.
+  // `deadline` (which runs, without the lock) or to the deadline. A loop that keeps asking to
+  // wait until now (a busy loop: no time passes, so no alarm ever comes) aborts the test.
   void waitUntil(std::unique_lock<std::mutex>& lock, std::condition_variable& wake,
                  SteadyTime deadline, const std::function<bool()>& ready) override;
 
@@ -55,6 +56,7 @@ class ManualClock final : public capture::DaemonClock {
   SteadyTime now_;
   capture::ClockStatus status_{.synchronised = true, .detail = "test clock"};
   std::multimap<SteadyTime, std::function<void()>> alarms_;
+  int stalled_waits_ = 0;  // waits in a row that neither moved time nor ran an alarm
 };
 
 struct Notification {

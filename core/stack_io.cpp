@@ -66,6 +66,8 @@ Result<ResolvedCalibration> resolveCalibration(const fs::path& directory,
     return ResolvedCalibration{std::move(*calibration), path.parent_path(),
                                *manifest.calibration_path};
   }
+  if (!options.require_calibration)
+    return ResolvedCalibration{Calibration{}, directory, std::string(kNoCalibration)};
   return badInput(where +
                   ": no calibration: give one inline, as a path, or with --calibration FILE");
 }
@@ -127,7 +129,14 @@ Status loadFlatField(Stack& stack, const fs::path& base, const std::string& wher
 Result<Calibration> readCalibrationFile(const fs::path& path) {
   auto document = readJsonFile(path.string());
   if (!document) return std::unexpected(document.error());
-  return parseCalibration(*document, path.string());
+  auto calibration = parseCalibration(*document, path.string());
+  if (!calibration && document->is_object() && document->contains("parts") &&
+      calibration.error().message.ends_with("is required")) {
+    // One part of a calibration (docs/calibration.md): say how to make a whole one.
+    calibration.error().message +=
+        " (a calibration part: combine the parts with `glarecam calibrate merge`)";
+  }
+  return calibration;
 }
 
 namespace {
@@ -150,7 +159,8 @@ Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& o
   stack.calibration = std::move(resolved.calibration);
   stack.calibration_origin = std::move(resolved.origin);
   for (const FrameSpec& frame : stack.manifest.frames) {
-    if (frame.f_number && !stack.calibration.reference_f_number) {
+    if (frame.f_number && !stack.calibration.reference_f_number &&
+        stack.calibration_origin != kNoCalibration) {
       return badInput(where + ": frame " + frame.file +
                       " gives f_number but the calibration has no reference_f_number");
     }

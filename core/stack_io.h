@@ -18,6 +18,8 @@
 
 namespace glarecam {
 
+inline constexpr std::string_view kNoCalibration = "none";
+
 struct Stack {
   std::filesystem::path directory;
   StackManifest manifest;
@@ -31,7 +33,10 @@ struct Stack {
 struct StackReadOptions {
   std::optional<std::filesystem::path> calibration_file;  // overrides the manifest's
   bool decode_frames = true;                              // false: manifest and calibration only
-  unsigned threads = 0;                                   // 0: all cores
+  // false: a stack without any calibration is read (calibration targets: the procedures make
+  // it); `calibration` is then all zeros and calibration_origin is kNoCalibration.
+  bool require_calibration = true;
+  unsigned threads = 0;  // 0: all cores
 };
 
 Result<Stack> readStack(const std::filesystem::path& directory,

@@ -266,6 +266,11 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   Stack stack;
   GLARECAM_ASSIGN(stack, readStack(stack_directory, {.calibration_file = options.calibration_file,
                                                      .threads = options.threads}));
+  std::vector<std::string> warnings;
+  GLARECAM_CHECK(calibration::checkCalibrationUse(stack.calibration, stack.manifest,
+                                                  calibrationSource(stack, options).string(),
+                                                  options.calibration_use, warnings));
+  for (const std::string& warning : warnings) spdlog::warn("{}", warning);
   progress.advance("read");
   MergedStack merged_stack;
   GLARECAM_ASSIGN(merged_stack, mergeStack(stack, options));

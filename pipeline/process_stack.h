@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "calibration/calibration_file.h"
 #include "core/error.h"
 
 namespace glarecam::pipeline {
@@ -24,6 +25,8 @@ struct ProcessOptions {
   std::vector<double> thresholds_cd_m2;  // extra ellipses, one per level (threshold sweep)
   unsigned threads = 0;                  // 0: all cores
   bool show_progress = true;
+  // Whose and how old a calibration may be (a serial mismatch refuses, old parts warn).
+  calibration::CalibrationUseOptions calibration_use;
   Status validate() const;  // thresholds positive and finite, at most kMaxThresholds
 };
 

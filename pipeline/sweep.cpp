@@ -62,7 +62,8 @@ Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_direct
                          .threshold_cd_m2 = options.threshold_cd_m2,
                          .thresholds_cd_m2 = {},
                          .threads = threads_per_job,
-                         .show_progress = false};
+                         .show_progress = false,
+                         .calibration_use = {}};
   // Runs on a worker thread: an exception (out of memory, a bug) must skip this stack, not
   // terminate the process and lose every other stack's work.
   try {

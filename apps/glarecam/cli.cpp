@@ -58,8 +58,8 @@ int runGlarecam(int argc, char** argv) {
   CLI::App app{
       "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
       "Docs: docs/process.md, docs/sweep.md, docs/datasheet.md, docs/glare-profile.md,\n"
-      "docs/cameras.md, docs/rig.md, docs/operator.md, docs/simulate.md, docs/stack-format.md,\n"
-      "docs/method.md"};
+      "docs/cameras.md, docs/calibration.md, docs/rig.md, docs/operator.md, docs/simulate.md,\n"
+      "docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
   app.require_subcommand(1);
   app.fallthrough();  // global options (-v, -q) also after the subcommand
@@ -70,6 +70,7 @@ int runGlarecam(int argc, char** argv) {
 
   std::function<Status()> action;
   addSimulateCommand(app, action);
+  addSimulateCalibrationCommand(app, action);
   addProcessCommand(app, action);
   addSweepCommand(app, action);
   addFitCommand(app, action);
@@ -83,6 +84,7 @@ int runGlarecam(int argc, char** argv) {
   addInclinometerCommand(app, action);
   addGpioCommand(app, action);
   addDoctorCommand(app, action);
+  addCalibrateCommand(app, action);
 
   try {
     app.parse(argc, argv);

@@ -26,6 +26,8 @@ void addAlphaCommand(CLI::App& app, Action& action);
 void addInclinometerCommand(CLI::App& app, Action& action);
 void addGpioCommand(CLI::App& app, Action& action);
 void addDoctorCommand(CLI::App& app, Action& action);
+void addCalibrateCommand(CLI::App& app, Action& action);
+void addSimulateCalibrationCommand(CLI::App& app, Action& action);
 
 // Shared by fit and datasheet: reads the sweep table at `path` into `table` and fits it, logging
 // the fits' warnings; errors name the file.

@@ -19,8 +19,9 @@ struct ProcessArgs {
   std::string stack;
   // Optional, so that a given but empty value ("--threshold $UNSET") is an error, not a default.
   std::optional<std::string> calibration, out, threshold, thresholds;
-  bool json = false, no_progress = false;
+  bool json = false, no_progress = false, force_calibration = false;
   unsigned threads = 0;
+  double max_calibration_age_days = 365;
 };
 
 Status runProcess(const ProcessArgs& args) {
@@ -39,6 +40,10 @@ Status runProcess(const ProcessArgs& args) {
     options.thresholds_cd_m2 = *thresholds;
   }
   options.show_progress = !args.no_progress;
+  if (!(args.max_calibration_age_days > 0))
+    return badInput("--max-calibration-age-days must be positive");
+  options.calibration_use = {.force = args.force_calibration,
+                             .max_age_days = args.max_calibration_age_days};
   auto summary = pipeline::processStack(args.stack, options);
   if (!summary) return std::unexpected(summary.error());
   spdlog::info("{}", summary->briefReport());
@@ -65,6 +70,10 @@ void addProcessCommand(CLI::App& app, Action& action) {
                   "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
   sub->add_option("--thresholds", args->thresholds,
                   "extra ellipse levels in cd/m², comma-separated, at most 32 (threshold sweep)");
+  sub->add_flag("--force-calibration", args->force_calibration,
+                "use a calibration made for another camera serial than the stack's");
+  sub->add_option("--max-calibration-age-days", args->max_calibration_age_days,
+                  "warn about calibration parts older than this (default 365)");
   sub->add_flag("--json", args->json, "print result.json on stdout");
   sub->add_option("--threads", args->threads, "worker threads (default: all cores)");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");

@@ -1,0 +1,286 @@
+#include "calibration/calibration_file.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "core/atomic_file.h"
+
+namespace glarecam::calibration {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// Keys of the document that are not calibration values.
+const std::string kSchemaKey = "schema", kCameraKey = "camera", kPartsKey = "parts";
+
+// Keys that a stack's calibration block needs, and the part that measures each.
+constexpr std::pair<std::string_view, std::string_view> kRequiredKeys[] = {
+    {"black_level_dn", "dark"},
+    {"saturation_dn", "linearity"},
+    {"luminance_factor", "luminance"},
+    {"intrinsics", "intrinsics"},
+};
+
+std::string stringField(const json& object, const std::string& key) {
+  const auto found = object.find(key);
+  return found != object.end() && found->is_string() ? found->get<std::string>() : std::string();
+}
+
+Result<CameraIdentity> parseCamera(const json& document, const std::string& where) {
+  const auto found = document.find(kCameraKey);
+  if (found == document.end()) return CameraIdentity{};
+  if (!found->is_object()) return badInput(where + ": camera must be an object");
+  for (const char* key : {"model", "serial", "pixel_format"}) {
+    if (found->contains(key) && !found->at(key).is_string())
+      return badInput(fmt::format("{}: camera.{} must be a string", where, key));
+  }
+  return CameraIdentity{.model = stringField(*found, "model"),
+                        .serial = stringField(*found, "serial"),
+                        .pixel_format = stringField(*found, "pixel_format")};
+}
+
+Result<PartProvenance> parsePart(const json& part, const std::string& name,
+                                 const std::string& where) {
+  const std::string field = where + ": parts." + name;
+  if (!part.is_object()) return badInput(field + " must be an object");
+  PartProvenance provenance;
+  for (const char* key : {"measured_at", "method"}) {
+    if (!part.contains(key) || !part.at(key).is_string())
+      return badInput(fmt::format("{}.{} must be a string", field, key));
+  }
+  provenance.measured_at = part.at("measured_at").get<std::string>();
+  provenance.method = part.at("method").get<std::string>();
+  if (part.contains("inputs")) {
+    if (!part.at("inputs").is_array()) return badInput(field + ".inputs must be a list of paths");
+    for (const json& input : part.at("inputs")) {
+      if (!input.is_string()) return badInput(field + ".inputs must be a list of paths");
+      provenance.inputs.push_back(input.get<std::string>());
+    }
+  }
+  return provenance;
+}
+
+// Numbers a part wrote must be finite; the block's own rules are checked by parseCalibration.
+Status checkNumbers(const json& values, const std::string& where, const std::string& prefix) {
+  for (const auto& [key, value] : values.items()) {
+    if (value.is_object()) GLARECAM_CHECK(checkNumbers(value, where, prefix + key + "."));
+    if (value.is_number() && !std::isfinite(value.get<double>()))
+      return badInput(fmt::format("{}: {}{} must be a finite number", where, prefix, key));
+  }
+  return {};
+}
+
+Status copyFileAtomic(const fs::path& source, const fs::path& target) {
+  fs::path temporary;
+  GLARECAM_ASSIGN(temporary, createTemporarySibling(target));
+  std::error_code error;
+  fs::copy_file(source, temporary, fs::copy_options::overwrite_existing, error);
+  if (error) {
+    fs::remove(temporary, error);
+    return ioError(fmt::format("{}: cannot copy to {}: {}", source.string(), target.string(),
+                               error.message()));
+  }
+  return commitTemporary(temporary, target);
+}
+
+bool isPathKey(std::string_view key) {
+  return std::ranges::find(kPathKeys, key) != std::end(kPathKeys);
+}
+
+bool known(const std::string& a, const std::string& b) { return !a.empty() && !b.empty(); }
+
+Status mergeCamera(CameraIdentity& into, const CameraIdentity& from, const fs::path& source) {
+  const auto merge = [&](std::string& a, const std::string& b, const char* what) -> Status {
+    if (known(a, b) && a != b) {
+      return badInput(fmt::format("{}: camera {} \"{}\" differs from \"{}\" of the files before it",
+                                  source.string(), what, b, a));
+    }
+    if (a.empty()) a = b;
+    return {};
+  };
+  GLARECAM_CHECK(merge(into.model, from.model, "model"));
+  GLARECAM_CHECK(merge(into.serial, from.serial, "serial"));
+  return merge(into.pixel_format, from.pixel_format, "pixel_format");
+}
+
+}  // namespace
+
+CameraIdentity cameraIdentityOf(const StackManifest& manifest) {
+  const auto camera = manifest.source.find(kCameraKey);
+  if (camera == manifest.source.end() || !camera->is_object()) return {};
+  return {.model = stringField(*camera, "model"),
+          .serial = stringField(*camera, "serial"),
+          .pixel_format = stringField(*camera, "pixel_format")};
+}
+
+Result<CalibrationDocument> parseCalibrationDocument(const json& document,
+                                                     const std::string& where) {
+  if (!document.is_object()) return badInput(where + ": a calibration file must be a JSON object");
+  const std::string schema = stringField(document, kSchemaKey);
+  if (schema != kCalibrationSchema) {
+    return badInput(fmt::format("{}: schema \"{}\" is not supported (expected \"{}\")", where,
+                                schema, kCalibrationSchema));
+  }
+  CalibrationDocument parsed;
+  GLARECAM_ASSIGN(parsed.camera, parseCamera(document, where));
+  if (const auto parts = document.find(kPartsKey); parts != document.end()) {
+    if (!parts->is_object()) return badInput(where + ": parts must be an object");
+    for (const auto& [name, part] : parts->items()) {
+      GLARECAM_ASSIGN(parsed.parts[name], parsePart(part, name, where));
+    }
+  }
+  for (const auto& [key, value] : document.items()) {
+    if (key != kSchemaKey && key != kCameraKey && key != kPartsKey) parsed.values[key] = value;
+  }
+  GLARECAM_CHECK(checkNumbers(parsed.values, where, ""));
+  for (std::string_view key : kPathKeys) {
+    const auto path = parsed.values.find(std::string(key));
+    if (path != parsed.values.end() &&
+        (!path->is_string() || !isContainedRelativePath(path->get<std::string>()))) {
+      return badInput(fmt::format(
+          "{}: {} must be a relative path inside the calibration's directory", where, key));
+    }
+  }
+  return parsed;
+}
+
+Result<CalibrationDocument> readCalibrationDocument(const fs::path& path) {
+  json document;
+  GLARECAM_ASSIGN(document, readJsonFile(path.string()));
+  return parseCalibrationDocument(document, path.string());
+}
+
+json toJson(const CalibrationDocument& document) {
+  json out = {{kSchemaKey, std::string(kCalibrationSchema)}};
+  json camera = json::object();
+  if (!document.camera.model.empty()) camera["model"] = document.camera.model;
+  if (!document.camera.serial.empty()) camera["serial"] = document.camera.serial;
+  if (!document.camera.pixel_format.empty()) camera["pixel_format"] = document.camera.pixel_format;
+  out[kCameraKey] = camera;
+  for (const auto& [key, value] : document.values.items()) out[key] = value;
+  json parts = json::object();
+  for (const auto& [name, part] : document.parts) {
+    parts[name] = {
+        {"measured_at", part.measured_at}, {"method", part.method}, {"inputs", part.inputs}};
+  }
+  out[kPartsKey] = parts;
+  return out;
+}
+
+Status writeCalibrationDocument(const fs::path& path, const CalibrationDocument& document) {
+  return writeFileAtomic(path, jsonText(toJson(document)));
+}
+
+Result<CalibrationDocument> mergeCalibrationDocuments(
+    std::span<const CalibrationDocument> documents, std::span<const fs::path> directories,
+    std::vector<std::string>& warnings) {
+  CalibrationDocument merged;
+  for (std::size_t i = 0; i < documents.size(); ++i) {
+    const CalibrationDocument& document = documents[i];
+    const fs::path& directory = directories[i];
+    GLARECAM_CHECK(mergeCamera(merged.camera, document.camera, directory));
+    for (const auto& [key, value] : document.values.items()) {
+      json moved = value;
+      if (isPathKey(key)) moved = fs::absolute(directory / value.get<std::string>()).string();
+      if (merged.values.contains(key) && merged.values[key] != moved)
+        warnings.push_back(fmt::format("{} replaced by the later file's", key));
+      merged.values[key] = std::move(moved);
+    }
+    for (const auto& [name, part] : document.parts) {
+      if (merged.parts.contains(name))
+        warnings.push_back(fmt::format("part {} replaced by the later file's", name));
+      merged.parts[name] = part;
+    }
+  }
+  return merged;
+}
+
+Status attachFiles(CalibrationDocument& document, const fs::path& output_directory) {
+  for (std::string_view key : kPathKeys) {
+    const auto value = document.values.find(std::string(key));
+    if (value == document.values.end() || !fs::path(value->get<std::string>()).is_absolute())
+      continue;
+    const fs::path source = value->get<std::string>();
+    const fs::path target = output_directory / source.filename();
+    std::error_code error;
+    if (!fs::equivalent(source, target, error)) GLARECAM_CHECK(copyFileAtomic(source, target));
+    *value = source.filename().string();
+  }
+  return {};
+}
+
+namespace {
+
+// The date of an ISO 8601 timestamp ("2026-06-21T10:15:03Z" or "2026-06-21").
+std::optional<std::chrono::sys_days> isoDate(const std::string& text) {
+  int year = 0;
+  unsigned month = 0, day = 0;
+  if (std::sscanf(text.c_str(), "%4d-%2u-%2u", &year, &month, &day) != 3) return std::nullopt;
+  const std::chrono::year_month_day date{std::chrono::year(year), std::chrono::month(month),
+                                         std::chrono::day(day)};
+  if (!date.ok()) return std::nullopt;
+  return std::chrono::sys_days(date);
+}
+
+}  // namespace
+
+Status checkCalibrationUse(const Calibration& calibration, const StackManifest& manifest,
+                           const std::string& where, const CalibrationUseOptions& options,
+                           std::vector<std::string>& warnings) {
+  const json& source = calibration.source;
+  const std::string calibrated_serial =
+      source.contains(kCameraKey) && source[kCameraKey].is_object()
+          ? stringField(source[kCameraKey], "serial")
+          : std::string();
+  const std::string stack_serial = cameraIdentityOf(manifest).serial;
+  if (known(calibrated_serial, stack_serial) && calibrated_serial != stack_serial) {
+    const std::string message =
+        fmt::format("{}: made for camera serial {}, but the stack was taken with serial {}", where,
+                    calibrated_serial, stack_serial);
+    if (!options.force) return badInput(message + " (--force-calibration uses it anyway)");
+    warnings.push_back(message + "; used as forced");
+  }
+  if (!source.contains(kPartsKey) || !source[kPartsKey].is_object()) return {};
+  for (const auto& [name, part] : source[kPartsKey].items()) {
+    const auto measured =
+        part.is_object() ? isoDate(stringField(part, "measured_at")) : std::nullopt;
+    if (!measured) continue;
+    const std::chrono::sys_days today =
+        options.today == std::chrono::sys_days{}
+            ? std::chrono::floor<std::chrono::days>(std::chrono::system_clock::now())
+            : options.today;
+    const auto age_days = (today - *measured).count();
+    if (age_days > options.max_age_days) {
+      warnings.push_back(
+          fmt::format("{}: part {} was measured {} days ago (more than {:g}): "
+                      "recalibrate (docs/calibration.md)",
+                      where, name, age_days, options.max_age_days));
+    }
+  }
+  return {};
+}
+
+Result<Calibration> calibrationBlock(const CalibrationDocument& document,
+                                     const std::string& where) {
+  std::vector<std::string> missing;
+  for (const auto& [key, part] : kRequiredKeys) {
+    if (!document.values.contains(std::string(key)))
+      missing.push_back(fmt::format("{} (calibrate {})", key, part));
+  }
+  if (!missing.empty()) {
+    std::string list;
+    for (const std::string& m : missing) list += (list.empty() ? "" : ", ") + m;
+    return badInput(fmt::format(
+        "{}: the calibration is incomplete: no {}; measure those parts and combine the files "
+        "with `glarecam calibrate merge`",
+        where, list));
+  }
+  return parseCalibration(toJson(document), where);
+}
+
+}  // namespace glarecam::calibration

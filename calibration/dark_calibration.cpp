@@ -1,0 +1,105 @@
+#include "calibration/dark_calibration.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "calibration/frame_statistics.h"
+
+namespace glarecam::calibration {
+namespace {
+
+std::vector<const RawFrame*> framesOf(std::span<const RawFrame> frames,
+                                      const ExposureGroup& group) {
+  std::vector<const RawFrame*> selected;
+  for (std::size_t i : group.frames) selected.push_back(&frames[i]);
+  return selected;
+}
+
+// The temporal noise of one frame, from the differences of consecutive frames: the fixed
+// pattern cancels, and var(a - b) = 2 var(noise).
+std::optional<double> temporalNoise(std::span<const RawFrame> frames, const ExposureGroup& group) {
+  if (group.frames.size() < 2) return std::nullopt;
+  const RawFrame& first = frames[group.frames.front()];
+  const Roi all{.x = 0, .y = 0, .width = first.width(), .height = first.height()};
+  double variance = 0;
+  for (std::size_t i = 1; i < group.frames.size(); ++i)
+    variance +=
+        differenceStats(frames[group.frames[i - 1]], frames[group.frames[i]], all).variance_dn2 / 2;
+  return std::sqrt(variance / static_cast<double>(group.frames.size() - 1));
+}
+
+// Every frame is dark: its values spread little across the image, and its median is not far
+// above the darkest frame's (light leaking around a cap raises the median, a lit scene spreads).
+Status checkNoLight(std::span<const RawFrame> frames, std::span<const std::string> names) {
+  std::vector<RobustSpread> spreads;
+  for (const RawFrame& frame : frames) {
+    const RawFrame* one = &frame;
+    spreads.push_back(robustSpread(meanFrame(std::span(&one, 1))));
+  }
+  const double darkest = std::ranges::min(spreads, {}, &RobustSpread::median).median;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (spreads[i].sigma > kMaxDarkSpreadDn || spreads[i].median > darkest + kLightLeakDn) {
+      return badInput(fmt::format(
+          "{}: not a dark frame (median {:.0f} DN, spread {:.0f} DN across the image; the "
+          "darkest frame's median is {:.0f} DN): cap the lens or close the shutter",
+          names[i], spreads[i].median, spreads[i].sigma, darkest));
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<DarkCalibration> calibrateDark(std::span<const RawFrame> frames,
+                                      std::span<const FrameSpec> specs,
+                                      std::span<const std::string> names) {
+  if (frames.size() < kMinDarkFrames) {
+    return badInput(fmt::format("calibrate dark: {} frame(s); needs at least {} dark frames",
+                                frames.size(), kMinDarkFrames));
+  }
+  GLARECAM_CHECK(checkNoLight(frames, names));
+  const std::vector<ExposureGroup> groups = groupByExposure(specs);
+  DarkCalibration dark;
+  for (const ExposureGroup& group : groups) {
+    const FloatImage mean = meanFrame(framesOf(frames, group));
+    dark.levels.push_back({.exposure_us = group.exposure_us,
+                           .frames = group.frames.size(),
+                           .median_dn = robustSpread(mean).median,
+                           .temporal_noise_dn = temporalNoise(frames, group)});
+  }
+  dark.black_level_dn = dark.levels.front().median_dn;
+
+  dark.dark_frame_dn = meanFrame(framesOf(frames, groups.back()));
+  const RobustSpread spread = robustSpread(dark.dark_frame_dn);
+  dark.hot_threshold_dn = spread.median + std::max(kHotPixelSigmas * spread.sigma, kMinHotExcessDn);
+  dark.hot_pixels = ByteImage(dark.dark_frame_dn.width(), dark.dark_frame_dn.height());
+  for (std::size_t i = 0; i < dark.dark_frame_dn.pixelCount(); ++i) {
+    const bool hot = dark.dark_frame_dn.data()[i] > dark.hot_threshold_dn;
+    dark.hot_pixels.data()[i] = hot ? 255 : 0;
+    dark.hot_pixel_count += hot;
+  }
+  return dark;
+}
+
+nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_frame_file,
+                          const std::string& hot_pixels_file) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (const DarkLevel& level : dark.levels) {
+    nlohmann::json entry = {{"exposure_us", level.exposure_us},
+                            {"frames", level.frames},
+                            {"median_dn", level.median_dn}};
+    if (level.temporal_noise_dn) entry["temporal_noise_dn"] = *level.temporal_noise_dn;
+    levels.push_back(std::move(entry));
+  }
+  return {{"black_level_dn", dark.black_level_dn},
+          {"dark_frame", dark_frame_file},
+          {"hot_pixels", hot_pixels_file},
+          {"dark",
+           {{"hot_pixel_count", dark.hot_pixel_count},
+            {"hot_threshold_dn", dark.hot_threshold_dn},
+            {"levels", levels}}}};
+}
+
+}  // namespace glarecam::calibration

@@ -1,0 +1,58 @@
+// `glarecam calibrate dark`: frames with the lens capped at one or more exposures give the black
+// level (the median of the per-pixel mean at the shortest exposure, so that hot pixels and dark
+// current do not bias it), the dark frame (the per-pixel mean at the longest exposure), its
+// hot-pixel map, and the temporal noise at each exposure (from pairs of frames).
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/stack_manifest.h"
+
+namespace glarecam::calibration {
+
+// A hot pixel's dark mean at the longest exposure exceeds the frame's median by this many robust
+// standard deviations (a false alarm per ~5e8 normal pixels: none on any sensor we use) ...
+inline constexpr double kHotPixelSigmas = 6.0;
+// ... and by at least this much, so that a nearly noiseless averaged dark frame does not flag
+// pixels one DN of fixed pattern above the rest.
+inline constexpr double kMinHotExcessDn = 10.0;
+// A frame whose median lies this many DN above the darkest frame's saw light ...
+inline constexpr double kLightLeakDn = 50.0;
+// ... and so did a frame whose values spread this much across the image (robust sigma): a capped
+// sensor's offsets and read noise spread by a few DN, a lit one by its vignetting and scene,
+// hundreds.
+inline constexpr double kMaxDarkSpreadDn = 25.0;
+inline constexpr std::size_t kMinDarkFrames = 2;
+
+struct DarkLevel {
+  double exposure_us = 0;
+  std::size_t frames = 0;
+  double median_dn = 0;                     // of the per-pixel mean
+  std::optional<double> temporal_noise_dn;  // from consecutive pairs; needs two frames
+};
+
+struct DarkCalibration {
+  double black_level_dn = 0;
+  FloatImage dark_frame_dn;  // per-pixel mean at the longest exposure
+  ByteImage hot_pixels;      // 255 where hot, else 0
+  std::size_t hot_pixel_count = 0;
+  double hot_threshold_dn = 0;
+  std::vector<DarkLevel> levels;  // by exposure
+};
+
+// `names[i]` names frame i in errors ("stack/frame-03.png").
+Result<DarkCalibration> calibrateDark(std::span<const RawFrame> frames,
+                                      std::span<const FrameSpec> specs,
+                                      std::span<const std::string> names);
+
+// The part's values: black_level_dn, dark frame and hot-pixel file names, the levels.
+nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_frame_file,
+                          const std::string& hot_pixels_file);
+
+}  // namespace glarecam::calibration

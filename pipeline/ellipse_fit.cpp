@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <numbers>
+#include <opencv2/core.hpp>
 
 namespace glarecam::pipeline {
 namespace {
@@ -146,16 +147,25 @@ Ellipse toEllipse(Vector5 p) {
   return {{p[kCx], p[kCy]}, p[kA], p[kB], wrapHalfTurn(p[kAngle])};
 }
 
-// Pseudo-inverse of the (symmetric, positive semi-definite) normal matrix.
+// Pseudo-inverse of the (symmetric, positive semi-definite) normal matrix. The eigen
+// decompositions here are OpenCV's: Eigen's fixed-size solvers cost a minute of compile time
+// per build for two small matrices.
 Matrix5 pseudoInverse(const Matrix5& normal) {
-  const Eigen::SelfAdjointEigenSolver<Matrix5> eigen(normal);
-  const double largest = eigen.eigenvalues().maxCoeff();
-  Vector5 inverse = Vector5::Zero();
+  cv::Matx<double, 5, 5> matrix;
+  for (int r = 0; r < 5; ++r)
+    for (int c = 0; c < 5; ++c) matrix(r, c) = normal(r, c);
+  cv::Matx<double, 5, 1> values;
+  cv::Matx<double, 5, 5> vectors;  // eigenvectors as rows, eigenvalues descending
+  cv::eigen(matrix, values, vectors);
+  const double largest = values(0);
+  Matrix5 inverse = Matrix5::Zero();
   for (int i = 0; i < 5; ++i) {
-    if (eigen.eigenvalues()[i] > kRelativeRankTolerance * largest)
-      inverse[i] = 1.0 / eigen.eigenvalues()[i];
+    if (!(values(i) > kRelativeRankTolerance * largest)) continue;
+    Vector5 v;
+    for (int k = 0; k < 5; ++k) v[k] = vectors(i, k);
+    inverse += (v * v.transpose()) / values(i);
   }
-  return eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
+  return inverse;
 }
 
 }  // namespace
@@ -196,9 +206,14 @@ std::optional<Ellipse> fitEllipseDirect(std::span<const Point2> points) {
   reduced.row(0) = m.row(2) / 2;
   reduced.row(1) = -m.row(1);
   reduced.row(2) = m.row(0) / 2;
-  const Eigen::EigenSolver<Eigen::Matrix3d> eigen(reduced);
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d a1 = eigen.eigenvectors().col(i).real();
+  cv::Matx33d reduced_cv;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) reduced_cv(r, c) = reduced(r, c);
+  cv::Mat values, vectors;  // eigenvectors as rows
+  cv::eigenNonSymmetric(reduced_cv, values, vectors);
+  for (int i = 0; i < vectors.rows; ++i) {
+    const Eigen::Vector3d a1(vectors.at<double>(i, 0), vectors.at<double>(i, 1),
+                             vectors.at<double>(i, 2));
     if (!(4 * a1[0] * a1[2] - a1[1] * a1[1] > 0)) continue;
     Eigen::Matrix<double, 6, 1> conic;
     conic << a1, t * a1;

@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -27,6 +28,8 @@
 #include "calibration/linearity_calibration.h"
 #include "calibration/luminance_calibration.h"
 #include "calibration/noise_calibration.h"
+#include "capture/bracketer.h"
+#include "capture/camera_registry.h"
 #include "capture/sim/calibration_targets.h"
 #include "core/atomic_file.h"
 #include "core/image_io.h"
@@ -38,8 +41,15 @@ namespace fs = std::filesystem;
 namespace cal = calibration;
 using json = nlohmann::json;
 
+// Frames one --camera capture may take (a photon transfer curve of 64 pairs, say).
+constexpr std::size_t kMaxCapturedFrames = 256;
+
 struct CalibrateArgs {
-  std::vector<std::string> inputs;        // stacks (merge: calibration files)
+  std::vector<std::string> inputs;               // stacks (merge: calibration files)
+  std::optional<std::string> camera, exposures;  // capture instead of reading stacks
+  double gain_db = 0;
+  int views = 1;                          // intrinsics: board poses to capture
+  double view_interval_s = 10;            // ... this long apart (the operator moves the board)
   std::vector<std::string> calibrations;  // --calibration, merged in order
   std::optional<std::string> out, roi, log;
   bool json = false, no_progress = false, check = false, fit_k3 = false;
@@ -270,11 +280,47 @@ void printPart(const cal::CalibrationDocument& document, const PartResult& part,
   std::printf("%s\n", out.c_str());
 }
 
-Status runProcedure(const CalibrateArgs& args, const Procedure& procedure) {
-  GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
-  if (!args.out) return badInput("--out FILE is required: where the calibration part goes");
-  if (fs::path(*args.out).filename().empty())
-    return badInput(fmt::format("--out {}: expected a file name", *args.out));
+// --camera: captures the stacks (one per view), writes them beside --out as <out>-stacks/<id>
+// (the part's provenance names them) and returns their paths.
+Result<std::vector<std::string>> captureInputs(const CalibrateArgs& args) {
+  if (!args.exposures)
+    return badInput("--camera needs --exposures LIST (µs; repeat a value for several frames)");
+  std::vector<double> exposures;
+  GLARECAM_ASSIGN(exposures,
+                  parseNumberList(*args.exposures, "--exposures", 1, kMaxCapturedFrames));
+  if (args.views < 1) return badInput("--views must be at least 1");
+  std::unique_ptr<capture::Camera> camera;
+  GLARECAM_ASSIGN(camera, capture::openCamera(*args.camera, {}));
+  const fs::path directory = cal::companionFile(*args.out, "-stacks");
+  std::vector<std::string> paths;
+  for (int view = 0; view < args.views; ++view) {
+    if (view > 0) {
+      spdlog::info("calibrate: view {} of {} in {:g} s: move the board", view + 1, args.views,
+                   args.view_interval_s);
+      std::this_thread::sleep_for(std::chrono::duration<double>(args.view_interval_s));
+    }
+    capture::CaptureSettings settings;
+    settings.exposures_us = exposures;
+    settings.gain_db = args.gain_db;
+    settings.show_progress = !args.no_progress;
+    capture::CapturedStack stack;
+    GLARECAM_ASSIGN(stack, capture::captureStack(*camera, settings));
+    fs::path path;
+    GLARECAM_ASSIGN(path, capture::writeCapturedStack(directory, stack));
+    paths.push_back(path.string());
+  }
+  return paths;
+}
+
+Status runProcedure(const CalibrateArgs& given, const Procedure& procedure) {
+  GLARECAM_CHECK(requireNonEmptyPath(given.out, "--out"));
+  if (!given.out) return badInput("--out FILE is required: where the calibration part goes");
+  if (fs::path(*given.out).filename().empty())
+    return badInput(fmt::format("--out {}: expected a file name", *given.out));
+  if (given.camera.has_value() == !given.inputs.empty())
+    return badInput("give the calibration stacks (STACK...) or --camera URI to capture them");
+  CalibrateArgs args = given;
+  if (args.camera) GLARECAM_ASSIGN(args.inputs, captureInputs(args));
   cal::CalibrationInputs inputs;
   GLARECAM_ASSIGN(inputs, cal::readCalibrationInputs(args.inputs, !args.no_progress));
   json prior;
@@ -298,6 +344,8 @@ Status runLuminanceCheck(const CalibrateArgs& args) {
   if (args.calibrations.empty())
     return badInput(
         "calibrate luminance --check: give the calibration to check with --calibration");
+  if (args.camera || args.inputs.empty())
+    return badInput("calibrate luminance --check: give the recorded field stack(s) to check");
   cal::CalibrationInputs inputs;
   GLARECAM_ASSIGN(inputs, cal::readCalibrationInputs(args.inputs, !args.no_progress));
   json prior;
@@ -374,7 +422,13 @@ Status runMerge(const CalibrateArgs& args) {
 // ---- options ----------------------------------------------------------------------------------
 
 void addCommonOptions(CLI::App* sub, CalibrateArgs& args, bool reads_prior) {
-  sub->add_option("STACK", args.inputs, "calibration stacks (glarecam.stack/1)")->required();
+  sub->add_option("STACK", args.inputs, "calibration stacks (glarecam.stack/1)");
+  sub->add_option("--camera", args.camera,
+                  "capture the stack with this camera instead (saved as <out>-stacks/)");
+  sub->add_option("--exposures", args.exposures,
+                  "with --camera: exposures in µs, comma-separated; repeat a value for several "
+                  "frames (e.g. 1000,1000,10000,10000)");
+  sub->add_option("--gain-db", args.gain_db, "with --camera: analogue gain (default 0)");
   sub->add_option("--out", args.out,
                   "the part's glarecam.calibration/1 file (its images go beside it)");
   if (reads_prior) {
@@ -472,6 +526,11 @@ void addCalibrateCommand(CLI::App& app, Action& action) {
                              "side of a square in mm (default 25)");
   intrinsics_sub->add_flag("--fit-k3", intrinsics->fit_k3,
                            "fit k3 too (wide-angle lenses; needs many views)");
+  intrinsics_sub->add_option("--views", intrinsics->views,
+                             "with --camera: board poses to capture (default 1)");
+  intrinsics_sub->add_option(
+      "--view-interval", intrinsics->view_interval_s,
+      "with --camera: seconds between poses, to move the board (default 10)");
 
   auto merge = std::make_shared<CalibrateArgs>();
   CLI::App* merge_sub = calibrate->add_subcommand(

@@ -151,10 +151,16 @@ CalibrationTargetStack darkTarget(const CalibrationTargetOptions& options) {
   return stack;
 }
 
-CalibrationTargetStack flatTarget(const CalibrationTargetOptions& options) {
+// A uniform source at K cd/m² seen through the lens' vignetting.
+FloatImage vignettedSource(const CalibrationTargetOptions& options) {
   FloatImage scene = naturalVignetting(options.width, options.height, options.horizontal_fov_deg);
   for (std::size_t i = 0; i < scene.pixelCount(); ++i)
     scene.data()[i] *= static_cast<float>(options.luminance_factor);
+  return scene;
+}
+
+CalibrationTargetStack flatTarget(const CalibrationTargetOptions& options) {
+  const FloatImage scene = vignettedSource(options);
   const std::vector<double> exposures(kFlatFrames, kFlatExposureUs);
   CalibrationTargetStack stack = exposeStack(options, scene, exposures);
   stack.truth["flat_field"] = "cos^4 of the field angle (naturalVignetting)";
@@ -202,9 +208,7 @@ CalibrationTargetStack linearityTarget(const CalibrationTargetOptions& options) 
 }
 
 CalibrationTargetStack noiseTarget(const CalibrationTargetOptions& options) {
-  FloatImage scene = naturalVignetting(options.width, options.height, options.horizontal_fov_deg);
-  for (std::size_t i = 0; i < scene.pixelCount(); ++i)
-    scene.data()[i] *= static_cast<float>(options.luminance_factor);
+  const FloatImage scene = vignettedSource(options);
   CalibrationTargetStack stack = exposeStack(options, scene, repeated(kNoiseExposuresUs, 2));
   stack.truth["read_noise_dn"] = options.sensor.read_noise_dn;
   stack.truth["dn_per_electron"] = options.sensor.dn_per_electron;
@@ -214,7 +218,8 @@ CalibrationTargetStack noiseTarget(const CalibrationTargetOptions& options) {
   return stack;
 }
 
-CalibrationTargetStack luminanceTarget(const CalibrationTargetOptions& options) {
+// The reference patch (the central quarter of the area) over its background, vignetted.
+FloatImage referencePatch(const CalibrationTargetOptions& options) {
   FloatImage scene = naturalVignetting(options.width, options.height, options.horizontal_fov_deg);
   const int x0 = options.width / 4, y0 = options.height / 4;
   const int x1 = x0 + options.width / 2, y1 = y0 + options.height / 2;
@@ -225,6 +230,13 @@ CalibrationTargetStack luminanceTarget(const CalibrationTargetOptions& options) 
           static_cast<float>(patch ? options.reference_cd_m2 : options.background_cd_m2);
     }
   }
+  return scene;
+}
+
+CalibrationTargetStack luminanceTarget(const CalibrationTargetOptions& options) {
+  const FloatImage scene = referencePatch(options);
+  const int x0 = options.width / 4, y0 = options.height / 4;
+  const int x1 = x0 + options.width / 2, y1 = y0 + options.height / 2;
   CalibrationTargetStack stack = exposeStack(options, scene, kLuminanceExposuresUs);
   constexpr int kMarginPx = 4;  // the ROI stays off the patch's edges
   stack.truth["luminance_factor"] = options.luminance_factor;
@@ -300,33 +312,48 @@ std::optional<std::pair<double, double>> onBoard(const Pose& pose, const calibra
   return std::pair{r[0] * px + r[3] * py + r[6] * pz, r[1] * px + r[4] * py + r[7] * pz};
 }
 
-std::vector<CalibrationTargetStack> boardTarget(const CalibrationTargetOptions& options) {
-  // 2x2 samples a pixel: squares' edges are anti-aliased, as a lens and a sensor's fill make them.
-  constexpr int kSamples = 4;
+// 2x2 samples a pixel would leave the squares' edges aliased by ~0.1 px; 4x4 brings the corners'
+// scatter down to the sensor noise's.
+constexpr int kBoardSamples = 4;
+
+// The viewing rays of every sub-pixel sample, row by row (computed once for all views).
+std::vector<calibration::Ray> sampleRays(const CalibrationTargetOptions& options) {
   const calibration::CameraModel camera(targetIntrinsics(options));
   std::vector<calibration::PixelPoint> samples;
   for (int y = 0; y < options.height; ++y)
     for (int x = 0; x < options.width; ++x)
-      for (int sy = 0; sy < kSamples; ++sy)
-        for (int sx = 0; sx < kSamples; ++sx)
-          samples.push_back({x + (sx + 0.5) / kSamples - 0.5, y + (sy + 0.5) / kSamples - 0.5});
-  const std::vector<calibration::Ray> rays = camera.rays(samples);
+      for (int sy = 0; sy < kBoardSamples; ++sy)
+        for (int sx = 0; sx < kBoardSamples; ++sx)
+          samples.push_back(
+              {x + (sx + 0.5) / kBoardSamples - 0.5, y + (sy + 0.5) / kBoardSamples - 0.5});
+  return camera.rays(samples);
+}
+
+FloatImage boardScene(const CalibrationTargetOptions& options,
+                      const std::vector<calibration::Ray>& rays, int view) {
+  constexpr int kPerPixel = kBoardSamples * kBoardSamples;
+  const Pose pose = boardPose(options, view);
+  FloatImage scene(options.width, options.height);
+  for (std::size_t p = 0; p < scene.pixelCount(); ++p) {
+    double sum = 0;
+    for (int s = 0; s < kPerPixel; ++s) {
+      const auto hit = onBoard(pose, rays[p * kPerPixel + s]);
+      sum += hit ? boardLuminance(options, hit->first, hit->second) : kBoardWallCdM2;
+    }
+    scene.data()[p] = static_cast<float>(sum / kPerPixel);
+  }
+  return scene;
+}
+
+std::vector<CalibrationTargetStack> boardTarget(const CalibrationTargetOptions& options) {
+  const std::vector<calibration::Ray> rays = sampleRays(options);
+  const Intrinsics k = targetIntrinsics(options);
   std::vector<CalibrationTargetStack> stacks;
   for (int view = 0; view < options.board_views; ++view) {
-    const Pose pose = boardPose(options, view);
-    FloatImage scene(options.width, options.height);
-    for (std::size_t p = 0; p < scene.pixelCount(); ++p) {
-      double sum = 0;
-      for (int s = 0; s < kSamples * kSamples; ++s) {
-        const auto hit = onBoard(pose, rays[p * kSamples * kSamples + s]);
-        sum += hit ? boardLuminance(options, hit->first, hit->second) : kBoardWallCdM2;
-      }
-      scene.data()[p] = static_cast<float>(sum / (kSamples * kSamples));
-    }
     const double exposure[] = {kBoardExposureUs};
-    CalibrationTargetStack stack = exposeStack(options, scene, exposure, view);
+    CalibrationTargetStack stack =
+        exposeStack(options, boardScene(options, rays, view), exposure, view);
     stack.manifest.id = fmt::format("sim-calibration-board-s{}-v{:02}", options.seed, view);
-    const Intrinsics k = camera.intrinsics();
     stack.truth["intrinsics"] = {
         {"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}, {"distortion", k.distortion}};
     stack.truth["board"] = {{"inner_columns", options.board_inner_columns},
@@ -364,6 +391,25 @@ std::string_view calibrationTargetName(CalibrationTarget target) {
   for (const auto& [t, name] : kTargetNames)
     if (t == target) return name;
   return "unknown";
+}
+
+Result<FloatImage> calibrationTargetScene(const CalibrationTargetOptions& options) {
+  GLARECAM_CHECK(validate(options));
+  switch (options.target) {
+    case CalibrationTarget::kDark:
+      return FloatImage(options.width, options.height, 0.0f);
+    case CalibrationTarget::kFlat:
+    case CalibrationTarget::kNoise:
+      return vignettedSource(options);
+    case CalibrationTarget::kLinearity:
+      return FloatImage(options.width, options.height,
+                        static_cast<float>(options.luminance_factor));
+    case CalibrationTarget::kLuminance:
+      return referencePatch(options);
+    case CalibrationTarget::kBoard:
+      return boardScene(options, sampleRays(options), 0);
+  }
+  return badInput("unknown calibration target");
 }
 
 FloatImage naturalVignetting(int width, int height, double horizontal_fov_deg) {

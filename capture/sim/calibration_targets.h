@@ -70,6 +70,11 @@ Result<std::vector<std::filesystem::path>> writeCalibrationTargetStacks(
     const std::filesystem::path& directory, CalibrationTarget target,
     const std::vector<CalibrationTargetStack>& stacks);
 
+// What a target puts in front of the lens, in cd/m² (the `sim:target=NAME` camera looks at it):
+// the scene only, without the recorded stacks' sensor defects (fixed pattern, hot pixels, the
+// response bend); the board in its first pose.
+Result<FloatImage> calibrationTargetScene(const CalibrationTargetOptions& options);
+
 // The simulated lens' flat field: cos⁴ of each pixel's field angle (1 at the principal point).
 FloatImage naturalVignetting(int width, int height, double horizontal_fov_deg);
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "capture/bracketing.h"
+#include "capture/sim/calibration_targets.h"
 #include "capture/sim/module_model.h"
 #include "capture/sim/sensor_model.h"
 #include "core/uri_parameters.h"
@@ -33,6 +34,12 @@ Result<double> parseNumber(std::string_view text, std::string_view uri_key) {
 Status applyParameter(std::string_view key, std::string_view value, SimulationOptions& sim) {
   if (key == "module") {
     sim.module = std::string(value);
+    return {};
+  }
+  if (key == "target") {
+    const auto target = parseCalibrationTarget(value);
+    if (!target) return std::unexpected(target.error());
+    sim.calibration_target = std::string(value);
     return {};
   }
   if (key == "size") {
@@ -68,7 +75,8 @@ Status applyParameter(std::string_view key, std::string_view value, SimulationOp
     sim.alpha_deg = number;
   } else {
     return badInput(fmt::format(
-        "camera URI sim: unknown parameter '{}' (known: module, seed, size, fov, alpha)", key));
+        "camera URI sim: unknown parameter '{}' (known: module, seed, size, fov, alpha, target)",
+        key));
   }
   return {};
 }
@@ -107,6 +115,9 @@ class SimCamera final : public Camera {
 
   std::optional<Calibration> knownCalibration() const override { return scene_.calibration; }
   std::optional<nlohmann::json> sceneTruth() const override {
+    if (!options_.calibration_target.empty())
+      return nlohmann::json{{"schema", "glarecam.truth/1"},
+                            {"target", options_.calibration_target}};
     return sceneTruthJson(scene_, options_.alpha_deg);
   }
 
@@ -140,6 +151,26 @@ class SimCamera final : public Camera {
   std::uint64_t frames_taken_ = 0;
 };
 
+// A calibration target in front of the simulated camera: its lab optics (no ND filter), the
+// target's scene, the camera's exact calibration.
+Result<SimulatedScene> targetScene(SimulationOptions& sim) {
+  CalibrationTargetOptions target;
+  GLARECAM_ASSIGN(target.target, parseCalibrationTarget(sim.calibration_target));
+  target.width = sim.width;
+  target.height = sim.height;
+  target.seed = sim.seed;
+  target.sensor = sim.sensor;
+  target.luminance_factor = sim.luminance_factor;
+  target.f_number = sim.f_number;
+  target.horizontal_fov_deg = sim.horizontal_fov_deg;
+  sim.nd_transmission = 1.0;
+  SimulatedScene scene;
+  GLARECAM_ASSIGN(scene.true_luminance_cd_m2, calibrationTargetScene(target));
+  scene.calibration = simulatedCalibration(sim);
+  scene.centre_pixel = {(sim.width - 1) / 2.0, (sim.height - 1) / 2.0};
+  return scene;
+}
+
 class SimCameraBackend final : public CameraBackend {
  public:
   std::string_view scheme() const override { return "sim"; }
@@ -150,7 +181,7 @@ class SimCameraBackend final : public CameraBackend {
                                     .vendor = "glarecam",
                                     .model = "simulated rig",
                                     .serial = std::string(kSimSerial),
-                                    .detail = "parameters: module, seed, size, fov, alpha",
+                                    .detail = "parameters: module, seed, size, fov, alpha, target",
                                     .optics = {}}};
   }
 
@@ -161,7 +192,7 @@ class SimCameraBackend final : public CameraBackend {
     }
     SimulationOptions sim;
     GLARECAM_ASSIGN(sim, parseSimCameraId(id, options));
-    auto rendered = renderSimulatedScene(sim);
+    auto rendered = sim.calibration_target.empty() ? renderSimulatedScene(sim) : targetScene(sim);
     if (!rendered) {
       return badInput(fmt::format("camera URI 'sim:{}': {}", id, rendered.error().message));
     }

@@ -3,6 +3,7 @@
 // frames exactly as the merge's radiometry expects. It stands in for hardware in tests, in the
 // demo and for users without a camera. URI parameters, comma-separated after "sim:":
 //   module=NAME  seed=N  size=WxH  fov=DEG  alpha=DEG   (e.g. "sim:module=standard,size=640x512")
+//   target=dark|flat|linearity|noise|luminance|board   a calibration target instead of the module
 // α defaults to CameraOptions::simulated_alpha_deg, then to the simulator's default.
 #pragma once
 

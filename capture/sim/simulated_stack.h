@@ -35,6 +35,8 @@ struct SimulationOptions {
   double f_number = 8.0;
   BracketOptions bracket;
   bool show_progress = false;  // progress on stderr (the CLI turns it on)
+  // The `sim:` camera only: a calibration target (calibration_targets.h) instead of the module.
+  std::string calibration_target;
   Status validate() const;
 };
 

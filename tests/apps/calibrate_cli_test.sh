@@ -92,6 +92,24 @@ check "luminance --check again" 0 "$GLARECAM" calibrate luminance "$T/luminance"
 expect "check: two lines and a header" test "$(wc -l <"$WORK/drift.csv")" -eq 3
 expect "check: a 6 % drift warns" grep -q "recalibrate K" "$WORK/err"
 
+# ---- capturing with --camera: the simulated camera in front of a target ----------------------
+check "flat --camera" 0 "$GLARECAM" calibrate flat --camera sim:target=flat,size=320x256 \
+  --exposures 2000,2000,2000,2000 --out "$C/camera-flat.json" --calibration "$C/dark.json" \
+  --calibration "$C/linearity.json" --no-progress
+expect "flat --camera: the captured stack kept beside the part" test -s "$(ls -d "$C"/camera-flat-stacks/*/ | head -1)stack.json"
+expect "flat --camera: provenance names it" grep -q "camera-flat-stacks/" "$C/camera-flat.json"
+expect "flat --camera: the same vignetting" near "$(json_number min "$C/camera-flat.json")" 0.665 0.02
+check "noise --camera" 0 "$GLARECAM" calibrate noise --camera sim:target=noise,size=320x256 \
+  --exposures 20,20,150,150,600,600,2000,2000,3000,3000 --out "$C/camera-noise.json" \
+  --calibration "$C/dark.json" --calibration "$C/linearity.json" --no-progress
+expect "noise --camera: gain" near "$(json_number dn_per_electron "$C/camera-noise.json")" 0.5 0.015
+check "--camera without --exposures" 2 "$GLARECAM" calibrate flat --camera sim:target=flat --out "$C/x.json"
+expect "--camera: exposures asked for" one_line_naming "--camera needs --exposures"
+check "--camera and stacks" 2 "$GLARECAM" calibrate flat "$T/flat" --camera sim:target=flat --exposures 100 --out "$C/x.json"
+check "neither stacks nor --camera" 2 "$GLARECAM" calibrate flat --out "$C/x.json"
+check "--camera: unknown target" 2 "$GLARECAM" calibrate flat --camera sim:target=sphere --exposures 100 --out "$C/x.json"
+expect "--camera: target named" one_line_naming "unknown calibration target \"sphere\""
+
 # ---- bad inputs ------------------------------------------------------------------------------
 check "dark: not a stack" 2 "$GLARECAM" calibrate dark "$WORK/nothing" --out "$C/x.json"
 expect "dark: names the directory" one_line_naming "$WORK/nothing"

@@ -82,6 +82,26 @@ Result<std::optional<cal::Roi>> parsedRoi(const CalibrateArgs& args) {
   return std::optional(roi);
 }
 
+// The black level and saturation known before, and the region (--roi, else the central quarter)
+// of a procedure measuring in a region.
+struct LevelsInRegion {
+  cal::SensorLevels levels;
+  cal::Roi roi;
+};
+
+Result<LevelsInRegion> levelsInRegion(const CalibrateArgs& args,
+                                      const cal::CalibrationInputs& inputs, const json& prior,
+                                      const std::string& procedure) {
+  std::optional<cal::Roi> roi;
+  GLARECAM_ASSIGN(roi, parsedRoi(args));
+  const cal::Roi region = roiOr(roi, inputs);
+  GLARECAM_CHECK(cal::checkRoi(region, inputs.frames.front().width(),
+                               inputs.frames.front().height(), "--roi"));
+  cal::SensorLevels levels;
+  GLARECAM_ASSIGN(levels, cal::sensorLevels(prior, inputs, procedure));
+  return LevelsInRegion{.levels = levels, .roi = region};
+}
+
 // ---- the procedures ---------------------------------------------------------------------------
 
 Result<PartResult> runDark(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
@@ -131,14 +151,12 @@ Result<PartResult> runFlat(const CalibrateArgs& args, const cal::CalibrationInpu
 
 Result<PartResult> runLinearity(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
                                 const json& prior) {
-  cal::SensorLevels levels;
-  GLARECAM_ASSIGN(levels, cal::sensorLevels(prior, inputs, "linearity"));
-  std::optional<cal::Roi> roi;
-  GLARECAM_ASSIGN(roi, parsedRoi(args));
+  LevelsInRegion known;
+  GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "linearity"));
   cal::LinearityCalibration linearity;
   GLARECAM_ASSIGN(linearity,
-                  cal::calibrateLinearity(inputs.frames, inputs.specs, levels.black_level_dn,
-                                          roiOr(roi, inputs), args.tolerance_percent / 100));
+                  cal::calibrateLinearity(inputs.frames, inputs.specs, known.levels.black_level_dn,
+                                          known.roi, args.tolerance_percent / 100));
   PartResult result{
       .part = "linearity",
       .method = fmt::format("ramp of {} exposures of a steady source, line through the origin "
@@ -158,13 +176,10 @@ Result<PartResult> runLinearity(const CalibrateArgs& args, const cal::Calibratio
 
 Result<PartResult> runNoise(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
                             const json& prior) {
-  cal::SensorLevels levels;
-  GLARECAM_ASSIGN(levels, cal::sensorLevels(prior, inputs, "noise"));
-  std::optional<cal::Roi> roi;
-  GLARECAM_ASSIGN(roi, parsedRoi(args));
+  LevelsInRegion known;
+  GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "noise"));
   cal::NoiseCalibration noise;
-  GLARECAM_ASSIGN(noise,
-                  cal::calibrateNoise(inputs.frames, inputs.specs, levels, roiOr(roi, inputs)));
+  GLARECAM_ASSIGN(noise, cal::calibrateNoise(inputs.frames, inputs.specs, known.levels, known.roi));
   return PartResult{
       .part = "noise",
       .method = fmt::format("photon transfer: {} pairs of a uniform source, var(a-b)/2 against "
@@ -190,15 +205,10 @@ std::optional<double> framesFNumber(const cal::CalibrationInputs& inputs, const 
 Result<cal::LuminanceCalibration> measureLuminance(const CalibrateArgs& args,
                                                    const cal::CalibrationInputs& inputs,
                                                    const json& prior) {
-  std::optional<cal::Roi> roi;
-  GLARECAM_ASSIGN(roi, parsedRoi(args));
-  const cal::Roi region = roiOr(roi, inputs);
-  GLARECAM_CHECK(cal::checkRoi(region, inputs.frames.front().width(),
-                               inputs.frames.front().height(), "--roi"));
-  cal::SensorLevels levels;
-  GLARECAM_ASSIGN(levels, cal::sensorLevels(prior, inputs, "luminance"));
+  LevelsInRegion known;
+  GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "luminance"));
   Calibration calibration;
-  GLARECAM_ASSIGN(calibration, cal::priorCalibration(prior, levels));
+  GLARECAM_ASSIGN(calibration, cal::priorCalibration(prior, known.levels));
   if (!calibration.reference_f_number)
     calibration.reference_f_number = framesFNumber(inputs, prior);
   std::optional<FloatImage> flat;
@@ -208,7 +218,7 @@ Result<cal::LuminanceCalibration> measureLuminance(const CalibrateArgs& args,
   if (!calibration.noise)
     spdlog::warn("calibrate luminance: no noise model known: the merge assumes a typical one");
   return cal::calibrateLuminance(inputs.frames, inputs.specs, inputs.bit_depths, calibration,
-                                 flat ? &*flat : nullptr, region,
+                                 flat ? &*flat : nullptr, known.roi,
                                  {.readings_cd_m2 = args.references_cd_m2,
                                   .meter_accuracy_percent = args.meter_accuracy_percent});
 }

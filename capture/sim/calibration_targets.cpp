@@ -46,14 +46,23 @@ constexpr double kTiltXDeg = 35, kTiltYDeg = 40;  // the poses' largest tilts
 // must find it, not assume the centre.
 constexpr double kPrincipalOffsetXPx = 3.2, kPrincipalOffsetYPx = -2.1;
 
+// The simulated camera as the target sees it: its sensor, K and f-number, without the ND filter.
+SimulationOptions cameraOptions(const CalibrationTargetOptions& options) {
+  SimulationOptions sim;
+  sim.width = options.width;
+  sim.height = options.height;
+  sim.seed = options.seed;
+  sim.sensor = options.sensor;
+  sim.luminance_factor = options.luminance_factor;
+  sim.f_number = options.f_number;
+  sim.horizontal_fov_deg = options.horizontal_fov_deg;
+  sim.distortion = options.distortion;
+  sim.nd_transmission = 1.0;
+  return sim;
+}
+
 Calibration targetCalibration(const CalibrationTargetOptions& options) {
-  Calibration calibration;
-  calibration.black_level_dn = options.sensor.black_level_dn;
-  calibration.saturation_dn = options.sensor.saturation_dn;
-  calibration.luminance_factor = options.luminance_factor;
-  calibration.reference_f_number = options.f_number;
-  calibration.noise = NoiseModel{options.sensor.read_noise_dn, options.sensor.dn_per_electron};
-  return calibration;
+  return simulatedCalibration(cameraOptions(options));
 }
 
 Intrinsics targetIntrinsics(const CalibrationTargetOptions& options) {

@@ -163,6 +163,7 @@ Result<SimulatedScene> targetScene(SimulationOptions& sim) {
   target.luminance_factor = sim.luminance_factor;
   target.f_number = sim.f_number;
   target.horizontal_fov_deg = sim.horizontal_fov_deg;
+  target.distortion = sim.distortion;  // the camera's lens, as its calibration states it
   sim.nd_transmission = 1.0;
   SimulatedScene scene;
   GLARECAM_ASSIGN(scene.true_luminance_cd_m2, calibrationTargetScene(target));

@@ -10,8 +10,6 @@ WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 source "$(dirname "$0")/cli_test_lib.sh"
 
-json_number() { grep -m1 -o "\"$1\": [-0-9.e+]*" "$2" | sed 's/.*: //'; }
-near() { awk -v v="$1" -v t="$2" -v tol="$3" 'BEGIN { d = v - t; if (d < 0) d = -d; exit !(v != "" && d <= tol) }'; }
 T=$WORK/targets
 C=$WORK/cal
 

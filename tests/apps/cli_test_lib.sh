@@ -28,6 +28,14 @@ one_line_naming() {  # stderr is exactly one line and contains $1
   [[ $(wc -l <"$WORK/err") -eq 1 ]] && grep -qF -- "$1" "$WORK/err"
 }
 
+json_number() {  # json_number KEY FILE: the first number after "KEY": in pretty-printed JSON
+  grep -m1 -o "\"$1\": [-0-9.e+]*" "$2" | sed 's/.*: //'
+}
+
+near() {  # near VALUE TARGET TOLERANCE
+  awk -v v="$1" -v t="$2" -v tol="$3" 'BEGIN { d = v - t; if (d < 0) d = -d; exit !(v != "" && d <= tol) }'
+}
+
 finish() {
   echo "$passed passed, $failed failed"
   [[ $failed -eq 0 ]]

@@ -51,7 +51,6 @@ check "process the captured stack" 0 "$GLARECAM" process --no-progress --json "$
 expect "the captured scene glares" grep -q '"glare": true' "$WORK/out"
 # The merged maximum against the scene's truth, within the issue-2 tolerance of 1 %
 # (tests/pipeline/process_stack_test.cpp: about 1 % noise per pixel, the maximum from a fit).
-json_number() { grep -m1 "\"$1\":" "$2" | sed 's/.*: *//; s/,$//'; }  # KEY FILE
 measured=$(json_number max_cd_m2 "$WORK/out")
 truth=$(json_number luminance_max_cd_m2 "$WORK/cal/fake-camera-truth.json")
 expect "captured maximum $measured within 1 % of the truth $truth" \

@@ -10,11 +10,6 @@ WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 source "$(dirname "$0")/cli_test_lib.sh"
 
-# The number after "KEY": in pretty-printed JSON (the first one, at any depth).
-json_number() { grep -m1 -o "\"$1\": [-0-9.e+]*" "$2" | sed 's/.*: //'; }
-# near VALUE TARGET TOLERANCE
-near() { awk -v v="$1" -v t="$2" -v tol="$3" 'BEGIN { d = v - t; if (d < 0) d = -d; exit !(v != "" && d <= tol) }'; }
-
 # ---- sun -------------------------------------------------------------------------------------
 # NREL SPA's documented test case (Reda & Andreas, NREL/TP-560-34302): zenith 50.11162°,
 # azimuth 194.34024°. The paper prints 5 decimals; ΔT from our polynomial (≈ 64.6 s) instead of

@@ -248,11 +248,17 @@ std::vector<calibration::BoardView> boardViews(const CalibrationTargetOptions& o
   return views;
 }
 
-TEST(CalibrateIntrinsics, RecoversTheSimulatedLens) {
+// The board target at the size simulate-calibration renders it (9x6 corners need room).
+CalibrationTargetOptions boardOptions() {
   CalibrationTargetOptions options;
   options.target = CalibrationTarget::kBoard;
   options.width = 640;
   options.height = 480;
+  return options;
+}
+
+TEST(CalibrateIntrinsics, RecoversTheSimulatedLens) {
+  const CalibrationTargetOptions options = boardOptions();
   const auto views = boardViews(options);
   const auto result =
       calibration::calibrateIntrinsics(views, {.inner_columns = options.board_inner_columns,
@@ -300,11 +306,7 @@ TEST(CalibrateIntrinsics, RecoversTheSimulatedLens) {
 }
 
 TEST(CalibrateIntrinsics, AWrongBoardIsNotFoundAndPoorCoverageWarns) {
-  CalibrationTargetOptions options;
-  options.target = CalibrationTarget::kBoard;
-  options.width = 640;
-  options.height = 480;
-  const auto views = boardViews(options);
+  const auto views = boardViews(boardOptions());
   const auto wrong = calibration::calibrateIntrinsics(views, {.inner_columns = 8, .inner_rows = 5});
   ASSERT_FALSE(wrong);
   EXPECT_NE(wrong.error().message.find("found in 0 of 12"), std::string::npos)

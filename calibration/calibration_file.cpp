@@ -177,23 +177,23 @@ Status writeCalibrationDocument(const fs::path& path, const CalibrationDocument&
 }
 
 Result<CalibrationDocument> mergeCalibrationDocuments(
-    std::span<const CalibrationDocument> documents, std::span<const fs::path> directories,
+    std::span<const CalibrationDocument> documents, std::span<const fs::path> files,
     std::vector<std::string>& warnings) {
   CalibrationDocument merged;
   for (std::size_t i = 0; i < documents.size(); ++i) {
     const CalibrationDocument& document = documents[i];
-    const fs::path& directory = directories[i];
-    GLARECAM_CHECK(mergeCamera(merged.camera, document.camera, directory));
+    const fs::path directory = files[i].parent_path();
+    GLARECAM_CHECK(mergeCamera(merged.camera, document.camera, files[i]));
     for (const auto& [key, value] : document.values.items()) {
       json moved = value;
       if (isPathKey(key)) moved = fs::absolute(directory / value.get<std::string>()).string();
       if (merged.values.contains(key) && merged.values[key] != moved)
-        warnings.push_back(fmt::format("{} replaced by the later file's", key));
+        warnings.push_back(fmt::format("{} replaced by {}'s", key, files[i].string()));
       merged.values[key] = std::move(moved);
     }
     for (const auto& [name, part] : document.parts) {
       if (merged.parts.contains(name))
-        warnings.push_back(fmt::format("part {} replaced by the later file's", name));
+        warnings.push_back(fmt::format("part {} replaced by {}'s", name, files[i].string()));
       merged.parts[name] = part;
     }
   }

@@ -52,12 +52,13 @@ nlohmann::json toJson(const CalibrationDocument& document);
 Status writeCalibrationDocument(const std::filesystem::path& path,
                                 const CalibrationDocument& document);
 
-// One document from several (read from `directories`): values and parts of later documents
-// replace earlier ones' (each replacement is reported in `warnings`); the cameras must agree
-// where both are known. Paths in the values (kPathKeys) become absolute: see attachFiles().
+// One document from several (read from `files`): values and parts of later documents replace
+// earlier ones' (each replacement is reported in `warnings`); the cameras (model, serial, pixel
+// format) must agree where both are known. Paths in the values (kPathKeys) become absolute: see
+// attachFiles().
 Result<CalibrationDocument> mergeCalibrationDocuments(
-    std::span<const CalibrationDocument> documents,
-    std::span<const std::filesystem::path> directories, std::vector<std::string>& warnings);
+    std::span<const CalibrationDocument> documents, std::span<const std::filesystem::path> files,
+    std::vector<std::string>& warnings);
 // Copies the files that absolute paths in the values name into `output_directory` (atomically)
 // and makes the values their file names, so the document can be written there.
 Status attachFiles(CalibrationDocument& document, const std::filesystem::path& output_directory);

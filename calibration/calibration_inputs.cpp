@@ -64,6 +64,8 @@ std::string nowIso() {
   return text;
 }
 
+}  // namespace
+
 double formatMaxDn(const CalibrationInputs& inputs) {
   const std::string& format = inputs.camera.pixel_format;
   int bits = 0;
@@ -74,8 +76,6 @@ double formatMaxDn(const CalibrationInputs& inputs) {
   for (int d : inputs.bit_depths) depth = std::max(depth, d);
   return std::ldexp(1.0, depth) - 1;
 }
-
-}  // namespace
 
 Result<CalibrationInputs> readCalibrationInputs(std::span<const std::string> stack_paths,
                                                 bool show_progress) {

@@ -42,6 +42,9 @@ Result<CalibrationInputs> readCalibrationInputs(std::span<const std::string> sta
 Result<nlohmann::json> priorValues(std::span<const std::string> calibration_files,
                                    const CalibrationInputs& inputs);
 
+// The largest value the frames' pixel format holds (MonoN: 2^N - 1; else the files' bit depth).
+double formatMaxDn(const CalibrationInputs& inputs);
+
 // Black level and saturation from the prior values; a missing saturation falls back to the
 // largest value the frames' pixel format holds (MonoN: 2^N - 1; else the files' bit depth).
 // `procedure` names the command in the error when the black level is unknown.

@@ -61,6 +61,7 @@ Result<DarkCalibration> calibrateDark(std::span<const RawFrame> frames,
   }
   GLARECAM_CHECK(checkNoLight(frames, names));
   const std::vector<ExposureGroup> groups = groupByExposure(specs);
+  GLARECAM_CHECK(checkOneGain(groups, "dark"));
   DarkCalibration dark;
   for (const ExposureGroup& group : groups) {
     const FloatImage mean = meanFrame(framesOf(frames, group));

@@ -61,9 +61,22 @@ Result<Roi> parseRoi(std::string_view text, std::string_view what) {
   return Roi{.x = values[0], .y = values[1], .width = values[2], .height = values[3]};
 }
 
+Status checkOneGain(std::span<const ExposureGroup> groups, std::string_view procedure) {
+  for (const ExposureGroup& group : groups) {
+    if (group.gain_db != groups.front().gain_db) {
+      return badInput(
+          fmt::format("calibrate {}: frames at {:g} dB and {:g} dB: take all at one gain",
+                      procedure, groups.front().gain_db, group.gain_db));
+    }
+  }
+  return {};
+}
+
 Status checkRoi(const Roi& roi, int width, int height, std::string_view what) {
-  if (roi.width <= 0 || roi.height <= 0 || roi.x < 0 || roi.y < 0 || roi.x + roi.width > width ||
-      roi.y + roi.height > height) {
+  // In long long: x + w of a parsed "2147483000,0,1000,10" would overflow int.
+  if (roi.width <= 0 || roi.height <= 0 || roi.x < 0 || roi.y < 0 ||
+      static_cast<long long>(roi.x) + roi.width > width ||
+      static_cast<long long>(roi.y) + roi.height > height) {
     return badInput(
         fmt::format("{} {} is not inside the {}x{} frames", what, roiText(roi), width, height));
   }
@@ -126,15 +139,19 @@ std::vector<ExposureGroup> groupByExposure(std::span<const FrameSpec> specs) {
           {.exposure_us = specs[i].exposure_us, .gain_db = specs[i].gain_db, .frames = {i}});
     }
   }
-  std::ranges::sort(groups, {}, &ExposureGroup::exposure_us);
+  std::ranges::stable_sort(groups, [](const ExposureGroup& a, const ExposureGroup& b) {
+    return a.exposure_us != b.exposure_us ? a.exposure_us < b.exposure_us : a.gain_db < b.gain_db;
+  });
   return groups;
 }
 
 double windowMean(const FloatImage& image, double cx, double cy, int size) {
   const int half = size / 2;
-  const int x0 = std::clamp(static_cast<int>(std::lround(cx)) - half, 0, image.width() - 1);
-  const int y0 = std::clamp(static_cast<int>(std::lround(cy)) - half, 0, image.height() - 1);
-  const int x1 = std::min(image.width(), x0 + size), y1 = std::min(image.height(), y0 + size);
+  const long cx_px = std::lround(cx), cy_px = std::lround(cy);
+  const int x0 = static_cast<int>(std::clamp<long>(cx_px - half, 0, image.width() - 1));
+  const int y0 = static_cast<int>(std::clamp<long>(cy_px - half, 0, image.height() - 1));
+  const int x1 = static_cast<int>(std::clamp<long>(cx_px - half + size, x0 + 1, image.width()));
+  const int y1 = static_cast<int>(std::clamp<long>(cy_px - half + size, y0 + 1, image.height()));
   double sum = 0;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) sum += image.at(x, y);

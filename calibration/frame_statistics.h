@@ -57,6 +57,9 @@ struct ExposureGroup {
 };
 std::vector<ExposureGroup> groupByExposure(std::span<const FrameSpec> specs);
 
+// Refuses groups at more than one gain (procedures that compare frames by exposure alone).
+Status checkOneGain(std::span<const ExposureGroup> groups, std::string_view procedure);
+
 // Mean of `image` in a square window of side `size` centred on (cx, cy), clipped to the image.
 double windowMean(const FloatImage& image, double cx, double cy, int size);
 

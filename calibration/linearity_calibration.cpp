@@ -10,10 +10,10 @@ namespace glarecam::calibration {
 namespace {
 
 std::vector<RampPoint> rampPoints(std::span<const RawFrame> frames,
-                                  std::span<const FrameSpec> specs, double black_level_dn,
+                                  std::span<const ExposureGroup> groups, double black_level_dn,
                                   const Roi& roi) {
   std::vector<RampPoint> points;
-  for (const ExposureGroup& group : groupByExposure(specs)) {
+  for (const ExposureGroup& group : groups) {
     double sum = 0;
     for (std::size_t i : group.frames) sum += regionStats(frames[i], roi).mean_dn;
     points.push_back(
@@ -54,7 +54,9 @@ Result<LinearityCalibration> calibrateLinearity(std::span<const RawFrame> frames
         fmt::format("calibrate linearity: tolerance {:g} must be in (0, 1)", tolerance));
   LinearityCalibration result;
   result.tolerance = tolerance;
-  result.points = rampPoints(frames, specs, black_level_dn, roi);
+  const std::vector<ExposureGroup> groups = groupByExposure(specs);
+  GLARECAM_CHECK(checkOneGain(groups, "linearity"));
+  result.points = rampPoints(frames, groups, black_level_dn, roi);
   if (result.points.size() < kMinRampPoints) {
     return badInput(fmt::format(
         "calibrate linearity: {} exposure(s); a ramp needs at least {} different exposures",
@@ -73,8 +75,10 @@ Result<LinearityCalibration> calibrateLinearity(std::span<const RawFrame> frames
   // The usable range: from the first point above the noise floor up to the last point before
   // the deviation first exceeds the tolerance (interpolated to where it crosses).
   const RampPoint* last_good = nullptr;
+  double largest = 0;
+  for (const RampPoint& p : result.points) largest = std::max(largest, p.signal_dn);
   for (const RampPoint& p : result.points) {
-    if (p.signal_dn < kLinearFitLowFraction * result.points.back().signal_dn) continue;
+    if (p.signal_dn < kLinearFitLowFraction * largest) continue;
     if (std::abs(p.deviation) > tolerance) {
       result.bend_found = last_good != nullptr;
       if (last_good) {

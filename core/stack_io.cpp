@@ -131,7 +131,7 @@ Result<Calibration> readCalibrationFile(const fs::path& path) {
   if (!document) return std::unexpected(document.error());
   auto calibration = parseCalibration(*document, path.string());
   if (!calibration && document->is_object() && document->contains("parts") &&
-      calibration.error().message.ends_with("is required")) {
+      calibration.error().message.find(" is required") != std::string::npos) {
     // One part of a calibration (docs/calibration.md): say how to make a whole one.
     calibration.error().message +=
         " (a calibration part: combine the parts with `glarecam calibrate merge`)";

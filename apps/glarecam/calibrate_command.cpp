@@ -248,7 +248,7 @@ Result<PartResult> runIntrinsics(const CalibrateArgs& args, const cal::Calibrati
                                  const json& prior) {
   cal::BoardSpec board;
   GLARECAM_ASSIGN(board, parseBoard(args));
-  const double saturation = prior.value("saturation_dn", 65535.0);
+  const double saturation = prior.value("saturation_dn", cal::formatMaxDn(inputs));
   std::vector<cal::BoardView> views;
   std::size_t first = 0;
   for (std::size_t s = 0; s < inputs.stacks.size(); ++s) {  // one view a stack
@@ -299,6 +299,8 @@ Result<std::vector<std::string>> captureInputs(const CalibrateArgs& args) {
   GLARECAM_ASSIGN(exposures,
                   parseNumberList(*args.exposures, "--exposures", 1, kMaxCapturedFrames));
   if (args.views < 1) return badInput("--views must be at least 1");
+  if (!(args.view_interval_s >= 0 && args.view_interval_s <= 3600))
+    return badInput("--view-interval must be between 0 and 3600 s");
   std::unique_ptr<capture::Camera> camera;
   GLARECAM_ASSIGN(camera, capture::openCamera(*args.camera, {}));
   const fs::path directory = cal::companionFile(*args.out, "-stacks");
@@ -356,6 +358,8 @@ Status runLuminanceCheck(const CalibrateArgs& args) {
         "calibrate luminance --check: give the calibration to check with --calibration");
   if (args.camera || args.inputs.empty())
     return badInput("calibrate luminance --check: give the recorded field stack(s) to check");
+  if (!args.roi)
+    return badInput("calibrate luminance --check: give the reference patch's region with --roi");
   cal::CalibrationInputs inputs;
   GLARECAM_ASSIGN(inputs, cal::readCalibrationInputs(args.inputs, !args.no_progress));
   json prior;
@@ -366,7 +370,9 @@ Status runLuminanceCheck(const CalibrateArgs& args) {
   GLARECAM_ASSIGN(measured, measureLuminance(args, inputs, prior));
   const double k = prior["luminance_factor"].get<double>();
   const double drift = measured.luminance_factor / k - 1;
-  const double u = measured.relative.combined();
+  // Both Ks are uncertain: the check's own budget and the calibration's u(K), in quadrature.
+  const double u_k = prior.value("luminance_factor_u", 0.0) / k;
+  const double u = std::hypot(measured.relative.combined(), u_k);
   const json report = {{"stacks", inputs.stack_paths},
                        {"captured_at", inputs.latest_capture},
                        {"luminance_factor", k},
@@ -403,16 +409,16 @@ Status runMerge(const CalibrateArgs& args) {
   if (!args.out) return badInput("--out FILE is required");
   if (args.inputs.size() < 2) return badInput("calibrate merge: give two or more files");
   std::vector<cal::CalibrationDocument> documents;
-  std::vector<fs::path> directories;
+  std::vector<fs::path> files;
   for (const std::string& file : args.inputs) {
     cal::CalibrationDocument document;
     GLARECAM_ASSIGN(document, cal::readCalibrationDocument(file));
     documents.push_back(std::move(document));
-    directories.push_back(fs::path(file).parent_path());
+    files.push_back(fs::path(file));
   }
   std::vector<std::string> warnings;
   cal::CalibrationDocument merged;
-  GLARECAM_ASSIGN(merged, cal::mergeCalibrationDocuments(documents, directories, warnings));
+  GLARECAM_ASSIGN(merged, cal::mergeCalibrationDocuments(documents, files, warnings));
   for (const std::string& warning : warnings) spdlog::warn("calibrate merge: {}", warning);
   const fs::path out = *args.out;
   const fs::path directory = out.parent_path().empty() ? fs::path(".") : out.parent_path();

@@ -222,6 +222,9 @@ Result<pipeline::ProcessSummary> StackWorker::processInto(const fs::path& stack,
   process.output_directory = staging->path();
   process.threads = options.threads;
   process.show_progress = false;
+  // The rig's calibration is the operator's choice for this camera: a serial that differs is
+  // logged as a warning, not a refusal that would mark every stack .failed for good.
+  process.calibration_use.force = true;
   pipeline::ProcessSummary summary;
   GLARECAM_ASSIGN(summary, pipeline::processStack(stack, process));
   GLARECAM_CHECK(staging->commit());

@@ -127,6 +127,10 @@ check "luminance: negative reference" 2 "$GLARECAM" calibrate luminance "$T/lumi
 check "luminance: ROI outside" 2 "$GLARECAM" calibrate luminance "$T/luminance" --out "$C/x.json" \
   --reference 5000 --roi 300,200,100,100 --calibration "$C/dark.json" --no-progress
 expect "luminance: ROI named" one_line_naming "--roi 300,200,100,100 is not inside the 320x256 frames"
+check "luminance: ROI past int" 2 "$GLARECAM" calibrate luminance "$T/luminance" --out "$C/x.json" \
+  --reference 5000 --roi 2147483000,0,1000,10 --calibration "$C/dark.json" --no-progress
+check "luminance --check without --roi" 2 "$GLARECAM" calibrate luminance "$T/luminance" --check \
+  --calibration "$C/dark.json" --reference 5000 --no-progress
 check "luminance: bad ROI text" 2 "$GLARECAM" calibrate luminance "$T/luminance" --out "$C/x.json" \
   --reference 5000 --roi 1,2,3 --calibration "$C/dark.json" --no-progress
 check "intrinsics: wrong board" 2 "$GLARECAM" calibrate intrinsics "$T"/board-* --board 8x5 --out "$C/x.json" --no-progress

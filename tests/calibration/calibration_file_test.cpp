@@ -70,7 +70,9 @@ TEST(CalibrationFile, MergedPartsMakeABlockAStackAccepts) {
       part("intrinsics", {{"intrinsics", kIntrinsics}}),
       part("dark", {{"black_level_dn", 63.5}}),  // a newer dark part
   };
-  const fs::path directories[] = {dir.path(), dir.path(), dir.path(), dir.path(), dir.path()};
+  const fs::path directories[] = {dir.path() / "1.json", dir.path() / "2.json",
+                                  dir.path() / "3.json", dir.path() / "4.json",
+                                  dir.path() / "5.json"};
   std::vector<std::string> warnings;
   const auto merged = calibration::mergeCalibrationDocuments(parts, directories, warnings);
   ASSERT_TRUE(merged) << merged.error().message;
@@ -103,11 +105,11 @@ TEST(CalibrationFile, PartsOfDifferentCamerasDoNotMerge) {
   testing::TempDir dir;
   const CalibrationDocument parts[] = {part("dark", {{"black_level_dn", 64}}, "S1"),
                                        part("flat", {{"saturation_dn", 4000}}, "S2")};
-  const fs::path directories[] = {dir.path() / "a", dir.path() / "b"};
+  const fs::path directories[] = {dir.path() / "a.json", dir.path() / "b.json"};
   std::vector<std::string> warnings;
   const auto merged = calibration::mergeCalibrationDocuments(parts, directories, warnings);
   ASSERT_FALSE(merged);
-  EXPECT_NE(merged.error().message.find("camera serial \"S2\" differs from \"S1\""),
+  EXPECT_NE(merged.error().message.find("b.json: camera serial \"S2\" differs from \"S1\""),
             std::string::npos)
       << merged.error().message;
 }
@@ -117,7 +119,7 @@ TEST(CalibrationFile, MergeCopiesTheReferencedImagesBesideTheResult) {
   fs::create_directories(dir.path() / "parts");
   testing::writeText(dir.path() / "parts" / "flat-flat.exr", "not really an EXR");
   const CalibrationDocument parts[] = {part("flat", {{"flat_field", "flat-flat.exr"}})};
-  const fs::path directories[] = {dir.path() / "parts"};
+  const fs::path directories[] = {dir.path() / "parts" / "flat.json"};
   std::vector<std::string> warnings;
   auto merged = calibration::mergeCalibrationDocuments(parts, directories, warnings);
   ASSERT_TRUE(merged) << merged.error().message;

@@ -20,6 +20,9 @@ TEST(Roi, ParsesXYWidthHeightAndRefusesEverythingElse) {
   }
   EXPECT_FALSE(calibration::checkRoi({.x = 90, .y = 0, .width = 20, .height = 10}, 100, 100, "r"));
   EXPECT_TRUE(calibration::checkRoi({.x = 80, .y = 90, .width = 20, .height = 10}, 100, 100, "r"));
+  // x + w beyond int: refused, not wrapped into a negative sum that passes.
+  EXPECT_FALSE(
+      calibration::checkRoi({.x = 2147483000, .y = 0, .width = 1000, .height = 10}, 100, 100, "r"));
   const calibration::Roi central = calibration::centralRoi(100, 60);
   EXPECT_EQ(central.x, 25);
   EXPECT_EQ(central.width, 50);
@@ -68,7 +71,12 @@ TEST(FrameStatistics, FramesGroupByExposureAndGain) {
   const auto groups = calibration::groupByExposure(specs);
   ASSERT_EQ(groups.size(), 3u);
   EXPECT_EQ(groups[0].exposure_us, 100);
+  EXPECT_EQ(groups[0].gain_db, 0);  // by exposure, then gain
+  EXPECT_EQ(groups[1].gain_db, 6);
   EXPECT_EQ(groups.back().frames, (std::vector<std::size_t>{0, 2}));
+  const auto mixed = calibration::checkOneGain(groups, "linearity");
+  ASSERT_FALSE(mixed);
+  EXPECT_NE(mixed.error().message.find("frames at 0 dB and 6 dB"), std::string::npos);
 }
 
 }  // namespace

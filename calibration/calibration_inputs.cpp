@@ -91,14 +91,14 @@ Result<CalibrationInputs> readCalibrationInputs(std::span<const std::string> sta
     if (inputs.stack_paths.empty()) inputs.camera = cameraIdentityOf(stack.manifest);
     inputs.stack_paths.push_back(path);
     for (std::size_t i = 0; i < stack.frames.size(); ++i) {
-      inputs.frames.push_back(stack.frames[i]);
+      inputs.frames.push_back(std::move(stack.frames[i]));
       inputs.specs.push_back(stack.manifest.frames[i]);
       inputs.names.push_back((fs::path(path) / stack.manifest.frames[i].file).string());
       inputs.bit_depths.push_back(stack.bit_depths[i]);
     }
     if (stack.manifest.captured_at && *stack.manifest.captured_at > inputs.latest_capture)
       inputs.latest_capture = *stack.manifest.captured_at;
-    stack.frames.clear();  // kept once, in `frames`
+    stack.frames.clear();  // moved into `frames`: each frame is held once
     inputs.stacks.push_back(std::move(stack));
     progress.advance(path);
   }

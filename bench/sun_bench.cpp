@@ -1,4 +1,4 @@
-// sun/glarecam_spa: glarecam's NREL SPA (capture/sun/solar_position.h) for one day at one-minute
+// sun/glarecam_spa: glarecam's NREL SPA (sun/solar_position.h) for one day at one-minute
 // steps (1440 positions, what planning a day's captures at α targets needs) at SPA's test site,
 // beside sun/libnova: libnova 0.16's apparent solar coordinates, horizontal conversion and
 // refraction for the same instants. libnova is the peer glarecam did not choose: it is 0.066° off
@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "bench/benchmarks.h"
-#include "capture/sun/solar_position.h"
+#include "sun/solar_position.h"
 
 namespace glarecam::bench {
 namespace {
@@ -32,7 +32,7 @@ const auto kDayStart =
     std::chrono::time_point_cast<microseconds>(sys_days{std::chrono::year{2026} / 6 / 21});
 
 void glarecamSpa(benchmark::State& state) {
-  capture::SiteLocation site;
+  sun::SiteLocation site;
   site.latitude_deg = kLatitudeDeg;
   site.longitude_deg = kLongitudeDeg;
   site.pressure_hpa = kPressureHpa;
@@ -40,7 +40,7 @@ void glarecamSpa(benchmark::State& state) {
   double sum = 0;
   for (auto _ : state) {
     for (int minute = 0; minute < kPositionsPerDay; ++minute) {
-      const auto position = capture::solarPosition(kDayStart + std::chrono::minutes(minute), site);
+      const auto position = sun::solarPosition(kDayStart + std::chrono::minutes(minute), site);
       sum += position ? position->azimuth_deg : 0;
     }
   }

@@ -7,8 +7,8 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "pipeline/datasheet.h"
 #include "pipeline/glare_profile.h"
+#include "pipeline/render/datasheet.h"
 
 namespace glarecam::pipeline {
 

@@ -14,11 +14,11 @@
 #include "core/progress.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
-#include "pipeline/false_colour.h"
 #include "pipeline/glare_analysis.h"
-#include "pipeline/glare_picture.h"
 #include "pipeline/limit_curve.h"
 #include "pipeline/luminance_stats.h"
+#include "pipeline/render/false_colour.h"
+#include "pipeline/render/glare_picture.h"
 #include "pipeline/result.h"
 
 namespace glarecam::pipeline {

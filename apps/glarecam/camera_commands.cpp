@@ -213,13 +213,13 @@ Result<bool> prepareRigStack(CaptureRig& rig, capture::CaptureSettings& settings
     if (!rig.waitsForButton() || measured.error().code != ErrorCode::kHardware)
       return std::unexpected(measured.error());
     spdlog::error("capture: {}; press the button to try again", measured.error().message);
-    rig.showFault(capture::FaultCode::kInclinometer);
+    rig.showFault(rig::FaultCode::kInclinometer);
   }
   rig.showCapturing(true);
   return true;
 }
 
-capture::UtcTime utcNow() {
+sun::UtcTime utcNow() {
   return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
 }
 
@@ -242,7 +242,7 @@ Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
       if (!go) return interrupted();  // stopped while waiting for the button
     }
     capture::CapturedStack stack;
-    const capture::UtcTime bracket_start = utcNow();
+    const sun::UtcTime bracket_start = utcNow();
     GLARECAM_ASSIGN(stack, capture::captureStack(camera, settings));
     if (rig) {
       rig->showCapturing(false);

@@ -8,10 +8,10 @@
 
 #include "apps/glarecam/interruption.h"
 #include "apps/glarecam/sample_progress.h"
-#include "capture/gpio/rig_io_registry.h"
-#include "capture/rig_stack.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
+#include "daemon/rig_stack.h"
+#include "rig/gpio/rig_io_registry.h"
 
 namespace glarecam::apps {
 
@@ -20,8 +20,8 @@ Result<std::unique_ptr<CaptureRig>> CaptureRig::open(const std::string& config_p
                                                      bool show_progress) {
   std::unique_ptr<CaptureRig> rig(new CaptureRig);
   rig->show_progress_ = show_progress;
-  GLARECAM_ASSIGN(rig->config_, capture::readRigConfig(config_path));
-  const capture::RigConfig& config = rig->config_;
+  GLARECAM_ASSIGN(rig->config_, rig::readRigConfig(config_path));
+  const rig::RigConfig& config = rig->config_;
   if (config.inclinometer && !config.site && !config.fixed_source)
     spdlog::warn(
         "capture: {} has an [inclinometer] but neither [site] nor [source]: α is not "
@@ -31,15 +31,15 @@ Result<std::unique_ptr<CaptureRig>> CaptureRig::open(const std::string& config_p
     if (alpha_given)
       return badInput(fmt::format("capture: --alpha contradicts {}, whose [{}] gives α; give one",
                                   config_path, config.site ? "site" : "source"));
-    GLARECAM_ASSIGN(rig->sensors_, capture::RigSensors::open(config));
+    GLARECAM_ASSIGN(rig->sensors_, rig::RigSensors::open(config));
   }
   if (on_button && !(config.gpio && config.gpio->button))
     return badInput(
         fmt::format("capture: --on-button, but {} has no [gpio] button line", config_path));
   if (config.gpio) {
-    GLARECAM_ASSIGN(rig->io_, capture::openRigIo(*config.gpio));
+    GLARECAM_ASSIGN(rig->io_, rig::openRigIo(*config.gpio));
     spdlog::info("capture: GPIO {}", rig->io_->description());
-    rig->led_ = std::make_unique<capture::StatusLed>(*rig->io_);
+    rig->led_ = std::make_unique<rig::StatusLed>(*rig->io_);
     rig->led_->start();
   }
   rig->on_button_ = on_button;
@@ -54,11 +54,11 @@ CaptureRig::~CaptureRig() {
 }
 
 Result<std::optional<Calibration>> CaptureRig::cameraCalibration() const {
-  return capture::rigCameraCalibration(config_);
+  return rig::rigCameraCalibration(config_);
 }
 
 Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
-  capture::RigGeometry geometry;
+  rig::RigGeometry geometry;
   const auto now =
       std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
   GLARECAM_ASSIGN(geometry,
@@ -71,16 +71,16 @@ Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
   spdlog::info("capture: α {:.3f}° ± {:.3f}° (module tilt {:.3f}°)", geometry.alpha_deg,
                geometry.alpha_uncertainty_deg, geometry.module.tilt_deg);
   settings.alpha_deg = geometry.alpha_deg;
-  settings.geometry = capture::geometryJson(geometry);
+  settings.geometry = rig::geometryJson(geometry);
   measured_ = std::move(geometry);
   return {};
 }
 
-void CaptureRig::finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
-                             capture::UtcTime bracket_end) {
+void CaptureRig::finishStack(capture::CapturedStack& stack, sun::UtcTime bracket_start,
+                             sun::UtcTime bracket_end) {
   if (!measured_ || !measured_->sun) return;  // a fixed source does not move
   const Status recorded =
-      capture::recordBracketGeometry(*sensors_, *measured_, stack, bracket_start, bracket_end);
+      daemon::recordBracketGeometry(*sensors_, *measured_, stack, bracket_start, bracket_end);
   // On failure the stack keeps α from before the bracket.
   if (!recorded) spdlog::warn("capture: α for the bracket's middle: {}", recorded.error().message);
 }
@@ -88,16 +88,15 @@ void CaptureRig::finishStack(capture::CapturedStack& stack, capture::UtcTime bra
 Result<bool> CaptureRig::waitForButton() {
   if (!on_button_) return true;
   std::fprintf(stderr, "capture: waiting for the button\n");
-  return waitForButtonPress(*io_, config_.gpio->debounce, capture::RigClock::time_point::max());
+  return waitForButtonPress(*io_, config_.gpio->debounce, rig::RigClock::time_point::max());
 }
 
 void CaptureRig::showCapturing(bool capturing) {
-  if (led_)
-    led_->setStatus(capturing ? capture::RigState::capturing() : capture::RigState::ready());
+  if (led_) led_->setStatus(capturing ? rig::RigState::capturing() : rig::RigState::ready());
 }
 
-void CaptureRig::showFault(capture::FaultCode fault) {
-  if (led_) led_->setStatus(capture::RigState::faulted(fault));
+void CaptureRig::showFault(rig::FaultCode fault) {
+  if (led_) led_->setStatus(rig::RigState::faulted(fault));
 }
 
 }  // namespace glarecam::apps

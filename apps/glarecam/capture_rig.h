@@ -9,11 +9,11 @@
 #include <string>
 
 #include "capture/bracketer.h"
-#include "capture/gpio/rig_io.h"
-#include "capture/gpio/status_led.h"
-#include "capture/rig_config.h"
-#include "capture/rig_geometry.h"
 #include "core/error.h"
+#include "rig/gpio/rig_io.h"
+#include "rig/gpio/status_led.h"
+#include "rig/rig_config.h"
+#include "rig/rig_geometry.h"
 
 namespace glarecam::apps {
 
@@ -25,7 +25,7 @@ class CaptureRig {
                                                   bool on_button, bool show_progress);
   ~CaptureRig();
 
-  const capture::RigConfig& config() const { return config_; }
+  const rig::RigConfig& config() const { return config_; }
   bool measuresAlpha() const { return sensors_ != nullptr; }
   bool waitsForButton() const { return on_button_; }
 
@@ -39,23 +39,23 @@ class CaptureRig {
   // After the bracket: α again at the bracket's middle (the sun moved while the inclinometer
   // was read and the frames exposed), into the stack's manifest.
   // A failure only warns: the stack keeps α from before the bracket.
-  void finishStack(capture::CapturedStack& stack, capture::UtcTime bracket_start,
-                   capture::UtcTime bracket_end);
+  void finishStack(capture::CapturedStack& stack, sun::UtcTime bracket_start,
+                   sun::UtcTime bracket_end);
 
   // With --on-button: waits for a press (true) or a stop request (false). Without: true.
   Result<bool> waitForButton();
 
   void showCapturing(bool capturing);
-  void showFault(capture::FaultCode fault);
+  void showFault(rig::FaultCode fault);
 
  private:
   CaptureRig() = default;
 
-  capture::RigConfig config_;
-  std::unique_ptr<capture::RigSensors> sensors_;
-  std::unique_ptr<capture::RigIo> io_;
-  std::unique_ptr<capture::StatusLed> led_;
-  std::optional<capture::RigGeometry> measured_;  // the last geometry measured
+  rig::RigConfig config_;
+  std::unique_ptr<rig::RigSensors> sensors_;
+  std::unique_ptr<rig::RigIo> io_;
+  std::unique_ptr<rig::StatusLed> led_;
+  std::optional<rig::RigGeometry> measured_;  // the last geometry measured
   bool on_button_ = false;
   bool show_progress_ = false;
 };

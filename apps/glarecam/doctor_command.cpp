@@ -1,31 +1,31 @@
-// glarecam doctor: is this rig ready for glarecamd? (capture/daemon/rig_doctor.h)
+// glarecam doctor: is this rig ready for glarecamd? (daemon/rig_doctor.h)
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "apps/glarecam/commands.h"
-#include "capture/daemon/rig_doctor.h"
-#include "capture/rig_config.h"
 #include "core/stack_manifest.h"
+#include "daemon/rig_doctor.h"
+#include "rig/rig_config.h"
 
 namespace glarecam::apps {
 namespace {
 
 struct DoctorArgs {
-  std::string config = capture::kDefaultRigConfigPath;
+  std::string config = rig::kDefaultRigConfigPath;
   bool json = false;
 };
 
 Status runDoctor(const DoctorArgs& args) {
-  capture::DoctorOptions options{.config_path = args.config};
-  const std::vector<capture::DoctorCheck> checks = capture::runDoctor(options);
-  std::fputs(args.json ? jsonText(capture::doctorJson(checks)).c_str()
-                       : capture::doctorTable(checks).c_str(),
+  daemon::DoctorOptions options{.config_path = args.config};
+  const std::vector<daemon::DoctorCheck> checks = daemon::runDoctor(options);
+  std::fputs(args.json ? jsonText(daemon::doctorJson(checks)).c_str()
+                       : daemon::doctorTable(checks).c_str(),
              stdout);
   std::fflush(stdout);
   if (options.config_bad_input)
     return badInput("doctor: " + args.config + " is not a valid config");
-  if (capture::anyFailed(checks))
+  if (daemon::anyFailed(checks))
     return fail(ErrorCode::kHardware, "doctor: the rig is not ready (the FAIL lines above)");
   return {};
 }

@@ -7,7 +7,7 @@
 #include <stop_token>
 #include <thread>
 
-#include "capture/gpio/button_debouncer.h"
+#include "rig/gpio/button_debouncer.h"
 
 namespace glarecam::apps {
 
@@ -43,15 +43,15 @@ void sleepUntil(std::chrono::steady_clock::time_point deadline) {
   }
 }
 
-Result<bool> waitForButtonPress(capture::RigIo& io, std::chrono::milliseconds debounce,
-                                capture::RigClock::time_point deadline) {
+Result<bool> waitForButtonPress(rig::RigIo& io, std::chrono::milliseconds debounce,
+                                rig::RigClock::time_point deadline) {
   // One wait (a press may straddle any slicing), stopped from a thread that watches for signals.
   std::stop_source stop;
   std::jthread signal_watch([&stop](std::stop_token done) {
     while (!done.stop_requested() && !stopRequested()) std::this_thread::sleep_for(kStopPoll);
     stop.request_stop();
   });
-  capture::ButtonWatcher watcher(io, debounce);
+  rig::ButtonWatcher watcher(io, debounce);
   return watcher.waitForPress(deadline, stop.get_token());
 }
 

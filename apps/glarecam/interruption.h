@@ -5,8 +5,8 @@
 
 #include <chrono>
 
-#include "capture/gpio/rig_io.h"
 #include "core/error.h"
+#include "rig/gpio/rig_io.h"
 
 namespace glarecam::apps {
 
@@ -18,7 +18,7 @@ void sleepUntil(std::chrono::steady_clock::time_point deadline);
 
 // Waits for a debounced press of the rig's button until `deadline`: true when pressed, false at
 // the deadline or on a stop request; the button's read errors.
-Result<bool> waitForButtonPress(capture::RigIo& io, std::chrono::milliseconds debounce,
-                                capture::RigClock::time_point deadline);
+Result<bool> waitForButtonPress(rig::RigIo& io, std::chrono::milliseconds debounce,
+                                rig::RigClock::time_point deadline);
 
 }  // namespace glarecam::apps

@@ -1,4 +1,4 @@
-// glarecam sun / alpha / inclinometer: the rig's sensors (capture/rig_geometry.h): the sun's
+// glarecam sun / alpha / inclinometer: the rig's sensors (rig/rig_geometry.h): the sun's
 // position at a site and time, α from the config's geometry, and the inclinometer's readings and
 // flip calibration.
 #include <fmt/format.h>
@@ -17,22 +17,22 @@
 #include "apps/glarecam/interruption.h"
 #include "apps/glarecam/option_parsing.h"
 #include "apps/glarecam/sample_progress.h"
-#include "capture/gpio/rig_io_registry.h"
-#include "capture/gpio/status_led.h"
-#include "capture/inclinometer/inclinometer_registry.h"
-#include "capture/inclinometer/zero_offset_file.h"
-#include "capture/rig_config.h"
-#include "capture/rig_geometry.h"
-#include "capture/sun/clock_sync.h"
-#include "capture/sun/solar_position.h"
-#include "capture/sun/utc_time.h"
 #include "core/atomic_file.h"
 #include "core/stack_manifest.h"
+#include "rig/gpio/rig_io_registry.h"
+#include "rig/gpio/status_led.h"
+#include "rig/inclinometer/inclinometer_registry.h"
+#include "rig/inclinometer/zero_offset_file.h"
+#include "rig/rig_config.h"
+#include "rig/rig_geometry.h"
+#include "sun/clock_sync.h"
+#include "sun/solar_position.h"
+#include "sun/utc_time.h"
 
 namespace glarecam::apps {
 namespace {
 
-using capture::UtcTime;
+using sun::UtcTime;
 
 UtcTime now() {
   return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
@@ -40,8 +40,8 @@ UtcTime now() {
 
 // --time, else now (with a warning when the clock cannot be trusted).
 Result<UtcTime> timeOption(const std::optional<std::string>& text) {
-  if (text) return capture::parseIsoTime(*text);
-  const capture::ClockStatus clock = capture::systemClockStatus();
+  if (text) return sun::parseIsoTime(*text);
+  const sun::ClockStatus clock = sun::systemClockStatus();
   if (!clock.synchronised)
     spdlog::warn("the system clock is not synchronised: {}; a wrong clock is a wrong sun position",
                  clock.detail);
@@ -58,8 +58,8 @@ struct SunArgs {
   bool json = false;
 };
 
-Result<capture::SiteLocation> siteFromArgs(const SunArgs& args) {
-  capture::SiteLocation site;
+Result<sun::SiteLocation> siteFromArgs(const SunArgs& args) {
+  sun::SiteLocation site;
   std::optional<double> value;
   GLARECAM_ASSIGN(value, parseOptionalNumber(args.latitude, "--lat"));
   site.latitude_deg = *value;
@@ -68,16 +68,15 @@ Result<capture::SiteLocation> siteFromArgs(const SunArgs& args) {
   GLARECAM_ASSIGN(value, parseOptionalNumber(args.altitude, "--altitude-m"));
   site.altitude_m = value.value_or(0.0);
   GLARECAM_ASSIGN(value, parseOptionalNumber(args.pressure, "--pressure-hpa"));
-  site.pressure_hpa = value.value_or(capture::standardPressureHpa(site.altitude_m));
+  site.pressure_hpa = value.value_or(rig::standardPressureHpa(site.altitude_m));
   GLARECAM_ASSIGN(value, parseOptionalNumber(args.temperature, "--temperature-c"));
   if (value) site.temperature_c = *value;
-  GLARECAM_CHECK(capture::validate(site));
+  GLARECAM_CHECK(sun::validate(site));
   return site;
 }
 
-nlohmann::json sunJson(const capture::SolarPosition& sun, const capture::SiteLocation& site,
-                       UtcTime time) {
-  return {{"time", capture::formatIsoTime(time)}, {"latitude_deg", site.latitude_deg},
+nlohmann::json sunJson(const sun::SolarPosition& sun, const sun::SiteLocation& site, UtcTime time) {
+  return {{"time", sun::formatIsoTime(time)},     {"latitude_deg", site.latitude_deg},
           {"longitude_deg", site.longitude_deg},  {"altitude_m", site.altitude_m},
           {"pressure_hpa", site.pressure_hpa},    {"temperature_c", site.temperature_c},
           {"elevation_deg", sun.elevation_deg},   {"zenith_deg", sun.zenith_deg},
@@ -87,17 +86,17 @@ nlohmann::json sunJson(const capture::SolarPosition& sun, const capture::SiteLoc
 }
 
 Status runSun(const SunArgs& args) {
-  capture::SiteLocation site;
+  sun::SiteLocation site;
   GLARECAM_ASSIGN(site, siteFromArgs(args));
   UtcTime time;
   GLARECAM_ASSIGN(time, timeOption(args.time));
-  capture::SolarPositionOptions options;
+  sun::SolarPositionOptions options;
   GLARECAM_ASSIGN(options.delta_t_s, parseOptionalNumber(args.delta_t, "--delta-t-s"));
   std::optional<double> delta_ut1;
   GLARECAM_ASSIGN(delta_ut1, parseOptionalNumber(args.delta_ut1, "--delta-ut1-s"));
   options.delta_ut1_s = delta_ut1.value_or(0.0);
-  capture::SolarPosition sun;
-  GLARECAM_ASSIGN(sun, capture::solarPosition(time, site, options));
+  sun::SolarPosition sun;
+  GLARECAM_ASSIGN(sun, sun::solarPosition(time, site, options));
   if (args.json) {
     printJson(sunJson(sun, site, time));
     return {};
@@ -105,23 +104,23 @@ Status runSun(const SunArgs& args) {
   std::printf(
       "%s at %.6f° %.6f°: elevation %.4f°, zenith %.4f°, azimuth %.4f° (apparent; "
       "refraction %.4f°)\n",
-      capture::formatIsoTime(time).c_str(), site.latitude_deg, site.longitude_deg,
-      sun.elevation_deg, sun.zenith_deg, sun.azimuth_deg, sun.refraction_deg);
+      sun::formatIsoTime(time).c_str(), site.latitude_deg, site.longitude_deg, sun.elevation_deg,
+      sun.zenith_deg, sun.azimuth_deg, sun.refraction_deg);
   return {};
 }
 
 // ---- alpha ---------------------------------------------------------------------------------
 
 struct AlphaArgs {
-  std::string config = capture::kDefaultRigConfigPath;
+  std::string config = rig::kDefaultRigConfigPath;
   std::optional<std::string> time;
   bool json = false;
   bool no_progress = false;
 };
 
 // Opens the config's sensors and measures once, showing progress over the inclinometer samples.
-Result<capture::RigGeometry> measureGeometry(capture::RigSensors& sensors, UtcTime time,
-                                             bool time_from_clock, bool show_progress) {
+Result<rig::RigGeometry> measureGeometry(rig::RigSensors& sensors, UtcTime time,
+                                         bool time_from_clock, bool show_progress) {
   const auto& inclinometer = sensors.config().inclinometer;
   return withSampleProgress(inclinometer ? inclinometer->tilt.samples : 0,
                             show_progress && sensors.hasInclinometer(),
@@ -130,7 +129,7 @@ Result<capture::RigGeometry> measureGeometry(capture::RigSensors& sensors, UtcTi
                             });
 }
 
-void printGeometry(const capture::RigGeometry& g) {
+void printGeometry(const rig::RigGeometry& g) {
   std::printf("alpha %.3f° ± %.2g° (%s; from the tilt %.2g°", g.alpha_deg, g.alpha_uncertainty_deg,
               g.source == "sun" ? "the sun" : "a fixed source", g.alpha_uncertainty_tilt_deg);
   if (g.clock_error_unknown)
@@ -148,21 +147,21 @@ void printGeometry(const capture::RigGeometry& g) {
   }
   std::printf("%s elevation %.3f°, azimuth %.3f° at %s\n", g.source == "sun" ? "sun" : "source",
               g.source_direction.elevation_deg, g.source_direction.azimuth_deg,
-              capture::formatIsoTime(g.time).c_str());
+              sun::formatIsoTime(g.time).c_str());
 }
 
 Status runAlpha(const AlphaArgs& args) {
-  capture::RigConfig config;
-  GLARECAM_ASSIGN(config, capture::readRigConfig(args.config));
+  rig::RigConfig config;
+  GLARECAM_ASSIGN(config, rig::readRigConfig(args.config));
   UtcTime time;
-  GLARECAM_ASSIGN(time, args.time ? capture::parseIsoTime(*args.time) : Result<UtcTime>(now()));
-  std::unique_ptr<capture::RigSensors> sensors;
-  GLARECAM_ASSIGN(sensors, capture::RigSensors::open(config));
-  capture::RigGeometry geometry;
+  GLARECAM_ASSIGN(time, args.time ? sun::parseIsoTime(*args.time) : Result<UtcTime>(now()));
+  std::unique_ptr<rig::RigSensors> sensors;
+  GLARECAM_ASSIGN(sensors, rig::RigSensors::open(config));
+  rig::RigGeometry geometry;
   GLARECAM_ASSIGN(geometry, measureGeometry(*sensors, time, !args.time, !args.no_progress));
   for (const std::string& warning : geometry.warnings) spdlog::warn("alpha: {}", warning);
   if (args.json) {
-    printJson(capture::geometryJson(geometry));
+    printJson(rig::geometryJson(geometry));
   } else {
     printGeometry(geometry);
   }
@@ -182,15 +181,15 @@ struct InclinometerArgs {
 // The sensor to use: --inclinometer, else the config's; with the config's tilt options.
 struct InclinometerChoice {
   std::string uri;
-  capture::TiltOptions tilt;
+  rig::TiltOptions tilt;
   std::optional<std::filesystem::path> calibration;  // --calibration, else the config's
 };
 
 Result<InclinometerChoice> chooseInclinometer(const InclinometerArgs& args, const char* command) {
   InclinometerChoice choice;
   if (args.config) {
-    capture::RigConfig config;
-    GLARECAM_ASSIGN(config, capture::readRigConfig(*args.config));
+    rig::RigConfig config;
+    GLARECAM_ASSIGN(config, rig::readRigConfig(*args.config));
     if (config.inclinometer) {
       choice.uri = config.inclinometer->uri;
       choice.tilt = config.inclinometer->tilt;
@@ -213,17 +212,15 @@ Result<InclinometerChoice> chooseInclinometer(const InclinometerArgs& args, cons
   return choice;
 }
 
-Result<capture::TiltReading> readTilt(capture::Inclinometer& sensor,
-                                      const InclinometerChoice& choice,
-                                      const capture::InclinometerZeroOffset& zero,
-                                      bool show_progress) {
+Result<rig::TiltReading> readTilt(rig::Inclinometer& sensor, const InclinometerChoice& choice,
+                                  const rig::InclinometerZeroOffset& zero, bool show_progress) {
   return withSampleProgress(choice.tilt.samples, show_progress,
                             [&](const std::function<void()>& on_sample) {
-                              return capture::measureTilt(sensor, choice.tilt, zero, on_sample);
+                              return rig::measureTilt(sensor, choice.tilt, zero, on_sample);
                             });
 }
 
-void printReading(const capture::TiltReading& r) {
+void printReading(const rig::TiltReading& r) {
   std::printf("tilt x %.4f°, y %.4f°; module tilt %.4f° ± %.2g° (σ %.2g° over %d samples",
               r.tilt.x_deg, r.tilt.y_deg, r.module_tilt_deg, r.tilt_uncertainty_deg, r.tilt_std_deg,
               r.samples);
@@ -235,18 +232,18 @@ Status runInclinometerRead(const InclinometerArgs& args) {
   GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
   InclinometerChoice choice;
   GLARECAM_ASSIGN(choice, chooseInclinometer(args, "read"));
-  std::optional<capture::InclinometerZeroOffset> stored;
+  std::optional<rig::InclinometerZeroOffset> stored;
   std::error_code ec;
   if (choice.calibration && std::filesystem::exists(*choice.calibration, ec))
-    GLARECAM_ASSIGN(stored, capture::readZeroOffset(*choice.calibration));
-  const capture::InclinometerZeroOffset zero = stored.value_or(capture::InclinometerZeroOffset{});
-  std::unique_ptr<capture::Inclinometer> sensor;
-  GLARECAM_ASSIGN(sensor, capture::openInclinometer(choice.uri));
-  capture::TiltReading reading;
+    GLARECAM_ASSIGN(stored, rig::readZeroOffset(*choice.calibration));
+  const rig::InclinometerZeroOffset zero = stored.value_or(rig::InclinometerZeroOffset{});
+  std::unique_ptr<rig::Inclinometer> sensor;
+  GLARECAM_ASSIGN(sensor, rig::openInclinometer(choice.uri));
+  rig::TiltReading reading;
   GLARECAM_ASSIGN(reading, readTilt(*sensor, choice, zero, !args.no_progress));
-  nlohmann::json document = capture::tiltReadingJson(reading);
+  nlohmann::json document = rig::tiltReadingJson(reading);
   document["uri"] = choice.uri;
-  document["time"] = capture::formatIsoTime(now());
+  document["time"] = sun::formatIsoTime(now());
   document["zero_offset_applied"] = stored.has_value();
   if (args.out) GLARECAM_CHECK(writeFileAtomic(*args.out, jsonText(document)));
   if (args.json) {
@@ -264,7 +261,7 @@ Status runInclinometerRead(const InclinometerArgs& args) {
 
 // One reading of the flip: the reading, its record as stored in the calibration file, the sensor.
 struct FlipReading {
-  capture::TiltReading reading;
+  rig::TiltReading reading;
   nlohmann::json record;
   std::string uri;
 };
@@ -272,7 +269,7 @@ struct FlipReading {
 Result<FlipReading> readSavedReading(const std::string& path) {
   FlipReading flip;
   GLARECAM_ASSIGN(flip.record, readJsonFile(path));
-  GLARECAM_ASSIGN(flip.reading, capture::parseTiltReading(flip.record, path));
+  GLARECAM_ASSIGN(flip.reading, rig::parseTiltReading(flip.record, path));
   const auto uri = flip.record.find("uri");
   if (uri != flip.record.end() && uri->is_string()) flip.uri = uri->get<std::string>();
   return flip;
@@ -289,40 +286,39 @@ Result<std::pair<FlipReading, FlipReading>> savedFlipReadings(
   if (first.record == second.record)
     return badInput(
         fmt::format("inclinometer flip: {} and {} hold the same reading", from[0], from[1]));
-  if (!first.uri.empty() && !second.uri.empty() &&
-      !capture::sameInclinometer(first.uri, second.uri))
+  if (!first.uri.empty() && !second.uri.empty() && !rig::sameInclinometer(first.uri, second.uri))
     spdlog::warn("inclinometer flip: the readings name different sensors ({} and {})", first.uri,
                  second.uri);
   return std::pair{first, second};
 }
 
-Result<FlipReading> liveFlipReading(capture::Inclinometer& sensor, const InclinometerChoice& choice,
+Result<FlipReading> liveFlipReading(rig::Inclinometer& sensor, const InclinometerChoice& choice,
                                     bool show_progress) {
   FlipReading flip;
   GLARECAM_ASSIGN(flip.reading, readTilt(sensor, choice, {}, show_progress));
   flip.uri = choice.uri;
-  flip.record = capture::tiltReadingJson(flip.reading);
+  flip.record = rig::tiltReadingJson(flip.reading);
   flip.record["uri"] = choice.uri;
-  flip.record["time"] = capture::formatIsoTime(now());
+  flip.record["time"] = sun::formatIsoTime(now());
   return flip;
 }
 
 // The flip needs a surface near level: its error is second order in the surface's tilt, and a
 // reading beyond the plausible offset means the sensor is not on the surface it should be.
-Status checkNearLevel(const capture::TiltReading& reading) {
+Status checkNearLevel(const rig::TiltReading& reading) {
   const double worst = std::max(std::abs(reading.raw_tilt.x_deg), std::abs(reading.raw_tilt.y_deg));
-  if (worst <= capture::kMaxPlausibleZeroOffsetDeg) return {};
+  if (worst <= rig::kMaxPlausibleZeroOffsetDeg) return {};
   return badInput(fmt::format(
       "inclinometer flip: the sensor reads tilt x {:.2f}°, y {:.2f}°; the flip needs a surface "
       "within a few degrees of level (at most {:g}°)",
-      reading.raw_tilt.x_deg, reading.raw_tilt.y_deg, capture::kMaxPlausibleZeroOffsetDeg));
+      reading.raw_tilt.x_deg, reading.raw_tilt.y_deg, rig::kMaxPlausibleZeroOffsetDeg));
 }
 
 // The two readings taken now, the operator turning the sensor in between.
 Result<std::pair<FlipReading, FlipReading>> liveFlipReadings(const InclinometerArgs& args,
                                                              const InclinometerChoice& choice) {
-  std::unique_ptr<capture::Inclinometer> sensor;
-  GLARECAM_ASSIGN(sensor, capture::openInclinometer(choice.uri));
+  std::unique_ptr<rig::Inclinometer> sensor;
+  GLARECAM_ASSIGN(sensor, rig::openInclinometer(choice.uri));
   FlipReading first, second;
   GLARECAM_ASSIGN(first, liveFlipReading(*sensor, choice, !args.no_progress));
   GLARECAM_CHECK(checkNearLevel(first.reading));
@@ -346,8 +342,8 @@ Result<std::filesystem::path> flipCalibrationFile(const InclinometerArgs& args,
   } else if (args.calibration) {
     choice.calibration = *args.calibration;
   } else if (args.config) {
-    capture::RigConfig config;
-    GLARECAM_ASSIGN(config, capture::readRigConfig(*args.config));
+    rig::RigConfig config;
+    GLARECAM_ASSIGN(config, rig::readRigConfig(*args.config));
     choice.calibration = config.calibration;
     if (config.inclinometer) choice.uri = config.inclinometer->uri;
   }
@@ -357,7 +353,7 @@ Result<std::filesystem::path> flipCalibrationFile(const InclinometerArgs& args,
         "inclinometer flip: give --calibration FILE (or a --config naming one) to "
         "store the zero offset in");
   // Before anybody turns a sensor: the file must be one the offset can be written into.
-  GLARECAM_CHECK(capture::checkZeroOffsetWritable(*choice.calibration));
+  GLARECAM_CHECK(rig::checkZeroOffsetWritable(*choice.calibration));
   return *choice.calibration;
 }
 
@@ -368,27 +364,27 @@ Status runInclinometerFlip(const InclinometerArgs& args) {
   std::pair<FlipReading, FlipReading> readings;
   GLARECAM_ASSIGN(
       readings, args.from.empty() ? liveFlipReadings(args, choice) : savedFlipReadings(args.from));
-  const capture::TiltReading& first = readings.first.reading;
-  const capture::TiltReading& second = readings.second.reading;
+  const rig::TiltReading& first = readings.first.reading;
+  const rig::TiltReading& second = readings.second.reading;
   GLARECAM_CHECK(checkNearLevel(first));
   GLARECAM_CHECK(checkNearLevel(second));
-  const capture::InclinometerZeroOffset zero = capture::flipZeroOffset(first, second);
-  if (std::abs(zero.offset.x_deg) > capture::kMaxPlausibleZeroOffsetDeg ||
-      std::abs(zero.offset.y_deg) > capture::kMaxPlausibleZeroOffsetDeg)
+  const rig::InclinometerZeroOffset zero = rig::flipZeroOffset(first, second);
+  if (std::abs(zero.offset.x_deg) > rig::kMaxPlausibleZeroOffsetDeg ||
+      std::abs(zero.offset.y_deg) > rig::kMaxPlausibleZeroOffsetDeg)
     return badInput(fmt::format(
         "inclinometer flip: the readings give a zero offset of ({:.2f}°, {:.2f}°), beyond the "
         "plausible {:g}°: the frame was not turned 180° on the surface, or the surface moved",
-        zero.offset.x_deg, zero.offset.y_deg, capture::kMaxPlausibleZeroOffsetDeg));
+        zero.offset.x_deg, zero.offset.y_deg, rig::kMaxPlausibleZeroOffsetDeg));
   std::string uri = readings.first.uri.empty() ? readings.second.uri : readings.first.uri;
   if (uri.empty()) uri = choice.uri;
-  if (!choice.uri.empty() && !capture::sameInclinometer(uri, choice.uri))
+  if (!choice.uri.empty() && !rig::sameInclinometer(uri, choice.uri))
     spdlog::warn("inclinometer flip: the readings are of {}, the configured sensor is {}", uri,
                  choice.uri);
   const nlohmann::json provenance{{"method", "flip"},
-                                  {"date", capture::formatIsoTime(now())},
+                                  {"date", sun::formatIsoTime(now())},
                                   {"uri", uri},
                                   {"readings", {readings.first.record, readings.second.record}}};
-  GLARECAM_CHECK(capture::writeZeroOffset(calibration, zero, provenance));
+  GLARECAM_CHECK(rig::writeZeroOffset(calibration, zero, provenance));
   std::printf(
       "readings: tilt x %.4f°, y %.4f° and x %.4f°, y %.4f°; surface tilt x %.4f°, y %.4f°\n"
       "zero offset x %.4f°, y %.4f° (± %.2g°) written to %s\n",
@@ -414,7 +410,7 @@ void addInclinometerSource(CLI::App* sub, InclinometerArgs& args) {
 // ---- gpio ----------------------------------------------------------------------------------
 
 struct GpioArgs {
-  std::string config = capture::kDefaultRigConfigPath;
+  std::string config = rig::kDefaultRigConfigPath;
   std::optional<std::string> led;
   double seconds = 5;
   std::optional<std::string> trigger;
@@ -426,13 +422,12 @@ constexpr double kMaxGpioSeconds = 3600;  // a wiring check, not a service
 constexpr std::uint64_t kMaxTriggerPulses = 10000;
 constexpr auto kTriggerSpacing = std::chrono::milliseconds(100);  // 10 Hz: visible on a scope
 
-Result<capture::RigState> parseLedState(const std::string& text) {
-  if (text == "ready") return capture::RigState::ready();
-  if (text == "capturing") return capture::RigState::capturing();
-  for (const auto code : {capture::FaultCode::kCamera, capture::FaultCode::kInclinometer,
-                          capture::FaultCode::kDisk, capture::FaultCode::kClock}) {
-    if (text == "fault-" + std::string(capture::faultName(code)))
-      return capture::RigState::faulted(code);
+Result<rig::RigState> parseLedState(const std::string& text) {
+  if (text == "ready") return rig::RigState::ready();
+  if (text == "capturing") return rig::RigState::capturing();
+  for (const auto code : {rig::FaultCode::kCamera, rig::FaultCode::kInclinometer,
+                          rig::FaultCode::kDisk, rig::FaultCode::kClock}) {
+    if (text == "fault-" + std::string(rig::faultName(code))) return rig::RigState::faulted(code);
   }
   return badInput(
       fmt::format("gpio: --led {} is unknown (known: ready, capturing, fault-camera, "
@@ -440,9 +435,9 @@ Result<capture::RigState> parseLedState(const std::string& text) {
                   text));
 }
 
-Status showLed(capture::RigIo& io, capture::RigState state, double seconds) {
+Status showLed(rig::RigIo& io, rig::RigState state, double seconds) {
   if (!io.hasLed()) return badInput("gpio: --led, but the config's [gpio] has no led line");
-  capture::StatusLed led(io);
+  rig::StatusLed led(io);
   led.setStatus(state);
   led.start();
   std::fprintf(stderr, "gpio: showing the LED pattern for %g s (Ctrl-C stops)\n", seconds);
@@ -454,7 +449,7 @@ Status showLed(capture::RigIo& io, capture::RigState state, double seconds) {
   return {};
 }
 
-Status pulseTriggers(capture::RigIo& io, std::uint64_t count) {
+Status pulseTriggers(rig::RigIo& io, std::uint64_t count) {
   if (!io.hasTrigger())
     return badInput("gpio: --trigger, but the config's [gpio] has no trigger line");
   for (std::uint64_t i = 0; i < count; ++i) {
@@ -465,13 +460,12 @@ Status pulseTriggers(capture::RigIo& io, std::uint64_t count) {
   return {};
 }
 
-Status waitForButton(capture::RigIo& io, const capture::RigIoConfig& config, double timeout_s) {
+Status waitForButton(rig::RigIo& io, const rig::RigIoConfig& config, double timeout_s) {
   if (!io.hasButton())
     return badInput("gpio: --wait-button, but the config's [gpio] has no button line");
   std::fprintf(stderr, "gpio: press the button (waiting %g s)\n", timeout_s);
-  const auto deadline =
-      capture::RigClock::now() + std::chrono::duration_cast<capture::RigClock::duration>(
-                                     std::chrono::duration<double>(timeout_s));
+  const auto deadline = rig::RigClock::now() + std::chrono::duration_cast<rig::RigClock::duration>(
+                                                   std::chrono::duration<double>(timeout_s));
   bool pressed = false;
   GLARECAM_ASSIGN(pressed, waitForButtonPress(io, config.debounce, deadline));
   if (stopRequested()) return fail(ErrorCode::kInternal, "gpio: interrupted");
@@ -486,7 +480,7 @@ Status runGpio(const GpioArgs& args) {
   if (!(args.seconds > 0 && args.seconds <= kMaxGpioSeconds) ||
       !(args.timeout_s > 0 && args.timeout_s <= kMaxGpioSeconds))
     return badInput("gpio: --seconds and --timeout must be in (0, 3600]");
-  std::optional<capture::RigState> led_state;
+  std::optional<rig::RigState> led_state;
   if (args.led) GLARECAM_ASSIGN(led_state, parseLedState(*args.led));
   std::uint64_t pulses = 0;
   if (args.trigger) {
@@ -494,11 +488,11 @@ Status runGpio(const GpioArgs& args) {
     if (pulses < 1 || pulses > kMaxTriggerPulses)
       return badInput("gpio: --trigger must be a count in [1, 10000]");
   }
-  capture::RigConfig config;
-  GLARECAM_ASSIGN(config, capture::readRigConfig(args.config));
+  rig::RigConfig config;
+  GLARECAM_ASSIGN(config, rig::readRigConfig(args.config));
   if (!config.gpio) return badInput(args.config + ": no [gpio] section");
-  std::unique_ptr<capture::RigIo> io;
-  GLARECAM_ASSIGN(io, capture::openRigIo(*config.gpio));
+  std::unique_ptr<rig::RigIo> io;
+  GLARECAM_ASSIGN(io, rig::openRigIo(*config.gpio));
   std::printf("%s\n", io->description().c_str());
   stopGracefullyOnSignals();  // Ctrl-C ends a pattern or a wait with the lines released
   if (led_state) GLARECAM_CHECK(showLed(*io, *led_state, args.seconds));

@@ -9,12 +9,12 @@
 #include <optional>
 #include <string>
 
-#include "capture/daemon/capture_daemon.h"
-#include "capture/daemon/journal_sink.h"
-#include "capture/daemon/signal_forwarder.h"
-#include "capture/daemon/simulated_rig.h"
 #include "core/logging.h"
 #include "core/version.h"
+#include "daemon/capture_daemon.h"
+#include "daemon/journal_sink.h"
+#include "daemon/signal_forwarder.h"
+#include "daemon/simulated_rig.h"
 
 namespace glarecam::apps {
 
@@ -28,7 +28,7 @@ struct DaemonArgs {
   std::optional<std::int64_t> interval_s;
   std::optional<std::uint64_t> count;
   bool simulate = false;
-  double time_lapse = capture::kDefaultTimeLapse;
+  double time_lapse = daemon::kDefaultTimeLapse;
   std::string log_target = "auto";
   bool verbose = false, quiet = false, debug = false;
 };
@@ -84,16 +84,16 @@ void setUpLogging(const DaemonArgs& args) {
                               : args.quiet   ? Verbosity::kNormal
                                              : Verbosity::kVerbose;
   const bool journal =
-      args.log_target == "journal" || (args.log_target == "auto" && capture::stderrIsJournal());
+      args.log_target == "journal" || (args.log_target == "auto" && daemon::stderrIsJournal());
   if (journal)
-    initLogging(verbosity, capture::makeJournalSink("glarecamd"));
+    initLogging(verbosity, daemon::makeJournalSink("glarecamd"));
   else
     initLogging(verbosity);
 }
 
 struct Rig {
-  capture::DaemonOptions options;
-  std::unique_ptr<capture::DaemonClock> clock;
+  daemon::DaemonOptions options;
+  std::unique_ptr<daemon::DaemonClock> clock;
 };
 
 Result<Rig> rigFor(const DaemonArgs& args) {
@@ -103,30 +103,30 @@ Result<Rig> rigFor(const DaemonArgs& args) {
   rig.options.max_stacks = args.count;
   if (!args.simulate) {
     if (args.config) rig.options.config_path = *args.config;
-    rig.clock = std::make_unique<capture::SystemDaemonClock>();
+    rig.clock = std::make_unique<daemon::SystemDaemonClock>();
     return rig;
   }
-  capture::UtcTime start = capture::defaultSimulationStart(!rig.options.interval);
-  if (args.start) GLARECAM_ASSIGN(start, capture::parseIsoTime(*args.start));
-  capture::SimulatedRigOptions simulated{.output = *args.output,
-                                         .camera = args.camera.value_or("sim:seed=1"),
-                                         .interval = rig.options.interval};
-  GLARECAM_ASSIGN(rig.options.config_path, capture::writeSimulatedRigConfig(simulated));
-  rig.clock = std::make_unique<capture::TimeLapseClock>(start, args.time_lapse);
+  sun::UtcTime start = daemon::defaultSimulationStart(!rig.options.interval);
+  if (args.start) GLARECAM_ASSIGN(start, sun::parseIsoTime(*args.start));
+  daemon::SimulatedRigOptions simulated{.output = *args.output,
+                                        .camera = args.camera.value_or("sim:seed=1"),
+                                        .interval = rig.options.interval};
+  GLARECAM_ASSIGN(rig.options.config_path, daemon::writeSimulatedRigConfig(simulated));
+  rig.clock = std::make_unique<daemon::TimeLapseClock>(start, args.time_lapse);
   spdlog::info("glarecamd: simulated rig {}; the sun from {} at {:g}× real time",
-               rig.options.config_path.string(), capture::formatIsoTime(start), args.time_lapse);
+               rig.options.config_path.string(), sun::formatIsoTime(start), args.time_lapse);
   return rig;
 }
 
 // Runs the daemon until it stops; its errors: a config problem (kBadInput) or a failure.
 Status runDaemon(Rig& rig) {
-  const auto notifier = capture::makeSystemdNotifier();
-  const auto disk = capture::makeStatvfsDiskProbe();
-  std::unique_ptr<capture::CaptureDaemon> daemon;
-  GLARECAM_ASSIGN(daemon, capture::CaptureDaemon::create(rig.options, {.clock = rig.clock.get(),
-                                                                       .notifier = notifier.get(),
-                                                                       .disk = disk.get()}));
-  const capture::SignalForwarder signals(daemon->events());
+  const auto notifier = daemon::makeSystemdNotifier();
+  const auto disk = daemon::makeStatvfsDiskProbe();
+  std::unique_ptr<daemon::CaptureDaemon> daemon;
+  GLARECAM_ASSIGN(daemon, daemon::CaptureDaemon::create(rig.options, {.clock = rig.clock.get(),
+                                                                      .notifier = notifier.get(),
+                                                                      .disk = disk.get()}));
+  const daemon::SignalForwarder signals(daemon->events());
   return daemon->run();
 }
 
@@ -148,7 +148,7 @@ int reportFailure(const Error& error, int status) {
 }  // namespace
 
 int runGlarecamd(int argc, char** argv) {
-  capture::blockDaemonSignals();  // before any thread starts: every thread inherits the mask
+  daemon::blockDaemonSignals();  // before any thread starts: every thread inherits the mask
   CLI::App app{
       "glarecamd: the rig's capture daemon. Captures bracketed stacks on schedule, processes\n"
       "each one, keeps each day's sweep table and data sheet current, and reports to systemd.\n"

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <numbers>
 
-#include "pipeline/datasheet.h"
 #include "pipeline/facet_model.h"
+#include "pipeline/render/datasheet.h"
 #include "support/test_support.h"
 
 namespace glarecam::pipeline {

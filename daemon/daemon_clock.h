@@ -1,0 +1,64 @@
+// The daemon's time, injectable. Two timelines: the steady clock for timers (the watchdog, the
+// interval schedule, backoff) and the wall clock (UTC) for the sun, α and the stacks' timestamps,
+// with the wall clock's synchronisation state (a wrong clock is a wrong α).
+//
+// SystemDaemonClock is the machine's. TimeLapseClock (glarecamd --simulate) runs the wall clock
+// faster than real time from a chosen start, so that a simulated sun sweeps α in minutes.
+// Tests use a manual clock (tests/daemon/daemon_test_support.h) that jumps to each deadline
+// instead of waiting: hours of schedule in milliseconds, and no sleeping.
+//
+// waitUntil() is how the event loop sleeps: until `deadline` or until `ready()` holds, with
+// `lock` held on `wake`'s mutex around every check, like condition_variable::wait_until.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+
+#include "sun/clock_sync.h"
+#include "sun/utc_time.h"
+
+namespace glarecam::daemon {
+
+using SteadyTime = std::chrono::steady_clock::time_point;
+
+class DaemonClock {
+ public:
+  virtual ~DaemonClock() = default;
+  virtual SteadyTime now() const = 0;
+  virtual sun::UtcTime utcNow() const = 0;
+  // The wall clock's state now (synchronised, its error).
+  virtual sun::ClockStatus clockStatus() const = 0;
+  // The steady time at which the wall clock will read `utc` (for timers set to a wall time).
+  virtual SteadyTime steadyAt(sun::UtcTime utc) const = 0;
+  // Waits until `deadline` or until `ready()` (checked first, and after every wake-up). By
+  // default in real time on the steady clock.
+  virtual void waitUntil(std::unique_lock<std::mutex>& lock, std::condition_variable& wake,
+                         SteadyTime deadline, const std::function<bool()>& ready);
+};
+
+class SystemDaemonClock final : public DaemonClock {
+ public:
+  SteadyTime now() const override { return std::chrono::steady_clock::now(); }
+  sun::UtcTime utcNow() const override;
+  sun::ClockStatus clockStatus() const override { return sun::systemClockStatus(); }
+  SteadyTime steadyAt(sun::UtcTime utc) const override;
+};
+
+// Wall time = `start` + `factor` × (steady time since construction); always synchronised.
+class TimeLapseClock final : public DaemonClock {
+ public:
+  TimeLapseClock(sun::UtcTime start, double factor);
+  SteadyTime now() const override { return std::chrono::steady_clock::now(); }
+  sun::UtcTime utcNow() const override;
+  sun::ClockStatus clockStatus() const override;
+  SteadyTime steadyAt(sun::UtcTime utc) const override;
+
+ private:
+  sun::UtcTime start_utc_;
+  SteadyTime start_steady_;
+  double factor_;
+};
+
+}  // namespace glarecam::daemon

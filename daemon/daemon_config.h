@@ -1,0 +1,96 @@
+// What glarecamd reads from the rig's config beyond the rig itself (rig_config.h): how to capture
+// ([capture]), when ([schedule]), where to write and how much disk to leave free ([output]) and
+// what to do when something fails ([faults]). Every key has a default, so a rig config without
+// these sections runs the daemon with them; every key is documented in
+// firmware-config/glarecam.toml and docs/operator.md. Read by readRigConfig(), with the same
+// "FILE:LINE: problem" errors.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "pipeline/limit_curve.h"
+
+namespace glarecam::daemon {
+
+// [capture]: the bracket. Exposures "auto" (metered, capture/auto_bracket.h) or a list in µs.
+struct CaptureConfig {
+  std::optional<std::vector<double>> exposures_us;  // none: auto-bracket
+  double gain_db = 0.0;
+  std::optional<std::string> pixel_format;  // GenICam name; default the deepest mono format
+  std::optional<double> f_number;           // lens, when the camera cannot know it
+  std::optional<double> nd_transmission;    // ND filter in front of the lens, (0, 1]
+  int max_frame_retries = 5;                // incomplete or timed-out frames per exposure
+  // A GenICam feature preset (firmware-config/genicam/): its file and the features it sets, for
+  // aravis: cameras (CameraOptions::genicam_features).
+  std::optional<std::filesystem::path> genicam_preset{};
+  std::optional<std::string> genicam_features{};
+};
+
+// Reads a preset: one "Feature=Value" a line, '#' comments, blank lines; the features joined as
+// arv_device_set_features_from_string() takes them. kBadInput naming FILE:LINE for anything else.
+Result<std::string> readGenicamPreset(const std::filesystem::path& path);
+
+enum class ScheduleMode {
+  kInterval,      // a stack every interval
+  kAlphaTargets,  // a stack when α crosses each target as the sun moves (needs [site])
+  kButton,        // only on the operator's button (and SIGUSR1)
+};
+
+// [schedule]. Whatever the mode, SIGUSR1 takes a stack now, and so does the button when
+// `button` is on and the rig has one.
+struct ScheduleConfig {
+  ScheduleMode mode = ScheduleMode::kInterval;
+  std::chrono::seconds interval{600};
+  std::vector<double> alpha_targets_deg;  // default 5, 10, ... 80 (the paper's sweep)
+  bool button = true;
+  // The limit curve of the method ends at 80° (method.md): a stack beyond it has no glare limit.
+  // Interval stacks are taken only below this α; the α targets, the button and SIGUSR1 are not
+  // held back.
+  double max_alpha_deg = pipeline::kMaxLimitAlphaDeg;
+};
+
+// [output]: OUTPUT/stacks/<id>/, OUTPUT/results/<id>/, OUTPUT/days/<YYYY-MM-DD>/.
+struct OutputConfig {
+  std::filesystem::path root = "/var/lib/glarecam";
+  std::uint64_t reserve_bytes = 1024ull << 20;  // capture pauses below this much free space
+  std::string module = "unnamed module";        // the data sheet's module name
+  unsigned processing_threads = 1;              // the worker's: the camera keeps the other cores
+};
+
+enum class InclinometerFaultPolicy {
+  kContinue,  // capture on, the stack's α marked unknown
+  kPause,     // no stack until the inclinometer reads again
+};
+
+// [faults].
+struct FaultConfig {
+  InclinometerFaultPolicy inclinometer = InclinometerFaultPolicy::kContinue;
+  // A tilt outside [min, max] is implausible (a loose sensor, a module blown over): a fault.
+  double min_tilt_deg = 0.0;
+  double max_tilt_deg = 90.0;
+  // The camera is reopened after a failure with exponential backoff from `camera_backoff`
+  // doubling up to `camera_backoff_max`; after `camera_max_failures` failures in a row the daemon
+  // exits with status 1 and leaves the restart to systemd.
+  int camera_max_failures = 8;
+  std::chrono::seconds camera_backoff{2};
+  std::chrono::seconds camera_backoff_max{120};
+};
+
+// The paper's sweep: 5° to 80° in steps of 5°.
+std::vector<double> defaultAlphaTargetsDeg();
+
+// The sections together, as RigConfig holds them.
+struct DaemonConfig {
+  CaptureConfig capture;
+  ScheduleConfig schedule{.alpha_targets_deg = defaultAlphaTargetsDeg()};
+  OutputConfig output;
+  FaultConfig faults;
+};
+
+}  // namespace glarecam::daemon

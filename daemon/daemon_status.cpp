@@ -1,0 +1,66 @@
+#include "daemon/daemon_status.h"
+
+#include <fmt/format.h>
+
+#include <vector>
+
+namespace glarecam::daemon {
+
+namespace {
+
+std::string seconds(sun::UtcTime time) {
+  return sun::formatIsoTime(std::chrono::floor<std::chrono::seconds>(time));
+}
+
+const char* phase(const DaemonState& state) {
+  if (state.stopping) return "stopping";
+  if (!state.ready) return "starting";
+  if (state.capturing) return "capturing";
+  if (!state.disk_fault.empty() || (state.inclinometer_pauses && !state.inclinometer_fault.empty()))
+    return "paused";
+  if (!state.camera_fault.empty()) return "waiting for the camera";
+  return "ready";
+}
+
+}  // namespace
+
+std::string statusLine(const DaemonState& state, const std::string& schedule) {
+  std::vector<std::string> parts{fmt::format("{}, {}", phase(state), schedule)};
+  if (state.last_stack) {
+    std::string last = "last " + *state.last_stack;
+    if (state.last_alpha_deg) last += fmt::format(" (α {:.2f}°)", *state.last_alpha_deg);
+    if (state.last_capture_time) last += " at " + seconds(*state.last_capture_time);
+    parts.push_back(std::move(last));
+  }
+  if (state.next_capture_time && !state.stopping) {
+    std::string next = "next at " + seconds(*state.next_capture_time);
+    if (state.next_target_deg) next += fmt::format(" (α {:g}°)", *state.next_target_deg);
+    parts.push_back(std::move(next));
+  }
+  const auto add = [&parts](const std::string& prefix, const std::string& text) {
+    if (!text.empty()) parts.push_back(prefix + text);
+  };
+  add("camera: ", state.camera_fault);
+  add("disk: ", state.disk_fault);
+  add("inclinometer: ", state.inclinometer_fault);
+  add("clock: ", state.clock_warning);
+  add("GPIO: ", state.gpio_fault);
+  add("config: ", state.config_warning);
+  add("worker: ", state.worker_fault);
+  add("skipped: ", state.skip_reason);
+  std::string line;
+  for (const std::string& part : parts) line += (line.empty() ? "" : "; ") + part;
+  return line;
+}
+
+rig::RigState ledState(const DaemonState& state, bool capturing) {
+  if (capturing) return rig::RigState::capturing();
+  if (!state.camera_fault.empty()) return rig::RigState::faulted(rig::FaultCode::kCamera);
+  if (!state.disk_fault.empty()) return rig::RigState::faulted(rig::FaultCode::kDisk);
+  if (!state.inclinometer_fault.empty())
+    return rig::RigState::faulted(rig::FaultCode::kInclinometer);
+  if (!state.clock_warning.empty()) return rig::RigState::faulted(rig::FaultCode::kClock);
+  return rig::RigState::ready();
+}
+
+}  // namespace glarecam::daemon

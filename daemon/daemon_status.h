@@ -1,0 +1,51 @@
+// What glarecamd is doing, as one value: the loop updates it, STATUS= and the status LED are
+// derived from it (pure functions, so that every combination of faults is testable), and tests
+// read it.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "rig/gpio/status_led.h"
+#include "sun/utc_time.h"
+
+namespace glarecam::daemon {
+
+// What the daemon is doing, for STATUS=, `glarecam doctor` and tests.
+struct DaemonState {
+  bool ready = false;      // READY=1 sent
+  bool capturing = false;  // a bracket is running
+  bool stopping = false;   // SIGTERM received
+  std::string status;      // the last STATUS= line
+  rig::RigState led = rig::RigState::ready();
+  std::optional<std::string> last_stack;
+  std::optional<double> last_alpha_deg;
+  std::optional<sun::UtcTime> last_capture_time;
+  std::optional<sun::UtcTime> next_capture_time;
+  std::optional<double> next_target_deg;
+  std::string camera_fault;          // why the camera is closed
+  std::string disk_fault;            // why capture pauses for the disk
+  std::string inclinometer_fault;    // the last read's failure
+  std::string clock_warning;         // the clock is not synchronised
+  std::string gpio_fault;            // the GPIO could not be opened
+  std::string config_warning;        // the last reload failed
+  std::string worker_fault;          // the last write, processing or publishing failure
+  std::string skip_reason;           // why the last scheduled stack was not taken
+  std::string day;                   // the last day's products ("2026-06-21: 16 stacks, ...")
+  bool inclinometer_pauses = false;  // capture waits for the inclinometer ([faults])
+  std::uint64_t stacks_captured = 0, stacks_written = 0, stacks_processed = 0, stacks_failed = 0;
+  std::uint64_t captures_skipped = 0, watchdog_pings = 0, reloads = 0;
+};
+
+// The STATUS= line: what the daemon does, its last and next stack and every fault, e.g.
+// "capturing every 600 s; last 20260621T101503Z-a42.30 (α 42.30°) at 10:15:03Z; next at
+// 10:25:03Z; camera lost: ...; reopening in 8 s (failure 2 of 8)". `schedule` describes the
+// schedule ("every 600 s", "at α targets", "on the button").
+std::string statusLine(const DaemonState& state, const std::string& schedule);
+
+// What the LED shows: capturing while a bracket runs, else the most urgent fault (camera, disk,
+// inclinometer, clock), else ready.
+rig::RigState ledState(const DaemonState& state, bool capturing);
+
+}  // namespace glarecam::daemon

@@ -1,0 +1,110 @@
+#include "daemon/day_products.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "core/atomic_file.h"
+#include "core/stack_manifest.h"
+#include "pipeline/datasheet_publish.h"
+#include "pipeline/glare_fits.h"
+#include "pipeline/sweep.h"
+#include "pipeline/sweep_table.h"
+
+namespace glarecam::daemon {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kDegreesPerHour = 15.0;    // the Earth turns 360° in 24 h
+constexpr std::size_t kIdStampLength = 16;  // "20260621T101503Z"
+
+std::optional<std::chrono::sys_seconds> idTime(std::string_view id) {
+  if (id.size() < kIdStampLength || id[8] != 'T' || id[15] != 'Z') return std::nullopt;
+  int year = 0;
+  unsigned month = 0, day = 0, hour = 0, minute = 0, second = 0;
+  const std::string stamp(id.substr(0, kIdStampLength));
+  if (std::sscanf(stamp.c_str(), "%4d%2u%2uT%2u%2u%2uZ", &year, &month, &day, &hour, &minute,
+                  &second) != 6)
+    return std::nullopt;
+  const std::chrono::year_month_day date{std::chrono::year(year), std::chrono::month(month),
+                                         std::chrono::day(day)};
+  if (!date.ok() || hour > 23 || minute > 59 || second > 59) return std::nullopt;
+  return std::chrono::sys_days(date) + std::chrono::hours(hour) + std::chrono::minutes(minute) +
+         std::chrono::seconds(second);
+}
+
+// The rows of the day's processed stacks, with a note for each result that gives none.
+pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::string& day) {
+  pipeline::SweepTable table;
+  std::error_code error;
+  const fs::path results = options.root / kResultsDirectory;
+  std::vector<fs::path> entries;
+  for (const auto& entry : fs::directory_iterator(results, error)) entries.push_back(entry.path());
+  std::sort(entries.begin(), entries.end());
+  for (const fs::path& entry : entries) {
+    const std::string id = entry.filename().string();
+    if (stackDay(id, options.longitude_deg) != day) continue;
+    const fs::path result_file = entry / "result.json";
+    if (!fs::is_regular_file(result_file, error)) continue;  // being processed
+    const auto result = readJsonFile(result_file.string());
+    auto row = result ? pipeline::sweepRowFromResult(
+                            *result, (options.root / kStacksDirectory / id).string())
+                      : Result<pipeline::SweepRow>(std::unexpected(result.error()));
+    if (!row) {
+      table.notes.push_back(fmt::format("skipped {}: {}", id, row.error().message));
+      continue;
+    }
+    table.rows.push_back(std::move(*row));
+  }
+  std::stable_sort(table.rows.begin(), table.rows.end(),
+                   [](const auto& a, const auto& b) { return a.alpha_deg < b.alpha_deg; });
+  return table;
+}
+
+}  // namespace
+
+std::optional<std::string> stackDay(std::string_view stack_id,
+                                    std::optional<double> longitude_deg) {
+  const auto utc = idTime(stack_id);
+  if (!utc) return std::nullopt;
+  const auto offset =
+      std::chrono::seconds(std::lround(longitude_deg.value_or(0.0) / kDegreesPerHour * 3600.0));
+  const std::chrono::year_month_day date{std::chrono::floor<std::chrono::days>(*utc + offset)};
+  return fmt::format("{:04}-{:02}-{:02}", int(date.year()), unsigned(date.month()),
+                     unsigned(date.day()));
+}
+
+Result<DaySummary> updateDayProducts(const DayProductsOptions& options, const std::string& day) {
+  DaySummary summary{.day = day, .directory = options.root / kDaysDirectory / day};
+  const pipeline::SweepTable table = dayTable(options, day);
+  summary.stacks = table.rows.size();
+  GLARECAM_CHECK(ensureDirectory(summary.directory));
+  GLARECAM_CHECK(writeFileAtomic(summary.directory / pipeline::kSweepTableFileName,
+                                 pipeline::formatSweepTable(table)));
+  const auto fits = pipeline::fitSweep(table);
+  if (!fits) {
+    summary.detail =
+        fmt::format("{} stacks; no data sheet yet: {}", summary.stacks, fits.error().message);
+    return summary;
+  }
+  GLARECAM_CHECK(
+      writeFileAtomic(summary.directory / kFitsFileName, jsonText(pipeline::fitsJson(*fits))));
+  GLARECAM_CHECK(pipeline::publishDatasheet(
+      {.module = options.module,
+       .date = day,
+       .table = &table,
+       .fits = &*fits,
+       .model_beta_deg = std::nullopt,
+       .limit = pipeline::inferGlareLimit(table)},
+      (summary.directory / pipeline::kSweepTableFileName).string(), summary.directory));
+  summary.datasheet = true;
+  summary.detail = fmt::format("{} stacks, data sheet updated", summary.stacks);
+  return summary;
+}
+
+}  // namespace glarecam::daemon

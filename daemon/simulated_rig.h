@@ -1,0 +1,42 @@
+// glarecamd --simulate: the whole daemon against a simulated rig, for demos, tests and users
+// without hardware. The rig is an ordinary config file written into the output directory
+// (glarecamd-simulated.toml, so that SIGHUP and `glarecam doctor` work on it too): the sim: camera,
+// the sim: inclinometer (an ADXL355 register simulator) on a south-facing module tilted
+// kSimulatedTiltDeg at a site at kSimulatedLatitudeDeg, the simulated GPIO chip, and the α-targets
+// schedule (or a fixed interval). Time runs as a time lapse from a summer morning, so that the sun
+// sweeps α from 80° down to ≈ 0° at noon and back within minutes.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "sun/utc_time.h"
+
+namespace glarecam::daemon {
+
+// At 48° N on the June solstice the noon sun stands 65.5° high: a module tilted 24.5° south faces
+// it squarely, so that α passes every target from 80° to 5°, twice a day.
+inline constexpr double kSimulatedLatitudeDeg = 48.0;
+inline constexpr double kSimulatedLongitudeDeg = 7.85;
+inline constexpr double kSimulatedTiltDeg = 24.5;
+inline constexpr double kDefaultTimeLapse = 120.0;  // 2 minutes of sun a second
+inline constexpr const char* kSimulatedRigFileName = "glarecamd-simulated.toml";
+inline constexpr const char* kSimulatedCalibrationFileName = "glarecamd-simulated-calibration.json";
+
+struct SimulatedRigOptions {
+  std::filesystem::path output;
+  std::string camera = "sim:seed=1";
+  std::optional<std::chrono::seconds> interval;  // none: the α targets
+};
+
+// The simulated clock's start on 2026-06-21: for the α targets 05:25 UTC, ten minutes of sun
+// before α falls through 80° at the site; for a fixed interval 06:30 UTC, α already below 70°.
+sun::UtcTime defaultSimulationStart(bool alpha_targets);
+
+// Writes OUTPUT/glarecamd-simulated.toml (atomically) and returns its path.
+Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options);
+
+}  // namespace glarecam::daemon

@@ -1,0 +1,272 @@
+#include "pipeline/render/false_colour.h"
+
+#include <cairo.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "core/parallel.h"
+#include "pipeline/luminance_stats.h"
+
+namespace glarecam::pipeline {
+namespace {
+
+constexpr int kLutSize = 1024;
+constexpr double kMaxDecades = 6.0;                   // the scale never spans more than this
+constexpr double kLowPercentile = 0.01;               // default bottom of the scale
+constexpr std::uint32_t kSaturatedArgb = 0xFFFFFFFF;  // white
+constexpr std::uint32_t kDarkArgb = 0xFF000000;       // black
+
+// Layout of the colour-bar panel, in units of the label font size (em), so that it reads the
+// same from thumbnails to 12 MP: the font is 1/40 of the image height within 11..48 px.
+constexpr double kFontFractionOfHeight = 1.0 / 40.0;
+constexpr double kMinFontPx = 11.0, kMaxFontPx = 48.0;
+constexpr double kPanelWidthEm = 9.5;      // bar, ticks and labels such as "100k" and "saturated"
+constexpr double kMinCanvasHeightEm = 16;  // room for title, bar and legend on short images
+constexpr double kBarMarginEm = 4.0;       // above the bar (title, unit) and below (legend)
+constexpr double kBarWidthEm = 1.5;
+constexpr double kFineTickDecades = 2.0;
+
+struct SurfaceDeleter {
+  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+};
+struct ContextDeleter {
+  void operator()(cairo_t* c) const { cairo_destroy(c); }
+};
+
+std::uint32_t argb(const std::uint8_t rgb[3]) {
+  return 0xFF000000u | (std::uint32_t(rgb[0]) << 16) | (std::uint32_t(rgb[1]) << 8) | rgb[2];
+}
+
+struct Scale {
+  double log_min, log_max;
+  double position(double value) const {  // 0 at min, 1 at max
+    return std::clamp((std::log10(std::max(value, 1e-30)) - log_min) / (log_max - log_min), 0.0,
+                      1.0);
+  }
+};
+
+Scale chooseScale(const calibration::MergedImage& merged, const FalseColourOptions& options) {
+  const FloatImage& luminance = merged.luminance_cd_m2;
+  std::vector<float> sample;
+  const std::size_t step = summarySampleStep(luminance.pixelCount());
+  float max_value = 0;
+  for (std::size_t i = 0; i < luminance.pixelCount(); ++i) {
+    const float v = luminance.data()[i];
+    if (std::isfinite(v)) max_value = std::max(max_value, v);
+    if (i % step == 0 && std::isfinite(v) && v > 0) sample.push_back(v);
+  }
+  double top = options.max_cd_m2.value_or(max_value > 0 ? max_value : 1.0);
+  double bottom = top / std::pow(10.0, kMaxDecades);
+  if (!sample.empty()) {
+    auto nth = sample.begin() +
+               static_cast<std::ptrdiff_t>(kLowPercentile * static_cast<double>(sample.size() - 1));
+    std::nth_element(sample.begin(), nth, sample.end());
+    bottom = std::max(bottom, static_cast<double>(*nth));
+  }
+  bottom = options.min_cd_m2.value_or(bottom);
+  if (!(bottom > 0) || bottom >= top) bottom = top / 10.0;
+  return {std::log10(bottom), std::log10(top)};
+}
+
+std::string tickLabel(double value) {
+  static constexpr std::array<const char*, 5> kSuffix{"", "k", "M", "G", "T"};
+  int group = 0;
+  while (value >= 1000.0 && group + 1 < static_cast<int>(kSuffix.size())) {
+    value /= 1000.0;
+    ++group;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, value < 1.0 ? "%.2g%s" : "%.0f%s", value,
+                kSuffix[static_cast<std::size_t>(group)]);
+  return text;
+}
+
+void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged,
+                const Scale& scale) {
+  std::array<std::uint32_t, kLutSize> lut;
+  for (int i = 0; i < kLutSize; ++i) {
+    std::uint8_t rgb[3];
+    turboColour(static_cast<double>(i) / (kLutSize - 1), rgb);
+    lut[static_cast<std::size_t>(i)] = argb(rgb);
+  }
+  cairo_surface_flush(surface);
+  unsigned char* data = cairo_image_surface_get_data(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  const FloatImage& luminance = merged.luminance_cd_m2;
+  parallelRows(luminance.height(), defaultThreadCount(), [&](int begin, int end) {
+    for (int y = begin; y < end; ++y) {
+      auto* out = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+      auto in = luminance.row(y);
+      auto bound = merged.bound.row(y);
+      for (int x = 0; x < luminance.width(); ++x) {
+        const auto flag = static_cast<calibration::PixelBound>(bound[static_cast<std::size_t>(x)]);
+        const float v = in[static_cast<std::size_t>(x)];
+        if (flag == calibration::PixelBound::kLowerBound) {
+          out[x] = kSaturatedArgb;
+        } else if (flag == calibration::PixelBound::kUpperBound || !std::isfinite(v)) {
+          out[x] = kDarkArgb;
+        } else {
+          out[x] = lut[static_cast<std::size_t>(scale.position(v) * (kLutSize - 1) + 0.5)];
+        }
+      }
+    }
+  });
+  cairo_surface_mark_dirty(surface);
+}
+
+struct PanelLayout {
+  double bar_top, bar_bottom, bar_x, bar_width, font_px;
+};
+
+void drawText(cairo_t* cr, double x, double y, const std::string& text) {
+  cairo_move_to(cr, x, y);
+  cairo_show_text(cr, text.c_str());
+}
+
+void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
+                    const FalseColourOptions& options, bool has_saturated) {
+  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, p.font_px);
+  const int steps = static_cast<int>(p.bar_bottom - p.bar_top);
+  for (int i = 0; i < steps; ++i) {
+    std::uint8_t rgb[3];
+    turboColour(1.0 - static_cast<double>(i) / std::max(1, steps - 1), rgb);
+    cairo_set_source_rgb(cr, rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0);
+    cairo_rectangle(cr, p.bar_x, p.bar_top + i, p.bar_width, 1.0);
+    cairo_fill(cr);
+  }
+  auto yOf = [&](double value) {
+    return p.bar_bottom - scale.position(value) * (p.bar_bottom - p.bar_top);
+  };
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_set_line_width(cr, std::max(1.0, p.font_px / 10));
+  // Ticks at each decade; on a scale under kFineTickDecades also at 2 and 5 times each, so
+  // that a dim, low-contrast image still has values to read.
+  const bool fine = scale.log_max - scale.log_min < kFineTickDecades;
+  for (int decade = static_cast<int>(std::floor(scale.log_min));
+       decade <= static_cast<int>(std::floor(scale.log_max)); ++decade) {
+    for (const double step : {1.0, 2.0, 5.0}) {
+      const double value = step * std::pow(10.0, decade);
+      if ((step != 1.0 && !fine) || std::log10(value) < scale.log_min ||
+          std::log10(value) > scale.log_max)
+        continue;
+      const double y = yOf(value);
+      cairo_move_to(cr, p.bar_x + p.bar_width, y);
+      cairo_line_to(cr, p.bar_x + p.bar_width + p.font_px * 0.4, y);
+      cairo_stroke(cr);
+      drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, y + p.font_px * 0.35, tickLabel(value));
+    }
+  }
+  drawText(cr, p.bar_x, p.bar_top - p.font_px * 0.8, "cd/m\u00b2");
+  if (!options.title.empty()) drawText(cr, p.bar_x, p.font_px * 1.2, options.title);
+  // The limit is marked only where it lies on the scale: pinned to an end it would read as
+  // "the maximum is the limit".
+  const bool limit_on_scale = options.limit_cd_m2 && *options.limit_cd_m2 > 0 &&
+                              std::log10(*options.limit_cd_m2) >= scale.log_min &&
+                              std::log10(*options.limit_cd_m2) <= scale.log_max;
+  if (limit_on_scale) {
+    const double y = yOf(*options.limit_cd_m2);
+    cairo_set_source_rgb(cr, 1, 0, 1);
+    cairo_move_to(cr, p.bar_x - p.font_px * 0.3, y);
+    cairo_line_to(cr, p.bar_x + p.bar_width, y);
+    cairo_stroke(cr);
+    drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, y - p.font_px * 0.5, "limit");
+  }
+  if (!has_saturated) return;
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_rectangle(cr, p.bar_x, p.bar_bottom + p.font_px * 0.8, p.bar_width, p.font_px);
+  cairo_fill(cr);
+  drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, p.bar_bottom + p.font_px * 1.7,
+           "saturated");
+}
+
+bool hasSaturated(const calibration::MergedImage& merged) {
+  const std::uint8_t* bound = merged.bound.data();
+  return std::any_of(bound, bound + merged.bound.pixelCount(), [](std::uint8_t b) {
+    return b == static_cast<std::uint8_t>(calibration::PixelBound::kLowerBound);
+  });
+}
+
+RgbImage toRgb(cairo_surface_t* surface) {
+  cairo_surface_flush(surface);
+  RgbImage image;
+  image.width = cairo_image_surface_get_width(surface);
+  image.height = cairo_image_surface_get_height(surface);
+  image.rgb.resize(static_cast<std::size_t>(image.width) * image.height * 3);
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  for (int y = 0; y < image.height; ++y) {
+    const auto* in =
+        reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    std::uint8_t* out = image.rgb.data() + static_cast<std::size_t>(y) * image.width * 3;
+    for (int x = 0; x < image.width; ++x) {
+      out[3 * x + 0] = static_cast<std::uint8_t>(in[x] >> 16);
+      out[3 * x + 1] = static_cast<std::uint8_t>(in[x] >> 8);
+      out[3 * x + 2] = static_cast<std::uint8_t>(in[x]);
+    }
+  }
+  return image;
+}
+
+}  // namespace
+
+void turboColour(double t, std::uint8_t rgb[3]) {
+  // Polynomial fit of the Turbo colour map (A. Mikhailov, Google AI blog, 2019).
+  static constexpr double kRed[6] = {0.13572138,   4.61539260,    -42.66032258,
+                                     132.13108234, -152.94239396, 59.28637943};
+  static constexpr double kGreen[6] = {0.09140261,   2.19418839, 4.84296658,
+                                       -14.18503333, 4.27729857, 2.82956604};
+  static constexpr double kBlue[6] = {0.10667330,   12.64194608,  -60.58204836,
+                                      110.36276771, -89.90310912, 27.34824973};
+  t = std::clamp(t, 0.0, 1.0);
+  auto channel = [t](const double* c) {
+    double value = c[5];
+    for (int i = 4; i >= 0; --i) value = value * t + c[i];
+    return static_cast<std::uint8_t>(std::clamp(value, 0.0, 1.0) * 255.0 + 0.5);
+  };
+  rgb[0] = channel(kRed);
+  rgb[1] = channel(kGreen);
+  rgb[2] = channel(kBlue);
+}
+
+Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
+                                   const FalseColourOptions& options) {
+  const int width = merged.luminance_cd_m2.width();
+  const int height = merged.luminance_cd_m2.height();
+  if (width <= 0 || height <= 0) return badInput("false colour: empty image");
+  // The panel scales with the image so labels stay legible from thumbnails to 12 MP.
+  const double font_px = std::clamp(height * kFontFractionOfHeight, kMinFontPx, kMaxFontPx);
+  const int panel_width = static_cast<int>(font_px * kPanelWidthEm);
+  const int canvas_height = std::max(height, static_cast<int>(font_px * kMinCanvasHeightEm));
+  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_RGB24, width + panel_width, canvas_height));
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
+    return fail(ErrorCode::kInternal, "false colour: cannot allocate a " +
+                                          std::to_string(width + panel_width) + "x" +
+                                          std::to_string(canvas_height) + " picture");
+  }
+  const Scale scale = chooseScale(merged, options);
+  std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
+  cairo_set_source_rgb(cr.get(), 0.12, 0.12, 0.12);
+  cairo_paint(cr.get());
+  paintImage(surface.get(), merged, scale);
+  if (options.overlay) {
+    cairo_save(cr.get());
+    cairo_rectangle(cr.get(), 0, 0, width, height);
+    cairo_clip(cr.get());
+    // Pixel (x, y) covers [x, x + 1] on the canvas; overlays draw in pixel-centre coordinates.
+    cairo_translate(cr.get(), 0.5, 0.5);
+    options.overlay(cr.get(), font_px);
+    cairo_restore(cr.get());
+  }
+  const PanelLayout layout{font_px * kBarMarginEm, canvas_height - font_px * kBarMarginEm,
+                           width + font_px, font_px * kBarWidthEm, font_px};
+  paintColourBar(cr.get(), layout, scale, options, hasSaturated(merged));
+  return toRgb(surface.get());
+}
+
+}  // namespace glarecam::pipeline

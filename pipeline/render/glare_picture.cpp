@@ -1,0 +1,242 @@
+#include "pipeline/render/glare_picture.h"
+
+#include <cairo.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "calibration/angular_plane.h"
+
+namespace glarecam::pipeline {
+namespace {
+
+using calibration::AngularPlane;
+using calibration::PixelPoint;
+using calibration::PlanePointDeg;
+using calibration::Ray;
+using Polyline = std::vector<PixelPoint>;
+
+constexpr int kCurvePoints = 360;  // per ellipse or circle: smooth at any picture size
+constexpr int kAxisPoints = 48;    // an axis is a great-circle arc, curved by the lens
+
+struct Style {
+  double r, g, b, alpha;
+  double width_em;  // line width in units of the label font size
+  bool dashed;
+};
+// The limit contour in magenta, like the limit mark on the colour bar; fits in white (limit)
+// and light grey (FWHM), dashed so that the traced contour shows through; circles faint.
+constexpr Style kContourStyle{1, 0, 1, 1, 0.14, false};
+constexpr Style kLimitFitStyle{1, 1, 1, 1, 0.12, true};
+constexpr Style kFwhmFitStyle{0.8, 0.8, 0.8, 0.9, 0.10, true};
+constexpr Style kAxisStyle{1, 1, 1, 1, 0.08, false};
+constexpr Style kCircleStyle{1, 1, 1, 0.5, 0.07, false};
+
+struct ClipBox {
+  double x0, y0, x1, y1;
+  bool near(const PixelPoint& p) const {  // within one picture size of the visible part
+    const double w = x1 - x0, h = y1 - y0;
+    return p.x > x0 - w && p.x < x1 + w && p.y > y0 - h && p.y < y1 + h;
+  }
+};
+
+// Pixels of a curve given as rays, split where a ray is behind the camera or lands far outside
+// the picture (where a distortion polynomial means nothing).
+std::vector<Polyline> project(const calibration::CameraModel& camera, const std::vector<Ray>& rays,
+                              const ClipBox& box) {
+  std::vector<Polyline> pieces(1);
+  for (const Ray& ray : rays) {
+    const PixelPoint p = ray.z > 0 ? camera.project(ray) : PixelPoint{NAN, NAN};
+    if (std::isfinite(p.x) && std::isfinite(p.y) && box.near(p)) {
+      pieces.back().push_back(p);
+    } else if (!pieces.back().empty()) {
+      pieces.emplace_back();
+    }
+  }
+  return pieces;
+}
+
+// Rays along a curve given in an angular plane, t from t0 to t1.
+template <typename Curve>
+std::vector<Ray> planeCurve(const AngularPlane& plane, Curve curve, double t0, double t1,
+                            int points) {
+  std::vector<Ray> rays;
+  for (int i = 0; i <= points; ++i) {
+    const Point2 p = curve(t0 + (t1 - t0) * i / points);
+    rays.push_back(plane.toRay({p.x, p.y}));
+  }
+  return rays;
+}
+
+void stroke(cairo_t* cr, const std::vector<Polyline>& pieces, const Style& style, double font_px) {
+  const double width = std::max(1.0, style.width_em * font_px);
+  cairo_set_line_width(cr, width);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  const double dash[] = {4 * width, 3 * width};
+  cairo_set_dash(cr, dash, style.dashed ? 2 : 0, 0);
+  cairo_set_source_rgba(cr, style.r, style.g, style.b, style.alpha);
+  for (const Polyline& piece : pieces) {
+    if (piece.size() < 2) continue;
+    cairo_move_to(cr, piece.front().x, piece.front().y);
+    for (const PixelPoint& p : piece) cairo_line_to(cr, p.x, p.y);
+    cairo_stroke(cr);
+  }
+  cairo_set_dash(cr, nullptr, 0, 0);
+}
+
+// White text with a dark outline: legible on every colour of the map.
+void label(cairo_t* cr, double x, double y, const std::string& text, double font_px) {
+  cairo_set_font_size(cr, font_px);
+  cairo_move_to(cr, x, y);
+  cairo_text_path(cr, text.c_str());
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, std::max(1.5, font_px / 6));
+  cairo_stroke_preserve(cr);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_fill(cr);
+}
+
+// A label at `at`, moved inside the picture when it would stick out (an ellipse cut by the
+// frame); nothing when `at` is not a point (an axis end behind the camera).
+void labelInside(cairo_t* cr, const PixelPoint& at, const std::string& text, const ClipBox& box,
+                 double font_px) {
+  if (!std::isfinite(at.x) || !std::isfinite(at.y)) return;
+  cairo_text_extents_t extents;
+  cairo_set_font_size(cr, font_px);
+  cairo_text_extents(cr, text.c_str(), &extents);
+  // min(max(...)): defined even on pictures too small for the label (unlike std::clamp).
+  const double x =
+      std::min(std::max(at.x, box.x0 + font_px * 0.2), box.x1 - extents.x_advance - font_px * 0.2);
+  const double y = std::min(std::max(at.y, box.y0 + font_px * 1.1), box.y1 - font_px * 0.3);
+  label(cr, x, y, text, font_px);
+}
+
+struct Overlay {
+  calibration::CameraModel camera;
+  Ray peak_ray;
+  std::optional<GlareEllipse> limit, fwhm;
+  bool below_limit = false;  // the maximum does not reach the limit: no glare
+};
+
+std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, const ClipBox& box) {
+  const AngularPlane plane(e.plane_centre);
+  const auto curve = [&](double t) { return e.plane_ellipse.pointAt(t); };
+  return project(o.camera, planeCurve(plane, curve, 0, 2 * std::numbers::pi, kCurvePoints), box);
+}
+
+// The two axes of an ellipse as arcs, each labelled at its upper or right end.
+void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::string& prefix,
+              const ClipBox& box, double font_px) {
+  const AngularPlane plane(e.plane_centre);
+  const Ellipse& ellipse = e.plane_ellipse;
+  for (const double t_end : {0.0, std::numbers::pi / 2}) {
+    const Point2 a = ellipse.pointAt(t_end), b = ellipse.pointAt(t_end + std::numbers::pi);
+    const auto chord = [&](double s) {
+      return Point2{a.x + (b.x - a.x) * s, a.y + (b.y - a.y) * s};
+    };
+    const auto pieces = project(o.camera, planeCurve(plane, chord, 0, 1, kAxisPoints), box);
+    stroke(cr, pieces, kAxisStyle, font_px);
+    const bool is_major = t_end == 0.0;
+    const bool vertical = e.majorIsVertical() == is_major;
+    const double length_deg = vertical ? e.vertical_deg : e.horizontal_deg;
+    // Vertical axis labelled at its upper end, horizontal at its right end.
+    // Only ends in front of the camera count (behind it, project() mirrors them).
+    const Ray ra = plane.toRay({a.x, a.y}), rb = plane.toRay({b.x, b.y});
+    if (ra.z <= 0 && rb.z <= 0) continue;
+    const PixelPoint pa = o.camera.project(ra.z > 0 ? ra : rb);
+    const PixelPoint pb = o.camera.project(rb.z > 0 ? rb : ra);
+    const PixelPoint end = vertical ? (pa.y < pb.y ? pa : pb) : (pa.x > pb.x ? pa : pb);
+    const std::string text =
+        fmt::format("{}{} {:.2f}\u00b0", prefix, vertical ? "V" : "H", length_deg);
+    const double dx = vertical ? font_px * 0.3 : font_px * 0.4;
+    const double dy = vertical ? -font_px * 0.4 : font_px * 0.35;
+    labelInside(cr, {end.x + dx, end.y + dy}, text, box, font_px);
+  }
+}
+
+void drawCircles(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_px) {
+  const AngularPlane plane(o.peak_ray);
+  for (const double radius_deg : kReferenceCirclesDeg) {
+    const auto circle = [&](double t) {
+      return Point2{radius_deg * std::cos(t), radius_deg * std::sin(t)};
+    };
+    stroke(cr,
+           project(o.camera, planeCurve(plane, circle, 0, 2 * std::numbers::pi, kCurvePoints), box),
+           kCircleStyle, font_px);
+    // Labelled at its lower-left point (135° in image coordinates, y down), away from the axis
+    // labels (upper and right ends), right-aligned so the text stays outside the circle.
+    const Point2 at = circle(3 * std::numbers::pi / 4);
+    const Ray ray = plane.toRay({at.x, at.y});
+    if (ray.z <= 0) continue;
+    const PixelPoint p = o.camera.project(ray);
+    const std::string text = fmt::format("r {:g}\u00b0", radius_deg);
+    cairo_set_font_size(cr, font_px * 0.8);
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, text.c_str(), &extents);
+    cairo_set_font_size(cr, font_px);
+    const double x = p.x - extents.x_advance - font_px * 0.2, y = p.y + font_px * 0.9;
+    if (x > box.x0 && p.x < box.x1 && y < box.y1 && p.y > box.y0)
+      label(cr, x, y, text, font_px * 0.8);
+  }
+}
+
+// The legend only where it fits beside the spot: not on thumbnails.
+constexpr double kMinLegendWidthEm = 30, kMinLegendHeightEm = 12;
+
+void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_px) {
+  if (box.x1 - box.x0 < kMinLegendWidthEm * font_px ||
+      box.y1 - box.y0 < kMinLegendHeightEm * font_px)
+    return;
+  std::vector<std::string> lines;
+  if (o.limit) {
+    lines.push_back(o.limit->truncated
+                        ? "limit contour (solid), fitted ellipse (dashed), cut by the frame"
+                        : "limit contour (solid), fitted ellipse (dashed)");
+  }
+  if (o.fwhm) {
+    lines.push_back(o.limit || !o.below_limit ? "FWHM ellipse (grey dashed)"
+                                              : "no glare: FWHM ellipse (grey dashed)");
+  }
+  lines.push_back("circles: radius 1\u00b0, 5\u00b0, 10\u00b0, 20\u00b0 around the maximum");
+  double y = box.y0 + font_px * 1.2;
+  for (const std::string& line : lines) {
+    label(cr, box.x0 + font_px * 0.6, y, line, font_px * 0.8);
+    y += font_px * 1.2;
+  }
+}
+
+void drawOverlay(cairo_t* cr, const Overlay& o, double font_px) {
+  ClipBox box{};
+  cairo_clip_extents(cr, &box.x0, &box.y0, &box.x1, &box.y1);
+  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+  cairo_set_font_size(cr, font_px);
+  drawCircles(cr, o, box, font_px);
+  if (o.fwhm) stroke(cr, ellipseOutline(o, *o.fwhm, box), kFwhmFitStyle, font_px);
+  if (o.limit) {
+    Polyline contour(o.limit->contour_px.begin(), o.limit->contour_px.end());
+    if (!contour.empty()) contour.push_back(contour.front());
+    stroke(cr, {contour}, kContourStyle, font_px);
+    stroke(cr, ellipseOutline(o, *o.limit, box), kLimitFitStyle, font_px);
+  }
+  // Axes of the limit ellipse, or of the FWHM ellipse when the module does not glare.
+  if (o.limit) {
+    drawAxes(cr, o, *o.limit, "", box, font_px);
+  } else if (o.fwhm) {
+    drawAxes(cr, o, *o.fwhm, "FWHM ", box, font_px);
+  }
+  drawLegend(cr, o, box, font_px);
+}
+
+}  // namespace
+
+PictureOverlay glareOverlay(const GlareAnalysis& analysis, const calibration::CameraModel& camera,
+                            const LuminancePeak& peak) {
+  Overlay overlay{camera, camera.ray({peak.x_px, peak.y_px}), std::nullopt, analysis.fwhm.ellipse,
+                  analysis.limit && analysis.limit->status == EllipseStatus::kBelowLevel};
+  if (analysis.limit) overlay.limit = analysis.limit->ellipse;
+  return [overlay](cairo_t* cr, double font_px) { drawOverlay(cr, overlay, font_px); };
+}
+
+}  // namespace glarecam::pipeline

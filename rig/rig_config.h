@@ -1,0 +1,63 @@
+// The rig's configuration (TOML, /etc/glarecam/glarecam.toml by convention): where the rig is,
+// how its module faces, which inclinometer measures the tilt, the light source (the sun, or a
+// fixed lamp in the lab), the calibration file and the GPIO lines. Every key is documented in
+// firmware-config/glarecam.toml and docs/rig.md. Reading validates everything: an unknown key, a
+// wrong type or a value out of range is a kBadInput error "FILE:LINE: problem".
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "core/stack_manifest.h"
+#include "daemon/daemon_config.h"
+#include "rig/gpio/rig_io.h"
+#include "rig/inclinometer/tilt.h"
+#include "sun/incidence_angle.h"
+#include "sun/solar_position.h"
+
+namespace glarecam::rig {
+
+// Where the rig's config lives unless --config says otherwise (the FHS place for a package's).
+inline constexpr const char* kDefaultRigConfigPath = "/etc/glarecam/glarecam.toml";
+
+struct InclinometerConfig {
+  std::string uri;  // "adxl355:/dev/i2c-1@0x1d", "iio:iio:device0", "sim:30"
+  TiltOptions tilt;
+};
+
+struct RigConfig {
+  std::filesystem::path path;  // the file it was read from, for messages
+
+  std::optional<std::string> camera;  // default camera URI
+  // Camera calibration and the inclinometer's zero offset (relative paths resolved against the
+  // config file's directory).
+  std::optional<std::filesystem::path> calibration;
+
+  std::optional<sun::SiteLocation> site;          // outdoors: α from the sun's position
+  std::optional<sun::SkyDirection> fixed_source;  // lab: α against a lamp that does not move
+
+  // The module's facing azimuth, and its tilt when no inclinometer measures it.
+  std::optional<double> module_azimuth_deg;
+  std::optional<double> module_tilt_deg;
+
+  std::optional<InclinometerConfig> inclinometer;
+
+  // [gpio]: trigger, status LED and button lines (chip "sim" for the simulated rig's).
+  std::optional<RigIoConfig> gpio;
+
+  // [capture], [schedule], [output], [faults]: what glarecamd does with the rig.
+  daemon::DaemonConfig daemon;
+};
+
+// The standard atmosphere's pressure at `altitude_m` (the default when the config gives none).
+double standardPressureHpa(double altitude_m);
+
+Result<RigConfig> readRigConfig(const std::filesystem::path& path);
+
+// The camera calibration in the config's calibration file, when it holds one: the file may be
+// absent (the flip creates it) or hold only the inclinometer's zero offset.
+Result<std::optional<Calibration>> rigCameraCalibration(const RigConfig& config);
+
+}  // namespace glarecam::rig

@@ -1,0 +1,55 @@
+#include "pipeline/render/false_colour.h"
+
+#include <gtest/gtest.h>
+
+#include "support/test_support.h"
+
+namespace glarecam::pipeline {
+namespace {
+
+calibration::MergedImage gradient(int width, int height) {
+  calibration::MergedImage merged = testing::measuredImage(width, height, 0.01f);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x)
+      merged.luminance_cd_m2.at(x, y) = std::pow(10.0f, 2.0f + 4.0f * x / (width - 1));
+  }
+  return merged;
+}
+
+const std::uint8_t* pixel(const RgbImage& image, int x, int y) {
+  return image.rgb.data() + (static_cast<std::size_t>(y) * image.width + x) * 3;
+}
+
+TEST(FalseColour, MapsLowToDarkBlueHighToDarkRedAndAddsAColourBar) {
+  calibration::MergedImage merged = gradient(200, 120);
+  merged.bound.at(5, 5) = static_cast<std::uint8_t>(calibration::PixelBound::kLowerBound);
+  auto image = renderFalseColour(merged, {});
+  ASSERT_TRUE(image) << image.error().message;
+  EXPECT_GT(image->width, 200);  // the colour bar panel sits to the right
+  EXPECT_GE(image->height, 120);
+  const std::uint8_t* low = pixel(*image, 30, 60);  // 15 % up the scale: Turbo's blue
+  const std::uint8_t* high = pixel(*image, 199, 60);
+  EXPECT_GT(low[2], low[0]);
+  EXPECT_GT(high[0], high[2]);  // and ends dark red
+  const std::uint8_t* saturated = pixel(*image, 5, 5);
+  EXPECT_EQ(saturated[0], 255);
+  EXPECT_EQ(saturated[1], 255);
+  EXPECT_EQ(saturated[2], 255);
+}
+
+TEST(FalseColour, TurboEndsAreTheDocumentedColours) {
+  std::uint8_t rgb[3];
+  turboColour(0.0, rgb);
+  EXPECT_NEAR(rgb[0], 35, 3);  // 0.13572138 * 255
+  turboColour(1.0, rgb);
+  EXPECT_GT(rgb[0], 100);
+  EXPECT_LT(rgb[2], 30);
+}
+
+TEST(FalseColour, RefusesAnEmptyImage) {
+  calibration::MergedImage empty;
+  EXPECT_FALSE(renderFalseColour(empty, {}));
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline

@@ -71,13 +71,13 @@ Result<std::unique_ptr<CaptureDaemon>> CaptureDaemon::create(DaemonOptions optio
     return fail(ErrorCode::kInternal, "glarecamd: a service is missing");
   if (!services.open_camera) services.open_camera = capture::openCamera;
   if (!services.open_rig_io) services.open_rig_io = rig::openRigIo;
-  rig::RigConfig config;
-  GLARECAM_ASSIGN(config, rig::readRigConfig(options.config_path));
+  Config config;
+  GLARECAM_ASSIGN(config, readConfig(options.config_path));
   return std::unique_ptr<CaptureDaemon>(
       new CaptureDaemon(std::move(options), std::move(services), std::move(config)));
 }
 
-CaptureDaemon::CaptureDaemon(DaemonOptions options, DaemonServices services, rig::RigConfig config)
+CaptureDaemon::CaptureDaemon(DaemonOptions options, DaemonServices services, Config config)
     : options_(std::move(options)),
       services_(std::move(services)),
       config_(std::move(config)),
@@ -118,7 +118,7 @@ Status CaptureDaemon::start() {
   prepareOutput(true);
   applyConfig();
   spdlog::info("glarecamd: {} with camera {}, output {}", scheduleText(config_.daemon.schedule),
-               *config_.camera, config_.daemon.output.root.string());
+               *config_.rig.camera, config_.daemon.output.root.string());
   catchUp();
   publishStatus();
   return {};
@@ -183,15 +183,15 @@ void CaptureDaemon::stop() {
 
 void CaptureDaemon::applyConfig() {
   const DaemonConfig& daemon = config_.daemon;
-  camera_.configure(config_.camera.value_or(""), cameraOptions(std::nullopt), daemon.faults);
-  const auto calibration = rig::rigCameraCalibration(config_);
+  camera_.configure(config_.rig.camera.value_or(""), cameraOptions(std::nullopt), daemon.faults);
+  const auto calibration = rig::rigCameraCalibration(config_.rig);
   calibration_ = calibration ? *calibration : std::nullopt;
   if (!calibration) spdlog::error("glarecamd: {}", calibration.error().message);
   worker_->reconfigure(
       {.day = {.root = daemon.output.root,
                .module = daemon.output.module,
-               .longitude_deg =
-                   config_.site ? std::optional(config_.site->longitude_deg) : std::nullopt},
+               .longitude_deg = config_.rig.site ? std::optional(config_.rig.site->longitude_deg)
+                                                 : std::nullopt},
        .threads = daemon.output.processing_threads});
   prepareOutput(false);
   openSensors();
@@ -205,8 +205,8 @@ void CaptureDaemon::openSensors() {
   sensors_.reset();
   last_geometry_.reset();  // the module may have moved, or the config's geometry changed
   logged_warnings_.clear();
-  if (!config_.site && !config_.fixed_source) return;  // α is not measured
-  auto sensors = rig::RigSensors::open(config_);
+  if (!config_.rig.site && !config_.rig.fixed_source) return;  // α is not measured
+  auto sensors = rig::RigSensors::open(config_.rig);
   if (!sensors) {
     if (sensors.error().message != state_.inclinometer_fault)
       spdlog::error("glarecamd: {}", sensors.error().message);
@@ -219,8 +219,8 @@ void CaptureDaemon::openSensors() {
 
 void CaptureDaemon::openRigIo() {
   state_.gpio_fault.clear();
-  if (!config_.gpio) return;
-  auto io = services_.open_rig_io(*config_.gpio);
+  if (!config_.rig.gpio) return;
+  auto io = services_.open_rig_io(*config_.rig.gpio);
   if (!io) {  // the rig measures on without its LED and button
     state_.gpio_fault = io.error().message;
     spdlog::error("glarecamd: {}; running without GPIO", io.error().message);
@@ -231,8 +231,8 @@ void CaptureDaemon::openRigIo() {
   led_ = std::make_unique<rig::StatusLed>(*io_);
   led_->start();
   if (!services_.watch_button || !io_->hasButton()) return;
-  button_thread_ =
-      std::jthread([this, io = io_.get(), debounce = config_.gpio->debounce](std::stop_token stop) {
+  button_thread_ = std::jthread(
+      [this, io = io_.get(), debounce = config_.rig.gpio->debounce](std::stop_token stop) {
         rig::ButtonWatcher watcher(*io, debounce);
         std::mutex mutex;
         std::condition_variable_any pause;
@@ -298,27 +298,28 @@ bool CaptureDaemon::outputWritable() {
 // A new camera, or the camera with new options, must open as configured before the reload is
 // taken: the old camera is released first (a GigE camera has one controller). One that is absent
 // now may come back, like a camera lost at any other time.
-Status CaptureDaemon::checkReloadedCamera(const rig::RigConfig& config) {
+Status CaptureDaemon::checkReloadedCamera(const Config& config) {
   GLARECAM_CHECK(checkConfig(config));
   capture::CameraOptions options;
   options.pixel_format = config.daemon.capture.pixel_format;
   options.max_frame_retries = config.daemon.capture.max_frame_retries;
   options.genicam_features = config.daemon.capture.genicam_features;
   const capture::CameraOptions current = cameraOptions(std::nullopt);
-  if (*config.camera == config_.camera && options.pixel_format == current.pixel_format &&
+  if (*config.rig.camera == config_.rig.camera && options.pixel_format == current.pixel_format &&
       options.genicam_features == current.genicam_features)
     return {};
   camera_.close();
-  auto trial = services_.open_camera(*config.camera, options);
+  auto trial = services_.open_camera(*config.rig.camera, options);
   if (!trial && trial.error().code == ErrorCode::kBadInput)
-    return std::unexpected(withContext(trial.error(), config.path.string() + ": camera"));
+    return std::unexpected(withContext(trial.error(), config.rig.path.string() + ": camera"));
   return {};
 }
 
-Status CaptureDaemon::checkConfig(const rig::RigConfig& config) const {
-  if (!config.camera) return badInput(config.path.string() + ": glarecamd needs camera = \"URI\"");
-  const auto uri = capture::parseCameraUri(*config.camera);
-  if (!uri) return std::unexpected(withContext(uri.error(), config.path.string() + ": camera"));
+Status CaptureDaemon::checkConfig(const Config& config) const {
+  if (!config.rig.camera)
+    return badInput(config.rig.path.string() + ": glarecamd needs camera = \"URI\"");
+  const auto uri = capture::parseCameraUri(*config.rig.camera);
+  if (!uri) return std::unexpected(withContext(uri.error(), config.rig.path.string() + ": camera"));
   return {};
 }
 
@@ -345,7 +346,7 @@ Status CaptureDaemon::reopenCamera(SteadyTime now) {
   if (!opened) {
     // Before the first open, a camera the config cannot name is the config's problem.
     if (opened.error().code == ErrorCode::kBadInput && !state_.ready)
-      return std::unexpected(withContext(opened.error(), config_.path.string() + ": camera"));
+      return std::unexpected(withContext(opened.error(), config_.rig.path.string() + ": camera"));
     return cameraFailed(opened.error(), now, false);
   }
   if (!state_.camera_fault.empty())
@@ -378,7 +379,7 @@ Status CaptureDaemon::cameraFailed(const Error& error, SteadyTime now, bool mid_
 
 void CaptureDaemon::reload() {
   ScopedLogFields fields(LogFields{{"GLARECAM_EVENT", "reload"}});
-  auto config = rig::readRigConfig(options_.config_path);
+  auto config = readConfig(options_.config_path);
   if (config) {
     const Status checked = checkReloadedCamera(*config);
     if (!checked) config = std::unexpected(checked.error());
@@ -422,14 +423,14 @@ capture::CaptureSettings CaptureDaemon::baseSettings() const {
   settings.optics.f_number = capture.f_number;
   settings.optics.nd_transmission = capture.nd_transmission;
   settings.calibration = calibration_;
-  settings.alpha_from_scene = !config_.site && !config_.fixed_source;
+  settings.alpha_from_scene = !config_.rig.site && !config_.rig.fixed_source;
   return settings;
 }
 
 std::optional<rig::RigGeometry> CaptureDaemon::measureGeometry(capture::CaptureSettings& settings,
                                                                bool& pause) {
   pause = false;
-  if (!config_.site && !config_.fixed_source) return std::nullopt;
+  if (!config_.rig.site && !config_.rig.fixed_source) return std::nullopt;
   if (!sensors_) openSensors();  // an inclinometer absent at start may have come back
   Result<rig::RigGeometry> measured =
       sensors_ ? sensors_->measureWithClock(clock_.utcNow(), clock_.clockStatus())
@@ -493,7 +494,7 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
       return skip(fmt::format("α {:.1f}° is beyond max_alpha_deg {:g}°", geometry->alpha_deg,
                               config_.daemon.schedule.max_alpha_deg));
   }
-  const std::string& uri = *config_.camera;
+  const std::string& uri = *config_.rig.camera;
   if (isSimulatedCamera(uri) && settings.alpha_deg) {
     // A simulated scene is rendered for one α: the camera is reopened at each stack's.
     if (*settings.alpha_deg > pipeline::kMaxLimitAlphaDeg + kSimulatedAlphaSlackDeg)
@@ -553,7 +554,7 @@ void CaptureDaemon::finishStack(capture::CapturedStack& stack,
   }
   nlohmann::json flags = nlohmann::json::array();
   if (!state_.clock_warning.empty()) flags.push_back("clock_unsynchronised");
-  if (!geometry && (config_.site || config_.fixed_source)) flags.push_back("alpha_unknown");
+  if (!geometry && (config_.rig.site || config_.rig.fixed_source)) flags.push_back("alpha_unknown");
   stack.manifest.source["daemon"] = {
       {"trigger", triggerName(trigger)},
       {"schedule", scheduleText(config_.daemon.schedule)},
@@ -612,8 +613,8 @@ void CaptureDaemon::planAlphaTargets(sun::UtcTime from) {
     replan_at_ = clock_.now() + std::chrono::hours(1);
     state_.skip_reason = std::move(why);
   };
-  if (!config_.site || !module) return retry("α targets need the module's tilt");
-  const auto crossings = alphaCrossings(*config_.site, *module, from, kAlphaPlanHorizon,
+  if (!config_.rig.site || !module) return retry("α targets need the module's tilt");
+  const auto crossings = alphaCrossings(*config_.rig.site, *module, from, kAlphaPlanHorizon,
                                         config_.daemon.schedule.alpha_targets_deg);
   if (!crossings) return retry(crossings.error().message);
   for (const AlphaCrossing& crossing : *crossings) {
@@ -763,7 +764,7 @@ void CaptureDaemon::retryInclinometer() {
 }
 
 void CaptureDaemon::checkClock() {
-  if (!config_.site) return;  // only the sun's position needs the wall clock
+  if (!config_.rig.site) return;  // only the sun's position needs the wall clock
   const sun::ClockStatus clock = clock_.clockStatus();
   std::string warning =
       clock.synchronised ? std::string()

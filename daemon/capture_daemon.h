@@ -98,10 +98,10 @@ class CaptureDaemon {
   // Signals, button presses and the worker's reports arrive here (from any thread).
   EventQueue& events() { return events_; }
   const DaemonState& state() const { return state_; }
-  const rig::RigConfig& config() const { return config_; }
+  const Config& config() const { return config_; }
 
  private:
-  CaptureDaemon(DaemonOptions options, DaemonServices services, rig::RigConfig config);
+  CaptureDaemon(DaemonOptions options, DaemonServices services, Config config);
 
   Status start();
   Status step();
@@ -118,8 +118,8 @@ class CaptureDaemon {
   bool outputWritable();
   void retryInclinometer();
   void checkWallClock(SteadyTime now);
-  Status checkConfig(const rig::RigConfig& config) const;
-  Status checkReloadedCamera(const rig::RigConfig& config);
+  Status checkConfig(const Config& config) const;
+  Status checkReloadedCamera(const Config& config);
   void catchUp();
   Status reopenCamera(SteadyTime now);
 
@@ -153,7 +153,7 @@ class CaptureDaemon {
 
   DaemonOptions options_;
   DaemonServices services_;
-  rig::RigConfig config_;
+  Config config_;
   DaemonClock& clock_;
   EventQueue events_;
   DaemonState state_;

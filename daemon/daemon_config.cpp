@@ -1,10 +1,11 @@
+#include "daemon/daemon_config.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
 #include <fstream>
 
-#include "daemon/daemon_config_reader.h"
 #include "rig/config_table.h"
 
 namespace glarecam::daemon {
@@ -185,14 +186,26 @@ std::vector<double> defaultAlphaTargetsDeg() {
   return targets;
 }
 
-Result<DaemonConfig> readDaemonSections(const std::filesystem::path& file, const toml::table& root,
-                                        bool has_site) {
-  DaemonConfig daemon;
-  GLARECAM_ASSIGN(daemon.capture, readCapture(file, root["capture"].as_table()));
-  GLARECAM_ASSIGN(daemon.schedule, readSchedule(file, root["schedule"].as_table(), has_site));
-  GLARECAM_ASSIGN(daemon.output, readOutput(file, root["output"].as_table()));
-  GLARECAM_ASSIGN(daemon.faults, readFaults(file, root["faults"].as_table()));
-  return daemon;
+Result<Config> readConfig(const std::filesystem::path& path) {
+  std::vector<std::string_view> sections(rig::kRigSections.begin(), rig::kRigSections.end());
+  sections.insert(sections.end(), kDaemonSections.begin(), kDaemonSections.end());
+  toml::table root;
+  GLARECAM_ASSIGN(root, rig::readConfigFile(path, sections));
+  Config config;
+  GLARECAM_ASSIGN(config.rig, rig::readRigSections(path, root));
+  DaemonConfig& daemon = config.daemon;
+  GLARECAM_ASSIGN(daemon.capture, readCapture(path, root["capture"].as_table()));
+  GLARECAM_ASSIGN(daemon.schedule,
+                  readSchedule(path, root["schedule"].as_table(), config.rig.site.has_value()));
+  GLARECAM_ASSIGN(daemon.output, readOutput(path, root["output"].as_table()));
+  GLARECAM_ASSIGN(daemon.faults, readFaults(path, root["faults"].as_table()));
+  return config;
+}
+
+Result<rig::RigConfig> readRigConfig(const std::filesystem::path& path) {
+  Config config;
+  GLARECAM_ASSIGN(config, readConfig(path));
+  return std::move(config.rig);
 }
 
 }  // namespace glarecam::daemon

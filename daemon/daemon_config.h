@@ -1,20 +1,23 @@
-// What glarecamd reads from the rig's config beyond the rig itself (rig_config.h): how to capture
-// ([capture]), when ([schedule]), where to write and how much disk to leave free ([output]) and
-// what to do when something fails ([faults]). Every key has a default, so a rig config without
-// these sections runs the daemon with them; every key is documented in
-// firmware-config/glarecam.toml and docs/operator.md. Read by readRigConfig(), with the same
-// "FILE:LINE: problem" errors.
+// What glarecamd reads from the rig's config beyond the rig itself (rig/rig_config.h): how to
+// capture ([capture]), when ([schedule]), where to write and how much disk to leave free
+// ([output]) and what to do when something fails ([faults]). Every key has a default, so a rig
+// config without these sections runs the daemon with them; every key is documented in
+// firmware-config/glarecam.toml and docs/operator.md. readConfig() reads the whole file, the rig's
+// sections and these, with "FILE:LINE: problem" errors.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/error.h"
 #include "pipeline/limit_curve.h"
+#include "rig/rig_config.h"
 
 namespace glarecam::daemon {
 
@@ -85,12 +88,28 @@ struct FaultConfig {
 // The paper's sweep: 5° to 80° in steps of 5°.
 std::vector<double> defaultAlphaTargetsDeg();
 
-// The sections together, as RigConfig holds them.
+// The daemon's sections together.
 struct DaemonConfig {
   CaptureConfig capture;
   ScheduleConfig schedule{.alpha_targets_deg = defaultAlphaTargetsDeg()};
   OutputConfig output;
   FaultConfig faults;
 };
+
+// The sections of a config file the daemon's reader reads.
+inline constexpr std::array<std::string_view, 4> kDaemonSections{"capture", "faults", "output",
+                                                                 "schedule"};
+
+// A whole glarecam.toml: the rig (rig/rig_config.h) and what glarecamd does with it.
+struct Config {
+  rig::RigConfig rig;
+  DaemonConfig daemon;
+};
+
+// Reads the config file at `path`: a section that neither the rig's reader nor the daemon's knows
+// is an error, and so is any key or value either finds wrong (kBadInput "FILE:LINE: problem").
+Result<Config> readConfig(const std::filesystem::path& path);
+// The rig's part of it, the whole file validated: for the commands that use only the rig.
+Result<rig::RigConfig> readRigConfig(const std::filesystem::path& path);
 
 }  // namespace glarecam::daemon

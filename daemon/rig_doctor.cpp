@@ -59,14 +59,14 @@ Result<std::string> systemctlUnitState(const std::string& unit) {
                      value("UnitFileState").empty() ? "not installed" : value("UnitFileState"));
 }
 
-DoctorCheck checkCamera(const rig::RigConfig& config, const CameraOpener& open,
+DoctorCheck checkCamera(const Config& config, const CameraOpener& open,
                         const std::optional<double>& alpha_deg) {
-  if (!config.camera) return failed("camera", "the config names no camera (camera = \"URI\")");
+  if (!config.rig.camera) return failed("camera", "the config names no camera (camera = \"URI\")");
   capture::CameraOptions options;
   options.pixel_format = config.daemon.capture.pixel_format;
   options.genicam_features = config.daemon.capture.genicam_features;
   options.simulated_alpha_deg = alpha_deg;
-  auto camera = open(*config.camera, options);
+  auto camera = open(*config.rig.camera, options);
   if (!camera) return failed("camera", camera.error().message);
   const capture::CameraLimits limits = (*camera)->limits();
   const capture::ExposureRequest request{
@@ -87,7 +87,7 @@ DoctorCheck checkCamera(const rig::RigConfig& config, const CameraOpener& open,
 }
 
 // Where the user running this cannot read or write what glarecamd needs.
-std::vector<std::string> permissionProblems(const rig::RigConfig& config) {
+std::vector<std::string> permissionProblems(const Config& config) {
   std::vector<std::string> problems;
   const auto need = [&problems](const fs::path& path, int mode, const char* what) {
     if (access(path.c_str(), mode) != 0)
@@ -95,21 +95,21 @@ std::vector<std::string> permissionProblems(const rig::RigConfig& config) {
   };
   need(config.daemon.output.root, R_OK | W_OK | X_OK, "output");
   std::error_code error;
-  if (config.calibration && fs::exists(*config.calibration, error))
-    need(*config.calibration, R_OK, "calibration");
+  if (config.rig.calibration && fs::exists(*config.rig.calibration, error))
+    need(*config.rig.calibration, R_OK, "calibration");
   constexpr std::string_view kAdxl355 = "adxl355:";
-  if (config.inclinometer && config.inclinometer->uri.starts_with(kAdxl355)) {
-    const std::string& uri = config.inclinometer->uri;
+  if (config.rig.inclinometer && config.rig.inclinometer->uri.starts_with(kAdxl355)) {
+    const std::string& uri = config.rig.inclinometer->uri;
     need(uri.substr(kAdxl355.size(), uri.find('@') - kAdxl355.size()), R_OK | W_OK, "I2C bus");
   }
-  if (config.gpio && config.gpio->chip.starts_with("gpiochip"))
-    need("/dev/" + config.gpio->chip, R_OK | W_OK, "GPIO chip");
-  else if (config.gpio && config.gpio->chip.starts_with("/dev/"))
-    need(config.gpio->chip, R_OK | W_OK, "GPIO chip");
+  if (config.rig.gpio && config.rig.gpio->chip.starts_with("gpiochip"))
+    need("/dev/" + config.rig.gpio->chip, R_OK | W_OK, "GPIO chip");
+  else if (config.rig.gpio && config.rig.gpio->chip.starts_with("/dev/"))
+    need(config.rig.gpio->chip, R_OK | W_OK, "GPIO chip");
   return problems;
 }
 
-DoctorCheck checkDisk(const rig::RigConfig& config, DiskProbe& disk) {
+DoctorCheck checkDisk(const Config& config, DiskProbe& disk) {
   const fs::path& root = config.daemon.output.root;
   const auto state = disk.probe(root);
   if (!state) return failed("disk", state.error().message);
@@ -126,19 +126,19 @@ std::string joined(const std::vector<std::string>& parts) {
   return text;
 }
 
-DoctorCheck checkPermissions(const rig::RigConfig& config) {
+DoctorCheck checkPermissions(const Config& config) {
   const std::vector<std::string> problems = permissionProblems(config);
   if (!problems.empty()) return failed("permissions", joined(problems));
   return ok("permissions",
             fmt::format("uid {} reaches the output, calibration and devices", getuid()));
 }
 
-DoctorCheck checkClock(const rig::RigConfig& config) {
+DoctorCheck checkClock(const Config& config) {
   const sun::ClockStatus clock = sun::systemClockStatus();
   if (clock.synchronised)
     return ok("clock",
               fmt::format("synchronised (estimated error {:.3f} s)", clock.estimated_error_s));
-  if (config.site)
+  if (config.rig.site)
     return failed("clock", "not synchronised: " + clock.detail + "; a wrong clock is a wrong α");
   return warn("clock", "not synchronised: " + clock.detail + " (α here does not depend on it)");
 }
@@ -161,30 +161,30 @@ DoctorCheck sunCheck(const rig::RigGeometry& geometry) {
 
 // measureTilt() already refused a moving rig (scatter above the config's bound); the tilt must
 // also be plausible, as glarecamd judges it ([faults] min/max_tilt_deg).
-DoctorCheck tiltCheck(const rig::RigConfig& config, const rig::TiltReading& tilt) {
+DoctorCheck tiltCheck(const Config& config, const rig::TiltReading& tilt) {
   const FaultConfig& faults = config.daemon.faults;
   const std::string reading =
-      fmt::format("{}: tilt {:.3f}°, scatter {:.4f}° over {} samples", config.inclinometer->uri,
+      fmt::format("{}: tilt {:.3f}°, scatter {:.4f}° over {} samples", config.rig.inclinometer->uri,
                   tilt.module_tilt_deg, tilt.tilt_std_deg, tilt.samples);
   if (!(tilt.module_tilt_deg >= faults.min_tilt_deg && tilt.module_tilt_deg <= faults.max_tilt_deg))
     return failed("inclinometer", fmt::format("{}: implausible (outside [{:g}, {:g}]°)", reading,
                                               faults.min_tilt_deg, faults.max_tilt_deg));
   return ok("inclinometer", fmt::format("{} (steady: below {:g}°)", reading,
-                                        config.inclinometer->tilt.max_tilt_std_deg));
+                                        config.rig.inclinometer->tilt.max_tilt_std_deg));
 }
 
-SensorChecks checkSensors(const rig::RigConfig& config) {
+SensorChecks checkSensors(const Config& config) {
   SensorChecks checks;
-  if (!config.site && !config.fixed_source) return checks;
-  auto sensors = rig::RigSensors::open(config);
+  if (!config.rig.site && !config.rig.fixed_source) return checks;
+  auto sensors = rig::RigSensors::open(config.rig);
   const auto measured =
       sensors ? (*sensors)->measure(std::chrono::time_point_cast<std::chrono::microseconds>(
                     std::chrono::system_clock::now()))
               : Result<rig::RigGeometry>(std::unexpected(sensors.error()));
-  if (config.inclinometer && !measured)
+  if (config.rig.inclinometer && !measured)
     checks.inclinometer = failed("inclinometer", measured.error().message);
   if (!measured) {
-    if (config.site) checks.sun = skipped("sun", "needs the module's tilt");
+    if (config.rig.site) checks.sun = skipped("sun", "needs the module's tilt");
     return checks;
   }
   checks.alpha_deg = measured->alpha_deg;
@@ -199,7 +199,7 @@ DoctorCheck unitCheck(const Result<std::string>& unit) {
   return unit->starts_with("active") ? ok("systemd", detail) : warn("systemd", detail);
 }
 
-void checkRig(const rig::RigConfig& config, DoctorOptions& options, bool daemon_running,
+void checkRig(const Config& config, DoctorOptions& options, bool daemon_running,
               std::vector<DoctorCheck>& checks) {
   SensorChecks sensors = checkSensors(config);
   // A simulated camera shows the α the rig measures, where its scene exists.
@@ -227,7 +227,7 @@ std::vector<DoctorCheck> runDoctor(DoctorOptions& options) {
     options.disk = statvfs.get();
   }
   std::vector<DoctorCheck> checks;
-  const auto config = rig::readRigConfig(options.config_path);
+  const auto config = readConfig(options.config_path);
   const auto unit = options.unit_state(kUnit);
   if (config) {
     checks.push_back(ok("config", options.config_path.string() + " is valid"));

@@ -1,14 +1,48 @@
 #include "rig/config_table.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace glarecam::rig {
 
 namespace {
 constexpr std::int64_t kMaxGpioOffset = 65535;  // far beyond any chip; the chip itself checks
+
+Status checkSections(const std::filesystem::path& file, const toml::table& root,
+                     std::span<const std::string_view> sections) {
+  for (auto&& [key, node] : root) {
+    if (!node.is_table() ||
+        std::find(sections.begin(), sections.end(), key.str()) != sections.end())
+      continue;
+    std::vector<std::string_view> known(sections.begin(), sections.end());
+    std::sort(known.begin(), known.end());
+    return badInput(fmt::format("{}:{}: unknown section [{}] (known: {})", file.string(),
+                                node.source().begin.line, key.str(), fmt::join(known, ", ")));
+  }
+  return {};
+}
+
 }  // namespace
+
+Result<toml::table> readConfigFile(const std::filesystem::path& path,
+                                   std::span<const std::string_view> sections) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    return badInput(path.string() + ": " +
+                    (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
+  toml::table root;
+  try {
+    root = toml::parse_file(path.string());
+  } catch (const toml::parse_error& e) {
+    return badInput(
+        fmt::format("{}:{}: {}", path.string(), e.source().begin.line, e.description()));
+  }
+  GLARECAM_CHECK(checkSections(path, root, sections));
+  return root;
+}
 
 const toml::node* TableReader::node(const char* key) {
   used_.insert(key);

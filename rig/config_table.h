@@ -12,6 +12,7 @@
 #include <initializer_list>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,6 +21,12 @@
 #include "rig/gpio/rig_io.h"
 
 namespace glarecam::rig {
+
+// Parses the TOML file at `path`, whose sub-tables must each be one of `sections` (the sections
+// its readers know). kBadInput "FILE: no such file", "FILE:LINE: <TOML syntax error>" or
+// "FILE:LINE: unknown section [x] (known: ...)".
+Result<toml::table> readConfigFile(const std::filesystem::path& path,
+                                   std::span<const std::string_view> sections);
 
 class TableReader {
  public:

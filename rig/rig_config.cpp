@@ -4,10 +4,8 @@
 #include <toml++/toml.h>
 
 #include <cmath>
-#include <set>
 
 #include "core/stack_io.h"
-#include "daemon/daemon_config_reader.h"
 #include "rig/config_table.h"
 
 namespace glarecam::rig {
@@ -20,21 +18,6 @@ constexpr double kSeaLevelPressureHpa = 1013.25;
 constexpr double kLapseRatePerMetre = 0.0065 / 288.15;
 constexpr double kBarometricExponent = 5.25588;
 constexpr std::int64_t kMaxTiltSamples = 100000;  // ≈ 2 h at the ADXL355's 15.6 Hz
-
-// Each sub-table named in the file must be one we know.
-Status checkSections(const std::filesystem::path& file, const toml::table& root) {
-  static const std::set<std::string> kSections{"site",         "module", "source",
-                                               "inclinometer", "gpio",   "capture",
-                                               "schedule",     "output", "faults"};
-  for (auto&& [key, node] : root) {
-    if (!node.is_table() || kSections.count(std::string(key.str()))) continue;
-    return badInput(
-        fmt::format("{}:{}: unknown section [{}] (known: capture, faults, gpio, inclinometer, "
-                    "module, output, schedule, site, source)",
-                    file.string(), node.source().begin.line, key.str()));
-  }
-  return {};
-}
 
 Result<std::optional<sun::SiteLocation>> readSite(const std::filesystem::path& file,
                                                   const toml::table* table) {
@@ -135,10 +118,11 @@ Status checkConsistent(const RigConfig& rig) {
   return {};
 }
 
-Result<RigConfig> parseRigConfig(const std::filesystem::path& path, const toml::table& root) {
+}  // namespace
+
+Result<RigConfig> readRigSections(const std::filesystem::path& path, const toml::table& root) {
   RigConfig rig;
   rig.path = path;
-  GLARECAM_CHECK(checkSections(path, root));
   TableReader top(path, root, "");
   GLARECAM_ASSIGN(rig.camera, top.string("camera"));
   std::optional<std::string> calibration;
@@ -151,29 +135,12 @@ Result<RigConfig> parseRigConfig(const std::filesystem::path& path, const toml::
   GLARECAM_CHECK(readModule(path, root["module"].as_table(), rig));
   GLARECAM_ASSIGN(rig.gpio, readGpio(path, root["gpio"].as_table()));
   GLARECAM_CHECK(checkConsistent(rig));
-  GLARECAM_ASSIGN(rig.daemon, daemon::readDaemonSections(path, root, rig.site.has_value()));
   return rig;
 }
-
-}  // namespace
 
 double standardPressureHpa(double altitude_m) {
   return kSeaLevelPressureHpa *
          std::pow(1.0 - kLapseRatePerMetre * altitude_m, kBarometricExponent);
-}
-
-Result<RigConfig> readRigConfig(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    return badInput(path.string() + ": " +
-                    (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
-  try {
-    const toml::table root = toml::parse_file(path.string());
-    return parseRigConfig(path, root);
-  } catch (const toml::parse_error& e) {
-    return badInput(
-        fmt::format("{}:{}: {}", path.string(), e.source().begin.line, e.description()));
-  }
 }
 
 Result<std::optional<Calibration>> rigCameraCalibration(const RigConfig& config) {

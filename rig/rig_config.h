@@ -1,17 +1,21 @@
-// The rig's configuration (TOML, /etc/glarecam/glarecam.toml by convention): where the rig is,
-// how its module faces, which inclinometer measures the tilt, the light source (the sun, or a
-// fixed lamp in the lab), the calibration file and the GPIO lines. Every key is documented in
-// firmware-config/glarecam.toml and docs/rig.md. Reading validates everything: an unknown key, a
-// wrong type or a value out of range is a kBadInput error "FILE:LINE: problem".
+// The rig's part of its configuration (TOML, /etc/glarecam/glarecam.toml by convention): where the
+// rig is, how its module faces, which inclinometer measures the tilt, the light source (the sun,
+// or a fixed lamp in the lab), the camera, the calibration file and the GPIO lines. The same file
+// holds glarecamd's sections, which daemon/daemon_config.h reads (daemon::readConfig reads the
+// whole file). Every key is documented in firmware-config/glarecam.toml and docs/rig.md. Reading
+// validates everything: an unknown key, a wrong type or a value out of range is a kBadInput error
+// "FILE:LINE: problem".
 #pragma once
 
+#include <toml++/toml.h>
+
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
 
 #include "core/error.h"
 #include "core/stack_manifest.h"
-#include "daemon/daemon_config.h"
 #include "rig/gpio/rig_io.h"
 #include "rig/inclinometer/tilt.h"
 #include "sun/incidence_angle.h"
@@ -46,15 +50,19 @@ struct RigConfig {
 
   // [gpio]: trigger, status LED and button lines (chip "sim" for the simulated rig's).
   std::optional<RigIoConfig> gpio;
-
-  // [capture], [schedule], [output], [faults]: what glarecamd does with the rig.
-  daemon::DaemonConfig daemon;
 };
 
 // The standard atmosphere's pressure at `altitude_m` (the default when the config gives none).
 double standardPressureHpa(double altitude_m);
 
-Result<RigConfig> readRigConfig(const std::filesystem::path& path);
+// The sections of a config file the rig's reader reads.
+inline constexpr std::array<std::string_view, 5> kRigSections{"gpio", "inclinometer", "module",
+                                                              "site", "source"};
+
+// The top-level keys and kRigSections of `root`, parsed from `file` (relative paths resolve
+// against its directory). Other sections are their readers' (readConfigFile checks that each
+// section has one).
+Result<RigConfig> readRigSections(const std::filesystem::path& file, const toml::table& root);
 
 // The camera calibration in the config's calibration file, when it holds one: the file may be
 // absent (the flip creates it) or hold only the inclinometer's zero offset.

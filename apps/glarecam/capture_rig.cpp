@@ -10,6 +10,7 @@
 #include "apps/glarecam/sample_progress.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
+#include "daemon/daemon_config.h"
 #include "daemon/rig_stack.h"
 #include "rig/gpio/rig_io_registry.h"
 
@@ -20,7 +21,7 @@ Result<std::unique_ptr<CaptureRig>> CaptureRig::open(const std::string& config_p
                                                      bool show_progress) {
   std::unique_ptr<CaptureRig> rig(new CaptureRig);
   rig->show_progress_ = show_progress;
-  GLARECAM_ASSIGN(rig->config_, rig::readRigConfig(config_path));
+  GLARECAM_ASSIGN(rig->config_, daemon::readRigConfig(config_path));
   const rig::RigConfig& config = rig->config_;
   if (config.inclinometer && !config.site && !config.fixed_source)
     spdlog::warn(

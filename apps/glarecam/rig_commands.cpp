@@ -19,6 +19,7 @@
 #include "apps/glarecam/sample_progress.h"
 #include "core/atomic_file.h"
 #include "core/stack_manifest.h"
+#include "daemon/daemon_config.h"
 #include "rig/gpio/rig_io_registry.h"
 #include "rig/gpio/status_led.h"
 #include "rig/inclinometer/inclinometer_registry.h"
@@ -152,7 +153,7 @@ void printGeometry(const rig::RigGeometry& g) {
 
 Status runAlpha(const AlphaArgs& args) {
   rig::RigConfig config;
-  GLARECAM_ASSIGN(config, rig::readRigConfig(args.config));
+  GLARECAM_ASSIGN(config, daemon::readRigConfig(args.config));
   UtcTime time;
   GLARECAM_ASSIGN(time, args.time ? sun::parseIsoTime(*args.time) : Result<UtcTime>(now()));
   std::unique_ptr<rig::RigSensors> sensors;
@@ -189,7 +190,7 @@ Result<InclinometerChoice> chooseInclinometer(const InclinometerArgs& args, cons
   InclinometerChoice choice;
   if (args.config) {
     rig::RigConfig config;
-    GLARECAM_ASSIGN(config, rig::readRigConfig(*args.config));
+    GLARECAM_ASSIGN(config, daemon::readRigConfig(*args.config));
     if (config.inclinometer) {
       choice.uri = config.inclinometer->uri;
       choice.tilt = config.inclinometer->tilt;
@@ -343,7 +344,7 @@ Result<std::filesystem::path> flipCalibrationFile(const InclinometerArgs& args,
     choice.calibration = *args.calibration;
   } else if (args.config) {
     rig::RigConfig config;
-    GLARECAM_ASSIGN(config, rig::readRigConfig(*args.config));
+    GLARECAM_ASSIGN(config, daemon::readRigConfig(*args.config));
     choice.calibration = config.calibration;
     if (config.inclinometer) choice.uri = config.inclinometer->uri;
   }
@@ -489,7 +490,7 @@ Status runGpio(const GpioArgs& args) {
       return badInput("gpio: --trigger must be a count in [1, 10000]");
   }
   rig::RigConfig config;
-  GLARECAM_ASSIGN(config, rig::readRigConfig(args.config));
+  GLARECAM_ASSIGN(config, daemon::readRigConfig(args.config));
   if (!config.gpio) return badInput(args.config + ": no [gpio] section");
   std::unique_ptr<rig::RigIo> io;
   GLARECAM_ASSIGN(io, rig::openRigIo(*config.gpio));

@@ -134,7 +134,7 @@ class DaemonTest : public ::testing::Test {
 
 TEST_F(DaemonTest, ConfigWithoutDaemonSectionsRunsOnDefaults) {
   testing::writeText(config_path(), "camera = \"sim:\"\n");
-  const auto config = rig::readRigConfig(config_path());
+  const auto config = readConfig(config_path());
   ASSERT_TRUE(config) << config.error().message;
   const DaemonConfig& daemon = config->daemon;
   EXPECT_EQ(daemon.schedule.mode, ScheduleMode::kInterval);
@@ -182,7 +182,7 @@ camera_max_failures = 3
 camera_backoff_s = 5
 camera_backoff_max_s = 60
 )");
-  const auto config = rig::readRigConfig(config_path());
+  const auto config = readConfig(config_path());
   ASSERT_TRUE(config) << config.error().message;
   const DaemonConfig& d = config->daemon;
   EXPECT_EQ(d.capture.exposures_us, (std::vector<double>{10, 100, 1000}));
@@ -208,7 +208,7 @@ camera_backoff_max_s = 60
 TEST_F(DaemonTest, ConfigErrorsNameTheFileAndLine) {
   const auto expectError = [&](const std::string& text, const std::string& expected) {
     testing::writeText(config_path(), text);
-    const auto config = rig::readRigConfig(config_path());
+    const auto config = readConfig(config_path());
     ASSERT_FALSE(config) << text;
     EXPECT_EQ(config.error().code, ErrorCode::kBadInput);
     EXPECT_NE(config.error().message.find(expected), std::string::npos)
@@ -235,12 +235,20 @@ TEST_F(DaemonTest, ConfigErrorsNameTheFileAndLine) {
   expectError("[daemon]\n", "unknown section [daemon]");
 }
 
+TEST(RigConfig, TheShippedExampleIsValid) {
+  const auto example = testing::testDataDir() / ".." / ".." / "firmware-config" / "glarecam.toml";
+  const auto whole = readConfig(example);
+  ASSERT_TRUE(whole) << whole.error().message;
+  const rig::RigConfig* config = &whole->rig;
+  EXPECT_TRUE(config->site && config->inclinometer && config->gpio && config->module_azimuth_deg);
+}
+
 TEST_F(DaemonTest, TheShippedExampleStatesTheDefaults) {
   const fs::path firmware = testing::testDataDir() / ".." / ".." / "firmware-config";
-  const auto example = rig::readRigConfig(firmware / "glarecam.toml");
+  const auto example = readConfig(firmware / "glarecam.toml");
   ASSERT_TRUE(example) << example.error().message;
   testing::writeText(config_path(), "camera = \"sim:\"\n");
-  const auto defaults = rig::readRigConfig(config_path());
+  const auto defaults = readConfig(config_path());
   ASSERT_TRUE(defaults);
   const DaemonConfig& a = example->daemon;
   const DaemonConfig& b = defaults->daemon;
@@ -272,18 +280,18 @@ TEST_F(DaemonTest, GenicamPresetsAreReadIntoOneFeatureString) {
   testing::writeText(dir_ / "preset.conf", "# comment\n\n  Width=320\nGammaEnable=false\n");
   testing::writeText(config_path(),
                      "camera = \"aravis:\"\n[capture]\ngenicam_preset = \"preset.conf\"\n");
-  const auto config = rig::readRigConfig(config_path());
+  const auto config = readConfig(config_path());
   ASSERT_TRUE(config) << config.error().message;
   EXPECT_EQ(config->daemon.capture.genicam_features, "Width=320 GammaEnable=false");
   testing::writeText(dir_ / "preset.conf", "Width=320\nGamma Enable = false\n");
-  const auto bad = rig::readRigConfig(config_path());
+  const auto bad = readConfig(config_path());
   ASSERT_FALSE(bad);
   EXPECT_NE(
       bad.error().message.find((dir_ / "preset.conf").string() + ":2: expected Feature=Value"),
       std::string::npos)
       << bad.error().message;
   fs::remove(dir_ / "preset.conf");
-  EXPECT_FALSE(rig::readRigConfig(config_path()));
+  EXPECT_FALSE(readConfig(config_path()));
 }
 
 TEST_F(DaemonTest, InvalidConfigIsBadInputBeforeAnythingOpens) {

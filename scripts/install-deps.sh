@@ -7,6 +7,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   build-essential cmake ninja-build pkg-config git ca-certificates clang-format
+  # scripts/check-layering
+  python3
   # core: images, data formats, logging, CLI
   libpng-dev libtiff-dev libopenexr-dev nlohmann-json3-dev libtomlplusplus-dev
   libspdlog-dev libfmt-dev libcli11-dev

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <ctime>
 
+#include "capture/sim/sim_camera.h"
 #include "core/progress.h"
 #include "core/stack_io.h"
 
@@ -44,7 +45,7 @@ struct SensorLevels {
 
 // The calibration in force: the capture's, else the camera's own.
 std::optional<Calibration> calibrationFor(const Camera& camera, const CaptureSettings& settings) {
-  return settings.calibration ? settings.calibration : camera.knownCalibration();
+  return settings.calibration ? settings.calibration : camera.info().calibration;
 }
 
 SensorLevels sensorLevels(const Camera& camera, const CaptureSettings& settings) {
@@ -55,23 +56,10 @@ SensorLevels sensorLevels(const Camera& camera, const CaptureSettings& settings)
   return {0.0, kUncalibratedSaturationFraction * full_scale};
 }
 
-// camera.capture(), held to its contract: one frame per request.
-Result<std::vector<CapturedFrame>> captureFrames(Camera& camera,
-                                                 std::span<const ExposureRequest> requests) {
-  std::vector<CapturedFrame> frames;
-  GLARECAM_ASSIGN(frames, camera.capture(requests));
-  if (frames.size() != requests.size()) {
-    return fail(ErrorCode::kInternal,
-                fmt::format("{}: {} frames for {} requests", camera.info().uri, frames.size(),
-                            requests.size()));
-  }
-  return frames;
-}
-
 Result<CapturedFrame> captureOne(Camera& camera, double exposure_us, double gain_db) {
   const ExposureRequest request{exposure_us, gain_db};
   std::vector<CapturedFrame> frames;
-  GLARECAM_ASSIGN(frames, captureFrames(camera, {&request, 1}));
+  GLARECAM_ASSIGN(frames, camera.capture({&request, 1}));
   return std::move(frames.front());
 }
 
@@ -111,7 +99,7 @@ Status captureExposures(Camera& camera, const std::vector<double>& exposures_us,
                         Bracket& bracket) {
   bracket.requested.clear();
   for (const double exposure : exposures_us) bracket.requested.push_back({exposure, gain_db});
-  GLARECAM_ASSIGN(bracket.frames, captureFrames(camera, bracket.requested));
+  GLARECAM_ASSIGN(bracket.frames, camera.capture(bracket.requested));
   return {};
 }
 
@@ -206,7 +194,7 @@ std::string stackId(const std::string& stamp, std::optional<double> alpha_deg) {
 // α as given, else as a simulated camera knows it from its scene.
 std::optional<double> alphaFor(const Camera& camera, const CaptureSettings& settings) {
   if (settings.alpha_deg || !settings.alpha_from_scene) return settings.alpha_deg;
-  const auto truth = camera.sceneTruth();
+  const auto truth = sceneTruthOf(camera);
   if (truth && truth->contains("alpha_deg") && (*truth)["alpha_deg"].is_number()) {
     return (*truth)["alpha_deg"].get<double>();
   }
@@ -305,7 +293,7 @@ Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settin
   CapturedStack stack;
   stack.manifest = makeManifest(camera, settings, bracket);
   stack.bit_depth = camera.format().bits_per_pixel <= 8 ? 8 : 16;
-  stack.truth = camera.sceneTruth();
+  stack.truth = sceneTruthOf(camera);
   for (CapturedFrame& frame : bracket.frames) stack.frames.push_back(std::move(frame.image));
   return stack;
 }

@@ -4,12 +4,17 @@
 // and match each one to its request (libcamera by the ExposureTime in the request metadata, V4L2
 // by dropping frames until the control took effect), and returns the exposure and gain the camera
 // actually applied: cameras round them, and the manifest must record what was used.
+//
+// The base class owns the contract (style.md, habit 3): capture() is public and not virtual. It
+// refuses a request the camera cannot take (not finite, outside limits(), a gain the camera does
+// not have), calls the backend's protected doCapture(), checks that one frame came back per
+// request, and turns an exception into an Error. Every error names the camera's URI. Backends
+// never see an unchecked request, and a caller never sees a short bracket.
 // Hardware libraries are included only by each backend's .cpp; this header stays portable.
 #pragma once
 
 #include <cstdint>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -37,6 +42,9 @@ struct CameraInfo {
   std::string serial;
   std::string detail;  // transport, address, device node
   CameraOptics optics;
+  // The calibration of a camera that knows its own (factory-calibrated cameras, the simulator);
+  // otherwise the capture's --calibration supplies it.
+  std::optional<Calibration> calibration{};
 };
 
 struct CameraLimits {
@@ -71,13 +79,14 @@ struct CapturedFrame {
 
 // Options every backend understands; the ones a backend has no use for are ignored.
 struct CameraOptions {
-  std::optional<std::string> pixel_format;    // GenICam name; default: the deepest mono format
-  int max_frame_retries = 5;                  // incomplete / timed-out frames per request
-  double frame_timeout_s = 5.0;               // beyond the exposure time
-  std::optional<double> simulated_alpha_deg;  // sim: the α of the scene the rig looks at
+  std::optional<std::string> pixel_format;  // GenICam name; default: the deepest mono format
+  int max_frame_retries = 5;                // incomplete / timed-out frames per request
+  double frame_timeout_s = 5.0;             // beyond the exposure time
   // aravis: GenICam features set right after opening, before glarecam's own ("Feature=Value"
   // separated by spaces, arv_device_set_features_from_string; a preset, daemon_config.h).
   std::optional<std::string> genicam_features{};
+
+  bool operator==(const CameraOptions&) const = default;
 };
 
 class Camera {
@@ -89,19 +98,26 @@ class Camera {
   virtual const CameraInfo& info() const = 0;
   virtual CameraLimits limits() const = 0;
   virtual SensorFormat format() const = 0;
-  // The calibration of a camera that knows its own (the simulator); real cameras have none and
-  // the capture's --calibration supplies it.
-  virtual std::optional<Calibration> knownCalibration() const { return std::nullopt; }
-  // The truth of the scene a simulated camera shows (truth.json, docs/simulate.md), written
-  // into its stacks so that the pipeline can be checked against it; real cameras have none.
-  virtual std::optional<nlohmann::json> sceneTruth() const { return std::nullopt; }
-  // One frame per request, in request order. Errors name the camera's URI; a camera that was
-  // lost (unplugged, powered off) fails every later call.
-  virtual Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) = 0;
+
+  // One frame per request, in request order; none for no request. kBadInput for a request
+  // outside limits(); a camera that was lost (unplugged, powered off) fails every later call
+  // (kHardware). Errors name the camera's URI.
+  Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests);
 
  protected:
   Camera() = default;
+
+  // The backend's capture, given only requests that passed the checks (at least one). Returns
+  // one frame per request; may throw (the base turns the exception into an Error).
+  virtual Result<std::vector<CapturedFrame>> doCapture(
+      std::span<const ExposureRequest> requests) = 0;
 };
+
+// Whether `request` is one `limits` allow: both values finite, the exposure positive and within
+// the range (an upper limit of 0: none known), the gain within its range (a camera without
+// analogue gain has the range 0…0). kBadInput naming `uri` and the value otherwise.
+Status checkRequest(const ExposureRequest& request, const CameraLimits& limits,
+                    std::string_view uri);
 
 class CameraBackend {
  public:

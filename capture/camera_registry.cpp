@@ -38,23 +38,29 @@ class UnavailableBackend final : public CameraBackend {
 
 struct BackendEntry {
   std::string_view scheme;
-  std::function<std::unique_ptr<CameraBackend>()> make;
+  std::function<std::unique_ptr<CameraBackend>(const SceneAlphaSource&)> make;
 };
 
 const std::array<BackendEntry, 4>& backendEntries() {
   static const std::array<BackendEntry, 4> entries{{
       {"sim", makeSimCameraBackend},
 #if GLARECAM_WITH_ARAVIS
-      {"aravis", makeAravisBackend},
+      {"aravis", [](const SceneAlphaSource&) { return makeAravisBackend(); }},
 #else
-      {"aravis", [] { return std::make_unique<UnavailableBackend>("aravis", "Aravis 0.8"); }},
+      {"aravis",
+       [](const SceneAlphaSource&) {
+         return std::make_unique<UnavailableBackend>("aravis", "Aravis 0.8");
+       }},
 #endif
 #if GLARECAM_WITH_LIBCAMERA
-      {"libcamera", makeLibcameraBackend},
+      {"libcamera", [](const SceneAlphaSource&) { return makeLibcameraBackend(); }},
 #else
-      {"libcamera", [] { return std::make_unique<UnavailableBackend>("libcamera", "libcamera"); }},
+      {"libcamera",
+       [](const SceneAlphaSource&) {
+         return std::make_unique<UnavailableBackend>("libcamera", "libcamera");
+       }},
 #endif
-      {"v4l2", [] { return makeV4l2Backend(); }},
+      {"v4l2", [](const SceneAlphaSource&) { return makeV4l2Backend(); }},
   }};
   return entries;
 }
@@ -82,23 +88,25 @@ Result<CameraUri> parseCameraUri(std::string_view uri) {
 
 std::vector<std::unique_ptr<CameraBackend>> cameraBackends() {
   std::vector<std::unique_ptr<CameraBackend>> backends;
-  for (const auto& entry : backendEntries()) backends.push_back(entry.make());
+  for (const auto& entry : backendEntries()) backends.push_back(entry.make({}));
   return backends;
 }
 
-Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme) {
+Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme,
+                                                     const SceneAlphaSource& scene_alpha) {
   for (const auto& entry : backendEntries()) {
-    if (entry.scheme == scheme) return entry.make();
+    if (entry.scheme == scheme) return entry.make(scene_alpha);
   }
   return badInput(
       fmt::format("unknown camera backend '{}' (expected one of {})", scheme, knownSchemes()));
 }
 
-Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options) {
+Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options,
+                                           const SceneAlphaSource& scene_alpha) {
   CameraUri parsed;
   GLARECAM_ASSIGN(parsed, parseCameraUri(uri));
   std::unique_ptr<CameraBackend> backend;
-  GLARECAM_ASSIGN(backend, cameraBackend(parsed.scheme));
+  GLARECAM_ASSIGN(backend, cameraBackend(parsed.scheme, scene_alpha));
   return backend->open(parsed.id, options);
 }
 

@@ -3,7 +3,9 @@
 // fails with a message saying so, so a URI is never silently misread.
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,13 +23,20 @@ struct CameraUri {
 // "aravis:GV01" → {aravis, GV01}; a bare known scheme ("sim") is accepted as "sim:".
 Result<CameraUri> parseCameraUri(std::string_view uri);
 
+// Where a simulated camera (sim:) takes the α of the scene it shows, asked before each bracket:
+// the rig's measured α, or the capture's --alpha (nullopt: not known). Real cameras look at the
+// real scene and never ask; any camera may be given one.
+using SceneAlphaSource = std::function<std::optional<double>()>;
+
 // Every backend, in the order `glarecam cameras` lists them.
 std::vector<std::unique_ptr<CameraBackend>> cameraBackends();
 
 // The backend for `scheme`, or a kBadInput error listing the known schemes.
-Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme);
+Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme,
+                                                     const SceneAlphaSource& scene_alpha = {});
 
 // Parses `uri` and opens the camera it names.
-Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options);
+Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options,
+                                           const SceneAlphaSource& scene_alpha = {});
 
 }  // namespace glarecam::capture

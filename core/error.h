@@ -9,6 +9,7 @@
 #include <new>
 #include <string>
 #include <system_error>
+#include <type_traits>
 #include <utility>
 
 namespace glarecam {
@@ -62,6 +63,17 @@ inline Error currentExceptionError() {
     return {ErrorCode::kInternal, std::string("internal error: ") + e.what()};
   } catch (...) {
     return {ErrorCode::kInternal, "internal error"};
+  }
+}
+
+// Runs `body`, which returns a Result or a Status, turning an exception it throws into its Error
+// (currentExceptionError): the one boundary between libraries that throw and errors as values.
+template <typename F>
+auto catchExceptions(F&& body) -> std::invoke_result_t<F&> {
+  try {
+    return body();
+  } catch (...) {
+    return std::unexpected(currentExceptionError());
   }
 }
 

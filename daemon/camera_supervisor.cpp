@@ -4,23 +4,14 @@
 
 namespace glarecam::daemon {
 
-namespace {
-
-bool sameOptions(const capture::CameraOptions& a, const capture::CameraOptions& b) {
-  return a.pixel_format == b.pixel_format && a.max_frame_retries == b.max_frame_retries &&
-         a.frame_timeout_s == b.frame_timeout_s && a.simulated_alpha_deg == b.simulated_alpha_deg &&
-         a.genicam_features == b.genicam_features;
-}
-
-}  // namespace
-
-CameraSupervisor::CameraSupervisor(FaultConfig faults, CameraOpener opener)
-    : faults_(faults), opener_(std::move(opener)) {}
+CameraSupervisor::CameraSupervisor(FaultConfig faults, CameraOpener opener,
+                                   capture::SceneAlphaSource scene_alpha)
+    : faults_(faults), opener_(std::move(opener)), scene_alpha_(std::move(scene_alpha)) {}
 
 void CameraSupervisor::configure(std::string uri, capture::CameraOptions options,
                                  FaultConfig faults) {
   faults_ = faults;
-  if (uri == uri_ && sameOptions(options, options_)) return;
+  if (uri == uri_ && options == options_) return;
   uri_ = std::move(uri);
   options_ = std::move(options);
   camera_.reset();
@@ -30,7 +21,7 @@ Result<capture::Camera*> CameraSupervisor::acquire(SteadyTime now) {
   if (camera_) return camera_.get();
   if (retry_at_ && now < *retry_at_)
     return std::unexpected(last_error_.value_or(Error{ErrorCode::kHardware, uri_ + ": closed"}));
-  auto opened = opener_(uri_, options_);
+  auto opened = opener_(uri_, options_, scene_alpha_);
   if (!opened) {
     failed(opened.error(), now);
     return std::unexpected(opened.error());

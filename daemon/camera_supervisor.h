@@ -11,18 +11,21 @@
 #include <string>
 
 #include "capture/camera.h"
+#include "capture/camera_registry.h"
 #include "core/error.h"
 #include "daemon/daemon_clock.h"
 #include "daemon/daemon_config.h"
 
 namespace glarecam::daemon {
 
+// Opens a camera by URI, as capture::openCamera (the default) does.
 using CameraOpener = std::function<Result<std::unique_ptr<capture::Camera>>(
-    std::string_view uri, const capture::CameraOptions&)>;
+    std::string_view uri, const capture::CameraOptions&, const capture::SceneAlphaSource&)>;
 
 class CameraSupervisor {
  public:
-  CameraSupervisor(FaultConfig faults, CameraOpener opener);
+  // `scene_alpha`: given to every camera it opens (the rig's measured α, for a simulated one).
+  CameraSupervisor(FaultConfig faults, CameraOpener opener, capture::SceneAlphaSource scene_alpha);
 
   // The camera to open; an open camera is closed when the URI or the options change.
   void configure(std::string uri, capture::CameraOptions options, FaultConfig faults);
@@ -50,6 +53,7 @@ class CameraSupervisor {
  private:
   FaultConfig faults_;
   CameraOpener opener_;
+  capture::SceneAlphaSource scene_alpha_;
   std::string uri_;
   capture::CameraOptions options_;
   std::unique_ptr<capture::Camera> camera_;

@@ -12,7 +12,6 @@
 #include "daemon/alpha_schedule.h"
 #include "daemon/journal_sink.h"
 #include "daemon/rig_stack.h"
-#include "pipeline/limit_curve.h"
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"
 
@@ -26,9 +25,6 @@ namespace {
 constexpr std::string_view kWriteFailed = "writing a stack failed: ";
 // After a failed button read, how long the button thread waits before reading again.
 constexpr std::chrono::seconds kButtonRetry{5};
-// The simulated scene exists up to the limit curve's 80°; the simulated inclinometer's noise
-// (0.004°) may carry a stack aimed at 80° just past it, where the scene is rendered at 80°.
-constexpr double kSimulatedAlphaSlackDeg = 0.05;
 
 const char* triggerName(CaptureTrigger trigger) {
   switch (trigger) {
@@ -52,11 +48,6 @@ std::string scheduleText(const ScheduleConfig& schedule) {
       break;
   }
   return "on the button and SIGUSR1";
-}
-
-bool isSimulatedCamera(const std::string& uri) {
-  const auto parsed = capture::parseCameraUri(uri);
-  return parsed && parsed->scheme == "sim";
 }
 
 std::string stackTag(const capture::CapturedStack& stack) {
@@ -83,7 +74,7 @@ CaptureDaemon::CaptureDaemon(DaemonOptions options, DaemonServices services, Con
       config_(std::move(config)),
       clock_(*services_.clock),
       events_(clock_),
-      camera_(config_.daemon.faults, services_.open_camera) {
+      camera_(config_.daemon.faults, services_.open_camera, [this] { return scene_alpha_deg_; }) {
   if (options_.output_root) config_.daemon.output.root = *options_.output_root;
   if (options_.interval) {
     config_.daemon.schedule.mode = ScheduleMode::kInterval;
@@ -183,7 +174,8 @@ void CaptureDaemon::stop() {
 
 void CaptureDaemon::applyConfig() {
   const DaemonConfig& daemon = config_.daemon;
-  camera_.configure(config_.rig.camera.value_or(""), cameraOptions(std::nullopt), daemon.faults);
+  camera_.configure(config_.rig.camera.value_or(""), capture::cameraOptions(daemon.capture),
+                    daemon.faults);
   const auto calibration = rig::rigCameraCalibration(config_.rig);
   calibration_ = calibration ? *calibration : std::nullopt;
   if (!calibration) spdlog::error("glarecamd: {}", calibration.error().message);
@@ -300,16 +292,12 @@ bool CaptureDaemon::outputWritable() {
 // now may come back, like a camera lost at any other time.
 Status CaptureDaemon::checkReloadedCamera(const Config& config) {
   GLARECAM_CHECK(checkConfig(config));
-  capture::CameraOptions options;
-  options.pixel_format = config.daemon.capture.pixel_format;
-  options.max_frame_retries = config.daemon.capture.max_frame_retries;
-  options.genicam_features = config.daemon.capture.genicam_features;
-  const capture::CameraOptions current = cameraOptions(std::nullopt);
-  if (*config.rig.camera == config_.rig.camera && options.pixel_format == current.pixel_format &&
-      options.genicam_features == current.genicam_features)
+  const capture::CameraOptions options = capture::cameraOptions(config.daemon.capture);
+  if (*config.rig.camera == config_.rig.camera &&
+      options == capture::cameraOptions(config_.daemon.capture))
     return {};
   camera_.close();
-  auto trial = services_.open_camera(*config.rig.camera, options);
+  auto trial = services_.open_camera(*config.rig.camera, options, {});
   if (!trial && trial.error().code == ErrorCode::kBadInput)
     return std::unexpected(withContext(trial.error(), config.rig.path.string() + ": camera"));
   return {};
@@ -404,24 +392,8 @@ void CaptureDaemon::reload() {
 
 // ---- one capture ----------------------------------------------------------------------------
 
-capture::CameraOptions CaptureDaemon::cameraOptions(
-    std::optional<double> simulated_alpha_deg) const {
-  const CaptureConfig& capture = config_.daemon.capture;
-  capture::CameraOptions options;
-  options.pixel_format = capture.pixel_format;
-  options.max_frame_retries = capture.max_frame_retries;
-  options.genicam_features = capture.genicam_features;
-  options.simulated_alpha_deg = simulated_alpha_deg;
-  return options;
-}
-
 capture::CaptureSettings CaptureDaemon::baseSettings() const {
-  const CaptureConfig& capture = config_.daemon.capture;
-  capture::CaptureSettings settings;
-  settings.exposures_us = capture.exposures_us;
-  settings.gain_db = capture.gain_db;
-  settings.optics.f_number = capture.f_number;
-  settings.optics.nd_transmission = capture.nd_transmission;
+  capture::CaptureSettings settings = capture::captureSettings(config_.daemon.capture);
   settings.calibration = calibration_;
   settings.alpha_from_scene = !config_.rig.site && !config_.rig.fixed_source;
   return settings;
@@ -494,15 +466,7 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
       return skip(fmt::format("α {:.1f}° is beyond max_alpha_deg {:g}°", geometry->alpha_deg,
                               config_.daemon.schedule.max_alpha_deg));
   }
-  const std::string& uri = *config_.rig.camera;
-  if (isSimulatedCamera(uri) && settings.alpha_deg) {
-    // A simulated scene is rendered for one α: the camera is reopened at each stack's.
-    if (*settings.alpha_deg > pipeline::kMaxLimitAlphaDeg + kSimulatedAlphaSlackDeg)
-      return skip(fmt::format("the simulated scene ends at {:g}°", pipeline::kMaxLimitAlphaDeg));
-    camera_.configure(uri,
-                      cameraOptions(std::min(*settings.alpha_deg, pipeline::kMaxLimitAlphaDeg)),
-                      config_.daemon.faults);
-  }
+  if (settings.alpha_deg) scene_alpha_deg_ = settings.alpha_deg;
   const SteadyTime now = clock_.now();
   const auto acquired = camera_.acquire(now);
   if (!acquired) return cameraFailed(acquired.error(), now, false);

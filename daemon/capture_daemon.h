@@ -127,7 +127,6 @@ class CaptureDaemon {
   Status capture(CaptureTrigger trigger);
   std::optional<rig::RigGeometry> measureGeometry(capture::CaptureSettings& settings, bool& pause);
   capture::CaptureSettings baseSettings() const;
-  capture::CameraOptions cameraOptions(std::optional<double> simulated_alpha_deg) const;
   Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
   void finishStack(capture::CapturedStack& stack, const std::optional<rig::RigGeometry>& geometry,
                    CaptureTrigger trigger, sun::UtcTime bracket_start, sun::UtcTime bracket_end);
@@ -161,6 +160,7 @@ class CaptureDaemon {
   CameraSupervisor camera_;
   std::unique_ptr<rig::RigSensors> sensors_;
   std::optional<rig::RigGeometry> last_geometry_;
+  std::optional<double> scene_alpha_deg_;  // the last α measured: what a simulated camera shows
   std::set<std::string> logged_warnings_;  // the sensors' standing warnings, logged once
   std::optional<Calibration> calibration_;
   std::unique_ptr<rig::RigIo> io_;

@@ -24,8 +24,9 @@ constexpr std::int64_t kMaxCameraFailures = 1000;
 constexpr std::int64_t kMaxBackoffS = 86400;
 constexpr double kAlphaTargetStepDeg = 5.0;  // the paper's sweep, 5° ... 80°
 
-Result<CaptureConfig> readCapture(const std::filesystem::path& file, const toml::table* table) {
-  CaptureConfig capture;
+Result<capture::CaptureConfig> readCapture(const std::filesystem::path& file,
+                                           const toml::table* table) {
+  capture::CaptureConfig capture;
   if (!table) return capture;
   rig::TableReader reader(file, *table, "capture");
   if (const toml::node* exposures = reader.node("exposures");

@@ -15,25 +15,12 @@
 #include <string_view>
 #include <vector>
 
+#include "capture/capture_config.h"
 #include "core/error.h"
 #include "pipeline/limit_curve.h"
 #include "rig/rig_config.h"
 
 namespace glarecam::daemon {
-
-// [capture]: the bracket. Exposures "auto" (metered, capture/auto_bracket.h) or a list in µs.
-struct CaptureConfig {
-  std::optional<std::vector<double>> exposures_us;  // none: auto-bracket
-  double gain_db = 0.0;
-  std::optional<std::string> pixel_format;  // GenICam name; default the deepest mono format
-  std::optional<double> f_number;           // lens, when the camera cannot know it
-  std::optional<double> nd_transmission;    // ND filter in front of the lens, (0, 1]
-  int max_frame_retries = 5;                // incomplete or timed-out frames per exposure
-  // A GenICam feature preset (firmware-config/genicam/): its file and the features it sets, for
-  // aravis: cameras (CameraOptions::genicam_features).
-  std::optional<std::filesystem::path> genicam_preset{};
-  std::optional<std::string> genicam_features{};
-};
 
 // Reads a preset: one "Feature=Value" a line, '#' comments, blank lines; the features joined as
 // arv_device_set_features_from_string() takes them. kBadInput naming FILE:LINE for anything else.
@@ -90,7 +77,7 @@ std::vector<double> defaultAlphaTargetsDeg();
 
 // The daemon's sections together.
 struct DaemonConfig {
-  CaptureConfig capture;
+  capture::CaptureConfig capture;  // [capture]
   ScheduleConfig schedule{.alpha_targets_deg = defaultAlphaTargetsDeg()};
   OutputConfig output;
   FaultConfig faults;

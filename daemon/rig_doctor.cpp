@@ -62,11 +62,8 @@ Result<std::string> systemctlUnitState(const std::string& unit) {
 DoctorCheck checkCamera(const Config& config, const CameraOpener& open,
                         const std::optional<double>& alpha_deg) {
   if (!config.rig.camera) return failed("camera", "the config names no camera (camera = \"URI\")");
-  capture::CameraOptions options;
-  options.pixel_format = config.daemon.capture.pixel_format;
-  options.genicam_features = config.daemon.capture.genicam_features;
-  options.simulated_alpha_deg = alpha_deg;
-  auto camera = open(*config.rig.camera, options);
+  auto camera = open(*config.rig.camera, capture::cameraOptions(config.daemon.capture),
+                     [alpha_deg] { return alpha_deg; });
   if (!camera) return failed("camera", camera.error().message);
   const capture::CameraLimits limits = (*camera)->limits();
   const capture::ExposureRequest request{
@@ -202,7 +199,8 @@ DoctorCheck unitCheck(const Result<std::string>& unit) {
 void checkRig(const Config& config, DoctorOptions& options, bool daemon_running,
               std::vector<DoctorCheck>& checks) {
   SensorChecks sensors = checkSensors(config);
-  // A simulated camera shows the α the rig measures, where its scene exists.
+  // The camera is told the α the rig measures (a simulated one shows its scene there), when it is
+  // within the method's range.
   std::optional<double> scene_alpha_deg = sensors.alpha_deg;
   if (scene_alpha_deg &&
       !(*scene_alpha_deg >= 0 && *scene_alpha_deg <= pipeline::kMaxLimitAlphaDeg))

@@ -19,6 +19,8 @@
 #include "apps/glarecam/option_parsing.h"
 #include "capture/bracketer.h"
 #include "capture/camera_registry.h"
+#include "capture/capture_config.h"
+#include "capture/sim/sim_camera.h"
 #include "core/atomic_file.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
@@ -113,16 +115,14 @@ Result<capture::CaptureSettings> captureSettings(const CaptureArgs& args) {
   return settings;
 }
 
-Result<capture::CameraOptions> cameraOptions(const CaptureArgs& args,
-                                             const capture::CaptureSettings& settings) {
-  capture::CameraOptions options;
-  options.pixel_format = args.pixel_format;
+Result<capture::CameraOptions> cameraOptions(const CaptureArgs& args) {
+  capture::CaptureConfig config;
+  config.pixel_format = args.pixel_format;
   std::uint64_t retries = 0;
   GLARECAM_ASSIGN(retries, parseUnsigned(args.max_retries, "--max-retries"));
   if (retries > kMaxFrameRetries) return badInput("capture: --max-retries must be at most 1000");
-  options.max_frame_retries = static_cast<int>(retries);
-  options.simulated_alpha_deg = settings.alpha_deg;
-  return options;
+  config.max_frame_retries = static_cast<int>(retries);
+  return capture::cameraOptions(config);
 }
 
 Status checkAgainstCamera(const capture::Camera& camera, const capture::CaptureSettings& settings);
@@ -153,7 +153,7 @@ Status runCapture(const CaptureArgs& args) {
   if (camera_uri.empty())
     return badInput("capture: give --camera URI (or a --config with camera = \"URI\")");
   capture::CameraOptions options;
-  GLARECAM_ASSIGN(options, cameraOptions(args, settings));
+  GLARECAM_ASSIGN(options, cameraOptions(args));
   std::uint64_t count = 0;
   GLARECAM_ASSIGN(count, parseUnsigned(args.count, "--count"));
   if (count == 0) return badInput("capture: --count must be at least 1");
@@ -170,7 +170,8 @@ Status runCapture(const CaptureArgs& args) {
     removeStaleTemporaries(args.out, kStaleTemporaryAge);
   }
   std::unique_ptr<capture::Camera> camera;
-  GLARECAM_ASSIGN(camera, capture::openCamera(camera_uri, options));
+  GLARECAM_ASSIGN(camera, capture::openCamera(camera_uri, options,
+                                              [alpha = settings.alpha_deg] { return alpha; }));
   GLARECAM_CHECK(checkAgainstCamera(*camera, settings));
   return captureSeries(*camera, std::move(settings), rig.get(), args.out, count, args.interval_s);
 }
@@ -185,12 +186,12 @@ Status checkAgainstCamera(const capture::Camera& camera, const capture::CaptureS
                     "--nd-transmission are for real cameras",
                     camera.info().uri));
   }
-  if (!settings.calibration && !camera.knownCalibration()) {
+  if (!settings.calibration && !camera.info().calibration) {
     spdlog::warn(
         "capture: no --calibration; the stacks need one when processed "
         "(glarecam process --calibration FILE)");
   }
-  if (!settings.alpha_deg && !camera.sceneTruth()) {
+  if (!settings.alpha_deg && !capture::sceneTruthOf(camera)) {
     spdlog::warn(
         "capture: no --alpha; the stacks record no angle of incidence, so process "
         "cannot apply the α-dependent glare limit");

@@ -104,24 +104,18 @@ class AravisCamera final : public Camera {
   CameraLimits limits() const override { return limits_; }
   SensorFormat format() const override { return format_; }
 
-  Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) override {
+ private:
+  // The base class turns an exception into an Error; acquisition stops first.
+  Result<std::vector<CapturedFrame>> doCapture(std::span<const ExposureRequest> requests) override {
     try {
       return captureBracket(requests);
-    } catch (...) {  // bad_alloc of a frame: nothing of ours may throw past the interface
+    } catch (...) {
       stopAcquisition();
-      return std::unexpected(currentExceptionError());
+      throw;
     }
   }
 
- private:
   Result<std::vector<CapturedFrame>> captureBracket(std::span<const ExposureRequest> requests) {
-    for (const ExposureRequest& request : requests) {
-      if (!(request.exposure_us > 0 && std::isfinite(request.exposure_us) &&
-            std::isfinite(request.gain_db))) {
-        return badInput(fmt::format("{}: exposure {:g} µs / gain {:g} dB is not a valid request",
-                                    info_.uri, request.exposure_us, request.gain_db));
-      }
-    }
     GLARECAM_CHECK(checkConnected());
     GLARECAM_CHECK(startAcquisition());
     std::vector<CapturedFrame> frames;

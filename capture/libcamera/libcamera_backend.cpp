@@ -81,16 +81,6 @@ struct ScopeExit {
 template <typename F>
 ScopeExit(F) -> ScopeExit<F>;
 
-// Library exceptions (std::bad_alloc, mostly) become an Error at the backend's boundary.
-template <typename F>
-auto guarded(F&& body) -> decltype(body()) {
-  try {
-    return body();
-  } catch (...) {
-    return std::unexpected(currentExceptionError());
-  }
-}
-
 // The process's one CameraManager. libcamera aborts ("Multiple IPAManager objects are not
 // allowed") when a second manager is constructed while one exists, so every backend object and
 // every camera it opened share this one, and the last owner stops it. Sessions are created and
@@ -268,14 +258,13 @@ class LibcameraCamera final : public Camera {
   const CameraInfo& info() const override { return info_; }
   CameraLimits limits() const override { return limits_; }
   SensorFormat format() const override { return format_; }
-  Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) override;
 
  private:
+  Result<std::vector<CapturedFrame>> doCapture(std::span<const ExposureRequest> requests) override;
   Status readControls();
   Status configureStream();
   Status createRequests();
-  Result<std::vector<CapturedFrame>> captureChecked(std::span<const ExposureRequest> requests);
-  Status validate(std::span<const ExposureRequest> requests) const;
+  Status checkControlRange(std::span<const ExposureRequest> requests) const;
   Result<std::vector<CapturedFrame>> captureBracket(std::span<const ExposureRequest> requests);
   Status handleCompletion(lc::Request& request, BracketMatcher& matcher,
                           std::vector<CapturedFrame>& frames);
@@ -399,44 +388,24 @@ Status LibcameraCamera::createRequests() {
   return {};
 }
 
-Result<std::vector<CapturedFrame>> LibcameraCamera::capture(
-    std::span<const ExposureRequest> requests) {
-  return guarded([&] { return captureChecked(requests); });
-}
-
-Result<std::vector<CapturedFrame>> LibcameraCamera::captureChecked(
+Result<std::vector<CapturedFrame>> LibcameraCamera::doCapture(
     std::span<const ExposureRequest> requests) {
   {
     const std::lock_guard lock(mutex_);
     if (lost_) return hardwareError(info_.uri + ": the camera was disconnected");
   }
-  if (requests.empty()) return std::vector<CapturedFrame>{};
-  auto checked = validate(requests);
-  if (!checked) return std::unexpected(withContext(checked.error(), info_.uri));
-  auto frames = captureBracket(requests);
-  if (!frames) return std::unexpected(withContext(frames.error(), info_.uri));
-  return frames;
+  GLARECAM_CHECK(checkControlRange(requests));
+  return captureBracket(requests);
 }
 
-Status LibcameraCamera::validate(std::span<const ExposureRequest> requests) const {
+// The base class checked the requests against limits(); a camera that states no longest
+// exposure still takes ExposureTime as a 32-bit count of µs.
+Status LibcameraCamera::checkControlRange(std::span<const ExposureRequest> requests) const {
   constexpr double kMaxControlUs = std::numeric_limits<std::int32_t>::max();
-  const double max_us = limits_.max_exposure_us > 0 ? limits_.max_exposure_us : kMaxControlUs;
   for (const ExposureRequest& step : requests) {
-    if (!std::isfinite(step.exposure_us) || step.exposure_us < limits_.min_exposure_us ||
-        step.exposure_us > max_us || step.exposure_us <= 0) {
-      return badInput(fmt::format("exposure {} µs is outside the camera's {}..{} µs",
-                                  step.exposure_us, limits_.min_exposure_us, max_us));
-    }
-    if (!has_gain_ && step.gain_db != 0) {
-      return badInput(
-          fmt::format("gain {} dB requested but the camera has no AnalogueGain", step.gain_db));
-    }
-    if (has_gain_ && (!std::isfinite(step.gain_db) ||
-                      step.gain_db < limits_.min_gain_db - rule_.gain_tolerance_db ||
-                      step.gain_db > limits_.max_gain_db + rule_.gain_tolerance_db)) {
-      return badInput(fmt::format("gain {} dB is outside the camera's {:.2f}..{:.2f} dB",
-                                  step.gain_db, limits_.min_gain_db, limits_.max_gain_db));
-    }
+    if (step.exposure_us > kMaxControlUs)
+      return badInput(fmt::format("exposure {} µs is beyond libcamera's ExposureTime control",
+                                  step.exposure_us));
   }
   return {};
 }
@@ -584,10 +553,10 @@ class LibcameraBackend final : public CameraBackend {
  public:
   std::string_view scheme() const override { return kScheme; }
   Result<std::vector<CameraInfo>> list() override {
-    return guarded([&] { return listCameras(); });
+    return catchExceptions([&] { return listCameras(); });
   }
   Result<std::unique_ptr<Camera>> open(std::string_view id, const CameraOptions& options) override {
-    return guarded([&] { return openCamera(id, options); });
+    return catchExceptions([&] { return openCamera(id, options); });
   }
 
  private:

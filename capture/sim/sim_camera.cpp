@@ -81,19 +81,40 @@ Status applyParameter(std::string_view key, std::string_view value, SimulationOp
   return {};
 }
 
-class SimCamera final : public Camera {
+// The α a source's value shows: the method's range, with the slack past 80°.
+Result<double> shownAlphaDeg(double alpha_deg) {
+  if (alpha_deg > pipeline::kMaxLimitAlphaDeg &&
+      alpha_deg <= pipeline::kMaxLimitAlphaDeg + kSceneAlphaSlackDeg)
+    return pipeline::kMaxLimitAlphaDeg;
+  if (!(alpha_deg >= 0 && alpha_deg <= pipeline::kMaxLimitAlphaDeg)) {
+    return badInput(
+        fmt::format("camera URI sim: the simulated scene's α must be within 0…{:g}° "
+                    "(the method's range), not {:g}",
+                    pipeline::kMaxLimitAlphaDeg, alpha_deg));
+  }
+  return alpha_deg;
+}
+
+std::string sceneDetail(const SimulationOptions& options) {
+  return fmt::format("α {:g}°, {}x{}, seed {}", options.alpha_deg, options.width, options.height,
+                     options.seed);
+}
+
+class SimCamera final : public Camera, public SceneTruthSource {
  public:
-  SimCamera(SimulationOptions options, SimulatedScene scene, std::string uri)
-      : options_(std::move(options)), scene_(std::move(scene)) {
-    info_ = {
-        .uri = std::move(uri),
-        .backend = "sim",
-        .vendor = "glarecam",
-        .model = "simulated rig (" + options_.module + " module)",
-        .serial = std::string(kSimSerial),
-        .detail = fmt::format("α {:g}°, {}x{}, seed {}", options_.alpha_deg, options_.width,
-                              options_.height, options_.seed),
-        .optics = {.f_number = options_.f_number, .nd_transmission = options_.nd_transmission}};
+  SimCamera(SimulationOptions options, SimulatedScene scene, std::string uri,
+            SceneAlphaSource scene_alpha)
+      : options_(std::move(options)),
+        scene_(std::move(scene)),
+        scene_alpha_(std::move(scene_alpha)) {
+    info_ = {.uri = std::move(uri),
+             .backend = "sim",
+             .vendor = "glarecam",
+             .model = "simulated rig (" + options_.module + " module)",
+             .serial = std::string(kSimSerial),
+             .detail = sceneDetail(options_),
+             .optics = {.f_number = options_.f_number, .nd_transmission = options_.nd_transmission},
+             .calibration = scene_.calibration};
   }
 
   const CameraInfo& info() const override { return info_; }
@@ -113,7 +134,6 @@ class SimCamera final : public Camera {
             .bits_per_pixel = 16};
   }
 
-  std::optional<Calibration> knownCalibration() const override { return scene_.calibration; }
   std::optional<nlohmann::json> sceneTruth() const override {
     if (!options_.calibration_target.empty())
       return nlohmann::json{{"schema", "glarecam.truth/1"},
@@ -121,7 +141,9 @@ class SimCamera final : public Camera {
     return sceneTruthJson(scene_, options_.alpha_deg);
   }
 
-  Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) override {
+ private:
+  Result<std::vector<CapturedFrame>> doCapture(std::span<const ExposureRequest> requests) override {
+    GLARECAM_CHECK(showSourceAlpha());
     std::vector<CapturedFrame> frames;
     frames.reserve(requests.size());
     for (const ExposureRequest& request : requests) {
@@ -137,7 +159,24 @@ class SimCamera final : public Camera {
     return frames;
   }
 
- private:
+  // The scene at the α the source gives now (a calibration target has none).
+  Status showSourceAlpha() {
+    if (!scene_alpha_ || !options_.calibration_target.empty()) return {};
+    const std::optional<double> asked = scene_alpha_();
+    if (!asked) return {};
+    double shown = 0;
+    GLARECAM_ASSIGN(shown, shownAlphaDeg(*asked));
+    if (shown == options_.alpha_deg) return {};
+    SimulationOptions moved = options_;
+    moved.alpha_deg = shown;
+    SimulatedScene scene;
+    GLARECAM_ASSIGN(scene, renderSimulatedScene(moved));
+    options_ = std::move(moved);
+    scene_ = std::move(scene);
+    info_.detail = sceneDetail(options_);
+    return {};
+  }
+
   // Like a real camera: the exposure is rounded to its resolution and clamped to its range.
   double applied(double exposure_us) const {
     const CameraLimits range = limits();
@@ -147,6 +186,7 @@ class SimCamera final : public Camera {
 
   SimulationOptions options_;
   SimulatedScene scene_;
+  SceneAlphaSource scene_alpha_;
   CameraInfo info_;
   std::uint64_t frames_taken_ = 0;
 };
@@ -174,6 +214,8 @@ Result<SimulatedScene> targetScene(SimulationOptions& sim) {
 
 class SimCameraBackend final : public CameraBackend {
  public:
+  explicit SimCameraBackend(SceneAlphaSource scene_alpha) : scene_alpha_(std::move(scene_alpha)) {}
+
   std::string_view scheme() const override { return "sim"; }
 
   Result<std::vector<CameraInfo>> list() override {
@@ -192,30 +234,55 @@ class SimCameraBackend final : public CameraBackend {
                                   kSimPixelFormat, *options.pixel_format));
     }
     SimulationOptions sim;
-    GLARECAM_ASSIGN(sim, parseSimCameraId(id, options));
+    GLARECAM_ASSIGN(sim, parseSimCameraId(id, scene_alpha_ ? scene_alpha_() : std::nullopt));
     auto rendered = sim.calibration_target.empty() ? renderSimulatedScene(sim) : targetScene(sim);
     if (!rendered) {
       return badInput(fmt::format("camera URI 'sim:{}': {}", id, rendered.error().message));
     }
+    // A URI that fixes α keeps it: the source may not move the scene (parseSimCameraId checked
+    // that it agrees now).
+    SceneAlphaSource source = uriGivesAlpha(id) ? SceneAlphaSource{} : scene_alpha_;
     return std::make_unique<SimCamera>(std::move(sim), std::move(*rendered),
-                                       "sim:" + std::string(id));
+                                       "sim:" + std::string(id), std::move(source));
   }
+
+ private:
+  static bool uriGivesAlpha(std::string_view id) {
+    bool given = false;
+    const Status parsed =
+        forEachUriParameter(id, kUriName, [&](std::string_view key, std::string_view) -> Status {
+          given = given || key == "alpha";
+          return {};
+        });
+    return parsed && given;
+  }
+
+  SceneAlphaSource scene_alpha_;
 };
 
 }  // namespace
 
-Result<SimulationOptions> parseSimCameraId(std::string_view id, const CameraOptions& options) {
+std::optional<nlohmann::json> sceneTruthOf(const Camera& camera) {
+  const auto* source = dynamic_cast<const SceneTruthSource*>(&camera);
+  return source ? source->sceneTruth() : std::nullopt;
+}
+
+Result<SimulationOptions> parseSimCameraId(std::string_view id,
+                                           std::optional<double> scene_alpha_deg) {
   SimulationOptions sim;
-  if (options.simulated_alpha_deg) sim.alpha_deg = *options.simulated_alpha_deg;
+  if (scene_alpha_deg) {
+    GLARECAM_ASSIGN(sim.alpha_deg, shownAlphaDeg(*scene_alpha_deg));
+  }
+  const double asked_deg = sim.alpha_deg;
   GLARECAM_CHECK(
       forEachUriParameter(id, kUriName, [&](std::string_view key, std::string_view value) {
         return applyParameter(key, value, sim);
       }));
-  if (options.simulated_alpha_deg && sim.alpha_deg != *options.simulated_alpha_deg) {
+  if (scene_alpha_deg && sim.alpha_deg != asked_deg) {
     return badInput(
         fmt::format("camera URI sim: alpha={:g} contradicts the capture's α {:g} (--alpha, or "
                     "measured through --config); give the scene's α once",
-                    sim.alpha_deg, *options.simulated_alpha_deg));
+                    sim.alpha_deg, *scene_alpha_deg));
   }
   if (!(sim.alpha_deg >= 0 && sim.alpha_deg <= pipeline::kMaxLimitAlphaDeg)) {
     return badInput(
@@ -226,8 +293,8 @@ Result<SimulationOptions> parseSimCameraId(std::string_view id, const CameraOpti
   return sim;
 }
 
-std::unique_ptr<CameraBackend> makeSimCameraBackend() {
-  return std::make_unique<SimCameraBackend>();
+std::unique_ptr<CameraBackend> makeSimCameraBackend(SceneAlphaSource scene_alpha) {
+  return std::make_unique<SimCameraBackend>(std::move(scene_alpha));
 }
 
 }  // namespace glarecam::capture

@@ -138,13 +138,11 @@ class V4l2Camera final : public Camera {
     return {std::string(setup_.mono.genicam_name), setup_.format.width, setup_.format.height,
             8 * setup_.mono.bytes_per_pixel};
   }
-  Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) override {
-    auto frames = captureAll(requests);
-    if (!frames) return std::unexpected(withContext(frames.error(), info_.uri));
-    return frames;
-  }
 
  private:
+  Result<std::vector<CapturedFrame>> doCapture(std::span<const ExposureRequest> requests) override {
+    return captureAll(requests);
+  }
   Result<std::vector<CapturedFrame>> captureAll(std::span<const ExposureRequest> requests);
   Result<CapturedFrame> captureOne(std::size_t index, const ExposureRequest& request);
   Result<int> drainReadyFrames();
@@ -172,15 +170,7 @@ class V4l2Camera final : public Camera {
 
 Result<std::vector<CapturedFrame>> V4l2Camera::captureAll(
     std::span<const ExposureRequest> requests) {
-  for (const auto& request : requests) {
-    if (!(request.exposure_us > 0) || !std::isfinite(request.exposure_us) ||
-        !std::isfinite(request.gain_db)) {
-      return badInput(fmt::format("invalid request: exposure {} µs, gain {} dB",
-                                  request.exposure_us, request.gain_db));
-    }
-  }
   std::vector<CapturedFrame> frames;
-  if (requests.empty()) return frames;
   StreamSession session(*device_);
   GLARECAM_CHECK(session.start(v4l2_options_.buffer_count));
   buffer_count_ = session.buffers();

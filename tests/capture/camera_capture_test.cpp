@@ -24,9 +24,7 @@ const CameraLimits kLimits{.min_exposure_us = 10,
                            .max_gain_db = 24};
 
 std::unique_ptr<Camera> openSim(const std::string& id, double alpha_deg = 40.0) {
-  CameraOptions options;
-  options.simulated_alpha_deg = alpha_deg;
-  auto camera = openCamera("sim:" + id, options);
+  auto camera = openCamera("sim:" + id, {}, [alpha_deg] { return alpha_deg; });
   EXPECT_TRUE(camera) << camera.error().message;
   return camera ? std::move(*camera) : nullptr;
 }
@@ -76,9 +74,7 @@ TEST(SimCamera, ParsesItsParametersAndRefusesBadOnes) {
   EXPECT_EQ(options->height, 256);
   EXPECT_EQ(options->seed, 3u);
   EXPECT_DOUBLE_EQ(options->alpha_deg, 55.0);
-  CameraOptions with_alpha;
-  with_alpha.simulated_alpha_deg = 20.0;
-  EXPECT_DOUBLE_EQ(parseSimCameraId("", with_alpha)->alpha_deg, 20.0);
+  EXPECT_DOUBLE_EQ(parseSimCameraId("", 20.0)->alpha_deg, 20.0);
   for (const char* bad : {"size=320", "fov=wide", "colour=red", "seed", "seed=-1", "seed=1e300",
                           "size=1e10x5", "size=0x0"}) {
     auto parsed = parseSimCameraId(bad, {});
@@ -108,7 +104,7 @@ TEST(SimCamera, ExposureScalesTheFramesAndIsRoundedLikeACamera) {
   ASSERT_EQ(frames->size(), 4u);
   EXPECT_DOUBLE_EQ((*frames)[0].exposure_us, 100.0);  // 1 µs resolution
   EXPECT_DOUBLE_EQ((*frames)[3].gain_db, 6.0);
-  const double black = camera->knownCalibration()->black_level_dn;
+  const double black = camera->info().calibration->black_level_dn;
   const double signal_40ms = cornerSignal((*frames)[1].image, black);
   const double signal_80ms = cornerSignal((*frames)[2].image, black);
   const double signal_6db = cornerSignal((*frames)[3].image, black);
@@ -188,7 +184,7 @@ TEST(Bracketer, AutoBracketOfTheSimulatedRigMatchesTheTruth) {
     for (std::size_t i = 1; i < frames.size(); ++i) {
       EXPECT_LE(frames[i].exposure_us / frames[i - 1].exposure_us, 10.0 * 1.001) << alpha;
     }
-    const Calibration calibration = *camera->knownCalibration();
+    const Calibration calibration = *camera->info().calibration;
     const FrameLevels shortest = measureFrameLevels(
         stack->frames.front(), calibration.black_level_dn, calibration.saturation_dn);
     EXPECT_FALSE(shortest.peak_clipped) << alpha;
@@ -299,13 +295,9 @@ class BrighteningCamera final : public Camera {
   const CameraInfo& info() const override { return info_; }
   CameraLimits limits() const override { return kLimits; }
   SensorFormat format() const override { return {"Mono12", 64, 64, 16}; }
-  std::optional<Calibration> knownCalibration() const override {
-    Calibration calibration;
-    calibration.black_level_dn = 64;
-    calibration.saturation_dn = 4000;
-    return calibration;
-  }
-  Result<std::vector<CapturedFrame>> capture(std::span<const ExposureRequest> requests) override {
+
+ private:
+  Result<std::vector<CapturedFrame>> doCapture(std::span<const ExposureRequest> requests) override {
     std::vector<CapturedFrame> frames;
     for (const auto& request : requests) {
       const double peak_rate = taken_++ < brighten_after_ ? 1.0 : 20.0;  // DN/µs
@@ -322,12 +314,14 @@ class BrighteningCamera final : public Camera {
     return frames;
   }
 
- private:
   double brighten_after_;
   int taken_ = 0;
   CameraInfo info_ = [] {
     CameraInfo info;
     info.uri = "test:brightening";
+    info.calibration = Calibration{};
+    info.calibration->black_level_dn = 64;
+    info.calibration->saturation_dn = 4000;
     return info;
   }();
 };

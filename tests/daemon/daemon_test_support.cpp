@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "capture/camera_registry.h"
+#include "capture/sim/sim_camera.h"
 
 namespace glarecam::testing {
 
@@ -132,38 +133,40 @@ void ScriptedDisk::set(daemon::DiskState state) {
 
 // ---- ScriptedCameras ----------------------------------------------------------------------------
 
-class ScriptedCamera final : public capture::Camera {
+// A sim: camera that fails or wedges on cue; it knows its scene's truth as the camera it wraps.
+class ScriptedCamera final : public capture::Camera, public capture::SceneTruthSource {
  public:
   ScriptedCamera(std::unique_ptr<capture::Camera> camera, ScriptedCameras& script)
       : camera_(std::move(camera)), script_(script) {}
   const capture::CameraInfo& info() const override { return camera_->info(); }
   capture::CameraLimits limits() const override { return camera_->limits(); }
   capture::SensorFormat format() const override { return camera_->format(); }
-  std::optional<Calibration> knownCalibration() const override {
-    return camera_->knownCalibration();
+  std::optional<nlohmann::json> sceneTruth() const override {
+    return capture::sceneTruthOf(*camera_);
   }
-  std::optional<nlohmann::json> sceneTruth() const override { return camera_->sceneTruth(); }
-  Result<std::vector<capture::CapturedFrame>> capture(
+
+ private:
+  Result<std::vector<capture::CapturedFrame>> doCapture(
       std::span<const capture::ExposureRequest> requests) override {
     if (auto error = script_.beforeCapture()) return std::unexpected(*error);
     return camera_->capture(requests);
   }
 
- private:
   std::unique_ptr<capture::Camera> camera_;
   ScriptedCameras& script_;
 };
 
 daemon::CameraOpener ScriptedCameras::opener() {
-  return [this](std::string_view uri,
-                const capture::CameraOptions& options) -> Result<std::unique_ptr<capture::Camera>> {
+  return [this](std::string_view uri, const capture::CameraOptions& options,
+                const capture::SceneAlphaSource& scene_alpha)
+             -> Result<std::unique_ptr<capture::Camera>> {
     ++opens_;
     {
       const std::lock_guard lock(mutex_);
       if (opens_fail_) return hardwareError(std::string(uri) + ": no such camera (scripted)");
     }
     std::unique_ptr<capture::Camera> camera;
-    GLARECAM_ASSIGN(camera, capture::openCamera(uri, options));
+    GLARECAM_ASSIGN(camera, capture::openCamera(uri, options, scene_alpha));
     return std::unique_ptr<capture::Camera>(new ScriptedCamera(std::move(camera), *this));
   };
 }

@@ -7,11 +7,10 @@ namespace glarecam::daemon {
 namespace {
 
 // Bisects [a, b] (α(a) - target and α(b) - target of opposite signs) to the tolerance.
-Result<sun::UtcTime> refineCrossing(const sun::SiteLocation& site,
-                                    const sun::ModuleOrientation& module, sun::UtcTime a,
-                                    sun::UtcTime b, double alpha_a, double target_deg) {
+Result<UtcTime> refineCrossing(const sun::SiteLocation& site, const sun::ModuleOrientation& module,
+                               UtcTime a, UtcTime b, double alpha_a, double target_deg) {
   while (b - a > kAlphaCrossingTolerance) {
-    const sun::UtcTime middle = a + (b - a) / 2;
+    const UtcTime middle = a + (b - a) / 2;
     SunIncidence at;
     GLARECAM_ASSIGN(at, sunIncidence(site, module, middle));
     if ((at.alpha_deg - target_deg) * (alpha_a - target_deg) > 0) {
@@ -27,7 +26,7 @@ Result<sun::UtcTime> refineCrossing(const sun::SiteLocation& site,
 }  // namespace
 
 Result<SunIncidence> sunIncidence(const sun::SiteLocation& site,
-                                  const sun::ModuleOrientation& module, sun::UtcTime time) {
+                                  const sun::ModuleOrientation& module, UtcTime time) {
   sun::SolarPosition sun;
   GLARECAM_ASSIGN(sun, sun::solarPosition(time, site));
   return SunIncidence{
@@ -37,13 +36,13 @@ Result<SunIncidence> sunIncidence(const sun::SiteLocation& site,
 
 Result<std::vector<AlphaCrossing>> alphaCrossings(const sun::SiteLocation& site,
                                                   const sun::ModuleOrientation& module,
-                                                  sun::UtcTime from, std::chrono::seconds horizon,
+                                                  UtcTime from, std::chrono::seconds horizon,
                                                   std::span<const double> targets_deg) {
   std::vector<AlphaCrossing> crossings;
   SunIncidence previous;
   GLARECAM_ASSIGN(previous, sunIncidence(site, module, from));
-  for (sun::UtcTime t0 = from; t0 < from + horizon; t0 += kAlphaScanStep) {
-    const sun::UtcTime t1 = t0 + kAlphaScanStep;
+  for (UtcTime t0 = from; t0 < from + horizon; t0 += kAlphaScanStep) {
+    const UtcTime t1 = t0 + kAlphaScanStep;
     SunIncidence next;
     GLARECAM_ASSIGN(next, sunIncidence(site, module, t1));
     for (const double target : targets_deg) {
@@ -51,7 +50,7 @@ Result<std::vector<AlphaCrossing>> alphaCrossings(const sun::SiteLocation& site,
       const double d0 = previous.alpha_deg - target, d1 = next.alpha_deg - target;
       const bool crosses = d0 != 0 && (d1 == 0 || (d0 < 0) != (d1 < 0));
       if (!crosses || !previous.sun_up || !next.sun_up) continue;
-      sun::UtcTime at;
+      UtcTime at;
       GLARECAM_ASSIGN(at, refineCrossing(site, module, t0, t1, previous.alpha_deg, target));
       if (at >= from + horizon) continue;
       crossings.push_back({.time = at, .target_deg = target, .rising = d1 > d0});

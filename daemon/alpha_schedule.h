@@ -25,7 +25,7 @@ inline constexpr std::chrono::milliseconds kAlphaCrossingTolerance{500};
 inline constexpr std::chrono::minutes kAlphaTargetRepeatGuard{5};
 
 struct AlphaCrossing {
-  sun::UtcTime time;
+  UtcTime time;
   double target_deg = 0.0;
   bool rising = false;  // α increasing (afternoon on a fixed module), else decreasing
 };
@@ -36,12 +36,12 @@ struct SunIncidence {
   bool sun_up = false;
 };
 Result<SunIncidence> sunIncidence(const sun::SiteLocation& site,
-                                  const sun::ModuleOrientation& module, sun::UtcTime time);
+                                  const sun::ModuleOrientation& module, UtcTime time);
 
 // The crossings of `targets_deg` in [from, from + horizon), sorted by time.
 Result<std::vector<AlphaCrossing>> alphaCrossings(const sun::SiteLocation& site,
                                                   const sun::ModuleOrientation& module,
-                                                  sun::UtcTime from, std::chrono::seconds horizon,
+                                                  UtcTime from, std::chrono::seconds horizon,
                                                   std::span<const double> targets_deg);
 
 }  // namespace glarecam::daemon

@@ -474,10 +474,10 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   state_.capturing = true;
   publishStatus();
   feedWatchdog(now);
-  const sun::UtcTime start = clock_.utcNow();
+  const UtcTime start = clock_.utcNow();
   settings.start_time = start;
   auto stack = capture::captureStack(**acquired, settings);
-  const sun::UtcTime end = clock_.utcNow();
+  const UtcTime end = clock_.utcNow();
   state_.capturing = false;
   if (!stack) {
     const ErrorCode code = stack.error().code;
@@ -508,8 +508,8 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
 
 void CaptureDaemon::finishStack(capture::CapturedStack& stack,
                                 const std::optional<rig::RigGeometry>& geometry,
-                                CaptureTrigger trigger, sun::UtcTime bracket_start,
-                                sun::UtcTime bracket_end) {
+                                CaptureTrigger trigger, UtcTime bracket_start,
+                                UtcTime bracket_end) {
   if (geometry && sensors_) {
     const Status recorded =
         recordBracketGeometry(*sensors_, *geometry, stack, bracket_start, bracket_end);
@@ -569,7 +569,7 @@ std::optional<sun::ModuleOrientation> CaptureDaemon::plannedModule() {
   return measured->module;
 }
 
-void CaptureDaemon::planAlphaTargets(sun::UtcTime from) {
+void CaptureDaemon::planAlphaTargets(UtcTime from) {
   next_scheduled_.reset();
   planned_crossing_.reset();
   const std::optional<sun::ModuleOrientation> module = plannedModule();

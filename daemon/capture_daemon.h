@@ -129,12 +129,12 @@ class CaptureDaemon {
   capture::CaptureSettings baseSettings() const;
   Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
   void finishStack(capture::CapturedStack& stack, const std::optional<rig::RigGeometry>& geometry,
-                   CaptureTrigger trigger, sun::UtcTime bracket_start, sun::UtcTime bracket_end);
+                   CaptureTrigger trigger, UtcTime bracket_start, UtcTime bracket_end);
 
   // The schedule.
   // `slot_taken`: the scheduled slot was just used (or skipped): the next one.
   void planNext(SteadyTime now, bool slot_taken);
-  void planAlphaTargets(sun::UtcTime from);
+  void planAlphaTargets(UtcTime from);
   std::optional<sun::ModuleOrientation> plannedModule();
   bool scheduledDue(SteadyTime now) const;
   // Ready, a camera open, not stopping and --count not reached: a due capture is taken now.
@@ -174,10 +174,10 @@ class CaptureDaemon {
   std::optional<SteadyTime> next_scheduled_;
   std::optional<SteadyTime> replan_at_;
   std::optional<SteadyTime> inclinometer_retry_at_;
-  std::optional<sun::UtcTime> planned_crossing_;  // the next α target's crossing, in wall time
-  std::optional<sun::UtcTime> last_interval_start_;
-  std::map<double, sun::UtcTime> taken_targets_;  // when each α target's slot was last used
-  std::deque<CaptureTrigger> requests_;           // button presses and SIGUSR1, in order
+  std::optional<UtcTime> planned_crossing_;  // the next α target's crossing, in wall time
+  std::optional<UtcTime> last_interval_start_;
+  std::map<double, UtcTime> taken_targets_;  // when each α target's slot was last used
+  std::deque<CaptureTrigger> requests_;      // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;
 };

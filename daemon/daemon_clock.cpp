@@ -1,30 +1,24 @@
 #include "daemon/daemon_clock.h"
 
+#include "core/time.h"
+
 namespace glarecam::daemon {
-
-namespace {
-
-sun::UtcTime systemUtcNow() {
-  return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
-}
-
-}  // namespace
 
 void DaemonClock::waitUntil(std::unique_lock<std::mutex>& lock, std::condition_variable& wake,
                             SteadyTime deadline, const std::function<bool()>& ready) {
   wake.wait_until(lock, deadline, ready);
 }
 
-sun::UtcTime SystemDaemonClock::utcNow() const { return systemUtcNow(); }
+UtcTime SystemDaemonClock::utcNow() const { return glarecam::utcNow(); }
 
-SteadyTime SystemDaemonClock::steadyAt(sun::UtcTime utc) const {
+SteadyTime SystemDaemonClock::steadyAt(UtcTime utc) const {
   return now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(utc - utcNow());
 }
 
-TimeLapseClock::TimeLapseClock(sun::UtcTime start, double factor)
+TimeLapseClock::TimeLapseClock(UtcTime start, double factor)
     : start_utc_(start), start_steady_(std::chrono::steady_clock::now()), factor_(factor) {}
 
-sun::UtcTime TimeLapseClock::utcNow() const {
+UtcTime TimeLapseClock::utcNow() const {
   const std::chrono::duration<double> real = now() - start_steady_;
   return start_utc_ + std::chrono::duration_cast<std::chrono::microseconds>(real * factor_);
 }
@@ -33,7 +27,7 @@ sun::ClockStatus TimeLapseClock::clockStatus() const {
   return {.synchronised = true, .detail = "simulated time"};
 }
 
-SteadyTime TimeLapseClock::steadyAt(sun::UtcTime utc) const {
+SteadyTime TimeLapseClock::steadyAt(UtcTime utc) const {
   const std::chrono::duration<double> simulated = utc - start_utc_;
   return start_steady_ +
          std::chrono::duration_cast<std::chrono::steady_clock::duration>(simulated / factor_);

@@ -27,11 +27,11 @@ class DaemonClock {
  public:
   virtual ~DaemonClock() = default;
   virtual SteadyTime now() const = 0;
-  virtual sun::UtcTime utcNow() const = 0;
+  virtual UtcTime utcNow() const = 0;
   // The wall clock's state now (synchronised, its error).
   virtual sun::ClockStatus clockStatus() const = 0;
   // The steady time at which the wall clock will read `utc` (for timers set to a wall time).
-  virtual SteadyTime steadyAt(sun::UtcTime utc) const = 0;
+  virtual SteadyTime steadyAt(UtcTime utc) const = 0;
   // Waits until `deadline` or until `ready()` (checked first, and after every wake-up). By
   // default in real time on the steady clock.
   virtual void waitUntil(std::unique_lock<std::mutex>& lock, std::condition_variable& wake,
@@ -41,22 +41,22 @@ class DaemonClock {
 class SystemDaemonClock final : public DaemonClock {
  public:
   SteadyTime now() const override { return std::chrono::steady_clock::now(); }
-  sun::UtcTime utcNow() const override;
+  UtcTime utcNow() const override;
   sun::ClockStatus clockStatus() const override { return sun::systemClockStatus(); }
-  SteadyTime steadyAt(sun::UtcTime utc) const override;
+  SteadyTime steadyAt(UtcTime utc) const override;
 };
 
 // Wall time = `start` + `factor` × (steady time since construction); always synchronised.
 class TimeLapseClock final : public DaemonClock {
  public:
-  TimeLapseClock(sun::UtcTime start, double factor);
+  TimeLapseClock(UtcTime start, double factor);
   SteadyTime now() const override { return std::chrono::steady_clock::now(); }
-  sun::UtcTime utcNow() const override;
+  UtcTime utcNow() const override;
   sun::ClockStatus clockStatus() const override;
-  SteadyTime steadyAt(sun::UtcTime utc) const override;
+  SteadyTime steadyAt(UtcTime utc) const override;
 
  private:
-  sun::UtcTime start_utc_;
+  UtcTime start_utc_;
   SteadyTime start_steady_;
   double factor_;
 };

@@ -8,7 +8,7 @@ namespace glarecam::daemon {
 
 namespace {
 
-std::string seconds(sun::UtcTime time) {
+std::string seconds(UtcTime time) {
   return sun::formatIsoTime(std::chrono::floor<std::chrono::seconds>(time));
 }
 

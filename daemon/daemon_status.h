@@ -21,8 +21,8 @@ struct DaemonState {
   rig::RigState led = rig::RigState::ready();
   std::optional<std::string> last_stack;
   std::optional<double> last_alpha_deg;
-  std::optional<sun::UtcTime> last_capture_time;
-  std::optional<sun::UtcTime> next_capture_time;
+  std::optional<UtcTime> last_capture_time;
+  std::optional<UtcTime> next_capture_time;
   std::optional<double> next_target_deg;
   std::string camera_fault;          // why the camera is closed
   std::string disk_fault;            // why capture pauses for the disk

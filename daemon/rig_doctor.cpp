@@ -10,6 +10,7 @@
 
 #include "capture/bracketing.h"
 #include "capture/camera_registry.h"
+#include "core/time.h"
 #include "pipeline/limit_curve.h"
 #include "rig/rig_config.h"
 #include "rig/rig_geometry.h"
@@ -174,10 +175,8 @@ SensorChecks checkSensors(const Config& config) {
   SensorChecks checks;
   if (!config.rig.site && !config.rig.fixed_source) return checks;
   auto sensors = rig::RigSensors::open(config.rig);
-  const auto measured =
-      sensors ? (*sensors)->measure(std::chrono::time_point_cast<std::chrono::microseconds>(
-                    std::chrono::system_clock::now()))
-              : Result<rig::RigGeometry>(std::unexpected(sensors.error()));
+  const auto measured = sensors ? (*sensors)->measure(utcNow())
+                                : Result<rig::RigGeometry>(std::unexpected(sensors.error()));
   if (config.rig.inclinometer && !measured)
     checks.inclinometer = failed("inclinometer", measured.error().message);
   if (!measured) {

@@ -3,7 +3,7 @@
 namespace glarecam::daemon {
 
 Status recordBracketGeometry(const rig::RigSensors& sensors, const rig::RigGeometry& measured,
-                             capture::CapturedStack& stack, sun::UtcTime start, sun::UtcTime end) {
+                             capture::CapturedStack& stack, UtcTime start, UtcTime end) {
   if (!measured.sun) {
     capture::recordAlpha(stack, measured.alpha_deg, rig::geometryJson(measured));
     return {};

@@ -12,6 +12,6 @@ namespace glarecam::daemon {
 // Records α and the geometry of `measured` retimed to the middle of [start, end] in the stack's
 // manifest (and its id). On failure the stack is left as it was and the error returned.
 Status recordBracketGeometry(const rig::RigSensors& sensors, const rig::RigGeometry& measured,
-                             capture::CapturedStack& stack, sun::UtcTime start, sun::UtcTime end);
+                             capture::CapturedStack& stack, UtcTime start, UtcTime end);
 
 }  // namespace glarecam::daemon

@@ -7,7 +7,7 @@
 
 namespace glarecam::daemon {
 
-sun::UtcTime defaultSimulationStart(bool alpha_targets) {
+UtcTime defaultSimulationStart(bool alpha_targets) {
   using namespace std::chrono;
   const auto day = sys_days(year(2026) / June / 21);
   return time_point_cast<microseconds>(alpha_targets ? day + hours(5) + minutes(25)

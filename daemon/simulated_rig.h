@@ -34,7 +34,7 @@ struct SimulatedRigOptions {
 
 // The simulated clock's start on 2026-06-21: for the α targets 05:25 UTC, ten minutes of sun
 // before α falls through 80° at the site; for a fixed interval 06:30 UTC, α already below 70°.
-sun::UtcTime defaultSimulationStart(bool alpha_targets);
+UtcTime defaultSimulationStart(bool alpha_targets);
 
 // Writes OUTPUT/glarecamd-simulated.toml (atomically) and returns its path.
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options);

@@ -27,7 +27,7 @@ double slope(const std::function<double(double)>& alpha_at, double x, double ste
          step;
 }
 
-Result<sun::SkyDirection> sunDirection(const sun::SiteLocation& site, sun::UtcTime time,
+Result<sun::SkyDirection> sunDirection(const sun::SiteLocation& site, UtcTime time,
                                        std::optional<sun::SolarPosition>* position = nullptr) {
   sun::SolarPosition sun;
   GLARECAM_ASSIGN(sun, sun::solarPosition(time, site));
@@ -71,7 +71,7 @@ void addWarnings(RigGeometry& g) {
 }  // namespace
 
 Result<RigGeometry> computeRigGeometry(const RigConfig& config,
-                                       const std::optional<TiltReading>& tilt, sun::UtcTime time,
+                                       const std::optional<TiltReading>& tilt, UtcTime time,
                                        const std::optional<sun::ClockStatus>& clock) {
   GLARECAM_CHECK(checkHasSource(config));
   RigGeometry g;
@@ -211,13 +211,13 @@ Result<std::unique_ptr<RigSensors>> RigSensors::open(const RigConfig& config) {
       new RigSensors(config, std::move(inclinometer), std::move(zero), std::move(warnings)));
 }
 
-Result<RigGeometry> RigSensors::measure(sun::UtcTime time, const std::function<void()>& on_sample,
+Result<RigGeometry> RigSensors::measure(UtcTime time, const std::function<void()>& on_sample,
                                         bool time_from_clock) {
   return measureWithClock(
       time, time_from_clock ? std::optional(sun::systemClockStatus()) : std::nullopt, on_sample);
 }
 
-Result<RigGeometry> RigSensors::measureWithClock(sun::UtcTime time,
+Result<RigGeometry> RigSensors::measureWithClock(UtcTime time,
                                                  const std::optional<sun::ClockStatus>& clock,
                                                  const std::function<void()>& on_sample) {
   std::optional<TiltReading> tilt;
@@ -228,12 +228,11 @@ Result<RigGeometry> RigSensors::measureWithClock(sun::UtcTime time,
   return geometryAt(tilt, time, clock);
 }
 
-Result<RigGeometry> RigSensors::retime(const RigGeometry& measured, sun::UtcTime time) const {
+Result<RigGeometry> RigSensors::retime(const RigGeometry& measured, UtcTime time) const {
   return geometryAt(measured.tilt, time, measured.clock);
 }
 
-Result<RigGeometry> RigSensors::geometryAt(const std::optional<TiltReading>& tilt,
-                                           sun::UtcTime time,
+Result<RigGeometry> RigSensors::geometryAt(const std::optional<TiltReading>& tilt, UtcTime time,
                                            const std::optional<sun::ClockStatus>& clock) const {
   RigGeometry geometry;
   GLARECAM_ASSIGN(geometry, computeRigGeometry(config_, tilt, time, clock));

@@ -24,7 +24,7 @@
 namespace glarecam::rig {
 
 struct RigGeometry {
-  sun::UtcTime time;
+  UtcTime time;
   std::string source;  // "sun" or "fixed"
   sun::ModuleOrientation module;
   sun::SkyDirection source_direction;
@@ -46,7 +46,7 @@ struct RigGeometry {
 // uncertainty); nullopt for a time given by the user. kBadInput when the config cannot give α
 // (no [site] nor [source], no tilt).
 Result<RigGeometry> computeRigGeometry(const RigConfig& config,
-                                       const std::optional<TiltReading>& tilt, sun::UtcTime time,
+                                       const std::optional<TiltReading>& tilt, UtcTime time,
                                        const std::optional<sun::ClockStatus>& clock);
 
 // The manifest's `geometry` block (stack-format.md): module_tilt_deg, module_azimuth_deg,
@@ -64,22 +64,21 @@ class RigSensors {
   static Result<std::unique_ptr<RigSensors>> open(const RigConfig& config);
 
   // `time_from_clock`: `time` is the system clock's now (false: the user's, no clock error).
-  Result<RigGeometry> measure(sun::UtcTime time, const std::function<void()>& on_sample = {},
+  Result<RigGeometry> measure(UtcTime time, const std::function<void()>& on_sample = {},
                               bool time_from_clock = true);
   // The same with the state of the clock `time` was read from (nullopt: a time the user gave).
-  Result<RigGeometry> measureWithClock(sun::UtcTime time,
-                                       const std::optional<sun::ClockStatus>& clock,
+  Result<RigGeometry> measureWithClock(UtcTime time, const std::optional<sun::ClockStatus>& clock,
                                        const std::function<void()>& on_sample = {});
   // The same reading at another time (the sun moved; the module did not): for α at the middle
   // of a bracket that followed the reading.
-  Result<RigGeometry> retime(const RigGeometry& measured, sun::UtcTime time) const;
+  Result<RigGeometry> retime(const RigGeometry& measured, UtcTime time) const;
 
   const RigConfig& config() const { return config_; }
   const std::optional<InclinometerZeroOffset>& zeroOffset() const { return zero_; }
   bool hasInclinometer() const { return inclinometer_ != nullptr; }
 
  private:
-  Result<RigGeometry> geometryAt(const std::optional<TiltReading>& tilt, sun::UtcTime time,
+  Result<RigGeometry> geometryAt(const std::optional<TiltReading>& tilt, UtcTime time,
                                  const std::optional<sun::ClockStatus>& clock) const;
 
   RigSensors(RigConfig config, std::unique_ptr<Inclinometer> inclinometer,

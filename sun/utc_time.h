@@ -8,10 +8,9 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "core/time.h"
 
 namespace glarecam::sun {
-
-using UtcTime = std::chrono::sys_time<std::chrono::microseconds>;
 
 // Parses YYYY-MM-DD, then "T", "t" or a space, then hh:mm[:ss[.fraction]], then "Z", "z", ±hh:mm,
 // ±hhmm or ±hh. Fractions finer than a microsecond are rounded to one. Years are 4 digits, or a

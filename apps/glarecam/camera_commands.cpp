@@ -24,6 +24,7 @@
 #include "core/atomic_file.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
+#include "core/time.h"
 #if GLARECAM_WITH_ARAVIS
 #include "capture/aravis/fake_gv_camera.h"
 #endif
@@ -220,10 +221,6 @@ Result<bool> prepareRigStack(CaptureRig& rig, capture::CaptureSettings& settings
   return true;
 }
 
-sun::UtcTime utcNow() {
-  return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
-}
-
 Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings, CaptureRig* rig,
                      const std::string& out, std::uint64_t count, double interval_s) {
   stopGracefullyOnSignals();
@@ -243,7 +240,7 @@ Status captureSeries(capture::Camera& camera, capture::CaptureSettings settings,
       if (!go) return interrupted();  // stopped while waiting for the button
     }
     capture::CapturedStack stack;
-    const sun::UtcTime bracket_start = utcNow();
+    const UtcTime bracket_start = utcNow();
     GLARECAM_ASSIGN(stack, capture::captureStack(camera, settings));
     if (rig) {
       rig->showCapturing(false);

@@ -10,6 +10,7 @@
 #include "apps/glarecam/sample_progress.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
+#include "core/time.h"
 #include "daemon/daemon_config.h"
 #include "daemon/rig_stack.h"
 #include "rig/gpio/rig_io_registry.h"
@@ -60,8 +61,7 @@ Result<std::optional<Calibration>> CaptureRig::cameraCalibration() const {
 
 Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
   rig::RigGeometry geometry;
-  const auto now =
-      std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
+  const UtcTime now = utcNow();
   GLARECAM_ASSIGN(geometry,
                   withSampleProgress(config_.inclinometer ? config_.inclinometer->tilt.samples : 0,
                                      show_progress_ && config_.inclinometer.has_value(),
@@ -77,8 +77,8 @@ Status CaptureRig::measureInto(capture::CaptureSettings& settings) {
   return {};
 }
 
-void CaptureRig::finishStack(capture::CapturedStack& stack, sun::UtcTime bracket_start,
-                             sun::UtcTime bracket_end) {
+void CaptureRig::finishStack(capture::CapturedStack& stack, UtcTime bracket_start,
+                             UtcTime bracket_end) {
   if (!measured_ || !measured_->sun) return;  // a fixed source does not move
   const Status recorded =
       daemon::recordBracketGeometry(*sensors_, *measured_, stack, bracket_start, bracket_end);

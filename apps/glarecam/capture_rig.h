@@ -39,8 +39,7 @@ class CaptureRig {
   // After the bracket: α again at the bracket's middle (the sun moved while the inclinometer
   // was read and the frames exposed), into the stack's manifest.
   // A failure only warns: the stack keeps α from before the bracket.
-  void finishStack(capture::CapturedStack& stack, sun::UtcTime bracket_start,
-                   sun::UtcTime bracket_end);
+  void finishStack(capture::CapturedStack& stack, UtcTime bracket_start, UtcTime bracket_end);
 
   // With --on-button: waits for a press (true) or a stop request (false). Without: true.
   Result<bool> waitForButton();

@@ -33,12 +33,6 @@
 namespace glarecam::apps {
 namespace {
 
-using sun::UtcTime;
-
-UtcTime now() {
-  return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
-}
-
 // --time, else now (with a warning when the clock cannot be trusted).
 Result<UtcTime> timeOption(const std::optional<std::string>& text) {
   if (text) return sun::parseIsoTime(*text);
@@ -46,7 +40,7 @@ Result<UtcTime> timeOption(const std::optional<std::string>& text) {
   if (!clock.synchronised)
     spdlog::warn("the system clock is not synchronised: {}; a wrong clock is a wrong sun position",
                  clock.detail);
-  return now();
+  return utcNow();
 }
 
 void printJson(const nlohmann::json& document) { std::fputs(jsonText(document).c_str(), stdout); }
@@ -155,7 +149,7 @@ Status runAlpha(const AlphaArgs& args) {
   rig::RigConfig config;
   GLARECAM_ASSIGN(config, daemon::readRigConfig(args.config));
   UtcTime time;
-  GLARECAM_ASSIGN(time, args.time ? sun::parseIsoTime(*args.time) : Result<UtcTime>(now()));
+  GLARECAM_ASSIGN(time, args.time ? sun::parseIsoTime(*args.time) : Result<UtcTime>(utcNow()));
   std::unique_ptr<rig::RigSensors> sensors;
   GLARECAM_ASSIGN(sensors, rig::RigSensors::open(config));
   rig::RigGeometry geometry;
@@ -244,7 +238,7 @@ Status runInclinometerRead(const InclinometerArgs& args) {
   GLARECAM_ASSIGN(reading, readTilt(*sensor, choice, zero, !args.no_progress));
   nlohmann::json document = rig::tiltReadingJson(reading);
   document["uri"] = choice.uri;
-  document["time"] = sun::formatIsoTime(now());
+  document["time"] = sun::formatIsoTime(utcNow());
   document["zero_offset_applied"] = stored.has_value();
   if (args.out) GLARECAM_CHECK(writeFileAtomic(*args.out, jsonText(document)));
   if (args.json) {
@@ -300,7 +294,7 @@ Result<FlipReading> liveFlipReading(rig::Inclinometer& sensor, const Inclinomete
   flip.uri = choice.uri;
   flip.record = rig::tiltReadingJson(flip.reading);
   flip.record["uri"] = choice.uri;
-  flip.record["time"] = sun::formatIsoTime(now());
+  flip.record["time"] = sun::formatIsoTime(utcNow());
   return flip;
 }
 
@@ -382,7 +376,7 @@ Status runInclinometerFlip(const InclinometerArgs& args) {
     spdlog::warn("inclinometer flip: the readings are of {}, the configured sensor is {}", uri,
                  choice.uri);
   const nlohmann::json provenance{{"method", "flip"},
-                                  {"date", sun::formatIsoTime(now())},
+                                  {"date", sun::formatIsoTime(utcNow())},
                                   {"uri", uri},
                                   {"readings", {readings.first.record, readings.second.record}}};
   GLARECAM_CHECK(rig::writeZeroOffset(calibration, zero, provenance));

@@ -106,7 +106,7 @@ Result<Rig> rigFor(const DaemonArgs& args) {
     rig.clock = std::make_unique<daemon::SystemDaemonClock>();
     return rig;
   }
-  sun::UtcTime start = daemon::defaultSimulationStart(!rig.options.interval);
+  UtcTime start = daemon::defaultSimulationStart(!rig.options.interval);
   if (args.start) GLARECAM_ASSIGN(start, sun::parseIsoTime(*args.start));
   daemon::SimulatedRigOptions simulated{.output = *args.output,
                                         .camera = args.camera.value_or("sim:seed=1"),

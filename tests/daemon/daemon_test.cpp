@@ -33,7 +33,7 @@ using testing::ScriptedCameras;
 using testing::ScriptedDisk;
 using testing::TempDir;
 
-sun::UtcTime utc(const char* text) { return *sun::parseIsoTime(text); }
+UtcTime utc(const char* text) { return *sun::parseIsoTime(text); }
 
 // The lab rig of the tests: a lamp on the horizon due south, the module on a table tilted 50°
 // facing it, so α = 90° − 50° = 40° (docs/rig.md); the small simulated camera; the simulated
@@ -483,7 +483,7 @@ TEST_F(DaemonTest, AlphaTargetsAreCaughtAsTheSunMoves) {
 TEST(AlphaSchedule, CrossingsAgreeWithAFineScan) {
   const sun::SiteLocation site{.latitude_deg = 48, .longitude_deg = 7.85, .altitude_m = 278};
   const sun::ModuleOrientation module{.tilt_deg = 24.5, .azimuth_deg = 180};
-  const sun::UtcTime from = utc("2026-06-21T00:00:00Z");
+  const UtcTime from = utc("2026-06-21T00:00:00Z");
   const std::vector<double> targets{10, 45, 80};
   const auto crossings = alphaCrossings(site, module, from, 24h, targets);
   ASSERT_TRUE(crossings) << crossings.error().message;
@@ -951,9 +951,9 @@ TEST(DiskSpace, PauseReasonsInWords) {
 }
 
 TEST(DaemonClock, TimeLapseRunsTheWallClockFaster) {
-  const sun::UtcTime start = utc("2026-06-21T05:00:00Z");
+  const UtcTime start = utc("2026-06-21T05:00:00Z");
   const TimeLapseClock clock(start, 600.0);
-  const sun::UtcTime later = start + 1h;
+  const UtcTime later = start + 1h;
   // An hour of simulated sun is 6 s of real time.
   const auto real = clock.steadyAt(later) - clock.steadyAt(start);
   EXPECT_NEAR(std::chrono::duration<double>(real).count(), 6.0, 1e-6);

@@ -78,7 +78,7 @@ void ManualClock::advance(std::chrono::nanoseconds by) {
   now_ += by;
 }
 
-void ManualClock::setUtcStart(sun::UtcTime start) {
+void ManualClock::setUtcStart(UtcTime start) {
   const std::lock_guard lock(mutex_);
   start_utc_ = start;
 }

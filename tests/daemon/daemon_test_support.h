@@ -25,16 +25,15 @@
 namespace glarecam::testing {
 
 using daemon::SteadyTime;
-using sun::UtcTime;
 
 class ManualClock final : public daemon::DaemonClock {
  public:
-  explicit ManualClock(sun::UtcTime start);
+  explicit ManualClock(UtcTime start);
 
   SteadyTime now() const override;
-  sun::UtcTime utcNow() const override;
+  UtcTime utcNow() const override;
   sun::ClockStatus clockStatus() const override;
-  SteadyTime steadyAt(sun::UtcTime utc) const override;
+  SteadyTime steadyAt(UtcTime utc) const override;
   // Never waits while anything is ready; otherwise time jumps to the first alarm due by
   // `deadline` (which runs, without the lock) or to the deadline. A loop that keeps asking to
   // wait until now (a busy loop: no time passes, so no alarm ever comes) aborts the test.
@@ -46,13 +45,13 @@ class ManualClock final : public daemon::DaemonClock {
   void advance(std::chrono::nanoseconds by);
   void setClockStatus(sun::ClockStatus status);
   // What the wall clock read at the start (before anything used the clock).
-  void setUtcStart(sun::UtcTime start);
+  void setUtcStart(UtcTime start);
   std::chrono::nanoseconds elapsed() const;  // since the start
 
  private:
   mutable std::mutex mutex_;
   SteadyTime start_steady_;
-  sun::UtcTime start_utc_;
+  UtcTime start_utc_;
   SteadyTime now_;
   sun::ClockStatus status_{.synchronised = true, .detail = "test clock"};
   std::multimap<SteadyTime, std::function<void()>> alarms_;

@@ -9,10 +9,10 @@
 #include <functional>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "calibration/hdr_merge.h"
 #include "core/error.h"
+#include "pipeline/render/rgb_surface.h"
 
 typedef struct _cairo cairo_t;  // as <cairo.h> declares it
 
@@ -30,11 +30,6 @@ struct FalseColourOptions {
   std::optional<double> limit_cd_m2;  // marked on the colour bar when given
   std::string title;                  // drawn above the colour bar (e.g. "α 40°")
   PictureOverlay overlay;             // optional
-};
-
-struct RgbImage {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;  // row-major, 3 bytes per pixel
 };
 
 // Turbo colour map (Google, 2019; polynomial approximation), t in [0, 1].

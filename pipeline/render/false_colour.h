@@ -12,9 +12,9 @@
 
 #include "calibration/hdr_merge.h"
 #include "core/error.h"
+#include "pipeline/render/cairo_handles.h"
+#include "pipeline/render/colour.h"
 #include "pipeline/render/rgb_surface.h"
-
-typedef struct _cairo cairo_t;  // as <cairo.h> declares it
 
 namespace glarecam::pipeline {
 
@@ -22,6 +22,9 @@ namespace glarecam::pipeline {
 // coordinates (core/image.h: the centre of pixel (x, y) is at (x, y)): gets the Cairo context
 // and the label font size in pixels.
 using PictureOverlay = std::function<void(cairo_t* cairo, double font_px)>;
+
+// The glare limit's colour: its mark on the colour bar, the limit contour over the image.
+inline constexpr Rgb kLimitColour{1, 0, 1};  // magenta: no colour of the Turbo map
 
 struct FalseColourOptions {
   std::optional<double>

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <memory>
 
 #include "core/parallel.h"
 #include "pipeline/luminance_stats.h"
+#include "pipeline/render/number_format.h"
+#include "pipeline/render/text.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -19,6 +19,7 @@ constexpr double kMaxDecades = 6.0;                   // the scale never spans m
 constexpr double kLowPercentile = 0.01;               // default bottom of the scale
 constexpr std::uint32_t kSaturatedArgb = 0xFFFFFFFF;  // white
 constexpr std::uint32_t kDarkArgb = 0xFF000000;       // black
+constexpr Rgb kBackground{0.12, 0.12, 0.12};          // below a short image, behind the panel
 
 // Layout of the colour-bar panel, in units of the label font size (em), so that it reads the
 // same from thumbnails to 12 MP: the font is 1/40 of the image height within 11..48 px.
@@ -29,13 +30,6 @@ constexpr double kMinCanvasHeightEm = 16;  // room for title, bar and legend on 
 constexpr double kBarMarginEm = 4.0;       // above the bar (title, unit) and below (legend)
 constexpr double kBarWidthEm = 1.5;
 constexpr double kFineTickDecades = 2.0;
-
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
 
 std::uint32_t argb(const std::uint8_t rgb[3]) {
   return 0xFF000000u | (std::uint32_t(rgb[0]) << 16) | (std::uint32_t(rgb[1]) << 8) | rgb[2];
@@ -70,19 +64,6 @@ Scale chooseScale(const calibration::MergedImage& merged, const FalseColourOptio
   bottom = options.min_cd_m2.value_or(bottom);
   if (!(bottom > 0) || bottom >= top) bottom = top / 10.0;
   return {std::log10(bottom), std::log10(top)};
-}
-
-std::string tickLabel(double value) {
-  static constexpr std::array<const char*, 5> kSuffix{"", "k", "M", "G", "T"};
-  int group = 0;
-  while (value >= 1000.0 && group + 1 < static_cast<int>(kSuffix.size())) {
-    value /= 1000.0;
-    ++group;
-  }
-  char text[32];
-  std::snprintf(text, sizeof text, value < 1.0 ? "%.2g%s" : "%.0f%s", value,
-                kSuffix[static_cast<std::size_t>(group)]);
-  return text;
 }
 
 void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged,
@@ -122,27 +103,22 @@ struct PanelLayout {
   double bar_top, bar_bottom, bar_x, bar_width, font_px;
 };
 
-void drawText(cairo_t* cr, double x, double y, const std::string& text) {
-  cairo_move_to(cr, x, y);
-  cairo_show_text(cr, text.c_str());
-}
-
 void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
                     const FalseColourOptions& options, bool has_saturated) {
-  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, p.font_px);
+  const Font font{.size = p.font_px};
+  const TextStyle label_style{font, kWhite};
   const int steps = static_cast<int>(p.bar_bottom - p.bar_top);
   for (int i = 0; i < steps; ++i) {
     std::uint8_t rgb[3];
     turboColour(1.0 - static_cast<double>(i) / std::max(1, steps - 1), rgb);
-    cairo_set_source_rgb(cr, rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0);
+    setColour(cr, {rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0});
     cairo_rectangle(cr, p.bar_x, p.bar_top + i, p.bar_width, 1.0);
     cairo_fill(cr);
   }
   auto yOf = [&](double value) {
     return p.bar_bottom - scale.position(value) * (p.bar_bottom - p.bar_top);
   };
-  cairo_set_source_rgb(cr, 1, 1, 1);
+  setColour(cr, kWhite);
   cairo_set_line_width(cr, std::max(1.0, p.font_px / 10));
   // Ticks at each decade; on a scale under kFineTickDecades also at 2 and 5 times each, so
   // that a dim, low-contrast image still has values to read.
@@ -158,11 +134,13 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
       cairo_move_to(cr, p.bar_x + p.bar_width, y);
       cairo_line_to(cr, p.bar_x + p.bar_width + p.font_px * 0.4, y);
       cairo_stroke(cr);
-      drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, y + p.font_px * 0.35, tickLabel(value));
+      drawText(cr,
+               {p.bar_x + p.bar_width + p.font_px * 0.6, y + p.font_px * kBaselineBelowMiddleEm},
+               formatSiPrefixed(value), label_style);
     }
   }
-  drawText(cr, p.bar_x, p.bar_top - p.font_px * 0.8, "cd/m\u00b2");
-  if (!options.title.empty()) drawText(cr, p.bar_x, p.font_px * 1.2, options.title);
+  drawText(cr, {p.bar_x, p.bar_top - p.font_px * 0.8}, "cd/m\u00b2", label_style);
+  if (!options.title.empty()) drawText(cr, {p.bar_x, p.font_px * 1.2}, options.title, label_style);
   // The limit is marked only where it lies on the scale: pinned to an end it would read as
   // "the maximum is the limit".
   const bool limit_on_scale = options.limit_cd_m2 && *options.limit_cd_m2 > 0 &&
@@ -170,18 +148,19 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
                               std::log10(*options.limit_cd_m2) <= scale.log_max;
   if (limit_on_scale) {
     const double y = yOf(*options.limit_cd_m2);
-    cairo_set_source_rgb(cr, 1, 0, 1);
+    setColour(cr, kLimitColour);
     cairo_move_to(cr, p.bar_x - p.font_px * 0.3, y);
     cairo_line_to(cr, p.bar_x + p.bar_width, y);
     cairo_stroke(cr);
-    drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, y - p.font_px * 0.5, "limit");
+    drawText(cr, {p.bar_x + p.bar_width + p.font_px * 0.6, y - p.font_px * 0.5}, "limit",
+             {font, kLimitColour});
   }
   if (!has_saturated) return;
-  cairo_set_source_rgb(cr, 1, 1, 1);
+  setColour(cr, kWhite);
   cairo_rectangle(cr, p.bar_x, p.bar_bottom + p.font_px * 0.8, p.bar_width, p.font_px);
   cairo_fill(cr);
-  drawText(cr, p.bar_x + p.bar_width + p.font_px * 0.6, p.bar_bottom + p.font_px * 1.7,
-           "saturated");
+  drawText(cr, {p.bar_x + p.bar_width + p.font_px * 0.6, p.bar_bottom + p.font_px * 1.7},
+           "saturated", label_style);
 }
 
 bool hasSaturated(const calibration::MergedImage& merged) {
@@ -189,27 +168,6 @@ bool hasSaturated(const calibration::MergedImage& merged) {
   return std::any_of(bound, bound + merged.bound.pixelCount(), [](std::uint8_t b) {
     return b == static_cast<std::uint8_t>(calibration::PixelBound::kLowerBound);
   });
-}
-
-RgbImage toRgb(cairo_surface_t* surface) {
-  cairo_surface_flush(surface);
-  RgbImage image;
-  image.width = cairo_image_surface_get_width(surface);
-  image.height = cairo_image_surface_get_height(surface);
-  image.rgb.resize(static_cast<std::size_t>(image.width) * image.height * 3);
-  const unsigned char* data = cairo_image_surface_get_data(surface);
-  const int stride = cairo_image_surface_get_stride(surface);
-  for (int y = 0; y < image.height; ++y) {
-    const auto* in =
-        reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    std::uint8_t* out = image.rgb.data() + static_cast<std::size_t>(y) * image.width * 3;
-    for (int x = 0; x < image.width; ++x) {
-      out[3 * x + 0] = static_cast<std::uint8_t>(in[x] >> 16);
-      out[3 * x + 1] = static_cast<std::uint8_t>(in[x] >> 8);
-      out[3 * x + 2] = static_cast<std::uint8_t>(in[x]);
-    }
-  }
-  return image;
 }
 
 }  // namespace
@@ -242,31 +200,27 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
   const double font_px = std::clamp(height * kFontFractionOfHeight, kMinFontPx, kMaxFontPx);
   const int panel_width = static_cast<int>(font_px * kPanelWidthEm);
   const int canvas_height = std::max(height, static_cast<int>(font_px * kMinCanvasHeightEm));
-  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
-      cairo_image_surface_create(CAIRO_FORMAT_RGB24, width + panel_width, canvas_height));
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-    return fail(ErrorCode::kInternal, "false colour: cannot allocate a " +
-                                          std::to_string(width + panel_width) + "x" +
-                                          std::to_string(canvas_height) + " picture");
-  }
+  const Result<CairoSurface> surface = createRgbSurface(width + panel_width, canvas_height);
+  if (!surface) return std::unexpected(withContext(surface.error(), "false colour"));
+  const Result<CairoContext> context = createContext(surface->get());
+  if (!context) return std::unexpected(withContext(context.error(), "false colour"));
+  cairo_t* const cr = context->get();
   const Scale scale = chooseScale(merged, options);
-  std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
-  cairo_set_source_rgb(cr.get(), 0.12, 0.12, 0.12);
-  cairo_paint(cr.get());
-  paintImage(surface.get(), merged, scale);
+  paint(cr, kBackground);
+  paintImage(surface->get(), merged, scale);
   if (options.overlay) {
-    cairo_save(cr.get());
-    cairo_rectangle(cr.get(), 0, 0, width, height);
-    cairo_clip(cr.get());
+    cairo_save(cr);
+    cairo_rectangle(cr, 0, 0, width, height);
+    cairo_clip(cr);
     // Pixel (x, y) covers [x, x + 1] on the canvas; overlays draw in pixel-centre coordinates.
-    cairo_translate(cr.get(), 0.5, 0.5);
-    options.overlay(cr.get(), font_px);
-    cairo_restore(cr.get());
+    cairo_translate(cr, 0.5, 0.5);
+    options.overlay(cr, font_px);
+    cairo_restore(cr);
   }
   const PanelLayout layout{font_px * kBarMarginEm, canvas_height - font_px * kBarMarginEm,
                            width + font_px, font_px * kBarWidthEm, font_px};
-  paintColourBar(cr.get(), layout, scale, options, hasSaturated(merged));
-  return toRgb(surface.get());
+  paintColourBar(cr, layout, scale, options, hasSaturated(merged));
+  return copyRgb(surface->get());
 }
 
 }  // namespace glarecam::pipeline

@@ -9,12 +9,12 @@
 #include <functional>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include "calibration/hdr_merge.h"
 #include "core/error.h"
-
-typedef struct _cairo cairo_t;  // as <cairo.h> declares it
+#include "pipeline/render/cairo_handles.h"
+#include "pipeline/render/colour.h"
+#include "pipeline/render/rgb_surface.h"
 
 namespace glarecam::pipeline {
 
@@ -23,6 +23,9 @@ namespace glarecam::pipeline {
 // and the label font size in pixels.
 using PictureOverlay = std::function<void(cairo_t* cairo, double font_px)>;
 
+// The glare limit's colour: its mark on the colour bar, the limit contour over the image.
+inline constexpr Rgb kLimitColour{1, 0, 1};  // magenta: no colour of the Turbo map
+
 struct FalseColourOptions {
   std::optional<double>
       min_cd_m2;  // bottom of the scale; default: 1st percentile, at most 6 decades below max
@@ -30,11 +33,6 @@ struct FalseColourOptions {
   std::optional<double> limit_cd_m2;  // marked on the colour bar when given
   std::string title;                  // drawn above the colour bar (e.g. "α 40°")
   PictureOverlay overlay;             // optional
-};
-
-struct RgbImage {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;  // row-major, 3 bytes per pixel
 };
 
 // Turbo colour map (Google, 2019; polynomial approximation), t in [0, 1].

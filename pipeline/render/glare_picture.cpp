@@ -8,6 +8,8 @@
 #include <numbers>
 
 #include "calibration/angular_plane.h"
+#include "pipeline/render/colour.h"
+#include "pipeline/render/text.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -22,17 +24,23 @@ constexpr int kCurvePoints = 360;  // per ellipse or circle: smooth at any pictu
 constexpr int kAxisPoints = 48;    // an axis is a great-circle arc, curved by the lens
 
 struct Style {
-  double r, g, b, alpha;
+  Rgb colour;
+  double alpha;     // opacity
   double width_em;  // line width in units of the label font size
   bool dashed;
 };
 // The limit contour in magenta, like the limit mark on the colour bar; fits in white (limit)
 // and light grey (FWHM), dashed so that the traced contour shows through; circles faint.
-constexpr Style kContourStyle{1, 0, 1, 1, 0.14, false};
-constexpr Style kLimitFitStyle{1, 1, 1, 1, 0.12, true};
-constexpr Style kFwhmFitStyle{0.8, 0.8, 0.8, 0.9, 0.10, true};
-constexpr Style kAxisStyle{1, 1, 1, 1, 0.08, false};
-constexpr Style kCircleStyle{1, 1, 1, 0.5, 0.07, false};
+constexpr Style kContourStyle{kLimitColour, 1, 0.14, false};
+constexpr Style kLimitFitStyle{kWhite, 1, 0.12, true};
+constexpr Style kFwhmFitStyle{{0.8, 0.8, 0.8}, 0.9, 0.10, true};
+constexpr Style kAxisStyle{kWhite, 1, 0.08, false};
+constexpr Style kCircleStyle{kWhite, 0.5, 0.07, false};
+
+constexpr Rgb kLabelOutline{0, 0, 0};
+constexpr double kSmallLabelEm = 0.8;  // the circles' labels and the legend, below the axes'
+
+Font labelFont(double font_px) { return {.size = font_px, .bold = true}; }
 
 struct ClipBox {
   double x0, y0, x1, y1;
@@ -76,7 +84,7 @@ void stroke(cairo_t* cr, const std::vector<Polyline>& pieces, const Style& style
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   const double dash[] = {4 * width, 3 * width};
   cairo_set_dash(cr, dash, style.dashed ? 2 : 0, 0);
-  cairo_set_source_rgba(cr, style.r, style.g, style.b, style.alpha);
+  setColour(cr, style.colour, style.alpha);
   for (const Polyline& piece : pieces) {
     if (piece.size() < 2) continue;
     cairo_move_to(cr, piece.front().x, piece.front().y);
@@ -88,13 +96,13 @@ void stroke(cairo_t* cr, const std::vector<Polyline>& pieces, const Style& style
 
 // White text with a dark outline: legible on every colour of the map.
 void label(cairo_t* cr, double x, double y, const std::string& text, double font_px) {
-  cairo_set_font_size(cr, font_px);
+  selectFont(cr, labelFont(font_px));
   cairo_move_to(cr, x, y);
   cairo_text_path(cr, text.c_str());
-  cairo_set_source_rgb(cr, 0, 0, 0);
+  setColour(cr, kLabelOutline);
   cairo_set_line_width(cr, std::max(1.5, font_px / 6));
   cairo_stroke_preserve(cr);
-  cairo_set_source_rgb(cr, 1, 1, 1);
+  setColour(cr, kWhite);
   cairo_fill(cr);
 }
 
@@ -103,12 +111,9 @@ void label(cairo_t* cr, double x, double y, const std::string& text, double font
 void labelInside(cairo_t* cr, const PixelPoint& at, const std::string& text, const ClipBox& box,
                  double font_px) {
   if (!std::isfinite(at.x) || !std::isfinite(at.y)) return;
-  cairo_text_extents_t extents;
-  cairo_set_font_size(cr, font_px);
-  cairo_text_extents(cr, text.c_str(), &extents);
+  const double width = textWidth(cr, text, labelFont(font_px));
   // min(max(...)): defined even on pictures too small for the label (unlike std::clamp).
-  const double x =
-      std::min(std::max(at.x, box.x0 + font_px * 0.2), box.x1 - extents.x_advance - font_px * 0.2);
+  const double x = std::min(std::max(at.x, box.x0 + font_px * 0.2), box.x1 - width - font_px * 0.2);
   const double y = std::min(std::max(at.y, box.y0 + font_px * 1.1), box.y1 - font_px * 0.3);
   label(cr, x, y, text, font_px);
 }
@@ -172,13 +177,10 @@ void drawCircles(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_
     if (ray.z <= 0) continue;
     const PixelPoint p = o.camera.project(ray);
     const std::string text = fmt::format("r {:g}\u00b0", radius_deg);
-    cairo_set_font_size(cr, font_px * 0.8);
-    cairo_text_extents_t extents;
-    cairo_text_extents(cr, text.c_str(), &extents);
-    cairo_set_font_size(cr, font_px);
-    const double x = p.x - extents.x_advance - font_px * 0.2, y = p.y + font_px * 0.9;
+    const double x = p.x - textWidth(cr, text, labelFont(font_px * kSmallLabelEm)) - font_px * 0.2;
+    const double y = p.y + font_px * 0.9;
     if (x > box.x0 && p.x < box.x1 && y < box.y1 && p.y > box.y0)
-      label(cr, x, y, text, font_px * 0.8);
+      label(cr, x, y, text, font_px * kSmallLabelEm);
   }
 }
 
@@ -202,7 +204,7 @@ void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_p
   lines.push_back("circles: radius 1\u00b0, 5\u00b0, 10\u00b0, 20\u00b0 around the maximum");
   double y = box.y0 + font_px * 1.2;
   for (const std::string& line : lines) {
-    label(cr, box.x0 + font_px * 0.6, y, line, font_px * 0.8);
+    label(cr, box.x0 + font_px * 0.6, y, line, font_px * kSmallLabelEm);
     y += font_px * 1.2;
   }
 }
@@ -210,8 +212,6 @@ void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_p
 void drawOverlay(cairo_t* cr, const Overlay& o, double font_px) {
   ClipBox box{};
   cairo_clip_extents(cr, &box.x0, &box.y0, &box.x1, &box.y1);
-  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
-  cairo_set_font_size(cr, font_px);
   drawCircles(cr, o, box, font_px);
   if (o.fwhm) stroke(cr, ellipseOutline(o, *o.fwhm, box), kFwhmFitStyle, font_px);
   if (o.limit) {

@@ -1,0 +1,53 @@
+// A small white raster to draw on with the render toolkit and read back, for the toolkit's
+// tests. One user unit is one pixel; pixel (x, y) covers [x, x + 1] × [y, y + 1].
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+
+#include "pipeline/render/cairo_handles.h"
+#include "pipeline/render/colour.h"
+#include "pipeline/render/rgb_surface.h"
+
+namespace glarecam::pipeline {
+
+using CanvasPixel = std::array<std::uint8_t, 3>;
+
+struct TestCanvas {
+  CairoSurface surface;
+  CairoContext context;
+
+  TestCanvas(int width_px, int height_px, const Rgb& background = kWhite)
+      : surface(createRgbSurface(width_px, height_px).value()),
+        context(createContext(surface.get()).value()) {
+    paint(cr(), background);
+  }
+
+  cairo_t* cr() const { return context.get(); }
+
+  RgbImage image() const { return copyRgb(surface.get()); }
+
+  CanvasPixel at(int x, int y) const {
+    const RgbImage pixels = image();
+    const std::uint8_t* p =
+        pixels.rgb.data() + (static_cast<std::size_t>(y) * pixels.width + x) * 3;
+    return {p[0], p[1], p[2]};
+  }
+
+  // Whether any pixel in [x0, x1) × [y0, y1) is darker than `below` in some channel.
+  bool anyInk(int x0, int y0, int x1, int y1, int below = 200) const {
+    const RgbImage pixels = image();
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        for (int c = 0; c < 3; ++c)
+          if (pixels.rgb[(static_cast<std::size_t>(y) * pixels.width + x) * 3 + c] < below)
+            return true;
+    return false;
+  }
+};
+
+inline constexpr CanvasPixel kWhitePixel{255, 255, 255};
+
+}  // namespace glarecam::pipeline

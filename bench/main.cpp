@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "bench/benchmarks.h"
+#include "core/build_config.h"
 
 namespace glarecam::bench {
 namespace {

@@ -7,6 +7,7 @@
 
 #include "capture/sim/sim_camera.h"
 #include "capture/v4l2/v4l2_backend.h"
+#include "core/build_config.h"
 #if GLARECAM_WITH_ARAVIS
 #include "capture/aravis/aravis_backend.h"
 #endif
@@ -99,6 +100,36 @@ Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme,
   }
   return badInput(
       fmt::format("unknown camera backend '{}' (expected one of {})", scheme, knownSchemes()));
+}
+
+CameraListing listCameras() {
+  CameraListing listing;
+  for (const auto& backend : cameraBackends()) {
+    CameraListing::Backend& listed = listing.backends.emplace_back();
+    listed.scheme = std::string(backend->scheme());
+    auto cameras = backend->list();
+    if (cameras)
+      listed.cameras = std::move(*cameras);
+    else
+      listed.unavailable = cameras.error().message;
+  }
+  return listing;
+}
+
+nlohmann::json toJson(const CameraListing& listing) {
+  nlohmann::json document = {{"cameras", nlohmann::json::array()},
+                             {"unavailable", nlohmann::json::object()}};
+  for (const CameraListing::Backend& backend : listing.backends) {
+    if (backend.unavailable) document["unavailable"][backend.scheme] = *backend.unavailable;
+    for (const CameraInfo& camera : backend.cameras)
+      document["cameras"].push_back({{"uri", camera.uri},
+                                     {"backend", camera.backend},
+                                     {"vendor", camera.vendor},
+                                     {"model", camera.model},
+                                     {"serial", camera.serial},
+                                     {"detail", camera.detail}});
+  }
+  return document;
 }
 
 Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options,

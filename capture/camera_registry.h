@@ -5,9 +5,11 @@
 
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "capture/camera.h"
@@ -34,6 +36,20 @@ std::vector<std::unique_ptr<CameraBackend>> cameraBackends();
 // The backend for `scheme`, or a kBadInput error listing the known schemes.
 Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme,
                                                      const SceneAlphaSource& scene_alpha = {});
+
+// What every backend sees now (`glarecam cameras`): the cameras, and for each backend that could
+// not list, why (not built in, no device, a library error).
+struct CameraListing {
+  struct Backend {
+    std::string scheme;
+    std::vector<CameraInfo> cameras;
+    std::optional<std::string> unavailable;  // why it could not list
+  };
+  std::vector<Backend> backends;  // in the order `glarecam cameras` lists them
+};
+CameraListing listCameras();
+// {"cameras": [{uri, backend, vendor, model, serial, detail}], "unavailable": {scheme: why}}.
+nlohmann::json toJson(const CameraListing& listing);
 
 // Parses `uri` and opens the camera it names.
 Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options,

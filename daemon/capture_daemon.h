@@ -1,24 +1,26 @@
 // glarecamd's core: the only long-lived owner of the rig's hardware. One event loop (one thread)
-// captures on schedule (a fixed interval, the α targets as the sun moves, the operator's button,
-// SIGUSR1), hands each bracket to the stack worker (written atomically, processed, the day's data
-// sheet updated) and survives what a field throws at it:
+// captures on schedule (capture_schedule.h: a fixed interval, the α targets as the sun moves; and
+// the operator's button, SIGUSR1), hands each bracket to the stack worker (stack_worker.h: written
+// atomically, processed, the day's data sheet updated) and survives what a field throws at it:
 //
 //   camera lost       the stack is discarded, the camera reopened with capped exponential
 //                     backoff (camera_supervisor.h); after camera_max_failures in a row run()
 //                     fails (kHardware) and systemd restarts the daemon
-//   inclinometer      a failed read or an implausible tilt: the stack is taken with α unknown,
-//                     or capture pauses, per [faults] inclinometer
-//   disk              below the reserve or read-only: capture pauses, resumes when space returns
+//   inclinometer      a failed read or an implausible tilt (rig_session.h): the stack is taken
+//                     with α unknown, or capture pauses, per [faults] inclinometer
+//   disk              below the reserve or read-only (health_monitor.h): capture pauses, resumes
+//                     when space returns; a stack whose write failed is kept and written later
 //   clock             not synchronised: said in STATUS, and every stack flagged
 //
 // systemd (service_notifier.h): READY=1 once the camera is open, STATUS= whenever the status
-// line changes, WATCHDOG=1 from the loop itself at half the watchdog interval, only while the loop
-// runs and the worker is not stuck (a wedged camera blocks the loop, so the heartbeat stops and
-// systemd restarts the daemon), STOPPING=1 on SIGTERM, after which queued stacks are written and
-// run() returns. SIGHUP reloads the config (a bad one is reported and the old one kept).
+// line changes, WATCHDOG=1 from the loop itself (health_monitor.h), STOPPING=1 on SIGTERM, after
+// which queued stacks are written and run() returns. SIGHUP reloads the config (a bad one is
+// reported and the old one kept).
 //
-// Everything the daemon touches is injected (DaemonServices): tests run it on a manual clock with
-// a scripted camera, disk and notifier, one thread, no sleeping.
+// The daemon owns the loop (run, step, handle) and one capture; the schedule, the rig session,
+// the health checks and the output tree are each their own class. Everything it touches is
+// injected (DaemonServices): tests run it on a manual clock with a scripted camera, disk and
+// notifier, one thread, no sleeping.
 #pragma once
 
 #include <chrono>
@@ -26,29 +28,26 @@
 #include <deque>
 #include <filesystem>
 #include <functional>
-#include <map>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <thread>
 
 #include "core/error.h"
 #include "daemon/camera_supervisor.h"
+#include "daemon/capture_schedule.h"
 #include "daemon/daemon_clock.h"
+#include "daemon/daemon_config.h"
 #include "daemon/daemon_events.h"
 #include "daemon/daemon_status.h"
 #include "daemon/disk_space.h"
+#include "daemon/health_monitor.h"
+#include "daemon/output_tree.h"
+#include "daemon/rig_session.h"
 #include "daemon/service_notifier.h"
 #include "daemon/stack_worker.h"
-#include "rig/gpio/rig_io.h"
-#include "rig/gpio/status_led.h"
-#include "rig/rig_config.h"
-#include "rig/rig_geometry.h"
 
 namespace glarecam::daemon {
-
-using RigIoOpener = std::function<Result<std::unique_ptr<rig::RigIo>>(const rig::RigIoConfig&)>;
 
 struct DaemonServices {
   DaemonClock* clock = nullptr;
@@ -68,14 +67,9 @@ struct DaemonOptions {
   std::optional<std::uint64_t> max_stacks{};  // stop once this many stacks are done (tests, demos)
 };
 
-// How often the loop looks at the disk while nothing else wakes it.
-inline constexpr std::chrono::seconds kDiskCheckPeriod{10};
-// A worker job running longer than this is stuck (a hung disk): the watchdog is no longer fed.
-inline constexpr std::chrono::minutes kWorkerStallLimit{15};
-// A wall clock that moved this much against the steady clock jumped: the schedule is replanned.
-inline constexpr std::chrono::seconds kWallClockJump{5};
-// How far ahead the α targets are computed, and how soon again when none lies in it.
-inline constexpr std::chrono::hours kAlphaPlanHorizon{24};
+// The config with the command line's overrides applied: the one place they are.
+Config effectiveConfig(Config config, const DaemonOptions& options);
+
 // While paused by the inclinometer, how soon it is read again.
 inline constexpr std::chrono::seconds kInclinometerRetry{30};
 
@@ -103,51 +97,42 @@ class CaptureDaemon {
  private:
   CaptureDaemon(DaemonOptions options, DaemonServices services, Config config);
 
+  // The loop.
   Status start();
   Status step();
   void stop();
-
-  // Opening and reopening the hardware and the output.
-  void applyConfig();
-  void openSensors();
-  void openRigIo();
-  void closeRigIo();
-  // The output directories; `clean`: also remove what a killed run left half-written (at start
-  // only: later the worker may be writing).
-  void prepareOutput(bool clean);
-  bool outputWritable();
-  void retryInclinometer();
-  void checkWallClock(SteadyTime now);
-  Status checkConfig(const Config& config) const;
-  Status checkReloadedCamera(const Config& config);
-  void catchUp();
-  Status reopenCamera(SteadyTime now);
-
-  // One capture, and its parts.
-  Status capture(CaptureTrigger trigger);
-  std::optional<rig::RigGeometry> measureGeometry(capture::CaptureSettings& settings, bool& pause);
-  capture::CaptureSettings baseSettings() const;
-  Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
-  void finishStack(capture::CapturedStack& stack, const std::optional<rig::RigGeometry>& geometry,
-                   CaptureTrigger trigger, UtcTime bracket_start, UtcTime bracket_end);
-
-  // The schedule.
-  // `slot_taken`: the scheduled slot was just used (or skipped): the next one.
-  void planNext(SteadyTime now, bool slot_taken);
-  void planAlphaTargets(UtcTime from);
-  std::optional<sun::ModuleOrientation> plannedModule();
-  bool scheduledDue(SteadyTime now) const;
+  void handle(const DaemonEvent& event);
+  void handleWorker(const WorkerEvent& event);
   // Ready, a camera open, not stopping and --count not reached: a due capture is taken now.
   bool mayCapture() const;
   SteadyTime nextDeadline(SteadyTime now) const;
 
-  void handle(const DaemonEvent& event);
-  void handleWorker(const WorkerEvent& event);
+  // The config and what it opens.
+  Status checkConfig(const Config& config) const;
+  Status checkReloadedCamera(const Config& config);
+  void applyConfig();
   void reload();
-  void checkDisk(SteadyTime now);
+  void openSensors();
+  void openGpio();
+  void closeGpio();
+  void prepareOutput(bool clean);
+  void catchUp();
+  Status reopenCamera(SteadyTime now);
+  Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
+
+  // One capture.
+  Status capture(CaptureTrigger trigger);
+  std::optional<rig::RigGeometry> measureGeometry(capture::CaptureSettings& settings, bool& pause);
+  void retryInclinometer();
+  void finishStack(capture::CapturedStack& stack, const std::optional<rig::RigGeometry>& geometry,
+                   CaptureTrigger trigger, UtcTime bracket_start, UtcTime bracket_end);
+
+  // The schedule and the checks.
+  void planNext(bool slot_taken);
+  void checkWallClock();
+  void checkDisk();
   void checkClock();
-  void feedWatchdog(SteadyTime now);
-  bool healthy(SteadyTime now) const;
+  void feedWatchdog();
   void publishStatus();
 
   DaemonOptions options_;
@@ -158,26 +143,16 @@ class CaptureDaemon {
   DaemonState state_;
 
   CameraSupervisor camera_;
-  std::unique_ptr<rig::RigSensors> sensors_;
-  std::optional<rig::RigGeometry> last_geometry_;
-  std::optional<double> scene_alpha_deg_;  // the last α measured: what a simulated camera shows
-  std::set<std::string> logged_warnings_;  // the sensors' standing warnings, logged once
+  std::unique_ptr<RigSession> rig_;
   std::optional<Calibration> calibration_;
-  std::unique_ptr<rig::RigIo> io_;
-  std::unique_ptr<rig::StatusLed> led_;
   std::jthread button_thread_;
   std::unique_ptr<StackWorker> worker_;
+  CaptureSchedule schedule_;
+  HealthMonitor health_;
+  OutputTree output_;
 
-  std::optional<std::chrono::microseconds> watchdog_interval_;
-  SteadyTime next_watchdog_{};
-  SteadyTime next_disk_check_{};
-  std::optional<SteadyTime> next_scheduled_;
-  std::optional<SteadyTime> replan_at_;
   std::optional<SteadyTime> inclinometer_retry_at_;
-  std::optional<UtcTime> planned_crossing_;  // the next α target's crossing, in wall time
-  std::optional<UtcTime> last_interval_start_;
-  std::map<double, UtcTime> taken_targets_;  // when each α target's slot was last used
-  std::deque<CaptureTrigger> requests_;      // button presses and SIGUSR1, in order
+  std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;
 };

@@ -12,11 +12,6 @@ namespace glarecam::rig {
 
 namespace {
 
-// ICAO standard atmosphere below 11 km: p = p0 (1 − L h / T0)^(g M / (R L)) with the sea-level
-// pressure 1013.25 hPa, lapse rate 0.0065 K/m and 288.15 K (ISO 2533).
-constexpr double kSeaLevelPressureHpa = 1013.25;
-constexpr double kLapseRatePerMetre = 0.0065 / 288.15;
-constexpr double kBarometricExponent = 5.25588;
 constexpr std::int64_t kMaxTiltSamples = 100000;  // ≈ 2 h at the ADXL355's 15.6 Hz
 
 Result<std::optional<sun::SiteLocation>> readSite(const std::filesystem::path& file,
@@ -33,7 +28,7 @@ Result<std::optional<sun::SiteLocation>> readSite(const std::filesystem::path& f
   GLARECAM_ASSIGN(temperature, site.number("temperature_c", -273, 100));
   GLARECAM_CHECK(site.checkNoUnknownKeys());
   location.altitude_m = altitude.value_or(0.0);
-  location.pressure_hpa = pressure.value_or(standardPressureHpa(location.altitude_m));
+  location.pressure_hpa = pressure.value_or(sun::standardPressureHpa(location.altitude_m));
   if (temperature) location.temperature_c = *temperature;
   const Status valid = validate(location);
   if (!valid) return site.tableError(valid.error().message);
@@ -136,11 +131,6 @@ Result<RigConfig> readRigSections(const std::filesystem::path& path, const toml:
   GLARECAM_ASSIGN(rig.gpio, readGpio(path, root["gpio"].as_table()));
   GLARECAM_CHECK(checkConsistent(rig));
   return rig;
-}
-
-double standardPressureHpa(double altitude_m) {
-  return kSeaLevelPressureHpa *
-         std::pow(1.0 - kLapseRatePerMetre * altitude_m, kBarometricExponent);
 }
 
 Result<std::optional<Calibration>> rigCameraCalibration(const RigConfig& config) {

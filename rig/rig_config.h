@@ -52,9 +52,6 @@ struct RigConfig {
   std::optional<RigIoConfig> gpio;
 };
 
-// The standard atmosphere's pressure at `altitude_m` (the default when the config gives none).
-double standardPressureHpa(double altitude_m);
-
 // The sections of a config file the rig's reader reads.
 inline constexpr std::array<std::string_view, 5> kRigSections{"gpio", "inclinometer", "module",
                                                               "site", "source"};

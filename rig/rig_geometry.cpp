@@ -8,10 +8,15 @@
 #include <functional>
 
 #include "rig/inclinometer/inclinometer_registry.h"
+#include "rig/inclinometer/sample_progress.h"
 #include "rig/inclinometer/zero_offset_file.h"
 #include "sun/utc_time.h"
 
 namespace glarecam::rig {
+
+const char* geometrySourceName(GeometrySource source) {
+  return source == GeometrySource::kSun ? "sun" : "fixed";
+}
 
 namespace {
 
@@ -79,11 +84,11 @@ Result<RigGeometry> computeRigGeometry(const RigConfig& config,
   g.tilt = tilt;
   GLARECAM_ASSIGN(g.module, moduleOrientationOf(config, tilt));
   if (config.site) {
-    g.source = "sun";
+    g.source = GeometrySource::kSun;
     g.clock = clock;
     GLARECAM_ASSIGN(g.source_direction, sunDirection(*config.site, time, &g.sun));
   } else {
-    g.source = "fixed";
+    g.source = GeometrySource::kFixed;
     g.source_direction = *config.fixed_source;
   }
   g.alpha_deg = sun::incidenceAngleDeg(g.module, g.source_direction);
@@ -116,7 +121,7 @@ nlohmann::json geometryJson(const RigGeometry& g) {
                        {"module_azimuth_deg", g.module.azimuth_deg},
                        {"alpha_deg", g.alpha_deg},
                        {"alpha_uncertainty_deg", g.alpha_uncertainty_deg},
-                       {"source", g.source},
+                       {"source", geometrySourceName(g.source)},
                        {"time", sun::formatIsoTime(g.time)}};
   if (g.sun) {
     block["sun_elevation_deg"] = g.sun->elevation_deg;
@@ -226,6 +231,16 @@ Result<RigGeometry> RigSensors::measureWithClock(UtcTime time,
                                       zero_.value_or(InclinometerZeroOffset{}), on_sample));
   }
   return geometryAt(tilt, time, clock);
+}
+
+Result<RigGeometry> RigSensors::measureShowingProgress(UtcTime time,
+                                                       const std::optional<sun::ClockStatus>& clock,
+                                                       bool show_progress) {
+  return withSampleProgress(inclinometer_ ? config_.inclinometer->tilt.samples : 0,
+                            show_progress && inclinometer_,
+                            [&](const std::function<void()>& on_sample) {
+                              return measureWithClock(time, clock, on_sample);
+                            });
 }
 
 Result<RigGeometry> RigSensors::retime(const RigGeometry& measured, UtcTime time) const {

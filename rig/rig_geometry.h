@@ -23,9 +23,14 @@
 
 namespace glarecam::rig {
 
+// Where the light comes from: the sun at the config's [site], or a lab lamp fixed at [source].
+enum class GeometrySource { kSun, kFixed };
+// "sun" or "fixed", as the geometry block records it.
+const char* geometrySourceName(GeometrySource source);
+
 struct RigGeometry {
   UtcTime time;
-  std::string source;  // "sun" or "fixed"
+  GeometrySource source = GeometrySource::kSun;
   sun::ModuleOrientation module;
   sun::SkyDirection source_direction;
   std::optional<sun::SolarPosition> sun;  // when the source is the sun
@@ -72,6 +77,10 @@ class RigSensors {
   // The same reading at another time (the sun moved; the module did not): for α at the middle
   // of a bracket that followed the reading.
   Result<RigGeometry> retime(const RigGeometry& measured, UtcTime time) const;
+  // measureWithClock() with a progress line over the inclinometer's samples on stderr.
+  Result<RigGeometry> measureShowingProgress(UtcTime time,
+                                             const std::optional<sun::ClockStatus>& clock,
+                                             bool show_progress);
 
   const RigConfig& config() const { return config_; }
   const std::optional<InclinometerZeroOffset>& zeroOffset() const { return zero_; }

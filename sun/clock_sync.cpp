@@ -1,10 +1,13 @@
 #include "sun/clock_sync.h"
 
+#include <spdlog/spdlog.h>
 #include <sys/timex.h>
 
 #include <cerrno>
 #include <cstring>
 #include <string>
+
+#include "sun/utc_time.h"
 
 namespace glarecam::sun {
 
@@ -38,6 +41,15 @@ ClockStatus systemClockStatus() {
     return clock;
   }
   return interpretClockState(state, tx.status, tx.maxerror, tx.esterror);
+}
+
+Result<UtcTime> givenTimeOrNow(const std::optional<std::string>& text) {
+  if (text) return parseIsoTime(*text);
+  const ClockStatus clock = systemClockStatus();
+  if (!clock.synchronised)
+    spdlog::warn("the system clock is not synchronised: {}; a wrong clock is a wrong sun position",
+                 clock.detail);
+  return utcNow();
 }
 
 }  // namespace glarecam::sun

@@ -7,6 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "core/error.h"
+#include "core/time.h"
+
 namespace glarecam::sun {
 
 struct ClockStatus {
@@ -30,5 +33,9 @@ ClockStatus interpretClockState(int state, int status_flags, long max_error_us, 
 
 // The system clock now (a read-only adjtimex call; needs no privilege).
 ClockStatus systemClockStatus();
+
+// The instant `text` gives (ISO 8601, utc_time.h), else the system clock's now, with a warning
+// when the clock is not synchronised (a wrong clock is a wrong sun position).
+Result<UtcTime> givenTimeOrNow(const std::optional<std::string>& text);
 
 }  // namespace glarecam::sun

@@ -11,9 +11,16 @@
 
 #include "core/angles.h"
 #include "sun/spa_tables.h"
+#include "sun/utc_time.h"
 
 namespace glarecam::sun {
 namespace {
+
+// ICAO standard atmosphere below 11 km: p = p0 (1 − L h / T0)^(g M / (R L)) with the sea-level
+// pressure 1013.25 hPa, lapse rate 0.0065 K/m and 288.15 K (ISO 2533).
+constexpr double kSeaLevelPressureHpa = 1013.25;
+constexpr double kLapseRatePerMetre = 0.0065 / 288.15;
+constexpr double kBarometricExponent = 5.25588;
 
 using std::chrono::microseconds;
 
@@ -291,6 +298,21 @@ Result<SolarPosition> solarPosition(std::chrono::sys_time<microseconds> utc,
   position.julian_day = julian_day;
   position.delta_t_s = delta_t_s;
   return position;
+}
+
+double standardPressureHpa(double altitude_m) {
+  return kSeaLevelPressureHpa *
+         std::pow(1.0 - kLapseRatePerMetre * altitude_m, kBarometricExponent);
+}
+
+nlohmann::json solarPositionJson(const SolarPosition& sun, const SiteLocation& site, UtcTime time) {
+  return {{"time", formatIsoTime(time)},          {"latitude_deg", site.latitude_deg},
+          {"longitude_deg", site.longitude_deg},  {"altitude_m", site.altitude_m},
+          {"pressure_hpa", site.pressure_hpa},    {"temperature_c", site.temperature_c},
+          {"elevation_deg", sun.elevation_deg},   {"zenith_deg", sun.zenith_deg},
+          {"azimuth_deg", sun.azimuth_deg},       {"true_elevation_deg", sun.true_elevation_deg},
+          {"refraction_deg", sun.refraction_deg}, {"declination_deg", sun.declination_deg},
+          {"hour_angle_deg", sun.hour_angle_deg}, {"delta_t_s", sun.delta_t_s}};
 }
 
 }  // namespace glarecam::sun

@@ -20,9 +20,11 @@
 #pragma once
 
 #include <chrono>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "core/error.h"
+#include "core/time.h"
 
 namespace glarecam::sun {
 
@@ -63,6 +65,14 @@ Result<SolarPosition> solarPosition(std::chrono::sys_time<std::chrono::microseco
 // for 2020–2030 they give 71.6–77.6 s where the observed ΔT is about 69 s, an error worth 0.0001°
 // of solar longitude. Outside −500..2150 the long-term parabola −20 + 32·((y − 1820)/100)².
 double deltaTSeconds(double decimal_year);
+
+// The standard atmosphere's pressure at `altitude_m` (the default when a site gives none).
+double standardPressureHpa(double altitude_m);
+
+// The position as JSON, with the site and the time (`glarecam sun --json`): time, latitude_deg,
+// longitude_deg, altitude_m, pressure_hpa, temperature_c, elevation_deg, zenith_deg, azimuth_deg,
+// true_elevation_deg, refraction_deg, declination_deg, hour_angle_deg, delta_t_s.
+nlohmann::json solarPositionJson(const SolarPosition& sun, const SiteLocation& site, UtcTime time);
 
 // The first problem of a site or of options in words ("latitude 91° is outside [-90, 90]"), as
 // kBadInput; also refuses NaN and infinities.

@@ -11,6 +11,7 @@
 #include "apps/glarecam/commands.h"
 #include "core/error.h"
 #include "core/logging.h"
+#include "core/stack_manifest.h"
 #include "core/version.h"
 
 namespace glarecam::apps {
@@ -53,6 +54,8 @@ Status runAction(const std::function<Status()>& action) {
 }
 
 }  // namespace
+
+void printJson(const nlohmann::json& document) { std::fputs(jsonText(document).c_str(), stdout); }
 
 int runGlarecam(int argc, char** argv) {
   CLI::App app{

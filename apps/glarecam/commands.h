@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "pipeline/glare_fits.h"
@@ -24,10 +25,15 @@ void addFakeCameraCommand(CLI::App& app, Action& action);
 void addSunCommand(CLI::App& app, Action& action);
 void addAlphaCommand(CLI::App& app, Action& action);
 void addInclinometerCommand(CLI::App& app, Action& action);
+// `inclinometer flip`, under the inclinometer command.
+void addInclinometerFlipCommand(CLI::App& inclinometer, Action& action);
 void addGpioCommand(CLI::App& app, Action& action);
 void addDoctorCommand(CLI::App& app, Action& action);
 void addCalibrateCommand(CLI::App& app, Action& action);
 void addSimulateCalibrationCommand(CLI::App& app, Action& action);
+
+// A JSON document on stdout, as every --json prints it.
+void printJson(const nlohmann::json& document);
 
 // Shared by fit and datasheet: reads the sweep table at `path` into `table` and fits it, logging
 // the fits' warnings; errors name the file.

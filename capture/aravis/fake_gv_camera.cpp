@@ -18,6 +18,7 @@
 
 #include "capture/aravis/glib_ownership.h"
 #include "capture/sim/sensor_model.h"
+#include "core/atomic_file.h"
 
 namespace glarecam::capture {
 namespace {
@@ -216,6 +217,19 @@ Result<Calibration> FakeGvCamera::calibration(std::string_view pixel_format) con
   if (pixel_format == "Mono8") return scaledCalibration(base, std::ldexp(1.0, -kMono8Shift));
   return badInput(fmt::format("fake-camera: no calibration for pixel format '{}' (Mono16, Mono8)",
                               pixel_format));
+}
+
+Status writeFakeCameraFiles(const FakeGvCamera& camera, const std::filesystem::path& directory,
+                            double alpha_deg) {
+  GLARECAM_CHECK(ensureDirectory(directory));
+  for (const auto& [format, file] : {std::pair{"Mono16", "fake-camera-mono16.json"},
+                                     std::pair{"Mono8", "fake-camera-mono8.json"}}) {
+    Calibration calibration;
+    GLARECAM_ASSIGN(calibration, camera.calibration(format));
+    GLARECAM_CHECK(writeFileAtomic(directory / file, jsonText(toJson(calibration))));
+  }
+  return writeFileAtomic(directory / "fake-camera-truth.json",
+                         jsonText(sceneTruthJson(camera.scene(), alpha_deg)));
 }
 
 }  // namespace glarecam::capture

@@ -7,6 +7,7 @@
 // cameras MSB-align Mono12 in Mono16), Mono8 its top 8 bits; the GainRaw register is read as dB.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -54,5 +55,11 @@ class FakeGvCamera {
   explicit FakeGvCamera(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;
 };
+
+// The calibrations of both pixel formats (fake-camera-mono16.json, fake-camera-mono8.json) and
+// the scene's truth at `alpha_deg` (fake-camera-truth.json) in `directory` (created), each
+// written atomically: what a capture from the camera is checked against.
+Status writeFakeCameraFiles(const FakeGvCamera& camera, const std::filesystem::path& directory,
+                            double alpha_deg);
 
 }  // namespace glarecam::capture

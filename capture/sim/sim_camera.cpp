@@ -233,8 +233,12 @@ class SimCameraBackend final : public CameraBackend {
       return badInput(fmt::format("camera URI sim: the simulated camera has {} only, not {}",
                                   kSimPixelFormat, *options.pixel_format));
     }
+    // An α beyond the scene's range (a low sun) does not keep the camera from opening: a bracket
+    // taken there fails, naming it.
+    std::optional<double> asked_deg = scene_alpha_ ? scene_alpha_() : std::nullopt;
+    if (asked_deg && !shownAlphaDeg(*asked_deg)) asked_deg.reset();
     SimulationOptions sim;
-    GLARECAM_ASSIGN(sim, parseSimCameraId(id, scene_alpha_ ? scene_alpha_() : std::nullopt));
+    GLARECAM_ASSIGN(sim, parseSimCameraId(id, asked_deg));
     auto rendered = sim.calibration_target.empty() ? renderSimulatedScene(sim) : targetScene(sim);
     if (!rendered) {
       return badInput(fmt::format("camera URI 'sim:{}': {}", id, rendered.error().message));

@@ -4,6 +4,8 @@
 #include <thread>
 #include <utility>
 
+#include "core/interruption.h"
+
 namespace glarecam::rig {
 
 ButtonDebouncer::ButtonDebouncer(std::chrono::nanoseconds debounce) : debounce_(debounce) {}
@@ -38,6 +40,14 @@ Result<bool> ButtonWatcher::waitForPress(RigClock::time_point deadline, std::sto
     sleep_(std::min<RigClock::duration>(kButtonPollPeriod, deadline - now));
   }
   return false;
+}
+
+Result<bool> waitForButtonPress(RigIo& io, std::chrono::milliseconds debounce,
+                                RigClock::time_point deadline) {
+  // One wait (a press may straddle any slicing), stopped from a thread that watches for signals.
+  ButtonWatcher watcher(io, debounce);
+  return untilStopRequested(
+      [&](std::stop_token stop) { return watcher.waitForPress(deadline, stop); });
 }
 
 }  // namespace glarecam::rig

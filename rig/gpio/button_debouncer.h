@@ -63,4 +63,9 @@ class ButtonWatcher {
   SleepFunction sleep_;
 };
 
+// Waits for a debounced press of `io`'s button until `deadline`: true when pressed, false at the
+// deadline or when a stop is requested (core/interruption.h: Ctrl-C); the button's read errors.
+Result<bool> waitForButtonPress(RigIo& io, std::chrono::milliseconds debounce,
+                                RigClock::time_point deadline);
+
 }  // namespace glarecam::rig

@@ -3,6 +3,8 @@
 #include <array>
 #include <utility>
 
+#include "core/build_config.h"
+
 namespace glarecam::rig {
 namespace {
 

@@ -27,6 +27,7 @@
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
 #include "support/test_support.h"
+#include "core/build_config.h"
 
 extern char** environ;
 

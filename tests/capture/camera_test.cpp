@@ -201,6 +201,19 @@ TEST(SimCamera, ItsSceneFollowsItsAlphaSource) {
       << beyond.error().message;
 }
 
+TEST(SimCamera, OpensUnderALowSunAndRefusesOnlyTheBracket) {
+  std::optional<double> alpha_deg = 85.0;  // the sun low behind the module: no scene there
+  auto camera = openCamera("sim:size=64x48", {}, [&] { return alpha_deg; });
+  ASSERT_TRUE(camera) << camera.error().message;
+  const std::vector<ExposureRequest> one{{1000, 0}};
+  auto refused = (*camera)->capture(one);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kBadInput);
+  alpha_deg = 75.0;  // the sun rose: the camera was never lost
+  ASSERT_TRUE((*camera)->capture(one));
+  EXPECT_DOUBLE_EQ(truthAlpha(**camera), 75.0);
+}
+
 TEST(SimCamera, AnAlphaInItsUriIsKeptAndMayNotBeContradicted) {
   std::optional<double> alpha_deg = 20.0;
   auto contradicted = openCamera("sim:size=64x48,alpha=40", {}, [&] { return alpha_deg; });

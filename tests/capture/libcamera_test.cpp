@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "capture/libcamera/request_matching.h"
+#include "core/build_config.h"
 #if GLARECAM_WITH_LIBCAMERA
 #include "capture/libcamera/libcamera_backend.h"
 #endif

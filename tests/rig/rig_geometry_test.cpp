@@ -377,9 +377,9 @@ TEST(RigConfig, ReadsEverySection) {
 TEST(RigConfig, PressureDefaultsToTheStandardAtmosphere) {
   // ISO 2533: 1013.25 hPa at sea level, 898.7 hPa at 1000 m, 795.0 hPa at 2000 m (tabulated to
   // 0.1 hPa).
-  EXPECT_NEAR(standardPressureHpa(0), 1013.25, 1e-9);
-  EXPECT_NEAR(standardPressureHpa(1000), 898.75, 0.1);
-  EXPECT_NEAR(standardPressureHpa(2000), 795.01, 0.1);
+  EXPECT_NEAR(sun::standardPressureHpa(0), 1013.25, 1e-9);
+  EXPECT_NEAR(sun::standardPressureHpa(1000), 898.75, 0.1);
+  EXPECT_NEAR(sun::standardPressureHpa(2000), 795.01, 0.1);
   TempDir dir;
   const auto config =
       readRigConfig(writeText(dir, "rig.toml",
@@ -511,7 +511,7 @@ TEST(RigGeometry, LabModeTakesAlphaFromTheTiltAlone) {
   const TiltReading tilt = readingOf(60, 0.01);
   const auto g = computeRigGeometry(config, tilt, {}, sun::ClockStatus{});
   ASSERT_TRUE(g) << g.error().message;
-  EXPECT_EQ(g->source, "fixed");
+  EXPECT_EQ(g->source, GeometrySource::kFixed);
   EXPECT_NEAR(g->alpha_deg, 30, kExactDeg);
   // dα/dβ = 1 here, so α inherits the tilt's uncertainty, and nothing from the clock.
   EXPECT_NEAR(g->alpha_uncertainty_deg, 0.01, 1e-6);

@@ -19,6 +19,7 @@
 #include "rig/gpio/sim_rig_io.h"
 #include "rig/gpio/status_led.h"
 #include "support/test_support.h"
+#include "core/build_config.h"
 
 namespace glarecam::rig {
 namespace {

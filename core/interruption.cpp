@@ -1,15 +1,13 @@
-#include "apps/glarecam/interruption.h"
+#include "core/interruption.h"
 
 #include <signal.h>
 
 #include <algorithm>
 #include <atomic>
-#include <stop_token>
+#include <ctime>
 #include <thread>
 
-#include "rig/gpio/button_debouncer.h"
-
-namespace glarecam::apps {
+namespace glarecam {
 
 namespace {
 
@@ -20,8 +18,13 @@ static_assert(std::atomic<bool>::is_always_lock_free);
 
 void requestStop(int) { g_stop_requested.store(true); }
 
-// How soon a stop request ends a sleep or a wait.
-constexpr std::chrono::milliseconds kStopPoll{100};
+sigset_t stopSignals() {
+  sigset_t stop;
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGINT);
+  sigaddset(&stop, SIGTERM);
+  return stop;
+}
 
 }  // namespace
 
@@ -43,16 +46,21 @@ void sleepUntil(std::chrono::steady_clock::time_point deadline) {
   }
 }
 
-Result<bool> waitForButtonPress(rig::RigIo& io, std::chrono::milliseconds debounce,
-                                rig::RigClock::time_point deadline) {
-  // One wait (a press may straddle any slicing), stopped from a thread that watches for signals.
-  std::stop_source stop;
-  std::jthread signal_watch([&stop](std::stop_token done) {
-    while (!done.stop_requested() && !stopRequested()) std::this_thread::sleep_for(kStopPoll);
-    stop.request_stop();
-  });
-  rig::ButtonWatcher watcher(io, debounce);
-  return watcher.waitForPress(deadline, stop.get_token());
+void blockStopSignals() {
+  const sigset_t stop = stopSignals();
+  pthread_sigmask(SIG_BLOCK, &stop, nullptr);
 }
 
-}  // namespace glarecam::apps
+void waitForStopSignal(double seconds) {
+  const sigset_t stop = stopSignals();
+  if (seconds > 0) {
+    const auto whole = static_cast<time_t>(seconds);
+    const timespec timeout{whole, static_cast<long>((seconds - whole) * 1e9)};
+    sigtimedwait(&stop, nullptr, &timeout);
+  } else {
+    int signal_number = 0;
+    sigwait(&stop, &signal_number);
+  }
+}
+
+}  // namespace glarecam

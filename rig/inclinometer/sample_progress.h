@@ -1,5 +1,5 @@
 // Progress over an inclinometer reading (50 samples take ≈ 3 s on an ADXL355): the one helper
-// `inclinometer`, `alpha` and `capture --config` share.
+// `inclinometer`, `alpha`, the flip and a capture's rig share.
 #pragma once
 
 #include <functional>
@@ -7,7 +7,7 @@
 
 #include "core/progress.h"
 
-namespace glarecam::apps {
+namespace glarecam::rig {
 
 // Calls measure(on_sample) with a progress line "inclinometer: 12/50" on stderr.
 template <typename Measure>
@@ -19,4 +19,4 @@ auto withSampleProgress(int samples, bool show, Measure&& measure) {
   return result;
 }
 
-}  // namespace glarecam::apps
+}  // namespace glarecam::rig

@@ -24,7 +24,7 @@ Status checkSameCamera(const CalibrationInputs& inputs, const Stack& stack,
     return badInput(fmt::format("{}: camera serial {} differs from {} of {}", path, camera.serial,
                                 inputs.camera.serial, inputs.stack_paths.front()));
   }
-  const RawFrame& first = inputs.frames.front();
+  const RawFrame& first = inputs.frames.front().frame;
   if (!stack.frames.front().sameSize(first.width(), first.height())) {
     return badInput(fmt::format("{}: frames are {}x{}, those of {} {}x{}", path,
                                 stack.frames.front().width(), stack.frames.front().height(),
@@ -73,7 +73,7 @@ double formatMaxDn(const CalibrationInputs& inputs) {
       bits <= 16)
     return std::ldexp(1.0, bits) - 1;
   int depth = 8;
-  for (int d : inputs.bit_depths) depth = std::max(depth, d);
+  for (const InputFrame& frame : inputs.frames) depth = std::max(depth, frame.bit_depth);
   return std::ldexp(1.0, depth) - 1;
 }
 
@@ -91,10 +91,11 @@ Result<CalibrationInputs> readCalibrationInputs(std::span<const std::string> sta
     if (inputs.stack_paths.empty()) inputs.camera = cameraIdentityOf(stack.manifest);
     inputs.stack_paths.push_back(path);
     for (std::size_t i = 0; i < stack.frames.size(); ++i) {
-      inputs.frames.push_back(std::move(stack.frames[i]));
-      inputs.specs.push_back(stack.manifest.frames[i]);
-      inputs.names.push_back((fs::path(path) / stack.manifest.frames[i].file).string());
-      inputs.bit_depths.push_back(stack.bit_depths[i]);
+      inputs.frames.push_back({.frame = std::move(stack.frames[i]),
+                               .spec = stack.manifest.frames[i],
+                               .name = (fs::path(path) / stack.manifest.frames[i].file).string(),
+                               .bit_depth = stack.bit_depths[i],
+                               .stack = inputs.stack_paths.size() - 1});
     }
     if (stack.manifest.captured_at && *stack.manifest.captured_at > inputs.latest_capture)
       inputs.latest_capture = *stack.manifest.captured_at;

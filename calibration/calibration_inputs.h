@@ -13,20 +13,16 @@
 
 #include "calibration/calibration_file.h"
 #include "calibration/flat_calibration.h"
+#include "calibration/input_frame.h"
 #include "core/error.h"
-#include "core/image.h"
 #include "core/stack_io.h"
 
 namespace glarecam::calibration {
 
 struct CalibrationInputs {
-  std::vector<Stack> stacks;
+  std::vector<Stack> stacks;             // as read; their frames moved into `frames`
   std::vector<std::string> stack_paths;  // as given
-  // Every frame of every stack, in order, with its spec, a name for errors and its bit depth.
-  std::vector<RawFrame> frames;
-  std::vector<FrameSpec> specs;
-  std::vector<std::string> names;
-  std::vector<int> bit_depths;
+  std::vector<InputFrame> frames;        // every frame of every stack, in order
   CameraIdentity camera;
   std::string latest_capture;  // the newest captured_at of the stacks (ISO 8601), or empty
 };

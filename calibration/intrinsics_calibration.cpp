@@ -67,11 +67,12 @@ Status checkBoard(const BoardSpec& board) {
 
 }  // namespace
 
-std::size_t bestExposedFrame(std::span<const RawFrame> frames, double saturation_dn) {
+std::size_t bestExposedFrame(std::span<const InputFrame> frames, double saturation_dn) {
   std::size_t best = 0;
   double best_range = -1;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    std::vector<float> values(frames[i].data(), frames[i].data() + frames[i].pixelCount());
+    const RawFrame& frame = frames[i].frame;
+    std::vector<float> values(frame.data(), frame.data() + frame.pixelCount());
     const auto [low, high] = percentileRange(values.data(), values.size());
     const double range = high >= saturation_dn ? 0 : high - low;
     if (range > best_range) {

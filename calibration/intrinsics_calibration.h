@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "calibration/input_frame.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -52,7 +53,7 @@ Result<IntrinsicsCalibration> calibrateIntrinsics(std::span<const BoardView> vie
 
 // The frame of a stack to look for the board in: the one with the widest range of values that is
 // not saturated (5th to 95th percentile; saturated frames lose the white squares' edges).
-std::size_t bestExposedFrame(std::span<const RawFrame> frames, double saturation_dn);
+std::size_t bestExposedFrame(std::span<const InputFrame> frames, double saturation_dn);
 
 nlohmann::json intrinsicsValues(const IntrinsicsCalibration& result, const BoardSpec& board);
 

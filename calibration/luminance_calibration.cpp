@@ -115,21 +115,26 @@ double LuminanceUncertainty::combined() const {
                    noise * noise);
 }
 
-Result<LuminanceCalibration> calibrateLuminance(std::span<const RawFrame> frames,
-                                                std::span<const FrameSpec> specs,
-                                                std::span<const int> bit_depths,
+Result<LuminanceCalibration> calibrateLuminance(std::vector<InputFrame> frames,
                                                 const Calibration& calibration,
                                                 const FloatImage* flat_field, const Roi& roi,
                                                 const LuminanceReference& reference) {
   GLARECAM_CHECK(checkReference(reference));
   if (frames.empty()) return badInput("calibrate luminance: no frames");
-  GLARECAM_CHECK(checkRoi(roi, frames.front().width(), frames.front().height(), "--roi"));
+  GLARECAM_CHECK(
+      checkRoi(roi, frames.front().frame.width(), frames.front().frame.height(), "--roi"));
   Calibration unit = calibration;
   unit.luminance_factor = 1.0;
-  const std::vector<FrameSpec> frame_specs(specs.begin(), specs.end());
-  const std::vector<FrameRadiometry> radiometry = frameRadiometry(frame_specs, unit);
+  const std::vector<FrameRadiometry> radiometry = frameRadiometry(specsOf(frames), unit);
+  // The merge takes the pixels as one block: moved there, each frame is still held once.
+  std::vector<RawFrame> pixels;
+  std::vector<int> bit_depths;
+  for (InputFrame& frame : frames) {
+    pixels.push_back(std::move(frame.frame));
+    bit_depths.push_back(frame.bit_depth);
+  }
   MergedImage merged;
-  GLARECAM_ASSIGN(merged, merge({.frames = frames,
+  GLARECAM_ASSIGN(merged, merge({.frames = pixels,
                                  .radiometry = radiometry,
                                  .black_level_dn = unit.black_level_dn,
                                  .saturation_dn = unit.saturation_dn,

@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <span>
 #include <vector>
 
 #include "calibration/frame_statistics.h"
+#include "calibration/input_frame.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -47,10 +47,9 @@ struct LuminanceCalibration {
 };
 
 // `calibration` gives black level, saturation, noise, reference f-number and flat field (its
-// luminance_factor is ignored); `flat_field` may be null.
-Result<LuminanceCalibration> calibrateLuminance(std::span<const RawFrame> frames,
-                                                std::span<const FrameSpec> specs,
-                                                std::span<const int> bit_depths,
+// luminance_factor is ignored); `flat_field` may be null. The frames are moved in: the merge
+// takes their pixels as one block.
+Result<LuminanceCalibration> calibrateLuminance(std::vector<InputFrame> frames,
                                                 const Calibration& calibration,
                                                 const FloatImage* flat_field, const Roi& roi,
                                                 const LuminanceReference& reference);

@@ -67,12 +67,13 @@ struct PartResult {
   std::vector<std::string> warnings;
 };
 
-using Procedure = std::function<Result<PartResult>(const CalibrateArgs&,
-                                                   const cal::CalibrationInputs&, const json&)>;
+// `inputs` is the procedure's to consume (luminance moves the frames into the merge).
+using Procedure =
+    std::function<Result<PartResult>(const CalibrateArgs&, cal::CalibrationInputs&, const json&)>;
 
 cal::Roi roiOr(const std::optional<cal::Roi>& roi, const cal::CalibrationInputs& inputs) {
-  return roi.value_or(
-      cal::centralRoi(inputs.frames.front().width(), inputs.frames.front().height()));
+  const RawFrame& first = inputs.frames.front().frame;
+  return roi.value_or(cal::centralRoi(first.width(), first.height()));
 }
 
 Result<std::optional<cal::Roi>> parsedRoi(const CalibrateArgs& args) {
@@ -95,8 +96,8 @@ Result<LevelsInRegion> levelsInRegion(const CalibrateArgs& args,
   std::optional<cal::Roi> roi;
   GLARECAM_ASSIGN(roi, parsedRoi(args));
   const cal::Roi region = roiOr(roi, inputs);
-  GLARECAM_CHECK(cal::checkRoi(region, inputs.frames.front().width(),
-                               inputs.frames.front().height(), "--roi"));
+  const RawFrame& first = inputs.frames.front().frame;
+  GLARECAM_CHECK(cal::checkRoi(region, first.width(), first.height(), "--roi"));
   cal::SensorLevels levels;
   GLARECAM_ASSIGN(levels, cal::sensorLevels(prior, inputs, procedure));
   return LevelsInRegion{.levels = levels, .roi = region};
@@ -107,7 +108,7 @@ Result<LevelsInRegion> levelsInRegion(const CalibrateArgs& args,
 Result<PartResult> runDark(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
                            const json&) {
   cal::DarkCalibration dark;
-  GLARECAM_ASSIGN(dark, cal::calibrateDark(inputs.frames, inputs.specs, inputs.names));
+  GLARECAM_ASSIGN(dark, cal::calibrateDark(inputs.frames));
   const fs::path out = *args.out;
   const fs::path dark_file = cal::companionFile(out, "-dark.exr");
   const fs::path hot_file = cal::companionFile(out, "-hot-pixels.png");
@@ -128,15 +129,14 @@ Result<PartResult> runFlat(const CalibrateArgs& args, const cal::CalibrationInpu
                            const json& prior) {
   cal::SensorLevels levels;
   GLARECAM_ASSIGN(levels, cal::sensorLevels(prior, inputs, "flat"));
-  const RawFrame& first = inputs.frames.front();
+  const RawFrame& first = inputs.frames.front().frame;
   double cx = (first.width() - 1) / 2.0, cy = (first.height() - 1) / 2.0;
   if (prior.contains("intrinsics") && prior["intrinsics"].is_object()) {
     cx = prior["intrinsics"].value("cx", cx);
     cy = prior["intrinsics"].value("cy", cy);
   }
   cal::FlatCalibration flat;
-  GLARECAM_ASSIGN(flat,
-                  cal::calibrateFlat(inputs.frames, inputs.specs, inputs.names, levels, cx, cy));
+  GLARECAM_ASSIGN(flat, cal::calibrateFlat(inputs.frames, levels, cx, cy));
   const fs::path flat_file = cal::companionFile(*args.out, "-flat.exr");
   GLARECAM_CHECK(writeExr(flat_file, flat.flat_field));
   return PartResult{
@@ -154,9 +154,8 @@ Result<PartResult> runLinearity(const CalibrateArgs& args, const cal::Calibratio
   LevelsInRegion known;
   GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "linearity"));
   cal::LinearityCalibration linearity;
-  GLARECAM_ASSIGN(linearity,
-                  cal::calibrateLinearity(inputs.frames, inputs.specs, known.levels.black_level_dn,
-                                          known.roi, args.tolerance_percent / 100));
+  GLARECAM_ASSIGN(linearity, cal::calibrateLinearity(inputs.frames, known.levels.black_level_dn,
+                                                     known.roi, args.tolerance_percent / 100));
   PartResult result{
       .part = "linearity",
       .method = fmt::format("ramp of {} exposures of a steady source, line through the origin "
@@ -179,7 +178,7 @@ Result<PartResult> runNoise(const CalibrateArgs& args, const cal::CalibrationInp
   LevelsInRegion known;
   GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "noise"));
   cal::NoiseCalibration noise;
-  GLARECAM_ASSIGN(noise, cal::calibrateNoise(inputs.frames, inputs.specs, known.levels, known.roi));
+  GLARECAM_ASSIGN(noise, cal::calibrateNoise(inputs.frames, known.levels, known.roi));
   return PartResult{
       .part = "noise",
       .method = fmt::format("photon transfer: {} pairs of a uniform source, var(a-b)/2 against "
@@ -199,11 +198,12 @@ Result<std::optional<FloatImage>> priorFlat(const Calibration& calibration) {
 // The frames' common f-number: K is stated at it.
 std::optional<double> framesFNumber(const cal::CalibrationInputs& inputs, const json& prior) {
   if (prior.contains("reference_f_number")) return prior["reference_f_number"].get<double>();
-  return inputs.specs.front().f_number;
+  return inputs.frames.front().spec.f_number;
 }
 
+// The frames are moved out of `inputs` into the merge.
 Result<cal::LuminanceCalibration> measureLuminance(const CalibrateArgs& args,
-                                                   const cal::CalibrationInputs& inputs,
+                                                   cal::CalibrationInputs& inputs,
                                                    const json& prior) {
   LevelsInRegion known;
   GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "luminance"));
@@ -217,14 +217,15 @@ Result<cal::LuminanceCalibration> measureLuminance(const CalibrateArgs& args,
     spdlog::warn("calibrate luminance: no flat field known: K is for the region's vignetting");
   if (!calibration.noise)
     spdlog::warn("calibrate luminance: no noise model known: the merge assumes a typical one");
-  return cal::calibrateLuminance(inputs.frames, inputs.specs, inputs.bit_depths, calibration,
-                                 flat ? &*flat : nullptr, known.roi,
+  return cal::calibrateLuminance(std::move(inputs.frames), calibration, flat ? &*flat : nullptr,
+                                 known.roi,
                                  {.readings_cd_m2 = args.references_cd_m2,
                                   .meter_accuracy_percent = args.meter_accuracy_percent});
 }
 
-Result<PartResult> runLuminance(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
+Result<PartResult> runLuminance(const CalibrateArgs& args, cal::CalibrationInputs& inputs,
                                 const json& prior) {
+  const std::optional<double> f_number = framesFNumber(inputs, prior);
   cal::LuminanceCalibration luminance;
   GLARECAM_ASSIGN(luminance, measureLuminance(args, inputs, prior));
   return PartResult{
@@ -233,7 +234,7 @@ Result<PartResult> runLuminance(const CalibrateArgs& args, const cal::Calibratio
                             "over ROI {}, stack merged with K = 1",
                             luminance.reference_cd_m2, args.references_cd_m2.size(),
                             args.meter_accuracy_percent, cal::roiText(luminance.roi)),
-      .values = cal::luminanceValues(luminance, framesFNumber(inputs, prior)),
+      .values = cal::luminanceValues(luminance, f_number),
       .warnings = {}};
 }
 
@@ -244,22 +245,21 @@ Result<cal::BoardSpec> parseBoard(const CalibrateArgs& args) {
       .inner_columns = size.first, .inner_rows = size.second, .square_mm = args.square_mm};
 }
 
-Result<PartResult> runIntrinsics(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
+Result<PartResult> runIntrinsics(const CalibrateArgs& args, cal::CalibrationInputs& inputs,
                                  const json& prior) {
   cal::BoardSpec board;
   GLARECAM_ASSIGN(board, parseBoard(args));
   const double saturation = prior.value("saturation_dn", cal::formatMaxDn(inputs));
   std::vector<cal::BoardView> views;
-  std::size_t first = 0;
-  for (std::size_t s = 0; s < inputs.stacks.size(); ++s) {  // one view a stack
-    const std::size_t count = inputs.stacks[s].manifest.frames.size();
-    const std::span<const RawFrame> frames(inputs.frames.data() + first, count);
-    const std::size_t best = first + cal::bestExposedFrame(frames, saturation);
-    FloatImage image(inputs.frames[best].width(), inputs.frames[best].height());
-    std::copy(inputs.frames[best].data(), inputs.frames[best].data() + image.pixelCount(),
-              image.data());
-    views.push_back({.name = inputs.names[best], .image = std::move(image)});
-    first += count;
+  const std::span<const cal::InputFrame> frames = inputs.frames;
+  for (std::size_t first = 0, end = 0; first < frames.size(); first = end) {  // one view a stack
+    end = first;
+    while (end < frames.size() && frames[end].stack == frames[first].stack) ++end;
+    const cal::InputFrame& best =
+        frames[first + cal::bestExposedFrame(frames.subspan(first, end - first), saturation)];
+    FloatImage image(best.frame.width(), best.frame.height());
+    std::copy(best.frame.data(), best.frame.data() + image.pixelCount(), image.data());
+    views.push_back({.name = best.name, .image = std::move(image)});
   }
   cal::IntrinsicsCalibration intrinsics;
   GLARECAM_ASSIGN(intrinsics, cal::calibrateIntrinsics(views, board, {.fit_k3 = args.fit_k3}));

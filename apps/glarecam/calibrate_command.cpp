@@ -28,6 +28,7 @@
 #include "calibration/linearity_calibration.h"
 #include "calibration/luminance_calibration.h"
 #include "calibration/noise_calibration.h"
+#include "calibration/prior_calibration.h"
 #include "capture/bracketer.h"
 #include "capture/camera_registry.h"
 #include "capture/sim/calibration_targets.h"
@@ -68,8 +69,8 @@ struct PartResult {
 };
 
 // `inputs` is the procedure's to consume (luminance moves the frames into the merge).
-using Procedure =
-    std::function<Result<PartResult>(const CalibrateArgs&, cal::CalibrationInputs&, const json&)>;
+using Procedure = std::function<Result<PartResult>(const CalibrateArgs&, cal::CalibrationInputs&,
+                                                   const cal::PriorCalibration&)>;
 
 cal::Roi roiOr(const std::optional<cal::Roi>& roi, const cal::CalibrationInputs& inputs) {
   const RawFrame& first = inputs.frames.front().frame;
@@ -91,7 +92,8 @@ struct LevelsInRegion {
 };
 
 Result<LevelsInRegion> levelsInRegion(const CalibrateArgs& args,
-                                      const cal::CalibrationInputs& inputs, const json& prior,
+                                      const cal::CalibrationInputs& inputs,
+                                      const cal::PriorCalibration& prior,
                                       const std::string& procedure) {
   std::optional<cal::Roi> roi;
   GLARECAM_ASSIGN(roi, parsedRoi(args));
@@ -106,7 +108,7 @@ Result<LevelsInRegion> levelsInRegion(const CalibrateArgs& args,
 // ---- the procedures ---------------------------------------------------------------------------
 
 Result<PartResult> runDark(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
-                           const json&) {
+                           const cal::PriorCalibration&) {
   cal::DarkCalibration dark;
   GLARECAM_ASSIGN(dark, cal::calibrateDark(inputs.frames));
   const fs::path out = *args.out;
@@ -126,15 +128,12 @@ Result<PartResult> runDark(const CalibrateArgs& args, const cal::CalibrationInpu
 }
 
 Result<PartResult> runFlat(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
-                           const json& prior) {
+                           const cal::PriorCalibration& prior) {
   cal::SensorLevels levels;
   GLARECAM_ASSIGN(levels, cal::sensorLevels(prior, inputs, "flat"));
   const RawFrame& first = inputs.frames.front().frame;
-  double cx = (first.width() - 1) / 2.0, cy = (first.height() - 1) / 2.0;
-  if (prior.contains("intrinsics") && prior["intrinsics"].is_object()) {
-    cx = prior["intrinsics"].value("cx", cx);
-    cy = prior["intrinsics"].value("cy", cy);
-  }
+  const double cx = prior.principal_x_px.value_or((first.width() - 1) / 2.0);
+  const double cy = prior.principal_y_px.value_or((first.height() - 1) / 2.0);
   cal::FlatCalibration flat;
   GLARECAM_ASSIGN(flat, cal::calibrateFlat(inputs.frames, levels, cx, cy));
   const fs::path flat_file = cal::companionFile(*args.out, "-flat.exr");
@@ -150,7 +149,7 @@ Result<PartResult> runFlat(const CalibrateArgs& args, const cal::CalibrationInpu
 }
 
 Result<PartResult> runLinearity(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
-                                const json& prior) {
+                                const cal::PriorCalibration& prior) {
   LevelsInRegion known;
   GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "linearity"));
   cal::LinearityCalibration linearity;
@@ -174,7 +173,7 @@ Result<PartResult> runLinearity(const CalibrateArgs& args, const cal::Calibratio
 }
 
 Result<PartResult> runNoise(const CalibrateArgs& args, const cal::CalibrationInputs& inputs,
-                            const json& prior) {
+                            const cal::PriorCalibration& prior) {
   LevelsInRegion known;
   GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "noise"));
   cal::NoiseCalibration noise;
@@ -196,19 +195,19 @@ Result<std::optional<FloatImage>> priorFlat(const Calibration& calibration) {
 }
 
 // The frames' common f-number: K is stated at it.
-std::optional<double> framesFNumber(const cal::CalibrationInputs& inputs, const json& prior) {
-  if (prior.contains("reference_f_number")) return prior["reference_f_number"].get<double>();
-  return inputs.frames.front().spec.f_number;
+std::optional<double> framesFNumber(const cal::CalibrationInputs& inputs,
+                                    const cal::PriorCalibration& prior) {
+  return prior.reference_f_number ? prior.reference_f_number : inputs.frames.front().spec.f_number;
 }
 
 // The frames are moved out of `inputs` into the merge.
 Result<cal::LuminanceCalibration> measureLuminance(const CalibrateArgs& args,
                                                    cal::CalibrationInputs& inputs,
-                                                   const json& prior) {
+                                                   const cal::PriorCalibration& prior) {
   LevelsInRegion known;
   GLARECAM_ASSIGN(known, levelsInRegion(args, inputs, prior, "luminance"));
   Calibration calibration;
-  GLARECAM_ASSIGN(calibration, cal::priorCalibration(prior, known.levels));
+  GLARECAM_ASSIGN(calibration, cal::mergeCalibration(prior, known.levels));
   if (!calibration.reference_f_number)
     calibration.reference_f_number = framesFNumber(inputs, prior);
   std::optional<FloatImage> flat;
@@ -224,7 +223,7 @@ Result<cal::LuminanceCalibration> measureLuminance(const CalibrateArgs& args,
 }
 
 Result<PartResult> runLuminance(const CalibrateArgs& args, cal::CalibrationInputs& inputs,
-                                const json& prior) {
+                                const cal::PriorCalibration& prior) {
   const std::optional<double> f_number = framesFNumber(inputs, prior);
   cal::LuminanceCalibration luminance;
   GLARECAM_ASSIGN(luminance, measureLuminance(args, inputs, prior));
@@ -246,10 +245,10 @@ Result<cal::BoardSpec> parseBoard(const CalibrateArgs& args) {
 }
 
 Result<PartResult> runIntrinsics(const CalibrateArgs& args, cal::CalibrationInputs& inputs,
-                                 const json& prior) {
+                                 const cal::PriorCalibration& prior) {
   cal::BoardSpec board;
   GLARECAM_ASSIGN(board, parseBoard(args));
-  const double saturation = prior.value("saturation_dn", cal::formatMaxDn(inputs));
+  const double saturation = prior.saturation_dn.value_or(cal::formatMaxDn(inputs));
   std::vector<cal::BoardView> views;
   const std::span<const cal::InputFrame> frames = inputs.frames;
   for (std::size_t first = 0, end = 0; first < frames.size(); first = end) {  // one view a stack
@@ -335,8 +334,8 @@ Status runProcedure(const CalibrateArgs& given, const Procedure& procedure) {
   if (args.camera) GLARECAM_ASSIGN(args.inputs, captureInputs(args));
   cal::CalibrationInputs inputs;
   GLARECAM_ASSIGN(inputs, cal::readCalibrationInputs(args.inputs, !args.no_progress));
-  json prior;
-  GLARECAM_ASSIGN(prior, cal::priorValues(args.calibrations, inputs));
+  cal::PriorCalibration prior;
+  GLARECAM_ASSIGN(prior, cal::readPriorCalibration(args.calibrations, inputs));
   GLARECAM_CHECK(ensureDirectory(fs::path(*args.out).parent_path().empty()
                                      ? fs::path(".")
                                      : fs::path(*args.out).parent_path()));
@@ -362,16 +361,16 @@ Status runLuminanceCheck(const CalibrateArgs& args) {
     return badInput("calibrate luminance --check: give the reference patch's region with --roi");
   cal::CalibrationInputs inputs;
   GLARECAM_ASSIGN(inputs, cal::readCalibrationInputs(args.inputs, !args.no_progress));
-  json prior;
-  GLARECAM_ASSIGN(prior, cal::priorValues(args.calibrations, inputs));
-  if (!prior.contains("luminance_factor") || !prior["luminance_factor"].is_number())
+  cal::PriorCalibration prior;
+  GLARECAM_ASSIGN(prior, cal::readPriorCalibration(args.calibrations, inputs));
+  if (!prior.luminance_factor)
     return badInput("calibrate luminance --check: the calibration has no luminance_factor");
   cal::LuminanceCalibration measured;
   GLARECAM_ASSIGN(measured, measureLuminance(args, inputs, prior));
-  const double k = prior["luminance_factor"].get<double>();
+  const double k = *prior.luminance_factor;
   const double drift = measured.luminance_factor / k - 1;
   // Both Ks are uncertain: the check's own budget and the calibration's u(K), in quadrature.
-  const double u_k = prior.value("luminance_factor_u", 0.0) / k;
+  const double u_k = prior.luminance_factor_u.value_or(0.0) / k;
   const double u = std::hypot(measured.relative.combined(), u_k);
   const json report = {{"stacks", inputs.stack_paths},
                        {"captured_at", inputs.latest_capture},

@@ -55,17 +55,17 @@ double coverage(const std::vector<std::vector<cv::Point2f>>& corners, int width,
   return static_cast<double>(cells.size()) / (kCoverageCells * kCoverageCells);
 }
 
-Status checkBoard(const BoardSpec& board) {
-  if (board.inner_columns < 3 || board.inner_rows < 3 || board.inner_columns == board.inner_rows)
+}  // namespace
+
+Status BoardSpec::validate() const {
+  if (inner_columns < 3 || inner_rows < 3 || inner_columns == inner_rows)
     return badInput(fmt::format(
         "calibrate intrinsics: board {}x{}: needs at least 3x3 inner corners, and different "
         "counts across and down (a square board's orientation is ambiguous)",
-        board.inner_columns, board.inner_rows));
-  if (!(board.square_mm > 0)) return badInput("calibrate intrinsics: --square-mm must be positive");
+        inner_columns, inner_rows));
+  if (!(square_mm > 0)) return badInput("calibrate intrinsics: --square-mm must be positive");
   return {};
 }
-
-}  // namespace
 
 std::size_t bestExposedFrame(std::span<const InputFrame> frames, double saturation_dn) {
   std::size_t best = 0;
@@ -86,7 +86,7 @@ std::size_t bestExposedFrame(std::span<const InputFrame> frames, double saturati
 Result<IntrinsicsCalibration> calibrateIntrinsics(std::span<const BoardView> views,
                                                   const BoardSpec& board,
                                                   const IntrinsicsOptions& options) {
-  GLARECAM_CHECK(checkBoard(board));
+  GLARECAM_CHECK(board.validate());
   if (views.empty()) return badInput("calibrate intrinsics: no images");
   IntrinsicsCalibration result;
   result.width = views.front().image.width();

@@ -27,6 +27,7 @@ inline constexpr double kMinCoverage = 0.75;
 struct BoardSpec {
   int inner_columns = 9, inner_rows = 6;  // inner corners
   double square_mm = 25;
+  Status validate() const;  // 3x3 corners or more, not square; squares of positive size
 };
 
 struct BoardView {  // one candidate image of the board

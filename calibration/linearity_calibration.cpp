@@ -43,15 +43,20 @@ std::optional<double> fitSlope(const std::vector<RampPoint>& points) {
 
 }  // namespace
 
+Status checkLinearityTolerance(double tolerance) {
+  if (!(tolerance > 0 && tolerance < 1))
+    return badInput(
+        fmt::format("calibrate linearity: tolerance {:g} must be in (0, 1)", tolerance));
+  return {};
+}
+
 Result<LinearityCalibration> calibrateLinearity(std::span<const InputFrame> frames,
                                                 double black_level_dn, const Roi& roi,
                                                 double tolerance) {
   if (frames.empty()) return badInput("calibrate linearity: no frames");
   const RawFrame& first = frames.front().frame;
   GLARECAM_CHECK(checkRoi(roi, first.width(), first.height(), "--roi"));
-  if (!(tolerance > 0 && tolerance < 1))
-    return badInput(
-        fmt::format("calibrate linearity: tolerance {:g} must be in (0, 1)", tolerance));
+  GLARECAM_CHECK(checkLinearityTolerance(tolerance));
   LinearityCalibration result;
   result.tolerance = tolerance;
   const std::vector<ExposureGroup> groups = groupByExposure(specsOf(frames));

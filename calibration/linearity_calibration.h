@@ -42,6 +42,9 @@ struct LinearityCalibration {
   double tolerance = kDefaultLinearityTolerance;
 };
 
+// The tolerance, a fraction, must be in (0, 1).
+Status checkLinearityTolerance(double tolerance);
+
 Result<LinearityCalibration> calibrateLinearity(std::span<const InputFrame> frames,
                                                 double black_level_dn, const Roi& roi,
                                                 double tolerance);

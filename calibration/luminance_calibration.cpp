@@ -10,22 +10,23 @@
 #include "calibration/radiometry.h"
 
 namespace glarecam::calibration {
-namespace {
 
-Status checkReference(const LuminanceReference& reference) {
-  if (reference.readings_cd_m2.empty())
+Status LuminanceReference::validate() const {
+  if (readings_cd_m2.empty())
     return badInput("calibrate luminance: give the meter's reading with --reference CD_M2");
-  for (double reading : reference.readings_cd_m2) {
+  for (double reading : readings_cd_m2) {
     if (!(reading > 0) || !std::isfinite(reading))
       return badInput(
           fmt::format("calibrate luminance: --reference {:g} must be a positive "
                       "luminance in cd/m²",
                       reading));
   }
-  if (!(reference.meter_accuracy_percent >= 0) || reference.meter_accuracy_percent >= 100)
+  if (!(meter_accuracy_percent >= 0) || meter_accuracy_percent >= 100)
     return badInput("calibrate luminance: --meter-accuracy must be in [0, 100) %");
   return {};
 }
+
+namespace {
 
 // Refuses a region where the merge has only a bound: the reference saturated every frame (or
 // none saw it).
@@ -119,7 +120,7 @@ Result<LuminanceCalibration> calibrateLuminance(std::vector<InputFrame> frames,
                                                 const Calibration& calibration,
                                                 const FloatImage* flat_field, const Roi& roi,
                                                 const LuminanceReference& reference) {
-  GLARECAM_CHECK(checkReference(reference));
+  GLARECAM_CHECK(reference.validate());
   if (frames.empty()) return badInput("calibrate luminance: no frames");
   GLARECAM_CHECK(
       checkRoi(roi, frames.front().frame.width(), frames.front().frame.height(), "--roi"));

@@ -30,6 +30,7 @@ inline constexpr int kUniformityCells = 4;
 struct LuminanceReference {
   std::vector<double> readings_cd_m2;  // one or more meter readings of the surface
   double meter_accuracy_percent = kDefaultMeterAccuracyPercent;
+  Status validate() const;  // readings positive and finite, accuracy in [0, 100) %
 };
 
 struct LuminanceUncertainty {  // relative standard uncertainties

@@ -24,35 +24,13 @@ Status checkSameCamera(const CalibrationInputs& inputs, const Stack& stack,
     return badInput(fmt::format("{}: camera serial {} differs from {} of {}", path, camera.serial,
                                 inputs.camera.serial, inputs.stack_paths.front()));
   }
-  const RawFrame& first = inputs.frames.front();
+  const RawFrame& first = inputs.frames.front().frame;
   if (!stack.frames.front().sameSize(first.width(), first.height())) {
     return badInput(fmt::format("{}: frames are {}x{}, those of {} {}x{}", path,
                                 stack.frames.front().width(), stack.frames.front().height(),
                                 inputs.stack_paths.front(), first.width(), first.height()));
   }
   return {};
-}
-
-// The values of a --calibration file, absolute paths; a bare block or a calibration/1 file.
-Result<json> fileValues(const fs::path& path) {
-  json document;
-  GLARECAM_ASSIGN(document, readJsonFile(path.string()));
-  json values;
-  if (document.is_object() && document.contains("schema")) {
-    CalibrationDocument parsed;
-    GLARECAM_ASSIGN(parsed, parseCalibrationDocument(document, path.string()));
-    values = std::move(parsed.values);
-  } else {
-    Calibration block;
-    GLARECAM_ASSIGN(block, parseCalibration(document, path.string()));
-    values = block.source;
-  }
-  for (std::string_view key : kPathKeys) {
-    const std::string name(key);
-    if (values.contains(name) && values[name].is_string())
-      values[name] = fs::absolute(path.parent_path() / values[name].get<std::string>()).string();
-  }
-  return values;
 }
 
 std::string nowIso() {
@@ -73,7 +51,7 @@ double formatMaxDn(const CalibrationInputs& inputs) {
       bits <= 16)
     return std::ldexp(1.0, bits) - 1;
   int depth = 8;
-  for (int d : inputs.bit_depths) depth = std::max(depth, d);
+  for (const InputFrame& frame : inputs.frames) depth = std::max(depth, frame.bit_depth);
   return std::ldexp(1.0, depth) - 1;
 }
 
@@ -91,10 +69,11 @@ Result<CalibrationInputs> readCalibrationInputs(std::span<const std::string> sta
     if (inputs.stack_paths.empty()) inputs.camera = cameraIdentityOf(stack.manifest);
     inputs.stack_paths.push_back(path);
     for (std::size_t i = 0; i < stack.frames.size(); ++i) {
-      inputs.frames.push_back(std::move(stack.frames[i]));
-      inputs.specs.push_back(stack.manifest.frames[i]);
-      inputs.names.push_back((fs::path(path) / stack.manifest.frames[i].file).string());
-      inputs.bit_depths.push_back(stack.bit_depths[i]);
+      inputs.frames.push_back({.frame = std::move(stack.frames[i]),
+                               .spec = stack.manifest.frames[i],
+                               .name = (fs::path(path) / stack.manifest.frames[i].file).string(),
+                               .bit_depth = stack.bit_depths[i],
+                               .stack = inputs.stack_paths.size() - 1});
     }
     if (stack.manifest.captured_at && *stack.manifest.captured_at > inputs.latest_capture)
       inputs.latest_capture = *stack.manifest.captured_at;
@@ -103,64 +82,6 @@ Result<CalibrationInputs> readCalibrationInputs(std::span<const std::string> sta
     progress.advance(path);
   }
   return inputs;
-}
-
-Result<json> priorValues(std::span<const std::string> calibration_files,
-                         const CalibrationInputs& inputs) {
-  json prior = json::object();
-  for (const std::string& file : calibration_files) {
-    json values;
-    GLARECAM_ASSIGN(values, fileValues(file));
-    for (const auto& [key, value] : values.items()) prior[key] = value;
-  }
-  if (!calibration_files.empty()) return prior;
-  const Stack& first = inputs.stacks.front();
-  if (first.calibration_origin == kNoCalibration) return prior;
-  prior = first.calibration.source;
-  if (prior.contains("flat_field") && prior["flat_field"].is_string()) {
-    const fs::path base = first.calibration_origin == "inline"
-                              ? first.directory
-                              : (first.directory / first.calibration_origin).parent_path();
-    prior["flat_field"] = fs::absolute(base / prior["flat_field"].get<std::string>()).string();
-  }
-  return prior;
-}
-
-Result<SensorLevels> sensorLevels(const json& prior, const CalibrationInputs& inputs,
-                                  const std::string& procedure) {
-  if (!prior.contains("black_level_dn") || !prior["black_level_dn"].is_number()) {
-    return badInput(fmt::format(
-        "calibrate {}: the black level is unknown: measure it first (glarecam calibrate dark) "
-        "and give that file with --calibration",
-        procedure));
-  }
-  SensorLevels levels{.black_level_dn = prior["black_level_dn"].get<double>(),
-                      .saturation_dn = formatMaxDn(inputs)};
-  if (prior.contains("saturation_dn") && prior["saturation_dn"].is_number())
-    levels.saturation_dn = prior["saturation_dn"].get<double>();
-  if (!(levels.black_level_dn >= 0 && levels.black_level_dn < levels.saturation_dn)) {
-    return badInput(fmt::format("calibrate {}: black level {:g} DN must be in [0, saturation {:g})",
-                                procedure, levels.black_level_dn, levels.saturation_dn));
-  }
-  return levels;
-}
-
-Result<Calibration> priorCalibration(const json& prior, const SensorLevels& levels) {
-  json block = prior;
-  block["black_level_dn"] = levels.black_level_dn;
-  block["saturation_dn"] = levels.saturation_dn;
-  block["luminance_factor"] = 1.0;  // placeholders: the merge needs them, the result does not
-  if (!block.contains("intrinsics"))
-    block["intrinsics"] = {{"fx", 1}, {"fy", 1}, {"cx", 1}, {"cy", 1}};
-  std::optional<std::string> flat;
-  if (block.contains("flat_field")) {
-    flat = block["flat_field"].get<std::string>();
-    block.erase("flat_field");  // absolute: the block's parser takes contained paths only
-  }
-  Calibration calibration;
-  GLARECAM_ASSIGN(calibration, parseCalibration(block, "--calibration"));
-  calibration.flat_field = flat;
-  return calibration;
 }
 
 CalibrationDocument partDocument(const CalibrationInputs& inputs, const std::string& part,

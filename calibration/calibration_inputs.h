@@ -1,32 +1,26 @@
 // What every `glarecam calibrate` procedure starts from: the frames of its input stacks (read
-// without needing a calibration, all of one camera and size) and the values already measured
-// (earlier parts given with --calibration, else the stacks' own calibration block), and what it
-// ends with: its part written as a glarecam.calibration/1 file with the part's provenance.
+// without needing a calibration, all of one camera and size), and what it ends with: its part
+// as a glarecam.calibration/1 document with the part's provenance (the stacks, when and how).
+// The values measured before the procedure are in prior_calibration.h.
 #pragma once
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "calibration/calibration_file.h"
-#include "calibration/flat_calibration.h"
+#include "calibration/input_frame.h"
 #include "core/error.h"
-#include "core/image.h"
 #include "core/stack_io.h"
 
 namespace glarecam::calibration {
 
 struct CalibrationInputs {
-  std::vector<Stack> stacks;
+  std::vector<Stack> stacks;             // as read; their frames moved into `frames`
   std::vector<std::string> stack_paths;  // as given
-  // Every frame of every stack, in order, with its spec, a name for errors and its bit depth.
-  std::vector<RawFrame> frames;
-  std::vector<FrameSpec> specs;
-  std::vector<std::string> names;
-  std::vector<int> bit_depths;
+  std::vector<InputFrame> frames;        // every frame of every stack, in order
   CameraIdentity camera;
   std::string latest_capture;  // the newest captured_at of the stacks (ISO 8601), or empty
 };
@@ -36,24 +30,8 @@ struct CalibrationInputs {
 Result<CalibrationInputs> readCalibrationInputs(std::span<const std::string> stack_paths,
                                                 bool show_progress);
 
-// The values known before this procedure: the --calibration files merged in order (a bare
-// calibration block is accepted as well as a glarecam.calibration/1 file), else the first
-// stack's calibration block. Paths in the values are absolute.
-Result<nlohmann::json> priorValues(std::span<const std::string> calibration_files,
-                                   const CalibrationInputs& inputs);
-
 // The largest value the frames' pixel format holds (MonoN: 2^N - 1; else the files' bit depth).
 double formatMaxDn(const CalibrationInputs& inputs);
-
-// Black level and saturation from the prior values; a missing saturation falls back to the
-// largest value the frames' pixel format holds (MonoN: 2^N - 1; else the files' bit depth).
-// `procedure` names the command in the error when the black level is unknown.
-Result<SensorLevels> sensorLevels(const nlohmann::json& prior, const CalibrationInputs& inputs,
-                                  const std::string& procedure);
-
-// The values as a calibration for the merge (black, saturation, noise, reference f-number,
-// flat field path); luminance_factor and intrinsics placeholders, since those are not needed.
-Result<Calibration> priorCalibration(const nlohmann::json& prior, const SensorLevels& levels);
 
 // A part's document: the inputs' camera, `values`, and parts[part] with its provenance.
 CalibrationDocument partDocument(const CalibrationInputs& inputs, const std::string& part,

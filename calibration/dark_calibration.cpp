@@ -10,32 +10,35 @@
 namespace glarecam::calibration {
 namespace {
 
-std::vector<const RawFrame*> framesOf(std::span<const RawFrame> frames,
+std::vector<const RawFrame*> framesOf(std::span<const InputFrame> frames,
                                       const ExposureGroup& group) {
   std::vector<const RawFrame*> selected;
-  for (std::size_t i : group.frames) selected.push_back(&frames[i]);
+  for (std::size_t i : group.frames) selected.push_back(&frames[i].frame);
   return selected;
 }
 
 // The temporal noise of one frame, from the differences of consecutive frames: the fixed
 // pattern cancels, and var(a - b) = 2 var(noise).
-std::optional<double> temporalNoise(std::span<const RawFrame> frames, const ExposureGroup& group) {
+std::optional<double> temporalNoise(std::span<const InputFrame> frames,
+                                    const ExposureGroup& group) {
   if (group.frames.size() < 2) return std::nullopt;
-  const RawFrame& first = frames[group.frames.front()];
+  const RawFrame& first = frames[group.frames.front()].frame;
   const Roi all{.x = 0, .y = 0, .width = first.width(), .height = first.height()};
   double variance = 0;
   for (std::size_t i = 1; i < group.frames.size(); ++i)
     variance +=
-        differenceStats(frames[group.frames[i - 1]], frames[group.frames[i]], all).variance_dn2 / 2;
+        differenceStats(frames[group.frames[i - 1]].frame, frames[group.frames[i]].frame, all)
+            .variance_dn2 /
+        2;
   return std::sqrt(variance / static_cast<double>(group.frames.size() - 1));
 }
 
 // Every frame is dark: its values spread little across the image, and its median is not far
 // above the darkest frame's (light leaking around a cap raises the median, a lit scene spreads).
-Status checkNoLight(std::span<const RawFrame> frames, std::span<const std::string> names) {
+Status checkNoLight(std::span<const InputFrame> frames) {
   std::vector<RobustSpread> spreads;
-  for (const RawFrame& frame : frames) {
-    const RawFrame* one = &frame;
+  for (const InputFrame& frame : frames) {
+    const RawFrame* one = &frame.frame;
     spreads.push_back(robustSpread(meanFrame(std::span(&one, 1))));
   }
   const double darkest = std::ranges::min(spreads, {}, &RobustSpread::median).median;
@@ -44,7 +47,7 @@ Status checkNoLight(std::span<const RawFrame> frames, std::span<const std::strin
       return badInput(fmt::format(
           "{}: not a dark frame (median {:.0f} DN, spread {:.0f} DN across the image; the "
           "darkest frame's median is {:.0f} DN): cap the lens or close the shutter",
-          names[i], spreads[i].median, spreads[i].sigma, darkest));
+          frames[i].name, spreads[i].median, spreads[i].sigma, darkest));
     }
   }
   return {};
@@ -52,15 +55,13 @@ Status checkNoLight(std::span<const RawFrame> frames, std::span<const std::strin
 
 }  // namespace
 
-Result<DarkCalibration> calibrateDark(std::span<const RawFrame> frames,
-                                      std::span<const FrameSpec> specs,
-                                      std::span<const std::string> names) {
+Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames) {
   if (frames.size() < kMinDarkFrames) {
     return badInput(fmt::format("calibrate dark: {} frame(s); needs at least {} dark frames",
                                 frames.size(), kMinDarkFrames));
   }
-  GLARECAM_CHECK(checkNoLight(frames, names));
-  const std::vector<ExposureGroup> groups = groupByExposure(specs);
+  GLARECAM_CHECK(checkNoLight(frames));
+  const std::vector<ExposureGroup> groups = groupByExposure(specsOf(frames));
   GLARECAM_CHECK(checkOneGain(groups, "dark"));
   DarkCalibration dark;
   for (const ExposureGroup& group : groups) {

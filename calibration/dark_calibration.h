@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "calibration/input_frame.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -46,10 +47,8 @@ struct DarkCalibration {
   std::vector<DarkLevel> levels;  // by exposure
 };
 
-// `names[i]` names frame i in errors ("stack/frame-03.png").
-Result<DarkCalibration> calibrateDark(std::span<const RawFrame> frames,
-                                      std::span<const FrameSpec> specs,
-                                      std::span<const std::string> names);
+// A frame that saw light is named in the error.
+Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames);
 
 // The part's values: black_level_dn, dark frame and hot-pixel file names, the levels.
 nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_frame_file,

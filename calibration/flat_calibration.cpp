@@ -38,13 +38,11 @@ Status checkFrame(const RawFrame& frame, const std::string& name, const SensorLe
 
 }  // namespace
 
-Result<FlatCalibration> calibrateFlat(std::span<const RawFrame> frames,
-                                      std::span<const FrameSpec> specs,
-                                      std::span<const std::string> names,
+Result<FlatCalibration> calibrateFlat(std::span<const InputFrame> frames,
                                       const SensorLevels& levels, double principal_x,
                                       double principal_y) {
   if (frames.empty()) return badInput("calibrate flat: no frames");
-  const int width = frames.front().width(), height = frames.front().height();
+  const int width = frames.front().frame.width(), height = frames.front().frame.height();
   if (principal_x < 0 || principal_y < 0 || principal_x > width - 1 || principal_y > height - 1) {
     return badInput(
         fmt::format("calibrate flat: principal point ({:g}, {:g}) is outside the "
@@ -52,12 +50,12 @@ Result<FlatCalibration> calibrateFlat(std::span<const RawFrame> frames,
                     principal_x, principal_y, width, height));
   }
   // Sum of (DN - black) / exposure-and-gain: frames at different settings add up in one unit.
-  std::vector<double> sum(frames.front().pixelCount(), 0.0);
+  std::vector<double> sum(frames.front().frame.pixelCount(), 0.0);
   double signal_sum = 0;
-  for (std::size_t f = 0; f < frames.size(); ++f) {
-    GLARECAM_CHECK(checkFrame(frames[f], names[f], levels));
-    const double scale = 1.0 / (specs[f].exposure_us * linearGain(specs[f].gain_db));
-    const std::uint16_t* pixels = frames[f].data();
+  for (const InputFrame& frame : frames) {
+    GLARECAM_CHECK(checkFrame(frame.frame, frame.name, levels));
+    const double scale = 1.0 / (frame.spec.exposure_us * linearGain(frame.spec.gain_db));
+    const std::uint16_t* pixels = frame.frame.data();
     double frame_sum = 0;
     for (std::size_t i = 0; i < sum.size(); ++i) {
       const double signal = pixels[i] - levels.black_level_dn;

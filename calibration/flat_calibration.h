@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 
+#include "calibration/input_frame.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -36,9 +37,7 @@ struct FlatCalibration {
 };
 
 // `principal` the point to normalise at (cx, cy of the intrinsics, or the image centre).
-Result<FlatCalibration> calibrateFlat(std::span<const RawFrame> frames,
-                                      std::span<const FrameSpec> specs,
-                                      std::span<const std::string> names,
+Result<FlatCalibration> calibrateFlat(std::span<const InputFrame> frames,
                                       const SensorLevels& levels, double principal_x,
                                       double principal_y);
 

@@ -55,23 +55,24 @@ double coverage(const std::vector<std::vector<cv::Point2f>>& corners, int width,
   return static_cast<double>(cells.size()) / (kCoverageCells * kCoverageCells);
 }
 
-Status checkBoard(const BoardSpec& board) {
-  if (board.inner_columns < 3 || board.inner_rows < 3 || board.inner_columns == board.inner_rows)
+}  // namespace
+
+Status BoardSpec::validate() const {
+  if (inner_columns < 3 || inner_rows < 3 || inner_columns == inner_rows)
     return badInput(fmt::format(
         "calibrate intrinsics: board {}x{}: needs at least 3x3 inner corners, and different "
         "counts across and down (a square board's orientation is ambiguous)",
-        board.inner_columns, board.inner_rows));
-  if (!(board.square_mm > 0)) return badInput("calibrate intrinsics: --square-mm must be positive");
+        inner_columns, inner_rows));
+  if (!(square_mm > 0)) return badInput("calibrate intrinsics: --square-mm must be positive");
   return {};
 }
 
-}  // namespace
-
-std::size_t bestExposedFrame(std::span<const RawFrame> frames, double saturation_dn) {
+std::size_t bestExposedFrame(std::span<const InputFrame> frames, double saturation_dn) {
   std::size_t best = 0;
   double best_range = -1;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    std::vector<float> values(frames[i].data(), frames[i].data() + frames[i].pixelCount());
+    const RawFrame& frame = frames[i].frame;
+    std::vector<float> values(frame.data(), frame.data() + frame.pixelCount());
     const auto [low, high] = percentileRange(values.data(), values.size());
     const double range = high >= saturation_dn ? 0 : high - low;
     if (range > best_range) {
@@ -85,7 +86,7 @@ std::size_t bestExposedFrame(std::span<const RawFrame> frames, double saturation
 Result<IntrinsicsCalibration> calibrateIntrinsics(std::span<const BoardView> views,
                                                   const BoardSpec& board,
                                                   const IntrinsicsOptions& options) {
-  GLARECAM_CHECK(checkBoard(board));
+  GLARECAM_CHECK(board.validate());
   if (views.empty()) return badInput("calibrate intrinsics: no images");
   IntrinsicsCalibration result;
   result.width = views.front().image.width();

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "calibration/input_frame.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -26,6 +27,7 @@ inline constexpr double kMinCoverage = 0.75;
 struct BoardSpec {
   int inner_columns = 9, inner_rows = 6;  // inner corners
   double square_mm = 25;
+  Status validate() const;  // 3x3 corners or more, not square; squares of positive size
 };
 
 struct BoardView {  // one candidate image of the board
@@ -52,7 +54,7 @@ Result<IntrinsicsCalibration> calibrateIntrinsics(std::span<const BoardView> vie
 
 // The frame of a stack to look for the board in: the one with the widest range of values that is
 // not saturated (5th to 95th percentile; saturated frames lose the white squares' edges).
-std::size_t bestExposedFrame(std::span<const RawFrame> frames, double saturation_dn);
+std::size_t bestExposedFrame(std::span<const InputFrame> frames, double saturation_dn);
 
 nlohmann::json intrinsicsValues(const IntrinsicsCalibration& result, const BoardSpec& board);
 

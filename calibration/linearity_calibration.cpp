@@ -9,13 +9,13 @@
 namespace glarecam::calibration {
 namespace {
 
-std::vector<RampPoint> rampPoints(std::span<const RawFrame> frames,
+std::vector<RampPoint> rampPoints(std::span<const InputFrame> frames,
                                   std::span<const ExposureGroup> groups, double black_level_dn,
                                   const Roi& roi) {
   std::vector<RampPoint> points;
   for (const ExposureGroup& group : groups) {
     double sum = 0;
-    for (std::size_t i : group.frames) sum += regionStats(frames[i], roi).mean_dn;
+    for (std::size_t i : group.frames) sum += regionStats(frames[i].frame, roi).mean_dn;
     points.push_back(
         {.exposure_us = group.exposure_us,
          .signal_dn = sum / static_cast<double>(group.frames.size()) - black_level_dn});
@@ -43,18 +43,23 @@ std::optional<double> fitSlope(const std::vector<RampPoint>& points) {
 
 }  // namespace
 
-Result<LinearityCalibration> calibrateLinearity(std::span<const RawFrame> frames,
-                                                std::span<const FrameSpec> specs,
-                                                double black_level_dn, const Roi& roi,
-                                                double tolerance) {
-  if (frames.empty()) return badInput("calibrate linearity: no frames");
-  GLARECAM_CHECK(checkRoi(roi, frames.front().width(), frames.front().height(), "--roi"));
+Status checkLinearityTolerance(double tolerance) {
   if (!(tolerance > 0 && tolerance < 1))
     return badInput(
         fmt::format("calibrate linearity: tolerance {:g} must be in (0, 1)", tolerance));
+  return {};
+}
+
+Result<LinearityCalibration> calibrateLinearity(std::span<const InputFrame> frames,
+                                                double black_level_dn, const Roi& roi,
+                                                double tolerance) {
+  if (frames.empty()) return badInput("calibrate linearity: no frames");
+  const RawFrame& first = frames.front().frame;
+  GLARECAM_CHECK(checkRoi(roi, first.width(), first.height(), "--roi"));
+  GLARECAM_CHECK(checkLinearityTolerance(tolerance));
   LinearityCalibration result;
   result.tolerance = tolerance;
-  const std::vector<ExposureGroup> groups = groupByExposure(specs);
+  const std::vector<ExposureGroup> groups = groupByExposure(specsOf(frames));
   GLARECAM_CHECK(checkOneGain(groups, "linearity"));
   result.points = rampPoints(frames, groups, black_level_dn, roi);
   if (result.points.size() < kMinRampPoints) {

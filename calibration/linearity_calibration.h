@@ -12,6 +12,7 @@
 
 #include "calibration/flat_calibration.h"
 #include "calibration/frame_statistics.h"
+#include "calibration/input_frame.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -41,8 +42,10 @@ struct LinearityCalibration {
   double tolerance = kDefaultLinearityTolerance;
 };
 
-Result<LinearityCalibration> calibrateLinearity(std::span<const RawFrame> frames,
-                                                std::span<const FrameSpec> specs,
+// The tolerance, a fraction, must be in (0, 1).
+Status checkLinearityTolerance(double tolerance);
+
+Result<LinearityCalibration> calibrateLinearity(std::span<const InputFrame> frames,
                                                 double black_level_dn, const Roi& roi,
                                                 double tolerance);
 

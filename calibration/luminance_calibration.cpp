@@ -10,22 +10,23 @@
 #include "calibration/radiometry.h"
 
 namespace glarecam::calibration {
-namespace {
 
-Status checkReference(const LuminanceReference& reference) {
-  if (reference.readings_cd_m2.empty())
+Status LuminanceReference::validate() const {
+  if (readings_cd_m2.empty())
     return badInput("calibrate luminance: give the meter's reading with --reference CD_M2");
-  for (double reading : reference.readings_cd_m2) {
+  for (double reading : readings_cd_m2) {
     if (!(reading > 0) || !std::isfinite(reading))
       return badInput(
           fmt::format("calibrate luminance: --reference {:g} must be a positive "
                       "luminance in cd/m²",
                       reading));
   }
-  if (!(reference.meter_accuracy_percent >= 0) || reference.meter_accuracy_percent >= 100)
+  if (!(meter_accuracy_percent >= 0) || meter_accuracy_percent >= 100)
     return badInput("calibrate luminance: --meter-accuracy must be in [0, 100) %");
   return {};
 }
+
+namespace {
 
 // Refuses a region where the merge has only a bound: the reference saturated every frame (or
 // none saw it).
@@ -115,21 +116,26 @@ double LuminanceUncertainty::combined() const {
                    noise * noise);
 }
 
-Result<LuminanceCalibration> calibrateLuminance(std::span<const RawFrame> frames,
-                                                std::span<const FrameSpec> specs,
-                                                std::span<const int> bit_depths,
+Result<LuminanceCalibration> calibrateLuminance(std::vector<InputFrame> frames,
                                                 const Calibration& calibration,
                                                 const FloatImage* flat_field, const Roi& roi,
                                                 const LuminanceReference& reference) {
-  GLARECAM_CHECK(checkReference(reference));
+  GLARECAM_CHECK(reference.validate());
   if (frames.empty()) return badInput("calibrate luminance: no frames");
-  GLARECAM_CHECK(checkRoi(roi, frames.front().width(), frames.front().height(), "--roi"));
+  GLARECAM_CHECK(
+      checkRoi(roi, frames.front().frame.width(), frames.front().frame.height(), "--roi"));
   Calibration unit = calibration;
   unit.luminance_factor = 1.0;
-  const std::vector<FrameSpec> frame_specs(specs.begin(), specs.end());
-  const std::vector<FrameRadiometry> radiometry = frameRadiometry(frame_specs, unit);
+  const std::vector<FrameRadiometry> radiometry = frameRadiometry(specsOf(frames), unit);
+  // The merge takes the pixels as one block: moved there, each frame is still held once.
+  std::vector<RawFrame> pixels;
+  std::vector<int> bit_depths;
+  for (InputFrame& frame : frames) {
+    pixels.push_back(std::move(frame.frame));
+    bit_depths.push_back(frame.bit_depth);
+  }
   MergedImage merged;
-  GLARECAM_ASSIGN(merged, merge({.frames = frames,
+  GLARECAM_ASSIGN(merged, merge({.frames = pixels,
                                  .radiometry = radiometry,
                                  .black_level_dn = unit.black_level_dn,
                                  .saturation_dn = unit.saturation_dn,

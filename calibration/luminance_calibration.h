@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <span>
 #include <vector>
 
 #include "calibration/frame_statistics.h"
+#include "calibration/input_frame.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -30,6 +30,7 @@ inline constexpr int kUniformityCells = 4;
 struct LuminanceReference {
   std::vector<double> readings_cd_m2;  // one or more meter readings of the surface
   double meter_accuracy_percent = kDefaultMeterAccuracyPercent;
+  Status validate() const;  // readings positive and finite, accuracy in [0, 100) %
 };
 
 struct LuminanceUncertainty {  // relative standard uncertainties
@@ -47,10 +48,9 @@ struct LuminanceCalibration {
 };
 
 // `calibration` gives black level, saturation, noise, reference f-number and flat field (its
-// luminance_factor is ignored); `flat_field` may be null.
-Result<LuminanceCalibration> calibrateLuminance(std::span<const RawFrame> frames,
-                                                std::span<const FrameSpec> specs,
-                                                std::span<const int> bit_depths,
+// luminance_factor is ignored); `flat_field` may be null. The frames are moved in: the merge
+// takes their pixels as one block.
+Result<LuminanceCalibration> calibrateLuminance(std::vector<InputFrame> frames,
                                                 const Calibration& calibration,
                                                 const FloatImage* flat_field, const Roi& roi,
                                                 const LuminanceReference& reference);

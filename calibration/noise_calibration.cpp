@@ -50,19 +50,19 @@ Line fitTransferLine(const std::vector<TransferPoint>& points, double pixels) {
 
 }  // namespace
 
-Result<NoiseCalibration> calibrateNoise(std::span<const RawFrame> frames,
-                                        std::span<const FrameSpec> specs,
+Result<NoiseCalibration> calibrateNoise(std::span<const InputFrame> frames,
                                         const SensorLevels& levels, const Roi& roi) {
   if (frames.empty()) return badInput("calibrate noise: no frames");
-  GLARECAM_CHECK(checkRoi(roi, frames.front().width(), frames.front().height(), "--roi"));
+  const RawFrame& first = frames.front().frame;
+  GLARECAM_CHECK(checkRoi(roi, first.width(), first.height(), "--roi"));
   NoiseCalibration noise;
   std::size_t levels_used = 0;  // exposures with at least one usable pair
-  for (const ExposureGroup& group : groupByExposure(specs)) {
+  for (const ExposureGroup& group : groupByExposure(specsOf(frames))) {
     const std::size_t before = noise.points.size();
     const double gain = linearGain(group.gain_db);
     for (std::size_t i = 0; i + 1 < group.frames.size(); i += 2) {
-      const RawFrame& a = frames[group.frames[i]];
-      const RawFrame& b = frames[group.frames[i + 1]];
+      const RawFrame& a = frames[group.frames[i]].frame;
+      const RawFrame& b = frames[group.frames[i + 1]].frame;
       const RegionStats sa = regionStats(a, roi), sb = regionStats(b, roi);
       const double variance = differenceStats(a, b, roi).variance_dn2 / 2;
       if (std::max(sa.max_dn, sb.max_dn) + kSaturationMarginSigmas * std::sqrt(variance) >=

@@ -12,6 +12,7 @@
 
 #include "calibration/flat_calibration.h"
 #include "calibration/frame_statistics.h"
+#include "calibration/input_frame.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -37,8 +38,7 @@ struct NoiseCalibration {
   std::size_t pairs_near_saturation = 0;  // left out
 };
 
-Result<NoiseCalibration> calibrateNoise(std::span<const RawFrame> frames,
-                                        std::span<const FrameSpec> specs,
+Result<NoiseCalibration> calibrateNoise(std::span<const InputFrame> frames,
                                         const SensorLevels& levels, const Roi& roi);
 
 nlohmann::json noiseValues(const NoiseCalibration& noise);

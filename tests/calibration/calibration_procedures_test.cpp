@@ -28,10 +28,17 @@ CalibrationTargetStack target(CalibrationTarget kind, CalibrationTargetOptions o
   return std::move(stacks->front());
 }
 
-std::vector<std::string> namesOf(const CalibrationTargetStack& stack) {
-  std::vector<std::string> names;
-  for (const FrameSpec& frame : stack.manifest.frames) names.push_back("target/" + frame.file);
-  return names;
+// The stack's frames as the procedures take them, named "target/frame-NN.png".
+std::vector<calibration::InputFrame> inputFrames(const CalibrationTargetStack& stack) {
+  std::vector<calibration::InputFrame> frames;
+  for (std::size_t i = 0; i < stack.frames.size(); ++i) {
+    frames.push_back({.frame = stack.frames[i],
+                      .spec = stack.manifest.frames[i],
+                      .name = "target/" + stack.manifest.frames[i].file,
+                      .bit_depth = 16,
+                      .stack = 0});
+  }
+  return frames;
 }
 
 // The simulated sensor's levels (capture::SensorModel defaults).
@@ -41,7 +48,7 @@ const calibration::SensorLevels kLevels{.black_level_dn = 64, .saturation_dn = 4
 
 TEST(CalibrateDark, RecoversTheBlackLevelAndExactlyTheHotPixels) {
   const CalibrationTargetStack dark = target(CalibrationTarget::kDark);
-  const auto result = calibration::calibrateDark(dark.frames, dark.manifest.frames, namesOf(dark));
+  const auto result = calibration::calibrateDark(inputFrames(dark));
   ASSERT_TRUE(result) << result.error().message;
   // The median of 82k per-pixel means (each of 4 frames: σ = √(0.5² + 2²/4) = 1.1 DN) has a
   // standard error of 0.005 DN; 0.05 DN allows the integer rounding of the raw values.
@@ -66,14 +73,14 @@ TEST(CalibrateDark, RecoversTheBlackLevelAndExactlyTheHotPixels) {
 
 TEST(CalibrateDark, TooFewFramesAndALitFrameAreErrors) {
   const CalibrationTargetStack dark = target(CalibrationTarget::kDark);
-  const auto one = calibration::calibrateDark(
-      std::span(dark.frames).first(1), std::span(dark.manifest.frames).first(1), namesOf(dark));
+  const auto frames = inputFrames(dark);
+  const auto one = calibration::calibrateDark(std::span(frames).first(1));
   ASSERT_FALSE(one);
   EXPECT_NE(one.error().message.find("needs at least 2 dark frames"), std::string::npos);
 
   CalibrationTargetStack lit = dark;
   lit.frames[3] = target(CalibrationTarget::kFlat).frames[0];
-  const auto refused = calibration::calibrateDark(lit.frames, lit.manifest.frames, namesOf(lit));
+  const auto refused = calibration::calibrateDark(inputFrames(lit));
   ASSERT_FALSE(refused);
   EXPECT_NE(refused.error().message.find("target/frame-03.png: not a dark frame"),
             std::string::npos)
@@ -86,8 +93,7 @@ TEST(CalibrateFlat, RecoversTheVignettingNormalisedAtThePrincipalPoint) {
   const CalibrationTargetOptions options;
   const CalibrationTargetStack flat = target(CalibrationTarget::kFlat);
   const double cx = (options.width - 1) / 2.0, cy = (options.height - 1) / 2.0;
-  const auto result =
-      calibration::calibrateFlat(flat.frames, flat.manifest.frames, namesOf(flat), kLevels, cx, cy);
+  const auto result = calibration::calibrateFlat(inputFrames(flat), kLevels, cx, cy);
   ASSERT_TRUE(result) << result.error().message;
   const FloatImage truth =
       capture::naturalVignetting(options.width, options.height, options.horizontal_fov_deg);
@@ -111,16 +117,13 @@ TEST(CalibrateFlat, RecoversTheVignettingNormalisedAtThePrincipalPoint) {
 
 TEST(CalibrateFlat, ASaturatedOrDarkFrameIsAnError) {
   const CalibrationTargetStack ramp = target(CalibrationTarget::kLinearity);
-  const std::vector<std::string> names = namesOf(ramp);
+  const auto frames = inputFrames(ramp);
   const std::size_t last = ramp.frames.size() - 1;
-  const auto saturated = calibration::calibrateFlat(
-      std::span(ramp.frames).subspan(last), std::span(ramp.manifest.frames).subspan(last),
-      std::span(names).subspan(last), kLevels, 100, 100);
+  const auto saturated =
+      calibration::calibrateFlat(std::span(frames).subspan(last), kLevels, 100, 100);
   ASSERT_FALSE(saturated);
   EXPECT_NE(saturated.error().message.find("must not saturate"), std::string::npos);
-  const auto dark = calibration::calibrateFlat(std::span(ramp.frames).first(1),
-                                               std::span(ramp.manifest.frames).first(1),
-                                               namesOf(ramp), kLevels, 100, 100);
+  const auto dark = calibration::calibrateFlat(std::span(frames).first(1), kLevels, 100, 100);
   ASSERT_FALSE(dark);
   EXPECT_NE(dark.error().message.find("too dark for a flat"), std::string::npos);
 }
@@ -130,7 +133,7 @@ TEST(CalibrateFlat, ASaturatedOrDarkFrameIsAnError) {
 TEST(CalibrateLinearity, FindsWhereTheResponseBendsByOnePercent) {
   const CalibrationTargetStack ramp = target(CalibrationTarget::kLinearity);
   const auto result = calibration::calibrateLinearity(
-      ramp.frames, ramp.manifest.frames, kLevels.black_level_dn,
+      inputFrames(ramp), kLevels.black_level_dn,
       calibration::centralRoi(ramp.frames[0].width(), ramp.frames[0].height()), 0.01);
   ASSERT_TRUE(result) << result.error().message;
   EXPECT_TRUE(result->bend_found);
@@ -147,8 +150,8 @@ TEST(CalibrateLinearity, FindsWhereTheResponseBendsByOnePercent) {
 
 TEST(CalibrateLinearity, TooShortARampIsAnError) {
   const CalibrationTargetStack ramp = target(CalibrationTarget::kLinearity);
-  const auto result = calibration::calibrateLinearity(std::span(ramp.frames).first(3),
-                                                      std::span(ramp.manifest.frames).first(3), 64,
+  const auto frames = inputFrames(ramp);
+  const auto result = calibration::calibrateLinearity(std::span(frames).first(3), 64,
                                                       calibration::centralRoi(320, 256), 0.01);
   ASSERT_FALSE(result);
   EXPECT_NE(result.error().message.find("at least 4 different exposures"), std::string::npos);
@@ -159,7 +162,7 @@ TEST(CalibrateLinearity, TooShortARampIsAnError) {
 TEST(CalibrateNoise, ThePhotonTransferCurveGivesReadNoiseAndGain) {
   const CalibrationTargetStack ptc = target(CalibrationTarget::kNoise);
   const auto result = calibration::calibrateNoise(
-      ptc.frames, ptc.manifest.frames, kLevels,
+      inputFrames(ptc), kLevels,
       calibration::centralRoi(ptc.frames[0].width(), ptc.frames[0].height()));
   ASSERT_TRUE(result) << result.error().message;
   // Truth: the simulated sensor's 0.5 DN/e- and 2 DN read noise, which quantisation to whole DN
@@ -176,8 +179,8 @@ TEST(CalibrateNoise, ThePhotonTransferCurveGivesReadNoiseAndGain) {
 
 TEST(CalibrateNoise, PairsAtTooFewExposuresAreAnError) {
   const CalibrationTargetStack ptc = target(CalibrationTarget::kNoise);
-  const auto result = calibration::calibrateNoise(std::span(ptc.frames).first(4),
-                                                  std::span(ptc.manifest.frames).first(4), kLevels,
+  const auto frames = inputFrames(ptc);
+  const auto result = calibration::calibrateNoise(std::span(frames).first(4), kLevels,
                                                   calibration::centralRoi(320, 256));
   ASSERT_FALSE(result);
   EXPECT_NE(result.error().message.find("needs pairs at 3 or more exposures"), std::string::npos);
@@ -204,10 +207,9 @@ TEST(CalibrateLuminance, RecoversKWithTheMetersUncertainty) {
   const CalibrationTargetStack patch = target(CalibrationTarget::kLuminance);
   const FloatImage flat =
       capture::naturalVignetting(options.width, options.height, options.horizontal_fov_deg);
-  const std::vector<int> depths(patch.frames.size(), 16);
   const double reference = patch.truth["reference_cd_m2"].get<double>();
   const auto result = calibration::calibrateLuminance(
-      patch.frames, patch.manifest.frames, depths, sensorCalibration(), &flat, truthRoi(patch),
+      inputFrames(patch), sensorCalibration(), &flat, truthRoi(patch),
       {.readings_cd_m2 = {reference * 0.995, reference * 1.005}});
   ASSERT_TRUE(result) << result.error().message;
   // The merge is unbiased to 0.1 % (HdrMerge tests) and the region's mean of 16k pixels carries
@@ -226,10 +228,10 @@ TEST(CalibrateLuminance, RecoversKWithTheMetersUncertainty) {
 
 TEST(CalibrateLuminance, AReferenceSaturatedInEveryFrameIsAnError) {
   const CalibrationTargetStack patch = target(CalibrationTarget::kLuminance);
-  const std::vector<int> depths(1, 16);
+  std::vector<calibration::InputFrame> frames = inputFrames(patch);
+  frames.erase(frames.begin(), frames.end() - 1);  // the longest exposure only
   const auto result = calibration::calibrateLuminance(
-      std::span(patch.frames).last(1), std::span(patch.manifest.frames).last(1), depths,
-      sensorCalibration(), nullptr, truthRoi(patch), {.readings_cd_m2 = {5000}});
+      std::move(frames), sensorCalibration(), nullptr, truthRoi(patch), {.readings_cd_m2 = {5000}});
   ASSERT_FALSE(result);
   EXPECT_NE(result.error().message.find("saturated in every frame"), std::string::npos);
 }

@@ -1,0 +1,62 @@
+// glarecam simulate-calibration: the simulated camera's calibration target stacks, each with its
+// truth.json (capture/sim/calibration_targets.h, docs/calibration.md).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "apps/glarecam/commands.h"
+#include "apps/glarecam/option_parsing.h"
+#include "capture/sim/calibration_targets.h"
+
+namespace glarecam::apps {
+namespace {
+
+struct SimulateTargetArgs {
+  std::string target, out, seed = "1";
+  std::optional<std::string> size;
+};
+
+Status runSimulateTarget(const SimulateTargetArgs& args) {
+  capture::CalibrationTargetOptions options;
+  GLARECAM_ASSIGN(options.target, capture::parseCalibrationTarget(args.target));
+  if (options.target == capture::CalibrationTarget::kBoard) {
+    options.width = 640;  // corners need room: 9x6 inner corners over a third of the width
+    options.height = 480;
+  }
+  if (args.size) {
+    std::pair<int, int> size;
+    GLARECAM_ASSIGN(size, parseSize(*args.size, "--size"));
+    std::tie(options.width, options.height) = size;
+  }
+  GLARECAM_ASSIGN(options.seed, parseUnsigned(args.seed, "--seed"));
+  if (args.out.empty()) return badInput("--out: expected a directory");
+  std::vector<capture::CalibrationTargetStack> stacks;
+  GLARECAM_ASSIGN(stacks, capture::simulateCalibrationTarget(options));
+  std::vector<std::filesystem::path> written;
+  GLARECAM_ASSIGN(written, capture::writeCalibrationTargetStacks(args.out, options.target, stacks));
+  for (const std::filesystem::path& path : written) std::printf("%s\n", path.c_str());
+  return {};
+}
+
+}  // namespace
+
+void addSimulateCalibrationCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<SimulateTargetArgs>();
+  CLI::App* sub =
+      app.add_subcommand("simulate-calibration",
+                         "Write calibration target stacks of the simulated camera, with truth.json "
+                         "(docs/calibration.md)");
+  sub->add_option("TARGET", args->target, "dark, flat, linearity, noise, luminance or board")
+      ->required();
+  sub->add_option("--out", args->out, "directory the stacks go into")->required();
+  sub->add_option("--size", args->size, "WxH (default 320x256; board 640x480)");
+  sub->add_option("--seed", args->seed, "noise seed (default 1)");
+  sub->callback([args, &action] { action = [args] { return runSimulateTarget(*args); }; });
+}
+
+}  // namespace glarecam::apps

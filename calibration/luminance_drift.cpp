@@ -1,0 +1,83 @@
+#include "calibration/luminance_drift.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include "calibration/calibration_inputs.h"
+#include "calibration/calibration_parts.h"
+#include "calibration/prior_calibration.h"
+#include "core/atomic_file.h"
+
+namespace glarecam::calibration {
+
+Status DriftCheckOptions::validate() const {
+  if (calibrations.empty())
+    return badInput(
+        "calibrate luminance --check: give the calibration to check with --calibration");
+  if (stacks.empty())
+    return badInput("calibrate luminance --check: give the recorded field stack(s) to check");
+  if (!roi)
+    return badInput("calibrate luminance --check: give the reference patch's region with --roi");
+  return reference.validate();
+}
+
+bool DriftReport::exceedsTwiceUncertainty() const { return std::abs(drift) > 2 * drift_u; }
+
+nlohmann::json DriftReport::toJson() const {
+  return {{"stacks", stacks},
+          {"captured_at", captured_at},
+          {"luminance_factor", luminance_factor},
+          {"measured_luminance_factor", measured_luminance_factor},
+          {"drift", drift},
+          {"drift_u", drift_u}};
+}
+
+std::string DriftReport::logLine() const {
+  return fmt::format("{},{},{:.8g},{:.8g},{:.6f},{:.6f}\n", captured_at, stacks.front(),
+                     luminance_factor, measured_luminance_factor, drift, drift_u);
+}
+
+Status appendDriftLog(const std::filesystem::path& log, const DriftReport& report) {
+  std::string text;
+  if (std::filesystem::exists(log)) {
+    std::ifstream in(log);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  } else {
+    text = kDriftLogHeader;
+  }
+  text += report.logLine();
+  return writeFileAtomic(log, text);
+}
+
+Result<DriftReport> checkLuminanceDrift(const DriftCheckOptions& options) {
+  GLARECAM_CHECK(options.validate());
+  CalibrationInputs inputs;
+  GLARECAM_ASSIGN(inputs, readCalibrationInputs(options.stacks, options.show_progress));
+  PriorCalibration prior;
+  GLARECAM_ASSIGN(prior, readPriorCalibration(options.calibrations, inputs));
+  if (!prior.luminance_factor)
+    return badInput("calibrate luminance --check: the calibration has no luminance_factor");
+  LuminanceCalibration measured;
+  GLARECAM_ASSIGN(measured, measureLuminance(inputs, prior, options.roi, options.reference));
+  const double k = *prior.luminance_factor;
+  // Both Ks are uncertain: the check's own budget and the calibration's u(K), in quadrature.
+  const double u_k = prior.luminance_factor_u.value_or(0.0) / k;
+  DriftReport report{.stacks = inputs.stack_paths,
+                     .captured_at = inputs.latest_capture,
+                     .luminance_factor = k,
+                     .measured_luminance_factor = measured.luminance_factor,
+                     .drift = measured.luminance_factor / k - 1,
+                     .drift_u = std::hypot(measured.relative.combined(), u_k)};
+  if (options.log) GLARECAM_CHECK(appendDriftLog(*options.log, report));
+  if (report.exceedsTwiceUncertainty())
+    spdlog::warn(
+        "calibrate luminance --check: the drift exceeds twice its uncertainty: "
+        "recalibrate K (docs/calibration.md)");
+  return report;
+}
+
+}  // namespace glarecam::calibration

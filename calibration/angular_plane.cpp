@@ -3,10 +3,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/angles.h"
+
 namespace glarecam::calibration {
 namespace {
-
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 Ray normalised(double x, double y, double z) {
   const double n = std::sqrt(x * x + y * y + z * z);
@@ -30,14 +30,14 @@ PlanePointDeg AngularPlane::toPlane(const Ray& ray) const {
   const double p = dot(ray, horizontal_), q = dot(ray, vertical_);
   const double sideways = std::hypot(p, q);
   if (!(sideways > 0)) return {};
-  const double rho_deg = std::atan2(sideways, dot(ray, centre_)) * kDegPerRad;
+  const double rho_deg = degrees(std::atan2(sideways, dot(ray, centre_)));
   return {rho_deg * p / sideways, rho_deg * q / sideways};
 }
 
 Ray AngularPlane::toRay(const PlanePointDeg& point) const {
-  const double rho = std::hypot(point.x_deg, point.y_deg) / kDegPerRad;
+  const double rho = radians(std::hypot(point.x_deg, point.y_deg));
   if (!(rho > 0)) return centre_;
-  const double cos_psi = point.x_deg / kDegPerRad / rho, sin_psi = point.y_deg / kDegPerRad / rho;
+  const double cos_psi = radians(point.x_deg) / rho, sin_psi = radians(point.y_deg) / rho;
   const double along = std::cos(rho), across = std::sin(rho);
   const double h = across * cos_psi, v = across * sin_psi;
   return normalised(along * centre_.x + h * horizontal_.x + v * vertical_.x,
@@ -46,12 +46,12 @@ Ray AngularPlane::toRay(const PlanePointDeg& point) const {
 }
 
 DirectionDeg directionFromAxis(const Ray& ray) {
-  return {std::atan2(ray.x, ray.z) * kDegPerRad, std::atan2(ray.y, ray.z) * kDegPerRad};
+  return {degrees(std::atan2(ray.x, ray.z)), degrees(std::atan2(ray.y, ray.z))};
 }
 
 Ray rayFromDirection(const DirectionDeg& direction) {
-  return normalised(std::tan(direction.horizontal_deg / kDegPerRad),
-                    std::tan(direction.vertical_deg / kDegPerRad), 1.0);
+  return normalised(std::tan(radians(direction.horizontal_deg)),
+                    std::tan(radians(direction.vertical_deg)), 1.0);
 }
 
 }  // namespace glarecam::calibration

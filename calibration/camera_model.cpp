@@ -26,6 +26,8 @@ double angleBetweenDeg(const Ray& a, const Ray& b) {
   const double cy = a.z * b.x - a.x * b.z;
   const double cz = a.x * b.y - a.y * b.x;
   const double dot = a.x * b.x + a.y * b.y + a.z * b.z;
+  // (θ·180)/π rather than core/angles.h's θ·(180/π): the last bit of every measured axis, and the
+  // published sweeps, stay as they were.
   return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot) * 180.0 / std::numbers::pi;
 }
 

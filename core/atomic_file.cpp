@@ -12,30 +12,12 @@
 #include <string>
 #include <system_error>
 
+#include "core/unique_fd.h"
+
 namespace glarecam {
 namespace fs = std::filesystem;
 
 namespace {
-
-class FileDescriptor {
- public:
-  explicit FileDescriptor(int fd) : fd_(fd) {}
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-  ~FileDescriptor() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  int get() const { return fd_; }
-  // Closes explicitly so that a failing close (NFS, full disk) is reported.
-  int release() {
-    int result = ::close(fd_);
-    fd_ = -1;
-    return result;
-  }
-
- private:
-  int fd_;
-};
 
 std::unexpected<Error> systemError(const fs::path& path, const char* what) {
   int err = errno;
@@ -69,24 +51,24 @@ fs::path parentOf(const fs::path& path) {
 }  // namespace
 
 Status fsyncPath(const fs::path& path) {
-  FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  UniqueFd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
   if (fd.get() < 0) return systemError(path, "cannot open for fsync");
   if (::fsync(fd.get()) != 0) return systemError(path, "fsync failed");
   return {};
 }
 
 Status writeFileDurable(const fs::path& path, std::span<const std::byte> bytes) {
-  FileDescriptor fd(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+  UniqueFd fd(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
   if (fd.get() < 0) return systemError(path, "cannot create");
   if (auto status = writeAll(fd.get(), path, bytes); !status) return status;
   if (::fsync(fd.get()) != 0) return systemError(path, "fsync failed");
-  if (fd.release() != 0) return systemError(path, "close failed");
+  if (fd.close() != 0) return systemError(path, "close failed");
   return {};
 }
 
 Result<fs::path> createTemporarySibling(const fs::path& target) {
   std::string temp = temporarySibling(target).string();
-  FileDescriptor fd(::mkostemp(temp.data(), O_CLOEXEC));
+  UniqueFd fd(::mkostemp(temp.data(), O_CLOEXEC));
   if (fd.get() < 0) return systemError(target, "cannot create temporary file");
   if (::fchmod(fd.get(), 0644) != 0) {
     auto error = systemError(temp, "cannot chmod");

@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/image_io.h"
 #include "core/parallel.h"
+#include "core/unique_fd.h"
 
 namespace glarecam {
 namespace fs = std::filesystem;
@@ -186,21 +187,17 @@ class PinnedDirectory {
  public:
   explicit PinnedDirectory(const fs::path& directory)
       : fd_(::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {}
-  PinnedDirectory(const PinnedDirectory&) = delete;
-  PinnedDirectory& operator=(const PinnedDirectory&) = delete;
-  ~PinnedDirectory() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  bool isOpen() const { return fd_ >= 0; }
+  bool isOpen() const { return fd_.valid(); }
   bool stillNamedBy(const fs::path& directory) const {
     struct stat pinned {
     }, now{};
-    if (fd_ < 0 || ::fstat(fd_, &pinned) != 0 || ::stat(directory.c_str(), &now) != 0) return false;
+    if (!fd_.valid() || ::fstat(fd_.get(), &pinned) != 0 || ::stat(directory.c_str(), &now) != 0)
+      return false;
     return pinned.st_dev == now.st_dev && pinned.st_ino == now.st_ino;
   }
 
  private:
-  int fd_;
+  UniqueFd fd_;
 };
 
 // A stack replaced while it is read would mix two versions; such reads are retried.

@@ -1,5 +1,7 @@
-// A file descriptor owned by exactly one object and closed once, at destruction: the RAII wrapper
-// the inclinometer backends use for /dev/i2c-N and for sysfs attribute files. Move-only.
+// A file descriptor owned by exactly one object and closed once, at destruction, or earlier by
+// close() where a failing close must be seen (a write's last error can surface there: NFS, a full
+// disk). The one RAII wrapper of a descriptor: atomic files, stack reads, V4L2 devices, I2C buses,
+// sysfs attributes. Move-only.
 #pragma once
 
 #include <unistd.h>
@@ -28,6 +30,8 @@ class UniqueFd {
 
   int get() const { return fd_; }
   bool valid() const { return fd_ >= 0; }
+  // Closes now; close(2)'s result (0, or -1 with errno set). Closing twice is a no-op.
+  int close() { return fd_ >= 0 ? ::close(std::exchange(fd_, -1)) : 0; }
 
  private:
   int fd_ = -1;

@@ -154,23 +154,25 @@ void StackWorker::run(std::stop_token stop) {
 void StackWorker::runJob(Job& job, bool stopping) {
   if (job_hook_) job_hook_();
   const WorkerOptions options = currentOptions();
-  try {
+  const Status done = catchExceptions([&]() -> Status {
     if (job.stack) {
       const auto written = write(job, options, stopping);
-      if (!written || stopping) return;  // unwritten stacks are kept; processed at the next start
-      if (mode_ == Mode::kThread) {      // behind the other writes
+      if (!written || stopping) return {};  // unwritten stacks are kept; processed at next start
+      if (mode_ == Mode::kThread) {         // behind the other writes
         enqueue({.path = *written, .captured = job.captured});
-        return;
+        return {};
       }
       job.path = *written;
     }
     process(job, options);
-  } catch (...) {  // a library's exception ends this job, not the daemon
+    return {};
+  });
+  if (!done) {  // a library's exception ends this job, not the daemon
     events_.post(WorkerEvent{
         .stage = job.stack ? WorkerEvent::Stage::kWritten : WorkerEvent::Stage::kProcessed,
         .stack_id =
             job.stack ? job.stack->manifest.id.value_or("stack") : job.path.filename().string(),
-        .error = currentExceptionError(),
+        .error = done.error(),
         .last = true,
         .captured = job.captured});
   }

@@ -6,6 +6,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/angles.h"
 #include "core/neighbourhood.h"
 #include "pipeline/iso_contour.h"
 
@@ -16,7 +17,6 @@ using calibration::AngularPlane;
 using calibration::PixelPoint;
 using calibration::Ray;
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 // Fewer observed contour points than this cannot tell an ellipse's five parameters from noise
 // and pixelation: a region of about 4 x 4 pixels (16 boundary edges). On the 16 x 16 px images
 // the simulator allows, 8 points of a 4-pixel region gave axes 20 % off with tiny uncertainties.
@@ -136,7 +136,7 @@ void measureAxes(const PlaneFit& fitted, const calibration::CameraModel& camera,
   const Ray minor_a = end(std::numbers::pi / 2), minor_b = end(-std::numbers::pi / 2);
   out.major_deg = calibration::angleBetweenDeg(major_a, major_b);
   out.minor_deg = calibration::angleBetweenDeg(minor_a, minor_b);
-  out.orientation_deg = e.angle_rad * kDegPerRad;
+  out.orientation_deg = degrees(e.angle_rad);
   const bool major_is_vertical = out.majorIsVertical();
   out.vertical_deg = major_is_vertical ? out.major_deg : out.minor_deg;
   out.horizontal_deg = major_is_vertical ? out.minor_deg : out.major_deg;
@@ -238,7 +238,7 @@ const char* toString(EllipseStatus status) {
 double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg) {
   // Omega = integral over psi of (1 - cos R(psi)), R the ellipse's radius in direction psi: the
   // plane's radius is the angle from its centre. Periodic trapezoid rule: spectrally accurate.
-  const double a = semi_major_deg / kDegPerRad, b = semi_minor_deg / kDegPerRad;
+  const double a = radians(semi_major_deg), b = radians(semi_minor_deg);
   double sum = 0;
   for (int i = 0; i < kSolidAngleSteps; ++i) {
     const double psi = 2 * std::numbers::pi * i / kSolidAngleSteps;

@@ -8,16 +8,15 @@
 #pragma once
 
 #include <cmath>
-#include <numbers>
+
+#include "core/angles.h"
 
 namespace glarecam::pipeline {
-
-inline constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
 
 template <typename T>
 T cosineLnL(double alpha_deg, const T& a, const T& b, const T& c) {
   using std::exp;
-  return a + b * exp(-c * std::log(std::cos(alpha_deg * kRadiansPerDegree)));
+  return a + b * exp(-c * std::log(std::cos(radians(alpha_deg))));
 }
 
 template <typename T>

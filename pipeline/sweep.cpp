@@ -66,13 +66,11 @@ Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_direct
                          .calibration_use = {}};
   // Runs on a worker thread: an exception (out of memory, a bug) must skip this stack, not
   // terminate the process and lose every other stack's work.
-  try {
+  return catchExceptions([&]() -> Result<SweepRow> {
     auto summary = processStack(stack, process);
     if (!summary) return std::unexpected(summary.error());
     return sweepRowFromResult(summary->result, stack.string());
-  } catch (...) {
-    return std::unexpected(currentExceptionError());
-  }
+  });
 }
 
 // An output directory reused from an earlier sweep keeps that sweep's data sheet and results of

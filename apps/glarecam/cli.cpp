@@ -46,11 +46,7 @@ std::string commandPath(const CLI::App& app) {
 // error and exit status 1 instead of an abort.
 Status runAction(const std::function<Status()>& action) {
   if (!action) return badInput("no command given");
-  try {
-    return action();
-  } catch (...) {
-    return std::unexpected(currentExceptionError());
-  }
+  return catchExceptions(action);
 }
 
 }  // namespace

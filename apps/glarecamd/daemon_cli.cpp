@@ -130,16 +130,6 @@ Status runDaemon(Rig& rig) {
   return daemon->run();
 }
 
-// A library exception (out of memory, a bug) as an error, not an abort.
-template <typename Function>
-auto guarded(Function function) -> decltype(function()) {
-  try {
-    return function();
-  } catch (...) {
-    return std::unexpected(currentExceptionError());
-  }
-}
-
 int reportFailure(const Error& error, int status) {
   spdlog::critical("glarecamd: {}", error.message);
   return status;
@@ -171,11 +161,11 @@ int runGlarecamd(int argc, char** argv) {
     return kExitBadInput;
   }
   setUpLogging(args);
-  Result<Rig> rig = guarded([&] { return rigFor(args); });
+  Result<Rig> rig = catchExceptions([&] { return rigFor(args); });
   if (!rig)
     return reportFailure(rig.error(),
                          rig.error().code == ErrorCode::kBadInput ? kExitBadInput : kExitFailure);
-  const Status ran = guarded([&] { return runDaemon(*rig); });
+  const Status ran = catchExceptions([&] { return runDaemon(*rig); });
   if (!ran)
     return reportFailure(ran.error(),
                          ran.error().code == ErrorCode::kBadInput ? kExitConfig : kExitFailure);

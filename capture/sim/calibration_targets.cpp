@@ -10,6 +10,7 @@
 
 #include "calibration/camera_model.h"
 #include "capture/sim/simulated_stack.h"
+#include "core/angles.h"
 #include "core/stack_io.h"
 
 namespace glarecam::capture {
@@ -281,12 +282,11 @@ std::array<double, 9> rotationXyz(double ax, double ay, double az) {
 // View k: the board's centre over a 3x3 grid of the image (and three more central views), tilted
 // up to 25° so that focal length and distance separate.
 Pose boardPose(const CalibrationTargetOptions& options, int k) {
-  constexpr double kDeg = std::numbers::pi / 180;
   constexpr double kOffsetX = 0.14, kOffsetY = 0.1;  // of the distance: inside a 40° view
   const double ox = (k % 3 - 1) * kOffsetX * (k < 9), oy = (k / 3 % 3 - 1) * kOffsetY * (k < 9);
   const auto rotation =
-      rotationXyz(kTiltXDeg * kDeg * std::sin(1.3 * k + 0.4), kTiltYDeg * kDeg * std::cos(0.9 * k),
-                  10 * kDeg * std::sin(0.7 * k));
+      rotationXyz(radians(kTiltXDeg) * std::sin(1.3 * k + 0.4),
+                  radians(kTiltYDeg) * std::cos(0.9 * k), radians(10.0) * std::sin(0.7 * k));
   const double centre_x = (options.board_inner_columns - 1) * options.board_square_mm / 2;
   const double centre_y = (options.board_inner_rows - 1) * options.board_square_mm / 2;
   const double z = kBoardDistanceMm;

@@ -4,12 +4,11 @@
 #include <numbers>
 #include <string>
 
+#include "core/angles.h"
 #include "core/parallel.h"
 
 namespace glarecam::capture {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // Radius (in units of sigma) of the contour at `level` of B + (P - B) exp(-r²/2).
 double contourRadius(double peak, double background, double level) {
@@ -56,8 +55,8 @@ GlareScene::GlareScene(const GlareLobe& lobe)
 double GlareScene::luminanceCdM2(const calibration::Ray& ray) const {
   const calibration::PlanePointDeg point = plane_.toPlane(ray);
   // Into the lobe's own axes, rotated by its orientation from the image horizontal.
-  const double c = std::cos(lobe_.orientation_deg * kDegToRad),
-               s = std::sin(lobe_.orientation_deg * kDegToRad);
+  const double c = std::cos(radians(lobe_.orientation_deg)),
+               s = std::sin(radians(lobe_.orientation_deg));
   const double u = (c * point.x_deg + s * point.y_deg) / lobe_.sigma_h_deg;
   const double w = (-s * point.x_deg + c * point.y_deg) / lobe_.sigma_v_deg;
   return lobe_.background_cd_m2 +

@@ -9,6 +9,7 @@
 
 #include "calibration/radiometry.h"
 #include "capture/sim/module_model.h"
+#include "core/angles.h"
 #include "core/progress.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
@@ -105,7 +106,7 @@ nlohmann::json axesJson(const std::optional<EllipseAxes>& axes) {
 Intrinsics pinholeIntrinsics(int width, int height, double horizontal_fov_deg,
                              const std::array<double, 5>& distortion) {
   Intrinsics k;
-  k.fx = k.fy = (width / 2.0) / std::tan(horizontal_fov_deg / 2.0 * std::numbers::pi / 180.0);
+  k.fx = k.fy = (width / 2.0) / std::tan(radians(horizontal_fov_deg / 2.0));
   k.cx = (width - 1) / 2.0;
   k.cy = (height - 1) / 2.0;
   k.distortion = distortion;

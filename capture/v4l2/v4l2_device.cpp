@@ -15,6 +15,8 @@
 #include <system_error>
 #include <utility>
 
+#include "core/unique_fd.h"
+
 namespace glarecam::capture {
 
 static_assert(kV4l2FourccGrey == V4L2_PIX_FMT_GREY);
@@ -87,21 +89,6 @@ std::string fixedString(const __u8* text, std::size_t size) {
   return std::string(begin, strnlen(begin, size));
 }
 
-// A file descriptor closed once, at destruction.
-class FileDescriptor {
- public:
-  explicit FileDescriptor(int fd) : fd_(fd) {}
-  ~FileDescriptor() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-  int get() const { return fd_; }
-
- private:
-  int fd_;
-};
-
 // One mmap'd buffer, unmapped once, at destruction.
 class Mapping {
  public:
@@ -149,7 +136,7 @@ class FdV4l2Device final : public V4l2Device {
   Result<v4l2_format> currentFormat();
   Status mapBuffer(int index);
 
-  FileDescriptor fd_;
+  UniqueFd fd_;
   std::vector<Mapping> mappings_;  // declared after fd_: unmapped before the fd closes
   bool streaming_ = false;
 };

@@ -50,14 +50,7 @@ constexpr double kPrincipalOffsetXPx = 3.2, kPrincipalOffsetYPx = -2.1;
 // The simulated camera as the target sees it: its sensor, K and f-number, without the ND filter.
 SimulationOptions cameraOptions(const CalibrationTargetOptions& options) {
   SimulationOptions sim;
-  sim.width = options.width;
-  sim.height = options.height;
-  sim.seed = options.seed;
-  sim.sensor = options.sensor;
-  sim.luminance_factor = options.luminance_factor;
-  sim.f_number = options.f_number;
-  sim.horizontal_fov_deg = options.horizontal_fov_deg;
-  sim.distortion = options.distortion;
+  static_cast<SimulatedCameraModel&>(sim) = options;
   sim.nd_transmission = 1.0;
   return sim;
 }

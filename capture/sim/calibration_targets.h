@@ -30,15 +30,16 @@ enum class CalibrationTarget { kDark, kFlat, kLinearity, kNoise, kLuminance, kBo
 Result<CalibrationTarget> parseCalibrationTarget(std::string_view name);
 std::string_view calibrationTargetName(CalibrationTarget target);
 
-struct CalibrationTargetOptions {
+// The camera (SimulatedCameraModel) and the target in front of it. A lab camera: 320x256 frames
+// through a distorted lens (which intrinsics must find).
+struct CalibrationTargetOptions : SimulatedCameraModel {
+  CalibrationTargetOptions() {
+    width = 320;
+    height = 256;
+    distortion = {-0.12, 0.05, 0.001, -0.0005, 0.0};  // k1 k2 p1 p2 k3
+  }
+
   CalibrationTarget target = CalibrationTarget::kDark;
-  int width = 320, height = 256;
-  std::uint64_t seed = 1;
-  SensorModel sensor;
-  double luminance_factor = 1500.0;  // K at the reference f-number
-  double f_number = 8.0;
-  double horizontal_fov_deg = 40.0;
-  std::array<double, 5> distortion{-0.12, 0.05, 0.001, -0.0005, 0.0};  // k1 k2 p1 p2 k3
   std::string serial = "SIM-0001";
   // dark
   int hot_pixels = 12;

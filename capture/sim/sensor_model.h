@@ -4,6 +4,7 @@
 // level, and ADC quantisation and clipping at full scale. Deterministic for a seed.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "core/image.h"
@@ -18,6 +19,21 @@ struct SensorModel {
   double read_noise_dn = 2.0;
   double dn_per_electron = 0.5;
   double full_scale_dn() const { return static_cast<double>((1 << adc_bits) - 1); }
+};
+
+// The simulated camera as every simulated scene sees it: frame size and noise seed, its sensor,
+// its lens (field of view, distortion, f-number) and its luminance factor K (cd/m² per DN/µs at
+// the f-number, without an ND filter). The glare scene's options (simulated_stack.h) and the
+// calibration targets' (calibration_targets.h) both are one, so a camera passes between them
+// whole.
+struct SimulatedCameraModel {
+  int width = 1224, height = 1024;  // half of a 5 MP machine-vision sensor
+  std::uint64_t seed = 1;
+  double horizontal_fov_deg = 40.0;
+  std::array<double, 5> distortion{};  // k1, k2, p1, p2, k3
+  SensorModel sensor;
+  double luminance_factor = 1500.0;  // K, cd/m² per DN/µs at f/8 without the ND filter
+  double f_number = 8.0;
 };
 
 // Renders the frame `frame` of a stack calibrated by `calibration` (whose radiometry the sensor

@@ -196,14 +196,8 @@ class SimCamera final : public Camera, public SceneTruthSource {
 Result<SimulatedScene> targetScene(SimulationOptions& sim) {
   CalibrationTargetOptions target;
   GLARECAM_ASSIGN(target.target, parseCalibrationTarget(sim.calibration_target));
-  target.width = sim.width;
-  target.height = sim.height;
-  target.seed = sim.seed;
-  target.sensor = sim.sensor;
-  target.luminance_factor = sim.luminance_factor;
-  target.f_number = sim.f_number;
-  target.horizontal_fov_deg = sim.horizontal_fov_deg;
-  target.distortion = sim.distortion;  // the camera's lens, as its calibration states it
+  // The camera's own lens, as its calibration states it.
+  static_cast<SimulatedCameraModel&>(target) = sim;
   sim.nd_transmission = 1.0;
   SimulatedScene scene;
   GLARECAM_ASSIGN(scene.true_luminance_cd_m2, calibrationTargetScene(target));

@@ -18,21 +18,15 @@
 
 namespace glarecam::capture {
 
-struct SimulationOptions {
+// The camera (SimulatedCameraModel: size, seed, sensor, lens, K) and the scene in front of it.
+struct SimulationOptions : SimulatedCameraModel {
   double alpha_deg = 40.0;
   std::string module = "standard";
-  int width = 1224, height = 1024;  // half of a 5 MP machine-vision sensor
-  std::uint64_t seed = 1;
-  double horizontal_fov_deg = 40.0;
-  std::array<double, 5> distortion{};           // k1, k2, p1, p2, k3
   std::array<double, 2> lobe_offset_deg{0, 0};  // lobe centre from the optical axis [h, v]
   double lobe_orientation_deg = 0.0;
   double background_cd_m2 = 3000.0;  // sky reflected in the module glass, an overcast-sky order
   double peak_scale = 1.0;  // multiplies the module's luminance maximum (e.g. below-limit scenes)
-  SensorModel sensor;
-  double luminance_factor = 1500.0;  // K, cd/m² per DN/µs at f/8 without the ND filter
-  double nd_transmission = 1.0e-3;   // ND 3.0 filter: sun reflections need it
-  double f_number = 8.0;
+  double nd_transmission = 1.0e-3;  // ND 3.0 filter: sun reflections need it
   BracketOptions bracket;
   bool show_progress = false;  // progress on stderr (the CLI turns it on)
   // The `sim:` camera only: a calibration target (calibration_targets.h) instead of the module.

@@ -11,17 +11,14 @@
 
 #include "core/logging.h"
 #include "core/version.h"
-#include "daemon/capture_daemon.h"
+#include "daemon/daemon_run.h"
 #include "daemon/journal_sink.h"
 #include "daemon/signal_forwarder.h"
-#include "daemon/simulated_rig.h"
+#include "sun/utc_time.h"
 
 namespace glarecam::apps {
 
 namespace {
-
-constexpr std::int64_t kMaxIntervalS = 7 * 86400;  // a week, as [schedule] interval_s
-constexpr double kMaxTimeLapse = 1e5;              // a day in under a second
 
 struct DaemonArgs {
   std::optional<std::string> config, output, camera, start;
@@ -60,21 +57,27 @@ void addOptions(CLI::App& app, DaemonArgs& args) {
   app.add_flag("-q,--quiet", args.quiet, "log warnings and errors only");
 }
 
-Status checkArgs(const DaemonArgs& args) {
-  if (args.simulate && args.config)
-    return badInput("--simulate runs the simulated rig: give --config or --simulate, not both");
-  if (args.simulate && !args.output) return badInput("--simulate needs --output DIR");
-  if (!args.simulate && (args.camera || args.start))
-    return badInput("--camera and --start are options of --simulate");
-  if (args.output && args.output->empty()) return badInput("--output: expected a directory");
-  if (args.interval_s && !(*args.interval_s >= 1 && *args.interval_s <= kMaxIntervalS))
-    return badInput("--interval must be between 1 and 604800 seconds (a week)");
-  if (args.count && *args.count == 0) return badInput("--count must be at least 1");
-  if (!(args.time_lapse >= 1 && args.time_lapse <= kMaxTimeLapse))
-    return badInput("--time-lapse must be between 1 and 100000");
+Result<daemon::DaemonRunOptions> runOptions(const DaemonArgs& args) {
   if (args.log_target != "auto" && args.log_target != "journal" && args.log_target != "console")
     return badInput("--log-target must be auto, journal or console");
-  return {};
+  daemon::DaemonRunOptions run;
+  if (args.config) run.config_path = *args.config;
+  if (args.output) run.output_root = *args.output;
+  if (args.interval_s) {
+    if (!(*args.interval_s >= 1 && *args.interval_s <= daemon::kMaxDaemonInterval.count()))
+      return badInput("--interval must be between 1 and 604800 seconds (a week)");
+    run.interval = std::chrono::seconds(*args.interval_s);
+  }
+  run.max_stacks = args.count;
+  run.simulate = args.simulate;
+  run.simulated_camera = args.camera;
+  if (args.start) {
+    if (!args.simulate) return badInput("--camera and --start are options of --simulate");
+    GLARECAM_ASSIGN(run.simulation_start, sun::parseIsoTime(*args.start));
+  }
+  run.time_lapse = args.time_lapse;
+  GLARECAM_CHECK(run.validate());
+  return run;
 }
 
 void setUpLogging(const DaemonArgs& args) {
@@ -89,50 +92,6 @@ void setUpLogging(const DaemonArgs& args) {
     initLogging(verbosity, daemon::makeJournalSink("glarecamd"));
   else
     initLogging(verbosity);
-}
-
-struct Rig {
-  daemon::DaemonOptions options;
-  std::unique_ptr<daemon::DaemonClock> clock;
-};
-
-Result<Rig> rigFor(const DaemonArgs& args) {
-  Rig rig;
-  if (args.output) rig.options.output_root = *args.output;
-  if (args.interval_s) rig.options.interval = std::chrono::seconds(*args.interval_s);
-  rig.options.max_stacks = args.count;
-  if (!args.simulate) {
-    if (args.config) rig.options.config_path = *args.config;
-    rig.clock = std::make_unique<daemon::SystemDaemonClock>();
-    return rig;
-  }
-  UtcTime start = daemon::defaultSimulationStart(!rig.options.interval);
-  if (args.start) GLARECAM_ASSIGN(start, sun::parseIsoTime(*args.start));
-  daemon::SimulatedRigOptions simulated{.output = *args.output,
-                                        .camera = args.camera.value_or("sim:seed=1"),
-                                        .interval = rig.options.interval};
-  GLARECAM_ASSIGN(rig.options.config_path, daemon::writeSimulatedRigConfig(simulated));
-  rig.clock = std::make_unique<daemon::TimeLapseClock>(start, args.time_lapse);
-  spdlog::info("glarecamd: simulated rig {}; the sun from {} at {:g}× real time",
-               rig.options.config_path.string(), sun::formatIsoTime(start), args.time_lapse);
-  return rig;
-}
-
-// Runs the daemon until it stops; its errors: a config problem (kBadInput) or a failure.
-Status runDaemon(Rig& rig) {
-  const auto notifier = daemon::makeSystemdNotifier();
-  const auto disk = daemon::makeStatvfsDiskProbe();
-  std::unique_ptr<daemon::CaptureDaemon> daemon;
-  GLARECAM_ASSIGN(daemon, daemon::CaptureDaemon::create(rig.options, {.clock = rig.clock.get(),
-                                                                      .notifier = notifier.get(),
-                                                                      .disk = disk.get()}));
-  const daemon::SignalForwarder signals(daemon->events());
-  return daemon->run();
-}
-
-int reportFailure(const Error& error, int status) {
-  spdlog::critical("glarecamd: {}", error.message);
-  return status;
 }
 
 }  // namespace
@@ -156,20 +115,16 @@ int runGlarecamd(int argc, char** argv) {
     std::fprintf(stderr, "glarecamd: %s (see glarecamd --help)\n", e.what());
     return kExitBadInput;
   }
-  if (const Status checked = checkArgs(args); !checked) {
-    std::fprintf(stderr, "glarecamd: %s (see glarecamd --help)\n", checked.error().message.c_str());
+  const Result<daemon::DaemonRunOptions> run = runOptions(args);
+  if (!run) {
+    std::fprintf(stderr, "glarecamd: %s (see glarecamd --help)\n", run.error().message.c_str());
     return kExitBadInput;
   }
   setUpLogging(args);
-  Result<Rig> rig = catchExceptions([&] { return rigFor(args); });
-  if (!rig)
-    return reportFailure(rig.error(),
-                         rig.error().code == ErrorCode::kBadInput ? kExitBadInput : kExitFailure);
-  const Status ran = catchExceptions([&] { return runDaemon(*rig); });
-  if (!ran)
-    return reportFailure(ran.error(),
-                         ran.error().code == ErrorCode::kBadInput ? kExitConfig : kExitFailure);
-  return kExitSuccess;
+  const Status ran = catchExceptions([&] { return daemon::runDaemon(*run); });
+  if (ran) return kExitSuccess;
+  spdlog::critical("glarecamd: {}", ran.error().message);
+  return ran.error().code == ErrorCode::kBadInput ? kExitConfig : kExitFailure;
 }
 
 }  // namespace glarecam::apps

@@ -1,0 +1,71 @@
+#include "daemon/daemon_run.h"
+
+#include <spdlog/spdlog.h>
+
+#include <memory>
+
+#include "daemon/capture_daemon.h"
+#include "daemon/signal_forwarder.h"
+
+namespace glarecam::daemon {
+
+namespace {
+
+struct Rig {
+  DaemonOptions options;
+  std::unique_ptr<DaemonClock> clock;
+};
+
+Result<Rig> rigFor(const DaemonRunOptions& run) {
+  Rig rig;
+  rig.options.output_root = run.output_root;
+  rig.options.interval = run.interval;
+  rig.options.max_stacks = run.max_stacks;
+  if (!run.simulate) {
+    if (run.config_path) rig.options.config_path = *run.config_path;
+    rig.clock = std::make_unique<SystemDaemonClock>();
+    return rig;
+  }
+  const UtcTime start = run.simulation_start.value_or(defaultSimulationStart(!run.interval));
+  const SimulatedRigOptions simulated{.output = *run.output_root,
+                                      .camera = run.simulated_camera.value_or("sim:seed=1"),
+                                      .interval = run.interval};
+  GLARECAM_ASSIGN(rig.options.config_path, writeSimulatedRigConfig(simulated));
+  rig.clock = std::make_unique<TimeLapseClock>(start, run.time_lapse);
+  spdlog::info("glarecamd: simulated rig {}; the sun from {} at {:g}× real time",
+               rig.options.config_path.string(), sun::formatIsoTime(start), run.time_lapse);
+  return rig;
+}
+
+}  // namespace
+
+Status DaemonRunOptions::validate() const {
+  if (simulate && config_path)
+    return badInput("--simulate runs the simulated rig: give --config or --simulate, not both");
+  if (simulate && !output_root) return badInput("--simulate needs --output DIR");
+  if (!simulate && (simulated_camera || simulation_start))
+    return badInput("--camera and --start are options of --simulate");
+  if (output_root && output_root->empty()) return badInput("--output: expected a directory");
+  if (interval && !(interval->count() >= 1 && *interval <= kMaxDaemonInterval))
+    return badInput("--interval must be between 1 and 604800 seconds (a week)");
+  if (max_stacks && *max_stacks == 0) return badInput("--count must be at least 1");
+  if (!(time_lapse >= 1 && time_lapse <= kMaxTimeLapse))
+    return badInput("--time-lapse must be between 1 and 100000");
+  return {};
+}
+
+Status runDaemon(const DaemonRunOptions& options) {
+  GLARECAM_CHECK(options.validate());
+  Rig rig;
+  GLARECAM_ASSIGN(rig, rigFor(options));
+  const auto notifier = makeSystemdNotifier();
+  const auto disk = makeStatvfsDiskProbe();
+  std::unique_ptr<CaptureDaemon> daemon;
+  GLARECAM_ASSIGN(daemon, CaptureDaemon::create(rig.options, {.clock = rig.clock.get(),
+                                                              .notifier = notifier.get(),
+                                                              .disk = disk.get()}));
+  const SignalForwarder signals(daemon->events());
+  return daemon->run();
+}
+
+}  // namespace glarecam::daemon

@@ -61,8 +61,7 @@ pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::stri
     }
     table.rows.push_back(std::move(*row));
   }
-  std::stable_sort(table.rows.begin(), table.rows.end(),
-                   [](const auto& a, const auto& b) { return a.alpha_deg < b.alpha_deg; });
+  pipeline::sortByAlpha(table);
   return table;
 }
 

@@ -1,9 +1,24 @@
 #include "pipeline/datasheet_publish.h"
 
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+
 #include "core/atomic_file.h"
 #include "core/stack_manifest.h"
+#include "core/utf8.h"
+#include "pipeline/facet_model.h"
+#include "pipeline/glare_fits.h"
 
 namespace glarecam::pipeline {
+
+namespace fs = std::filesystem;
 
 Status publishDatasheet(const DatasheetContent& content, const std::string& source,
                         const std::filesystem::path& directory) {
@@ -12,6 +27,77 @@ Status publishDatasheet(const DatasheetContent& content, const std::string& sour
       glareProfileJson({.module = content.module, .date = content.date, .source = source},
                        *content.table, *content.fits, content.limit);
   return writeFileAtomic(directory / kGlareProfileFileName, jsonText(profile));
+}
+
+Status SweepPublishOptions::validate() const {
+  if (out && out->empty()) return badInput("--out: expected a path, got an empty string");
+  GLARECAM_CHECK(requireUtf8(module, "--module"));
+  if (model_beta_deg && !(*model_beta_deg > 0 && *model_beta_deg <= kMaxFacetTiltDeg))
+    return badInput("--model-beta: expected a facet tilt in (0, 45] degrees");
+  return {};
+}
+
+Result<fs::path> publishSweepTable(const SweepPublishOptions& options) {
+  GLARECAM_CHECK(options.validate());
+  SweepTable table;
+  SweepFits fits;
+  GLARECAM_ASSIGN(fits, readAndFitSweep(options.sweep, table));
+  const GlareLimit limit = sheetLimit(options.sweep.string(), table, options.threshold_cd_m2);
+  const fs::path out = options.out.value_or(options.sweep.parent_path());
+  if (!out.empty()) GLARECAM_CHECK(ensureDirectory(out));
+  GLARECAM_CHECK(publishDatasheet({.module = options.module,
+                                   .date = options.date,
+                                   .table = &table,
+                                   .fits = &fits,
+                                   .model_beta_deg = options.model_beta_deg,
+                                   .limit = limit},
+                                  options.sweep.string(), out));
+  return out / kDatasheetPdf;
+}
+
+Result<std::string> sheetDate(const std::optional<std::string>& date) {
+  if (date) {
+    int year = 0;
+    unsigned month = 0, day = 0;
+    char tail = 0;
+    const bool parsed =
+        std::sscanf(date->c_str(), "%4d-%2u-%2u%c", &year, &month, &day, &tail) == 3;
+    if (!parsed || date->size() != 10 ||
+        !std::chrono::year_month_day(std::chrono::year(year), std::chrono::month(month),
+                                     std::chrono::day(day))
+             .ok())
+      return badInput("--date: expected a date YYYY-MM-DD, got \"" + *date + "\"");
+    return *date;
+  }
+  std::time_t seconds = std::time(nullptr);
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
+    unsigned long long value = 0;
+    const char* end = epoch + std::char_traits<char>::length(epoch);
+    const auto [stop, error] = std::from_chars(epoch, end, value);
+    if (error != std::errc() || stop != end || epoch == end)
+      return badInput(
+          fmt::format("SOURCE_DATE_EPOCH: expected a whole number >= 0, got \"{}\"", epoch));
+    seconds = static_cast<std::time_t>(value);
+  }
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  return fmt::format("{:%F}", utc);
+}
+
+GlareLimit sheetLimit(const std::string& sweep, const SweepTable& table,
+                      const std::optional<double>& threshold_cd_m2) {
+  std::string warning;
+  const GlareLimit measured = inferGlareLimit(table, &warning);
+  if (!warning.empty()) spdlog::warn("{}: {}", sweep, warning);
+  if (!threshold_cd_m2) return measured;
+  if (measured.constant_cd_m2 != threshold_cd_m2)
+    spdlog::warn(
+        "{}: --threshold {:g} cd/m² differs from the limit the sweep measured its "
+        "ellipses at ({}); the sheet's glare verdict follows --threshold, the axes do not",
+        sweep, *threshold_cd_m2,
+        measured.constant_cd_m2 ? fmt::format("{:g} cd/m²", *measured.constant_cd_m2)
+                                : std::string("the α curve"));
+  return {.constant_cd_m2 = threshold_cd_m2};
 }
 
 }  // namespace glarecam::pipeline

@@ -1,10 +1,12 @@
-// Publishing a sweep: the data sheet (datasheet.pdf/.svg/.png, datasheet.h) and the machine-
-// readable glare profile (glare-profile.json, glare_profile.h) of one fitted sweep table, written
-// together into one directory, each file atomically. `glarecam datasheet` and glarecamd's per-day
-// sheets both publish through here.
+// Publishing a sweep: the data sheet (datasheet.pdf/.svg/.png, render/datasheet.h) and the
+// machine-readable glare profile (glare-profile.json, glare_profile.h) of one fitted sweep table,
+// written together into one directory, each file atomically. `glarecam datasheet` publishes a
+// sweep table through publishSweepTable(); glarecamd's per-day sheets through publishDatasheet().
 #pragma once
 
 #include <filesystem>
+#include <optional>
+#include <string>
 
 #include "core/error.h"
 #include "pipeline/glare_profile.h"
@@ -15,5 +17,31 @@ namespace glarecam::pipeline {
 // `content` names the table and its fits; `source` is the sweep table's path (in the profile).
 Status publishDatasheet(const DatasheetContent& content, const std::string& source,
                         const std::filesystem::path& directory);
+
+struct SweepPublishOptions {
+  std::filesystem::path sweep;               // the sweep table (glarecam sweep's sweep.csv)
+  std::optional<std::filesystem::path> out;  // default: the table's directory
+  std::string module = "unnamed module";     // printed on the sheet; UTF-8
+  std::string date;                          // printed on the sheet: sheetDate()
+  // A constant limit instead of the one the sweep measured its ellipses at (sheetLimit()).
+  std::optional<double> threshold_cd_m2;
+  std::optional<double> model_beta_deg;  // the five-facet model's overlay, (0, 45]
+
+  // The first problem in words (kBadInput), or nothing.
+  Status validate() const;
+};
+
+// Reads and fits the sweep table and publishes its sheet and profile; the PDF's path.
+Result<std::filesystem::path> publishSweepTable(const SweepPublishOptions& options);
+
+// The sheet's date: `date` (YYYY-MM-DD, checked), else SOURCE_DATE_EPOCH (reproducible builds),
+// else today (UTC).
+Result<std::string> sheetDate(const std::optional<std::string>& date);
+
+// The limit a sheet shows: `threshold_cd_m2`, else the one the sweep measured at (the table's).
+// The ellipses were measured at the sweep's limit: a different threshold changes the verdict, not
+// the axes, which is logged as a warning naming `sweep`.
+GlareLimit sheetLimit(const std::string& sweep, const SweepTable& table,
+                      const std::optional<double>& threshold_cd_m2);
 
 }  // namespace glarecam::pipeline

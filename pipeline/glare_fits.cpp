@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -603,6 +604,16 @@ nlohmann::json fitsJson(const SweepFits& fits) {
           {"vertical", axisJson(fits.vertical)},
           {"horizontal", axisJson(fits.horizontal)},
           {"warnings", fits.warnings}};
+}
+
+Result<SweepFits> readAndFitSweep(const std::filesystem::path& path, SweepTable& table) {
+  if (path.empty()) return badInput("SWEEP: expected a sweep table (CSV), got an empty string");
+  GLARECAM_ASSIGN(table, readSweepTable(path));
+  sortByAlpha(table);
+  auto fits = fitSweep(table);
+  if (!fits) return std::unexpected(withContext(fits.error(), path.string()));
+  for (const std::string& warning : fits->warnings) spdlog::warn("{}: {}", path.string(), warning);
+  return fits;
 }
 
 }  // namespace glarecam::pipeline

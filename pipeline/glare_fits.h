@@ -8,6 +8,7 @@
 // ill-conditioned.
 #pragma once
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
@@ -83,6 +84,10 @@ struct SweepFits {
 // All four fits of a sweep table. kBadInput when the table has fewer rows than the logistic
 // needs parameters; an axis with too few ellipses is left unfitted with a warning.
 Result<SweepFits> fitSweep(const SweepTable& table);
+
+// The sweep table at `path` into `table` (sorted by α) and its fits, the fits' warnings logged;
+// errors name the file. `glarecam fit` and `glarecam datasheet` read a sweep this way.
+Result<SweepFits> readAndFitSweep(const std::filesystem::path& path, SweepTable& table);
 
 // {"luminance": {"cos": {a,b,c,r2,...}, "biquadratic": {...}}, "vertical": {"logistic": {...}},
 //  "horizontal": {...}, "warnings": [...]} (docs/datasheet.md).

@@ -318,4 +318,9 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   return row;
 }
 
+void sortByAlpha(SweepTable& table) {
+  std::stable_sort(table.rows.begin(), table.rows.end(),
+                   [](const SweepRow& a, const SweepRow& b) { return a.alpha_deg < b.alpha_deg; });
+}
+
 }  // namespace glarecam::pipeline

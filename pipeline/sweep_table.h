@@ -39,6 +39,9 @@ struct SweepTable {
 // ignored), numbers finite, α in [0, 90), Lmax > 0, axes > 0. Errors name the file and line.
 Result<SweepTable> readSweepTable(const std::filesystem::path& path);
 
+// The rows in order of α (rows at one α keep their order).
+void sortByAlpha(SweepTable& table);
+
 // The limit the table's rows were measured against: the α curve when every row's limit is the
 // curve's (or empty), else the constant all rows share; `warning` is set when the rows mix limits
 // (the α curve is then assumed).

@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "pipeline/glare_fits.h"
 
 namespace glarecam::apps {
 
@@ -34,9 +33,5 @@ void addSimulateCalibrationCommand(CLI::App& app, Action& action);
 
 // A JSON document on stdout, as every --json prints it.
 void printJson(const nlohmann::json& document);
-
-// Shared by fit and datasheet: reads the sweep table at `path` into `table` and fits it, logging
-// the fits' warnings; errors name the file.
-Result<pipeline::SweepFits> readAndFitSweep(const std::string& path, pipeline::SweepTable& table);
 
 }  // namespace glarecam::apps

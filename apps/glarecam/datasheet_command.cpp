@@ -1,28 +1,16 @@
 // glarecam datasheet: a sweep table -> datasheet.pdf/.svg/.png and glare-profile.json
 // (docs/datasheet.md, docs/glare-profile.md).
-#include <fmt/chrono.h>
-#include <spdlog/spdlog.h>
-
-#include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <ctime>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
-#include "core/atomic_file.h"
-#include "core/stack_manifest.h"
 #include "pipeline/datasheet_publish.h"
-#include "pipeline/facet_model.h"
 
 namespace glarecam::apps {
 namespace {
-
-namespace fs = std::filesystem;
 
 struct DatasheetArgs {
   std::string sweep;
@@ -31,74 +19,21 @@ struct DatasheetArgs {
   std::optional<double> model_beta_deg;
 };
 
-// The sheet's date: --date, else SOURCE_DATE_EPOCH (reproducible builds), else today (UTC).
-Result<std::string> sheetDate(const std::optional<std::string>& date) {
-  if (date) {
-    int year = 0;
-    unsigned month = 0, day = 0;
-    char tail = 0;
-    const bool parsed =
-        std::sscanf(date->c_str(), "%4d-%2u-%2u%c", &year, &month, &day, &tail) == 3;
-    if (!parsed || date->size() != 10 ||
-        !std::chrono::year_month_day(std::chrono::year(year), std::chrono::month(month),
-                                     std::chrono::day(day))
-             .ok())
-      return badInput("--date: expected a date YYYY-MM-DD, got \"" + *date + "\"");
-    return *date;
-  }
-  std::time_t seconds = std::time(nullptr);
-  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
-    auto parsed = parseUnsigned(epoch, "SOURCE_DATE_EPOCH");
-    if (!parsed) return std::unexpected(parsed.error());
-    seconds = static_cast<std::time_t>(*parsed);
-  }
-  std::tm utc{};
-  gmtime_r(&seconds, &utc);
-  return fmt::format("{:%F}", utc);
-}
-
-// --threshold, else the limit the sweep used (from the table). The ellipses were measured at the
-// sweep's limit: a different --threshold changes the verdict, not the axes, so say so.
-pipeline::GlareLimit sheetLimit(const std::string& sweep, const pipeline::SweepTable& table,
-                                const std::optional<double>& threshold_cd_m2) {
-  std::string warning;
-  const pipeline::GlareLimit measured = pipeline::inferGlareLimit(table, &warning);
-  if (!warning.empty()) spdlog::warn("{}: {}", sweep, warning);
-  if (!threshold_cd_m2) return measured;
-  if (measured.constant_cd_m2 != threshold_cd_m2)
-    spdlog::warn(
-        "{}: --threshold {:g} cd/m² differs from the limit the sweep measured its "
-        "ellipses at ({}); the sheet's glare verdict follows --threshold, the axes do not",
-        sweep, *threshold_cd_m2,
-        measured.constant_cd_m2 ? fmt::format("{:g} cd/m²", *measured.constant_cd_m2)
-                                : std::string("the α curve"));
-  return {.constant_cd_m2 = threshold_cd_m2};
-}
-
 Status runDatasheet(const DatasheetArgs& args) {
   GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
-  GLARECAM_CHECK(requireUtf8(args.module, "--module"));
-  if (args.model_beta_deg &&
-      !(*args.model_beta_deg > 0 && *args.model_beta_deg <= pipeline::kMaxFacetTiltDeg))
-    return badInput("--model-beta: expected a facet tilt in (0, 45] degrees");
-  std::string date;
-  GLARECAM_ASSIGN(date, sheetDate(args.date));
-  std::optional<double> threshold_cd_m2;
-  GLARECAM_ASSIGN(threshold_cd_m2, parseOptionalLuminance(args.threshold, "--threshold"));
-  pipeline::SweepTable table;
-  pipeline::SweepFits fits;
-  GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));
-  const pipeline::GlareLimit limit = sheetLimit(args.sweep, table, threshold_cd_m2);
-  const fs::path out = args.out ? fs::path(*args.out) : fs::path(args.sweep).parent_path();
-  if (!out.empty()) GLARECAM_CHECK(ensureDirectory(out));
-  GLARECAM_CHECK(pipeline::publishDatasheet({.module = args.module,
-                                             .date = date,
-                                             .table = &table,
-                                             .fits = &fits,
-                                             .model_beta_deg = args.model_beta_deg,
-                                             .limit = limit},
-                                            args.sweep, out));
-  std::printf("%s\n", (out / pipeline::kDatasheetPdf).c_str());
+  pipeline::SweepPublishOptions publish{.sweep = args.sweep,
+                                        .out = std::nullopt,
+                                        .module = args.module,
+                                        .date = {},
+                                        .threshold_cd_m2 = std::nullopt,
+                                        .model_beta_deg = args.model_beta_deg};
+  if (args.out) publish.out = *args.out;
+  GLARECAM_CHECK(publish.validate());
+  GLARECAM_ASSIGN(publish.date, pipeline::sheetDate(args.date));
+  GLARECAM_ASSIGN(publish.threshold_cd_m2, parseOptionalLuminance(args.threshold, "--threshold"));
+  std::filesystem::path pdf;
+  GLARECAM_ASSIGN(pdf, pipeline::publishSweepTable(publish));
+  std::printf("%s\n", pdf.c_str());
   return {};
 }
 

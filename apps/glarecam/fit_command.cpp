@@ -13,17 +13,6 @@
 
 namespace glarecam::apps {
 
-Result<pipeline::SweepFits> readAndFitSweep(const std::string& path, pipeline::SweepTable& table) {
-  if (path.empty()) return badInput("SWEEP: expected a sweep table (CSV), got an empty string");
-  GLARECAM_ASSIGN(table, pipeline::readSweepTable(path));
-  std::stable_sort(table.rows.begin(), table.rows.end(),
-                   [](const auto& a, const auto& b) { return a.alpha_deg < b.alpha_deg; });
-  auto fits = pipeline::fitSweep(table);
-  if (!fits) return std::unexpected(withContext(fits.error(), path));
-  for (const std::string& warning : fits->warnings) spdlog::warn("{}: {}", path, warning);
-  return fits;
-}
-
 namespace {
 
 struct FitArgs {
@@ -34,7 +23,7 @@ struct FitArgs {
 Status runFit(const FitArgs& args) {
   pipeline::SweepTable table;
   pipeline::SweepFits fits;
-  GLARECAM_ASSIGN(fits, readAndFitSweep(args.sweep, table));
+  GLARECAM_ASSIGN(fits, pipeline::readAndFitSweep(args.sweep, table));
   if (args.json) {
     std::printf("%s", jsonText(pipeline::fitsJson(fits)).c_str());
   } else {

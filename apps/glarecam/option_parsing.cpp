@@ -80,23 +80,4 @@ Result<std::optional<double>> parseOptionalLuminance(const std::optional<std::st
   return value;
 }
 
-Status requireUtf8(const std::string& text, const std::string& option) {
-  // The byte structure of UTF-8 (RFC 3629): a lead byte, then as many 10xxxxxx continuation
-  // bytes as it announces (0 to 3). That is what Cairo and the JSON writer need.
-  for (std::size_t i = 0; i < text.size();) {
-    const auto lead = static_cast<unsigned char>(text[i]);
-    const int continuation = lead < 0x80           ? 0
-                             : (lead >> 5) == 0x6  ? 1
-                             : (lead >> 4) == 0xE  ? 2
-                             : (lead >> 3) == 0x1E ? 3
-                                                   : -1;
-    bool ok = continuation >= 0 && i + continuation < text.size();
-    for (int k = 1; ok && k <= continuation; ++k)
-      ok = (static_cast<unsigned char>(text[i + k]) >> 6) == 0x2;
-    if (!ok) return badInput(option + ": not valid UTF-8 text");
-    i += continuation + 1;
-  }
-  return {};
-}
-
 }  // namespace glarecam::apps

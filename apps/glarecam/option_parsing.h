@@ -17,9 +17,6 @@ Result<std::pair<int, int>> parseSize(const std::string& text, const std::string
 // A path option that was given must not be empty ("--out $UNSET" is a mistake, not a default).
 Status requireNonEmptyPath(const std::optional<std::string>& value, const std::string& option);
 
-// Text printed into documents (a module name on the data sheet) must be valid UTF-8.
-Status requireUtf8(const std::string& text, const std::string& option);
-
 // The number of an option that was given (nullopt when it was not).
 Result<std::optional<double>> parseOptionalNumber(const std::optional<std::string>& text,
                                                   const std::string& option);

@@ -187,6 +187,12 @@ expect "capture: contradiction is one line" one_line_naming "--alpha"
 check "capture: no camera anywhere" 2 "$GLARECAM" capture --config "$WORK/lab.toml" --out "$WORK/stacks3"
 check "capture: bad config" 2 "$GLARECAM" capture --camera sim: --config "$WORK/bad.toml" --out "$WORK/stacks4"
 expect "capture: nothing written on a bad config" test ! -e "$WORK/stacks4"
+# The same rule as glarecamd: a tilt outside [faults] min/max_tilt_deg is a fault, not an α.
+{ cat "$WORK/lab.toml"; printf '[faults]\nmax_tilt_deg = 45\n'; } >"$WORK/implausible.toml"
+check "capture: an implausible tilt is refused" 1 "$GLARECAM" capture --camera "sim:size=160x128" \
+  --config "$WORK/implausible.toml" --out "$WORK/stacks5" --no-progress
+expect "capture: the refusal names the tilt and the range" one_line_naming "implausible tilt 60.00"
+expect "capture: nothing written for an implausible tilt" test ! -e "$WORK/stacks5"
 
 # ---- gpio (the simulated chip) and capture --on-button ---------------------------------------
 cat >"$WORK/gpio.toml" <<TOML

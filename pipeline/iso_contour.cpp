@@ -13,14 +13,14 @@ namespace {
 
 bool reaches(float value, double level) { return std::isfinite(value) && value >= level; }
 
-struct Box {
+struct RegionBox {
   int x0, y0, x1, y1;  // inclusive
 };
 
 // The 8-connected pixels at or above `level` around `seed`, flagged 1 in `mask`.
-Box floodRegion(const FloatImage& image, double level, PixelIndex seed, ByteImage& mask,
-                std::size_t& count) {
-  Box box{seed.x, seed.y, seed.x, seed.y};
+RegionBox floodRegion(const FloatImage& image, double level, PixelIndex seed, ByteImage& mask,
+                      std::size_t& count) {
+  RegionBox box{seed.x, seed.y, seed.x, seed.y};
   count = floodFill8(
       mask, seed.x, seed.y, [&](int x, int y) { return reaches(image.at(x, y), level); },
       [&](int x, int y) {
@@ -33,7 +33,7 @@ Box floodRegion(const FloatImage& image, double level, PixelIndex seed, ByteImag
 // cell inside (region or hole) or outside (4-connected to the padding through non-region cells).
 class RegionGrid {
  public:
-  RegionGrid(const ByteImage& mask, const Box& box)
+  RegionGrid(const ByteImage& mask, const RegionBox& box)
       : x0_(box.x0 - 1),
         y0_(box.y0 - 1),
         width_(box.x1 - box.x0 + 3),
@@ -293,7 +293,7 @@ std::optional<RegionContour> traceRegionContour(const FloatImage& luminance, dou
   }
   ByteImage mask(luminance.width(), luminance.height());
   RegionContour contour;
-  const Box box = floodRegion(luminance, level, seed, mask, contour.connected_pixels);
+  const RegionBox box = floodRegion(luminance, level, seed, mask, contour.connected_pixels);
   const RegionGrid grid(mask, box);
   contour.region_pixels = grid.count();
   contour.touches_all_borders = box.x0 == 0 && box.y0 == 0 && box.x1 == luminance.width() - 1 &&

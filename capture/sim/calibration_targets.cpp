@@ -19,7 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-constexpr std::string_view kTruthSchema = "glarecam.truth/1";
 constexpr std::pair<CalibrationTarget, std::string_view> kTargetNames[] = {
     {CalibrationTarget::kDark, "dark"},           {CalibrationTarget::kFlat, "flat"},
     {CalibrationTarget::kLinearity, "linearity"}, {CalibrationTarget::kNoise, "noise"},

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -20,6 +21,10 @@ struct SensorModel {
   double dn_per_electron = 0.5;
   double full_scale_dn() const { return static_cast<double>((1 << adc_bits) - 1); }
 };
+
+// The schema of truth.json, which every simulated scene and calibration target writes beside its
+// stack (docs/simulate.md).
+inline constexpr std::string_view kTruthSchema = "glarecam.truth/1";
 
 // The simulated camera as every simulated scene sees it: frame size and noise seed, its sensor,
 // its lens (field of view, distortion, f-number) and its luminance factor K (cd/m² per DN/µs at

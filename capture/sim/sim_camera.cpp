@@ -136,8 +136,7 @@ class SimCamera final : public Camera, public SceneTruthSource {
 
   std::optional<nlohmann::json> sceneTruth() const override {
     if (!options_.calibration_target.empty())
-      return nlohmann::json{{"schema", "glarecam.truth/1"},
-                            {"target", options_.calibration_target}};
+      return nlohmann::json{{"schema", kTruthSchema}, {"target", options_.calibration_target}};
     return sceneTruthJson(scene_, options_.alpha_deg);
   }
 

@@ -21,7 +21,6 @@ namespace {
 constexpr int kMinSide = 16, kMaxSide = 16384;
 constexpr double kMinFovDeg = 1.0, kMaxFovDeg = 150.0;  // a pinhole model's sensible range
 constexpr double kMaxOffsetDeg = 80.0;                  // the lobe stays in front of the lens
-constexpr std::string_view kTruthSchema = "glarecam.truth/1";
 
 }  // namespace
 

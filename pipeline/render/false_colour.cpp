@@ -35,7 +35,7 @@ std::uint32_t argb(const std::uint8_t rgb[3]) {
   return 0xFF000000u | (std::uint32_t(rgb[0]) << 16) | (std::uint32_t(rgb[1]) << 8) | rgb[2];
 }
 
-struct Scale {
+struct ColourScale {
   double log_min, log_max;
   double position(double value) const {  // 0 at min, 1 at max
     return std::clamp((std::log10(std::max(value, 1e-30)) - log_min) / (log_max - log_min), 0.0,
@@ -43,7 +43,7 @@ struct Scale {
   }
 };
 
-Scale chooseScale(const calibration::MergedImage& merged, const FalseColourOptions& options) {
+ColourScale chooseScale(const calibration::MergedImage& merged, const FalseColourOptions& options) {
   const FloatImage& luminance = merged.luminance_cd_m2;
   std::vector<float> sample;
   const std::size_t step = summarySampleStep(luminance.pixelCount());
@@ -67,7 +67,7 @@ Scale chooseScale(const calibration::MergedImage& merged, const FalseColourOptio
 }
 
 void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged,
-                const Scale& scale) {
+                const ColourScale& scale) {
   std::array<std::uint32_t, kLutSize> lut;
   for (int i = 0; i < kLutSize; ++i) {
     std::uint8_t rgb[3];
@@ -103,7 +103,7 @@ struct PanelLayout {
   double bar_top, bar_bottom, bar_x, bar_width, font_px;
 };
 
-void paintColourBar(cairo_t* cr, const PanelLayout& p, const Scale& scale,
+void paintColourBar(cairo_t* cr, const PanelLayout& p, const ColourScale& scale,
                     const FalseColourOptions& options, bool has_saturated) {
   const Font font{.size = p.font_px};
   const TextStyle label_style{font, kWhite};
@@ -205,7 +205,7 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
   const Result<CairoContext> context = createContext(surface->get());
   if (!context) return std::unexpected(withContext(context.error(), "false colour"));
   cairo_t* const cr = context->get();
-  const Scale scale = chooseScale(merged, options);
+  const ColourScale scale = chooseScale(merged, options);
   paint(cr, kBackground);
   paintImage(surface->get(), merged, scale);
   if (options.overlay) {

@@ -8,7 +8,7 @@
 
 #include "calibration/radiometry.h"
 #include "capture/sim/sensor_model.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::calibration {
 namespace {

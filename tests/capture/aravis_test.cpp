@@ -10,7 +10,7 @@
 #include "capture/bracketer.h"
 #include "capture/camera_registry.h"
 #include "core/stack_io.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::capture {
 namespace {

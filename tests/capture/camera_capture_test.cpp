@@ -11,7 +11,7 @@
 #include "capture/camera_registry.h"
 #include "capture/sim/sim_camera.h"
 #include "core/stack_io.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::capture {
 namespace {

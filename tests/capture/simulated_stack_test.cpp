@@ -6,7 +6,7 @@
 
 #include "capture/sim/module_model.h"
 #include "pipeline/limit_curve.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::capture {
 namespace {

@@ -7,7 +7,7 @@
 #include "capture/sim/module_model.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/sweep.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::capture {
 namespace {

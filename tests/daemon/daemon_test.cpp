@@ -20,7 +20,7 @@
 #include "daemon/day_products.h"
 #include "daemon/journal_sink.h"
 #include "pipeline/sweep_table.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::daemon {
 namespace {

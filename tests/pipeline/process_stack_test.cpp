@@ -6,7 +6,7 @@
 
 #include "core/image_io.h"
 #include "pipeline/limit_curve.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::pipeline {
 namespace {

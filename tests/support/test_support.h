@@ -28,6 +28,9 @@ class TempDir {
 
 std::filesystem::path testDataDir();
 
+// Pure trigonometry in doubles: agreement to 1e-9° is rounding, not approximation.
+inline constexpr double kExactDeg = 1e-9;
+
 std::string readText(const std::filesystem::path& path);
 void writeText(const std::filesystem::path& path, const std::string& text);
 

@@ -69,7 +69,7 @@ TEST(GpiodRigIo, AnInvalidConfigFailsBeforeTouchingTheHardware) {
   EXPECT_EQ(io.error().code, ErrorCode::kBadInput);
 }
 
-TEST(GpiodRigIo, OpensARealChipWhenThereIsOne) {
+TEST(GpiodRigIo, OnDeviceOpensARealChip) {
   if (!std::filesystem::exists("/dev/gpiochip0")) GTEST_SKIP() << "no /dev/gpiochip0 here";
   RigIoConfig config;  // no lines: opening the chip claims nothing
   const auto io = openGpiodRigIo(config);

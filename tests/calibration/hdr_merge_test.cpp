@@ -7,33 +7,15 @@
 #include <vector>
 
 #include "calibration/radiometry.h"
+#include "calibration/radiometry_test_support.h"
 #include "capture/sim/sensor_model.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::calibration {
 namespace {
 
-Calibration basicCalibration() {
-  Calibration calibration;
-  calibration.black_level_dn = 64;
-  calibration.saturation_dn = 4000;
-  calibration.luminance_factor = 1500;
-  calibration.reference_f_number = 8.0;
-  calibration.intrinsics = {1000, 1000, 8, 8, {}};
-  calibration.noise = NoiseModel{2.0, 0.5};
-  return calibration;
-}
-
-FrameSpec frame(double exposure_us, double gain_db = 0, std::optional<double> f_number = {},
-                double nd = 1) {
-  FrameSpec spec;
-  spec.file = "f.png";
-  spec.exposure_us = exposure_us;
-  spec.gain_db = gain_db;
-  spec.f_number = f_number;
-  spec.nd_transmission = nd;
-  return spec;
-}
+using testing::basicCalibration;
+using testing::frame;
 
 struct MergeCase {
   std::vector<RawFrame> frames;
@@ -72,17 +54,6 @@ struct MergeCase {
     radiometry.push_back(frameRadiometry(spec, calibration));
   }
 };
-
-TEST(Radiometry, FollowsTheStackFormatEquation) {
-  const Calibration calibration = basicCalibration();
-  // K (DN - B) / (t g tau) (N / N_ref)^2 with t = 200 µs, +6.0206 dB (x2), tau 0.5, f/11.
-  const FrameRadiometry r =
-      frameRadiometry(frame(200, 20 * std::log10(2.0), 11.0, 0.5), calibration);
-  EXPECT_NEAR(r.scale_cd_m2_per_dn, 1500.0 / (200 * 2.0 * 0.5) * (11.0 / 8.0) * (11.0 / 8.0), 1e-9);
-  EXPECT_NEAR(r.dn_per_electron, 1.0, 1e-12);  // 0.5 DN/e- amplified x2
-  EXPECT_NEAR(r.read_noise_dn, 4.0, 1e-12);
-  EXPECT_NEAR(r.min_signal_dn, 12.0, 1e-12);  // 3 sigma of the amplified read noise
-}
 
 TEST(HdrMerge, SingleValidFrameGivesTheEquationsLuminance) {
   MergeCase c;

@@ -12,16 +12,16 @@ using nlohmann::json;
 
 TEST(StackIo, WrittenStackReadsBackIdentically) {
   testing::TempDir dir;
-  const auto simulated = testing::writeSmallStack(dir / "s");
+  const auto written = testing::writeTestStack(dir / "s");
   auto stack = readStack(dir / "s");
   ASSERT_TRUE(stack) << stack.error().message;
-  ASSERT_EQ(stack->frames.size(), simulated.frames.size());
+  ASSERT_EQ(stack->frames.size(), written.frames.size());
   for (std::size_t f = 0; f < stack->frames.size(); ++f) {
     ASSERT_EQ(stack->bit_depths[f], 16);
     for (std::size_t i = 0; i < stack->frames[f].pixelCount(); ++i) {
-      ASSERT_EQ(stack->frames[f].data()[i], simulated.frames[f].data()[i]);
+      ASSERT_EQ(stack->frames[f].data()[i], written.frames[f].data()[i]);
     }
-    EXPECT_EQ(stack->manifest.frames[f].exposure_us, simulated.manifest.frames[f].exposure_us);
+    EXPECT_EQ(stack->manifest.frames[f].exposure_us, written.manifest.frames[f].exposure_us);
   }
   EXPECT_EQ(stack->calibration_origin, "inline");
   EXPECT_EQ(stack->manifest.alpha_deg, 40.0);
@@ -31,23 +31,23 @@ TEST(StackIo, WrittenStackReadsBackIdentically) {
 
 TEST(StackIo, AcceptsTiffAnd8BitFrames) {
   testing::TempDir dir;
-  const auto simulated = testing::writeSmallStack(dir / "s");
+  const auto written = testing::writeTestStack(dir / "s");
   json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
-  RawFrame eight_bit(simulated.frames[0].width(), simulated.frames[0].height(), 200);
-  ASSERT_TRUE(writeTiffGray16(dir / "s" / "frame-00.tif", simulated.frames[0]));
+  RawFrame eight_bit(written.frames[0].width(), written.frames[0].height(), 200);
+  ASSERT_TRUE(writeTiffGray16(dir / "s" / "frame-00.tif", written.frames[0]));
   ASSERT_TRUE(writePngGray(dir / "s" / "frame-01.png", eight_bit, 8));
   manifest["frames"][0]["file"] = "frame-00.tif";
   testing::writeText(dir / "s" / "stack.json", manifest.dump());
   auto stack = readStack(dir / "s");
   ASSERT_TRUE(stack) << stack.error().message;
-  EXPECT_EQ(stack->frames[0].data()[5], simulated.frames[0].data()[5]);
+  EXPECT_EQ(stack->frames[0].data()[5], written.frames[0].data()[5]);
   EXPECT_EQ(stack->bit_depths[1], 8);
   EXPECT_EQ(stack->frames[1].data()[5], 200);
 }
 
 TEST(StackIo, CalibrationFromTheCommandLineOverridesPathWhichIsRelativeToTheStack) {
   testing::TempDir dir;
-  testing::writeSmallStack(dir / "s");
+  testing::writeTestStack(dir / "s");
   json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
   json calibration = manifest["calibration"];
   calibration["luminance_factor"] = 111.0;
@@ -75,8 +75,8 @@ TEST(StackIo, CalibrationFromTheCommandLineOverridesPathWhichIsRelativeToTheStac
 
 TEST(StackIo, FlatFieldIsLoadedRelativeToTheCalibration) {
   testing::TempDir dir;
-  const auto simulated = testing::writeSmallStack(dir / "s");
-  FloatImage flat(simulated.frames[0].width(), simulated.frames[0].height(), 0.8f);
+  const auto written = testing::writeTestStack(dir / "s");
+  FloatImage flat(written.frames[0].width(), written.frames[0].height(), 0.8f);
   ASSERT_TRUE(writeExr(dir / "s" / "flat.exr", flat));
   json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
   manifest["calibration"]["flat_field"] = "flat.exr";
@@ -89,7 +89,7 @@ TEST(StackIo, FlatFieldIsLoadedRelativeToTheCalibration) {
 
 TEST(StackIo, FNumberNeedsAReferenceFNumber) {
   testing::TempDir dir;
-  testing::writeSmallStack(dir / "s");
+  testing::writeTestStack(dir / "s");
   json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
   manifest["calibration"].erase("reference_f_number");
   testing::writeText(dir / "s" / "stack.json", manifest.dump());
@@ -101,7 +101,7 @@ TEST(StackIo, FNumberNeedsAReferenceFNumber) {
 
 TEST(StackIo, RewritingPreservesUnknownFieldsAndReplacesAtomically) {
   testing::TempDir dir;
-  testing::writeSmallStack(dir / "s");
+  testing::writeTestStack(dir / "s");
   json document = json::parse(testing::readText(dir / "s" / "stack.json"));
   document["operator_note"] = "cloud at 10:14";
   testing::writeText(dir / "s" / "stack.json", document.dump());
@@ -129,10 +129,10 @@ namespace {
 
 TEST(StackIo, NeverReplacesSomethingThatIsNotAStack) {
   testing::TempDir dir;
-  const auto simulated = testing::writeSmallStack(dir / "s");
+  const auto written = testing::writeTestStack(dir / "s");
   StackWriteRequest request;
-  request.manifest = simulated.manifest;
-  request.frames = simulated.frames;
+  request.manifest = written.manifest;
+  request.frames = written.frames;
   // A directory holding someone's files, a plain file, the root: all refused, all untouched.
   fs::create_directories(dir / "thesis");
   testing::writeText(dir / "thesis" / "chapter1.tex", "precious");

@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "pipeline/glare_analysis.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::pipeline {
 namespace {

@@ -1,18 +1,19 @@
-// The glare profile (SGHAT-equivalent beam spread), the five-facet model and the data sheet files.
+// The glare profile: the SGHAT-equivalent beam spread of an ellipse, and one row per degree from
+// a sweep's fits.
 #include "pipeline/glare_profile.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
 
-#include "pipeline/facet_model.h"
-#include "pipeline/render/datasheet.h"
+#include "pipeline/sweep_fits_test_support.h"
 #include "support/test_support.h"
 
 namespace glarecam::pipeline {
 namespace {
+
+using testing::fitsOf;
 
 constexpr double kMradPerDeg = 1000.0 * std::numbers::pi / 180.0;
 
@@ -37,10 +38,20 @@ TEST(CircularBeamSpread, NarrowerThanTheSunGivesANegativeSlopeError) {
   EXPECT_LT(circularBeamSpread(0.3, 0.3).slope_error_mrad, 0);  // 0.3° < the sun's 0.53°
 }
 
-SweepFits fitsOf(const SweepTable& table) {
-  auto fits = fitSweep(table);
-  EXPECT_TRUE(fits) << fits.error().message;
-  return *fits;
+// A sweep with Lmax = lmax_at_0 e^(α / 20) and axes 3 + α/40, 4 - α/40 from `axes_from_deg` on.
+SweepTable exponentialSweep(double lmax_at_0_cd_m2, double axes_from_deg) {
+  SweepTable table;
+  for (double alpha : {5.0, 20.0, 40.0, 55.0, 70.0, 80.0}) {
+    SweepRow row;
+    row.alpha_deg = alpha;
+    row.lmax_cd_m2 = lmax_at_0_cd_m2 * std::exp(alpha / 20);
+    if (alpha >= axes_from_deg) {
+      row.vertical_deg = 3 + alpha / 40;
+      row.horizontal_deg = 4 - alpha / 40;
+    }
+    table.rows.push_back(row);
+  }
+  return table;
 }
 
 TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
@@ -68,22 +79,6 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
   EXPECT_TRUE(j["profile"][60]["circular_beam"]["slope_error_mrad"].is_number());
 }
 
-// A sweep with Lmax = lmax_at_0 e^(α / 20) and axes 3 + α/40, 4 - α/40 from `axes_from_deg` on.
-SweepTable exponentialSweep(double lmax_at_0_cd_m2, double axes_from_deg) {
-  SweepTable table;
-  for (double alpha : {5.0, 20.0, 40.0, 55.0, 70.0, 80.0}) {
-    SweepRow row;
-    row.alpha_deg = alpha;
-    row.lmax_cd_m2 = lmax_at_0_cd_m2 * std::exp(alpha / 20);
-    if (alpha >= axes_from_deg) {
-      row.vertical_deg = 3 + alpha / 40;
-      row.horizontal_deg = 4 - alpha / 40;
-    }
-    table.rows.push_back(row);
-  }
-  return table;
-}
-
 TEST(GlareProfile, NoAxesWhereTheModuleDoesNotGlare) {
   // Lmax crosses the 30 000 limit at 22°: ellipses from the 40° row on.
   const auto rows = glareProfile(fitsOf(exponentialSweep(10000, 40)), {});
@@ -109,59 +104,6 @@ TEST(GlareProfile, AxesFittedOnANarrowerRangeAreFlaggedExtrapolated) {
   EXPECT_TRUE(rows[30].glares);
   EXPECT_TRUE(rows[30].extrapolated);
   EXPECT_FALSE(rows[50].extrapolated);
-}
-
-TEST(FacetModel, MatchesTheClosedFormsAtNormalAndGrazingIncidence) {
-  // At normal incidence both tilted facets deflect the ray by 2β; toward grazing the east-west
-  // deflection vanishes (cos γ_ew → 1), the north-south one stays 2β.
-  const FacetSpread normal = facetSpread(0.0, 2.5);
-  EXPECT_NEAR(normal.gamma_ew_deg, 5.0, 1e-9);
-  EXPECT_EQ(normal.gamma_ns_deg, 5.0);
-  EXPECT_TRUE(normal.valid);
-  const FacetSpread grazing = facetSpread(89.0, 2.5);
-  EXPECT_LT(grazing.gamma_ew_deg, 0.1);
-  EXPECT_FALSE(grazing.valid);  // elevation 1° < β
-  // At 60° from the normal (elevation 30°): cos γ = cos²30 - sin²30 + 2 sin²30 cos²β.
-  const double e = 30.0 * std::numbers::pi / 180, b = 2.5 * std::numbers::pi / 180;
-  const double expected = std::acos(std::cos(e) * std::cos(e) - std::sin(e) * std::sin(e) +
-                                    2 * std::sin(e) * std::sin(e) * std::cos(b) * std::cos(b));
-  EXPECT_NEAR(facetSpread(60.0, 2.5).gamma_ew_deg, expected * 180 / std::numbers::pi, 1e-9);
-}
-
-TEST(Datasheet, WritesPdfSvgAndPng) {
-  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
-  ASSERT_TRUE(table);
-  const SweepFits fits = fitsOf(*table);
-  testing::TempDir dir;
-  auto status = writeDatasheet({.module = "standard",
-                                .date = "2026-11-26",
-                                .table = &*table,
-                                .fits = &fits,
-                                .model_beta_deg = 1.25,
-                                .limit = {.constant_cd_m2 = 30000}},
-                               dir.path());
-  ASSERT_TRUE(status) << status.error().message;
-  EXPECT_EQ(testing::readText(dir / kDatasheetPdf).substr(0, 5), "%PDF-");
-  const std::string svg = testing::readText(dir / kDatasheetSvg);
-  EXPECT_NE(svg.find("<svg"), std::string::npos);
-  EXPECT_NE(svg.find("</svg>"), std::string::npos);
-  EXPECT_EQ(testing::readText(dir / kDatasheetPng).substr(1, 3), "PNG");
-  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
-    EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
-}
-
-TEST(Datasheet, MissingDirectoryIsAnErrorNotACrash) {
-  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
-  ASSERT_TRUE(table);
-  const SweepFits fits = fitsOf(*table);
-  auto status = writeDatasheet({.module = "m",
-                                .date = "d",
-                                .table = &*table,
-                                .fits = &fits,
-                                .model_beta_deg = std::nullopt,
-                                .limit = {}},
-                               "/nonexistent/dir");
-  EXPECT_FALSE(status);
 }
 
 }  // namespace

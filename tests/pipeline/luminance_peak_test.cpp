@@ -7,7 +7,7 @@
 #include <functional>
 #include <random>
 
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::pipeline {
 namespace {

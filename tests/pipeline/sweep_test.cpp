@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::pipeline {
 namespace {

@@ -3,11 +3,12 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <cmath>
 #include <fstream>
 #include <random>
 #include <sstream>
 
-#include "pipeline/process_stack.h"
+#include "core/stack_io.h"
 
 namespace glarecam::testing {
 namespace fs = std::filesystem;
@@ -25,66 +26,6 @@ TempDir::~TempDir() {
 
 fs::path testDataDir() { return GLARECAM_TEST_DATA_DIR; }
 
-capture::SimulationOptions smallScene(double alpha_deg, int width, int height) {
-  capture::SimulationOptions options;
-  options.alpha_deg = alpha_deg;
-  options.width = width;
-  options.height = height;
-  // A narrow field of view keeps the lobe many pixels wide on a small frame.
-  options.horizontal_fov_deg = 16.0;
-  return options;
-}
-
-capture::SimulatedStack writeSmallStack(const fs::path& directory,
-                                        const capture::SimulationOptions& options) {
-  auto stack = capture::simulateStack(options);
-  EXPECT_TRUE(stack.has_value()) << (stack ? "" : stack.error().message);
-  if (!stack) return {};
-  fs::create_directories(directory.parent_path());
-  auto status = capture::writeSimulatedStack(directory, *stack);
-  EXPECT_TRUE(status.has_value()) << (status ? "" : status.error().message);
-  return std::move(*stack);
-}
-
-calibration::MergedImage measuredImage(int width, int height, float relative_uncertainty) {
-  calibration::MergedImage merged;
-  merged.luminance_cd_m2 = FloatImage(width, height);
-  merged.relative_uncertainty = FloatImage(width, height, relative_uncertainty);
-  merged.valid_frames = ByteImage(width, height, 1);
-  merged.bound = ByteImage(width, height, 0);
-  return merged;
-}
-
-capture::GlareLobe lobeAtLimit(double limit_cd_m2, double peak_cd_m2, double vertical_deg,
-                               double horizontal_deg, double background_cd_m2) {
-  auto lobe = capture::lobeWithAxesAt(limit_cd_m2, peak_cd_m2, background_cd_m2, vertical_deg,
-                                      horizontal_deg);
-  EXPECT_TRUE(lobe.has_value()) << (lobe ? "" : lobe.error().message);
-  return lobe.value_or(capture::GlareLobe{});
-}
-
-RenderedScene renderScene(const SceneSpec& spec) {
-  RenderedScene result;
-  result.intrinsics =
-      capture::pinholeIntrinsics(spec.width, spec.height, spec.horizontal_fov_deg, spec.distortion);
-  const calibration::CameraModel camera(result.intrinsics);
-  auto scene = capture::GlareScene::create(spec.lobe);
-  EXPECT_TRUE(scene.has_value()) << (scene ? "" : scene.error().message);
-  if (!scene) return result;
-  result.truth = scene->truth(spec.limit_cd_m2);
-  result.centre_px = camera.project(scene->centreRay());
-  result.merged = measuredImage(spec.width, spec.height, static_cast<float>(spec.relative_noise));
-  auto& merged = result.merged;
-  merged.luminance_cd_m2 = scene->render(camera, spec.width, spec.height);
-  std::mt19937 rng(spec.seed);
-  std::normal_distribution<double> gauss(0.0, spec.relative_noise);
-  if (spec.relative_noise > 0) {
-    for (std::size_t i = 0; i < merged.luminance_cd_m2.pixelCount(); ++i)
-      merged.luminance_cd_m2.data()[i] *= static_cast<float>(1.0 + gauss(rng));
-  }
-  return result;
-}
-
 std::string readText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
@@ -97,29 +38,42 @@ void writeText(const fs::path& path, const std::string& text) {
   out << text;
 }
 
-nlohmann::json expectProcessedMatchesTruth(const std::filesystem::path& directory,
-                                           const capture::SceneTruth& truth,
-                                           double relative_tolerance) {
-  pipeline::ProcessOptions options;
-  options.show_progress = false;
-  auto summary = pipeline::processStack(directory, options);
-  EXPECT_TRUE(summary) << summary.error().message;
-  if (!summary) return {};
-  const nlohmann::json& result = summary->result;
-  EXPECT_NEAR(result["luminance"]["max_cd_m2"].get<double>() / truth.peak_cd_m2, 1,
-              relative_tolerance);
-  const auto expect_axes = [&](const nlohmann::json& ellipse,
-                               const std::optional<capture::EllipseAxes>& axes) {
-    if (!axes) return;
-    EXPECT_TRUE(ellipse.is_object()) << ellipse.dump();
-    if (!ellipse.is_object()) return;
-    EXPECT_NEAR(ellipse["vertical_deg"].get<double>() / axes->vertical_deg, 1, relative_tolerance);
-    EXPECT_NEAR(ellipse["horizontal_deg"].get<double>() / axes->horizontal_deg, 1,
-                relative_tolerance);
-  };
-  expect_axes(result["limit"]["ellipse"], truth.limit_axes);
-  expect_axes(result["fwhm"]["ellipse"], truth.fwhm_axes);
-  return result;
+TestStack writeTestStack(const fs::path& directory, double alpha_deg) {
+  constexpr int kWidth = 160, kHeight = 128;
+  constexpr double kBlackDn = 64, kSaturationDn = 4000;
+  TestStack stack;
+  Calibration calibration;
+  calibration.black_level_dn = kBlackDn;
+  calibration.saturation_dn = kSaturationDn;
+  calibration.luminance_factor = 2.5;
+  calibration.reference_f_number = 8.0;
+  calibration.intrinsics = {.fx = 500, .fy = 500, .cx = kWidth / 2.0, .cy = kHeight / 2.0};
+  calibration.noise = NoiseModel{.read_noise_dn = 2, .dn_per_electron = 0.5};
+  stack.manifest.id = "test-stack";
+  stack.manifest.alpha_deg = alpha_deg;
+  stack.manifest.calibration = calibration;
+  std::mt19937 random(17);
+  std::uniform_int_distribution<int> level(static_cast<int>(kBlackDn),
+                                           static_cast<int>(kSaturationDn));
+  for (int i = 0; i < 4; ++i) {
+    RawFrame frame(kWidth, kHeight);
+    for (std::size_t p = 0; p < frame.pixelCount(); ++p)
+      frame.data()[p] = static_cast<std::uint16_t>(level(random));
+    stack.frames.push_back(std::move(frame));
+    stack.manifest.frames.push_back({.file = "frame-0" + std::to_string(i) + ".png",
+                                     .exposure_us = 20.0 * std::pow(10.0, i),
+                                     .gain_db = 0.0,
+                                     .f_number = 8.0,
+                                     .nd_transmission = 1.0});
+  }
+  fs::create_directories(directory.parent_path());
+  StackWriteRequest request;
+  request.manifest = stack.manifest;
+  request.frames = stack.frames;
+  request.text_files.emplace_back("truth.json", R"({"schema": "glarecam.truth/1"})");
+  const Status written = writeStack(directory, request);
+  EXPECT_TRUE(written.has_value()) << (written ? "" : written.error().message);
+  return stack;
 }
 
 }  // namespace glarecam::testing

@@ -1,13 +1,14 @@
-// Shared test helpers: temporary directories, small simulated stacks in one line, and
-// access to the committed test data.
+// Shared test helpers any layer's tests may use (they need core only): temporary directories,
+// the committed test data, text files in one line, and a small stack written by core's own
+// writer. The simulator's helpers (scenes, simulated stacks) are in support/sim_support.h.
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
-#include "calibration/hdr_merge.h"
-#include "capture/sim/simulated_stack.h"
-#include "core/error.h"
+#include "core/image.h"
+#include "core/stack_manifest.h"
 
 namespace glarecam::testing {
 
@@ -27,49 +28,22 @@ class TempDir {
 
 std::filesystem::path testDataDir();
 
-// Simulator options for a small, fast scene (the default sizes are for real use).
-capture::SimulationOptions smallScene(double alpha_deg = 40.0, int width = 160, int height = 128);
-
-// Simulates and writes a stack (creating its parent directories); fails the calling test on error.
-capture::SimulatedStack writeSmallStack(const std::filesystem::path& directory,
-                                        const capture::SimulationOptions& options = smallScene());
-
-// A merged image in which every pixel is measured (one valid frame, no bounds), luminance 0, with
-// the given relative uncertainty: tests then fill in the luminance they need.
-calibration::MergedImage measuredImage(int width, int height, float relative_uncertainty);
-
-// A glare lobe rendered straight into a merged luminance image (no sensor, no bracketing), with
-// optional Gaussian noise of a given relative sigma, which is also the per-pixel relative
-// uncertainty the merge would report. Ground truth comes from the scene (glare_scene.h).
-struct SceneSpec {
-  int width = 640, height = 512;
-  double horizontal_fov_deg = 40.0;
-  std::array<double, 5> distortion{};
-  capture::GlareLobe lobe;
-  double limit_cd_m2 = 30'000.0;
-  double relative_noise = 0.0;
-  unsigned seed = 1;
-};
-
-struct RenderedScene {
-  calibration::MergedImage merged;
-  Intrinsics intrinsics;
-  capture::SceneTruth truth;
-  calibration::PixelPoint centre_px;
-};
-
-// The lobe whose limit contour has the given axes, like the simulator's modules.
-capture::GlareLobe lobeAtLimit(double limit_cd_m2, double peak_cd_m2, double vertical_deg,
-                               double horizontal_deg, double background_cd_m2 = 3000.0);
-RenderedScene renderScene(const SceneSpec& spec);
+// Pure trigonometry in doubles: agreement to 1e-9° is rounding, not approximation.
+inline constexpr double kExactDeg = 1e-9;
 
 std::string readText(const std::filesystem::path& path);
-
-// Processes the stack at `directory` (no progress) and checks its maximum and both ellipses
-// against `truth`, each within `relative_tolerance`; returns result.json for further checks.
-nlohmann::json expectProcessedMatchesTruth(const std::filesystem::path& directory,
-                                           const capture::SceneTruth& truth,
-                                           double relative_tolerance);
 void writeText(const std::filesystem::path& path, const std::string& text);
+
+// What writeTestStack() wrote: the manifest and the frames, to compare a read against.
+struct TestStack {
+  StackManifest manifest;
+  std::vector<RawFrame> frames;
+};
+
+// Writes a small stack with core's writer (core/stack_io.h; creating its parent directories) and
+// fails the calling test on error: 160x128 frames of pseudo-random 12-bit values at decade
+// exposures, 16-bit PNG, an inline calibration (reference f-number 8, the frames at f/8), α 40°
+// unless given, and a text file truth.json, as a simulated stack carries.
+TestStack writeTestStack(const std::filesystem::path& directory, double alpha_deg = 40.0);
 
 }  // namespace glarecam::testing

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::pipeline {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "pipeline/glare_analysis.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::pipeline {
 namespace {

@@ -1,5 +1,7 @@
-// make demo in small: the simulated rig sweeps α for the standard module, and the sweep's fits
-// must reproduce the simulator's ground truth (capture/sim/module_model.h) within 2 %.
+// glarecam sweep and its fits against the simulator's ground truth, `make demo` in small: the
+// simulated rig sweeps α for the standard module, and the sweep's fits must reproduce the
+// simulator's module model (capture/sim/module_model.h) within 2 %. Slow under the sanitizers:
+// in simulator_truth_tests, not in pipeline_tests (tests/CMakeLists.txt).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,9 +9,9 @@
 #include "capture/sim/module_model.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/sweep.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
-namespace glarecam::capture {
+namespace glarecam::pipeline {
 namespace {
 
 // The tolerance on the axes and the luminance. What the pipeline actually reaches here is
@@ -22,22 +24,22 @@ TEST(SweepTruth, FitsOfASimulatedSweepReproduceTheModuleModel) {
   unsigned seed = 1;
   for (double alpha : alphas) {
     // 480x400 over 24°: 20 px per degree, a 5° ellipse ~100 px across, as on the rig.
-    SimulationOptions options = testing::smallScene(alpha, 480, 400);
+    capture::SimulationOptions options = testing::smallScene(alpha, 480, 400);
     options.horizontal_fov_deg = 24.0;
     options.seed = seed++;
     testing::writeSmallStack(dir / ("stacks/alpha-" + std::to_string(int(alpha))), options);
   }
-  pipeline::SweepOptions options;
+  SweepOptions options;
   options.output_directory = dir / "sweep";
   options.show_progress = false;
-  auto summary = pipeline::runSweep(pipeline::findStacks({dir / "stacks"}), options);
+  auto summary = runSweep(findStacks({dir / "stacks"}), options);
   ASSERT_TRUE(summary) << summary.error().message;
   ASSERT_EQ(summary->table.rows.size(), alphas.size());
-  auto fits = pipeline::fitSweep(summary->table);
+  auto fits = fitSweep(summary->table);
   ASSERT_TRUE(fits) << fits.error().message;
   ASSERT_TRUE(fits->vertical.logistic && fits->horizontal.logistic);
 
-  auto model = moduleModel("standard");
+  auto model = capture::moduleModel("standard");
   ASSERT_TRUE(model);
   // Curves, not parameters: the horizontal logistic is ill-conditioned (docs/method.md), so its
   // parameters are not individually determined, but the curve is. Every degree of the range.
@@ -59,4 +61,4 @@ TEST(SweepTruth, FitsOfASimulatedSweepReproduceTheModuleModel) {
 }
 
 }  // namespace
-}  // namespace glarecam::capture
+}  // namespace glarecam::pipeline

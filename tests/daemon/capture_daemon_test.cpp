@@ -1,298 +1,28 @@
 // glarecamd's core (daemon/) in one process on a manual clock: the schedules, the
 // stack's way to disk, results and the day's data sheet, systemd's notifications and watchdog,
 // and every fault of issue 9 (camera lost, inclinometer, disk, clock, bad config, reload).
+#include "daemon/capture_daemon.h"
+
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <condition_variable>
-#include <fstream>
 #include <mutex>
 #include <thread>
 
 #include "core/stack_io.h"
-#include "core/stack_manifest.h"
-#include "daemon/alpha_schedule.h"
-#include "daemon/capture_daemon.h"
-#include "daemon/daemon_test_support.h"
-#include "daemon/day_products.h"
-#include "daemon/journal_sink.h"
+#include "daemon/daemon_fixture.h"
 #include "pipeline/sweep_table.h"
-#include "support/test_support.h"
+#include "support/sim_support.h"
 
 namespace glarecam::daemon {
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-using testing::ManualClock;
-using testing::RecordingNotifier;
-using testing::ScriptedCameras;
-using testing::ScriptedDisk;
-using testing::TempDir;
-
-UtcTime utc(const char* text) { return *sun::parseIsoTime(text); }
-
-// The lab rig of the tests: a lamp on the horizon due south, the module on a table tilted 50°
-// facing it, so α = 90° − 50° = 40° (docs/rig.md); the small simulated camera; the simulated
-// GPIO chip with a LED.
-struct RigSpec {
-  std::string camera = testing::kSmallSimCamera;
-  std::string inclinometer = "sim:50";
-  std::string schedule = "mode = \"interval\"\ninterval_s = 600";
-  std::string faults = "camera_backoff_s = 2\ncamera_backoff_max_s = 16\ncamera_max_failures = 5";
-  bool site = false;    // [site] at 48° N instead of the lab lamp (α from the sun)
-  std::string extra{};  // more sections
-};
-
-std::string rigToml(const RigSpec& spec) {
-  std::string text = "camera = \"" + spec.camera + "\"\n";
-  text += spec.site ? "[site]\nlatitude_deg = 48\nlongitude_deg = 7.85\naltitude_m = 278\n"
-                    : "[source]\nelevation_deg = 0\nazimuth_deg = 180\n";
-  text += "[module]\nazimuth_deg = 180\n";
-  text += "[inclinometer]\nuri = \"" + spec.inclinometer + "\"\nsamples = 4\n";
-  text += "[gpio]\nchip = \"sim\"\nled = 27\n";
-  text += "[output]\nroot = \"out\"\nreserve_mb = 100\n";
-  text += "[schedule]\n" + spec.schedule + "\n";
-  text += "[faults]\n" + spec.faults + "\n";
-  return text + spec.extra;
-}
-
-class DaemonTest : public ::testing::Test {
- protected:
-  void SetUp() override { spdlog::set_level(spdlog::level::warn); }
-
-  fs::path writeConfig(const RigSpec& spec = {}) {
-    testing::writeText(config_path(), rigToml(spec));
-    return config_path();
-  }
-  fs::path config_path() const { return dir_ / "glarecam.toml"; }
-  fs::path out() const { return dir_ / "out"; }
-
-  // The daemon on the test's clock, notifier, disk and cameras, its worker inline; `adjust`
-  // changes the services (a worker thread, an opener of its own).
-  std::unique_ptr<CaptureDaemon> makeDaemon(
-      DaemonOptions options = {}, const std::function<void(DaemonServices&)>& adjust = {}) {
-    if (options.config_path == rig::kDefaultRigConfigPath) options.config_path = config_path();
-    DaemonServices services{.clock = &clock_,
-                            .notifier = &notifier_,
-                            .disk = &disk_,
-                            .open_camera = cameras_.opener(),
-                            .worker_mode = StackWorker::Mode::kInline,
-                            .watch_button = false};
-    if (adjust) adjust(services);
-    auto daemon = CaptureDaemon::create(options, std::move(services));
-    EXPECT_TRUE(daemon) << daemon.error().message;
-    return daemon ? std::move(*daemon) : nullptr;
-  }
-  // With its worker on a thread, held at the start of its first job by `gate`.
-  template <typename Gate>
-  std::unique_ptr<CaptureDaemon> makeGatedDaemon(Gate& gate, DaemonOptions options = {}) {
-    return makeDaemon(std::move(options), [&gate](DaemonServices& services) {
-      services.worker_mode = StackWorker::Mode::kThread;
-      services.worker_job_hook = [&gate] { gate.hold(); };
-    });
-  }
-
-  // SIGTERM (through the event queue, as the signal forwarder posts it) at `offset`.
-  void terminateAt(std::chrono::nanoseconds offset, CaptureDaemon& daemon) {
-    signalAt(offset, daemon, SIGTERM);
-  }
-  void signalAt(std::chrono::nanoseconds offset, CaptureDaemon& daemon, int signal) {
-    clock_.at(offset, [&daemon, signal] { daemon.events().post(SignalEvent{signal}); });
-  }
-
-  std::vector<fs::path> stacks() const { return entries(out() / kStacksDirectory); }
-  std::vector<fs::path> results() const { return entries(out() / kResultsDirectory); }
-  static std::vector<fs::path> entries(const fs::path& directory) {
-    std::vector<fs::path> found;
-    std::error_code error;
-    for (const auto& entry : fs::directory_iterator(directory, error))
-      found.push_back(entry.path());
-    std::sort(found.begin(), found.end());
-    return found;
-  }
-  static nlohmann::json manifest(const fs::path& stack) {
-    return *readJsonFile((stack / "stack.json").string());
-  }
-  bool statusMentioned(const std::string& text) const {
-    for (const auto& status : notifier_.matching("STATUS="))
-      if (status.message.find(text) != std::string::npos) return true;
-    return false;
-  }
-
-  TempDir dir_;
-  ManualClock clock_{utc("2026-06-21T08:00:00Z")};
-  RecordingNotifier notifier_{clock_, std::chrono::microseconds(10s)};
-  ScriptedDisk disk_;
-  ScriptedCameras cameras_;
-};
-
-// ---- the config -------------------------------------------------------------------------------
-
-TEST_F(DaemonTest, ConfigWithoutDaemonSectionsRunsOnDefaults) {
-  testing::writeText(config_path(), "camera = \"sim:\"\n");
-  const auto config = readConfig(config_path());
-  ASSERT_TRUE(config) << config.error().message;
-  const DaemonConfig& daemon = config->daemon;
-  EXPECT_EQ(daemon.schedule.mode, ScheduleMode::kInterval);
-  EXPECT_EQ(daemon.schedule.interval, 600s);
-  EXPECT_EQ(daemon.schedule.alpha_targets_deg.size(), 16u);  // 5, 10, ... 80
-  EXPECT_EQ(daemon.schedule.alpha_targets_deg.front(), 5.0);
-  EXPECT_EQ(daemon.schedule.alpha_targets_deg.back(), 80.0);
-  EXPECT_EQ(daemon.output.root, "/var/lib/glarecam");
-  EXPECT_EQ(daemon.output.reserve_bytes, 1024ull << 20);
-  EXPECT_FALSE(daemon.capture.exposures_us);  // auto
-  EXPECT_EQ(daemon.faults.inclinometer, InclinometerFaultPolicy::kContinue);
-}
-
-TEST_F(DaemonTest, ConfigReadsEveryDaemonKey) {
-  testing::writeText(config_path(), R"(camera = "sim:"
-[site]
-latitude_deg = 48
-longitude_deg = 7.85
-[module]
-azimuth_deg = 180
-tilt_deg = 25
-[capture]
-exposures = [10, 100, 1000]
-gain_db = 3
-pixel_format = "Mono12"
-f_number = 8
-nd_transmission = 0.001
-max_frame_retries = 7
-[schedule]
-mode = "alpha-targets"
-interval_s = 300
-alpha_targets_deg = [60, 20, 40, 20]
-button = false
-max_alpha_deg = 75
-[output]
-root = "data"
-reserve_mb = 2048
-module = "ACME 400"
-processing_threads = 2
-[faults]
-inclinometer = "pause"
-min_tilt_deg = 5
-max_tilt_deg = 60
-camera_max_failures = 3
-camera_backoff_s = 5
-camera_backoff_max_s = 60
-)");
-  const auto config = readConfig(config_path());
-  ASSERT_TRUE(config) << config.error().message;
-  const DaemonConfig& d = config->daemon;
-  EXPECT_EQ(d.capture.exposures_us, (std::vector<double>{10, 100, 1000}));
-  EXPECT_EQ(d.capture.gain_db, 3);
-  EXPECT_EQ(d.capture.pixel_format, "Mono12");
-  EXPECT_EQ(d.capture.nd_transmission, 0.001);
-  EXPECT_EQ(d.capture.max_frame_retries, 7);
-  EXPECT_EQ(d.schedule.mode, ScheduleMode::kAlphaTargets);
-  EXPECT_EQ(d.schedule.alpha_targets_deg, (std::vector<double>{20, 40, 60}));  // sorted, once
-  EXPECT_FALSE(d.schedule.button);
-  EXPECT_EQ(d.schedule.max_alpha_deg, 75);
-  EXPECT_EQ(d.output.root, dir_.path() / "data");  // relative to the config's directory
-  EXPECT_EQ(d.output.reserve_bytes, 2048ull << 20);
-  EXPECT_EQ(d.output.module, "ACME 400");
-  EXPECT_EQ(d.output.processing_threads, 2u);
-  EXPECT_EQ(d.faults.inclinometer, InclinometerFaultPolicy::kPause);
-  EXPECT_EQ(d.faults.max_tilt_deg, 60);
-  EXPECT_EQ(d.faults.camera_max_failures, 3);
-  EXPECT_EQ(d.faults.camera_backoff, 5s);
-  EXPECT_EQ(d.faults.camera_backoff_max, 60s);
-}
-
-TEST_F(DaemonTest, ConfigErrorsNameTheFileAndLine) {
-  const auto expectError = [&](const std::string& text, const std::string& expected) {
-    testing::writeText(config_path(), text);
-    const auto config = readConfig(config_path());
-    ASSERT_FALSE(config) << text;
-    EXPECT_EQ(config.error().code, ErrorCode::kBadInput);
-    EXPECT_NE(config.error().message.find(expected), std::string::npos)
-        << config.error().message << " lacks " << expected;
-  };
-  const std::string file = config_path().string();
-  expectError("[schedule]\nmode = \"hourly\"\n",
-              file + ":2: schedule.mode = \"hourly\" is not one of");
-  expectError("[schedule]\n\ninterval_s = 0\n", file + ":3: schedule.interval_s = 0 is outside");
-  expectError("[schedule]\nmode = \"alpha-targets\"\n", "needs a [site]");
-  expectError("[schedule]\nalpha_targets_deg = [10, \"x\"]\n",
-              ":2: schedule.alpha_targets_deg must hold numbers");
-  expectError("[schedule]\nalpha_targets_deg = [10, 95]\n", "holds 95, outside");
-  expectError("[schedule]\nintervals = 5\n", ":2: unknown key schedule.intervals");
-  expectError("[capture]\nexposures = \"fast\"\n",
-              ":2: capture.exposures must be \"auto\" or an array");
-  expectError("[capture]\nexposures = []\n", "must have 1 to 64 elements");
-  expectError("[output]\nreserve_mb = -1\n", ":2: output.reserve_mb = -1 is outside");
-  expectError("[faults]\nmin_tilt_deg = 50\nmax_tilt_deg = 40\n", "min_tilt_deg 50 must be below");
-  expectError("[faults]\ninclinometer = \"ignore\"\n",
-              "faults.inclinometer = \"ignore\" is not one of");
-  expectError("[faults]\ncamera_backoff_s = 100\ncamera_backoff_max_s = 10\n",
-              "is below camera_backoff_s");
-  expectError("[daemon]\n", "unknown section [daemon]");
-}
-
-TEST(RigConfig, TheShippedExampleIsValid) {
-  const auto example = testing::testDataDir() / ".." / ".." / "firmware-config" / "glarecam.toml";
-  const auto whole = readConfig(example);
-  ASSERT_TRUE(whole) << whole.error().message;
-  const rig::RigConfig* config = &whole->rig;
-  EXPECT_TRUE(config->site && config->inclinometer && config->gpio && config->module_azimuth_deg);
-}
-
-TEST_F(DaemonTest, TheShippedExampleStatesTheDefaults) {
-  const fs::path firmware = testing::testDataDir() / ".." / ".." / "firmware-config";
-  const auto example = readConfig(firmware / "glarecam.toml");
-  ASSERT_TRUE(example) << example.error().message;
-  testing::writeText(config_path(), "camera = \"sim:\"\n");
-  const auto defaults = readConfig(config_path());
-  ASSERT_TRUE(defaults);
-  const DaemonConfig& a = example->daemon;
-  const DaemonConfig& b = defaults->daemon;
-  EXPECT_EQ(a.capture.exposures_us, b.capture.exposures_us);
-  EXPECT_EQ(a.capture.max_frame_retries, b.capture.max_frame_retries);
-  EXPECT_EQ(a.schedule.mode, b.schedule.mode);
-  EXPECT_EQ(a.schedule.interval, b.schedule.interval);
-  EXPECT_EQ(a.schedule.alpha_targets_deg, b.schedule.alpha_targets_deg);
-  EXPECT_EQ(a.schedule.max_alpha_deg, b.schedule.max_alpha_deg);
-  EXPECT_EQ(a.output.root, b.output.root);
-  EXPECT_EQ(a.output.reserve_bytes, b.output.reserve_bytes);
-  EXPECT_EQ(a.output.processing_threads, b.output.processing_threads);
-  EXPECT_EQ(a.faults.camera_max_failures, b.faults.camera_max_failures);
-  EXPECT_EQ(a.faults.camera_backoff, b.faults.camera_backoff);
-  EXPECT_EQ(a.faults.camera_backoff_max, b.faults.camera_backoff_max);
-  EXPECT_EQ(a.faults.max_tilt_deg, b.faults.max_tilt_deg);
-}
-
-TEST_F(DaemonTest, GenicamPresetsAreReadIntoOneFeatureString) {
-  const fs::path presets = testing::testDataDir() / ".." / ".." / "firmware-config" / "genicam";
-  int read = 0;
-  for (const auto& entry : fs::directory_iterator(presets)) {
-    const auto features = readGenicamPreset(entry.path());
-    ASSERT_TRUE(features) << features.error().message;
-    EXPECT_NE(features->find("ExposureAuto=Off"), std::string::npos) << entry.path();
-    ++read;
-  }
-  EXPECT_GE(read, 4);
-  testing::writeText(dir_ / "preset.conf", "# comment\n\n  Width=320\nGammaEnable=false\n");
-  testing::writeText(config_path(),
-                     "camera = \"aravis:\"\n[capture]\ngenicam_preset = \"preset.conf\"\n");
-  const auto config = readConfig(config_path());
-  ASSERT_TRUE(config) << config.error().message;
-  EXPECT_EQ(config->daemon.capture.genicam_features, "Width=320 GammaEnable=false");
-  testing::writeText(dir_ / "preset.conf", "Width=320\nGamma Enable = false\n");
-  const auto bad = readConfig(config_path());
-  ASSERT_FALSE(bad);
-  EXPECT_NE(
-      bad.error().message.find((dir_ / "preset.conf").string() + ":2: expected Feature=Value"),
-      std::string::npos)
-      << bad.error().message;
-  fs::remove(dir_ / "preset.conf");
-  EXPECT_FALSE(readConfig(config_path()));
-}
+using testing::utc;
 
 TEST_F(DaemonTest, InvalidConfigIsBadInputBeforeAnythingOpens) {
   testing::writeText(config_path(), "camera = \"sim:\"\n[schedule]\nmode = 3\n");
@@ -315,8 +45,6 @@ TEST_F(DaemonTest, CameraTheConfigCannotNameIsAConfigError) {
   EXPECT_NE(ran.error().message.find("camera"), std::string::npos) << ran.error().message;
   EXPECT_EQ(notifier_.count("READY=1"), 0u);
 }
-
-// ---- the interval schedule and what each stack becomes ----------------------------------------
 
 TEST_F(DaemonTest, IntervalStacksAreWrittenProcessedAndTabulatedPerDay) {
   writeConfig();
@@ -406,8 +134,6 @@ TEST_F(DaemonTest, AWedgedCameraStopsTheHeartbeat) {
   EXPECT_GT(notifier_.count("WATCHDOG=1"), before);
 }
 
-// ---- other triggers ---------------------------------------------------------------------------
-
 TEST_F(DaemonTest, Sigusr1AndTheButtonTakeAStackNow) {
   writeConfig({.schedule = "mode = \"button\""});
   auto daemon = makeDaemon();
@@ -448,8 +174,6 @@ TEST_F(DaemonTest, SighupReloadsTheConfigAndKeepsItWhenTheNewOneIsBad) {
       "config: reload failed, the previous config stays: " + config_path().string() + ":2:"));
 }
 
-// ---- the α targets ----------------------------------------------------------------------------
-
 TEST_F(DaemonTest, AlphaTargetsAreCaughtAsTheSunMoves) {
   // 48° N on the solstice, the module tilted 24.5° south: α falls through every target from 80°
   // to 5° in the morning. The manual clock stands still during a capture, so each stack's α is
@@ -479,38 +203,6 @@ TEST_F(DaemonTest, AlphaTargetsAreCaughtAsTheSunMoves) {
   EXPECT_TRUE(fs::exists(day / "fits.json"));
   EXPECT_EQ(pipeline::readSweepTable(day / "sweep.csv")->rows.size(), 5u);
 }
-
-TEST(AlphaSchedule, CrossingsAgreeWithAFineScan) {
-  const sun::SiteLocation site{.latitude_deg = 48, .longitude_deg = 7.85, .altitude_m = 278};
-  const sun::ModuleOrientation module{.tilt_deg = 24.5, .azimuth_deg = 180};
-  const UtcTime from = utc("2026-06-21T00:00:00Z");
-  const std::vector<double> targets{10, 45, 80};
-  const auto crossings = alphaCrossings(site, module, from, 24h, targets);
-  ASSERT_TRUE(crossings) << crossings.error().message;
-  ASSERT_EQ(crossings->size(), 6u);  // each target morning and afternoon
-  for (const AlphaCrossing& crossing : *crossings) {
-    const auto at = sunIncidence(site, module, crossing.time);
-    ASSERT_TRUE(at);
-    EXPECT_TRUE(at->sun_up);
-    // Bisected to 0.5 s, during which α moves < 0.005° (at most ~0.6°/min near sunrise).
-    EXPECT_NEAR(at->alpha_deg, crossing.target_deg, 0.005);
-  }
-  EXPECT_FALSE((*crossings)[0].rising);
-  EXPECT_TRUE((*crossings)[5].rising);
-  for (std::size_t i = 1; i < crossings->size(); ++i)
-    EXPECT_LT((*crossings)[i - 1].time, (*crossings)[i].time);
-}
-
-TEST(AlphaSchedule, NoCrossingWhenTheSunNeverReachesTheTarget) {
-  // A north-facing vertical wall at 48° N: the sun never shines on it at α 5°.
-  const sun::SiteLocation site{.latitude_deg = 48, .longitude_deg = 7.85};
-  const auto crossings = alphaCrossings(site, {.tilt_deg = 90, .azimuth_deg = 0},
-                                        utc("2026-12-21T00:00:00Z"), 24h, std::vector<double>{5});
-  ASSERT_TRUE(crossings);
-  EXPECT_TRUE(crossings->empty());
-}
-
-// ---- faults -----------------------------------------------------------------------------------
 
 TEST_F(DaemonTest, CameraLostMidBracketIsReopenedWithBackoff) {
   writeConfig();
@@ -664,13 +356,10 @@ TEST_F(DaemonTest, ReadOnlyFilesystemIsReported) {
 TEST_F(DaemonTest, AStackThatCannotBeWrittenIsKeptUntilTheDiskTakesIt) {
   writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 60"});
   auto daemon = makeDaemon();
-  // The stacks directory turns into a file (a refusal statvfs cannot see) between two stacks:
-  // the 120 s stack's write fails; it is kept in memory and capture pauses. At 500 s the file
-  // goes; the next disk check writes a probe, then the kept stack.
-  clock_.at(100s, [&] {
-    fs::remove_all(out() / kStacksDirectory);
-    testing::writeText(out() / kStacksDirectory, "not a directory");
-  });
+  // The stacks directory turns into a file between two stacks: the 120 s stack's write fails; it
+  // is kept in memory and capture pauses. At 500 s the file goes; the next disk check writes a
+  // probe, then the kept stack.
+  refuseStacksAt(100s);
   clock_.at(500s, [&] { fs::remove(out() / kStacksDirectory); });
   terminateAt(541s, *daemon);
   ASSERT_TRUE(daemon->run());
@@ -688,12 +377,8 @@ TEST_F(DaemonTest, AStackThatCannotBeWrittenIsKeptUntilTheDiskTakesIt) {
 // check only the outcomes (the kept-and-retried sequence itself is checked inline above).
 TEST_F(DaemonTest, OnAWorkerThreadAStackTheDiskRefusedIsWrittenOnceItTakesIt) {
   writeConfig({.schedule = "mode = \"button\""});
-  auto daemon = makeDaemon(
-      {}, [](DaemonServices& services) { services.worker_mode = StackWorker::Mode::kThread; });
-  clock_.at(5s, [&] {
-    fs::remove_all(out() / kStacksDirectory);
-    testing::writeText(out() / kStacksDirectory, "not a directory");
-  });
+  auto daemon = makeThreadedDaemon();
+  refuseStacksAt(5s);
   signalAt(10s, *daemon, SIGUSR1);
   clock_.at(100s, [&] { fs::remove(out() / kStacksDirectory); });
   clock_.at(200s, [&] {  // the loop waits here until the stack has landed (kept or not)
@@ -708,12 +393,8 @@ TEST_F(DaemonTest, OnAWorkerThreadAStackTheDiskRefusedIsWrittenOnceItTakesIt) {
 
 TEST_F(DaemonTest, OnAWorkerThreadAStackTheDiskStillRefusesAtStopIsReportedLost) {
   writeConfig({.schedule = "mode = \"button\""});
-  auto daemon = makeDaemon(
-      {}, [](DaemonServices& services) { services.worker_mode = StackWorker::Mode::kThread; });
-  clock_.at(5s, [&] {
-    fs::remove_all(out() / kStacksDirectory);
-    testing::writeText(out() / kStacksDirectory, "not a directory");
-  });
+  auto daemon = makeThreadedDaemon();
+  refuseStacksAt(5s);
   signalAt(10s, *daemon, SIGUSR1);
   terminateAt(300s, *daemon);
   ASSERT_TRUE(daemon->run());
@@ -756,8 +437,6 @@ TEST_F(DaemonTest, UnsynchronisedClockIsInStatusAndFlagsEveryStack) {
   EXPECT_TRUE(statusMentioned("clock: not synchronised (kernel: STA_UNSYNC); stacks are flagged"));
   EXPECT_EQ(daemon->state().led, rig::RigState::faulted(rig::FaultCode::kClock));
 }
-
-// ---- restarts ---------------------------------------------------------------------------------
 
 TEST_F(DaemonTest, StartCleansUpAndProcessesWhatAKilledRunLeft) {
   writeConfig({.schedule = "mode = \"button\""});
@@ -870,116 +549,6 @@ TEST_F(DaemonTest, AStuckWorkerStopsTheHeartbeat) {
   EXPECT_GE(longest_gap, 1h - 10s - kWorkerStallLimit - 5s);
   EXPECT_GE(gap_end, 1h);  // the heartbeat came back with the worker
   EXPECT_LE(gap_end, 1h + 5s);
-}
-
-// ---- the pure parts ---------------------------------------------------------------------------
-
-TEST(CameraSupervisor, BackoffDoublesToItsCapAndSuccessClearsTheCount) {
-  int opens = 0;
-  CameraSupervisor supervisor(
-      {.camera_max_failures = 4, .camera_backoff = 2s, .camera_backoff_max = 10s},
-      [&](std::string_view, const capture::CameraOptions&,
-          const capture::SceneAlphaSource&) -> Result<std::unique_ptr<capture::Camera>> {
-        ++opens;
-        return hardwareError("absent");
-      },
-      {});
-  supervisor.configure("sim:", {},
-                       {.camera_max_failures = 4, .camera_backoff = 2s, .camera_backoff_max = 10s});
-  EXPECT_EQ(supervisor.backoffAfter(1), 2s);
-  EXPECT_EQ(supervisor.backoffAfter(2), 4s);
-  EXPECT_EQ(supervisor.backoffAfter(3), 8s);
-  EXPECT_EQ(supervisor.backoffAfter(4), 10s);
-  EXPECT_EQ(supervisor.backoffAfter(40), 10s);
-  const SteadyTime t0{};
-  EXPECT_FALSE(supervisor.acquire(t0));
-  EXPECT_EQ(supervisor.retryAt(), t0 + 2s);
-  EXPECT_FALSE(supervisor.acquire(t0 + 1s));  // too soon: not even tried
-  EXPECT_EQ(opens, 1);
-  EXPECT_FALSE(supervisor.acquire(t0 + 2s));
-  EXPECT_EQ(supervisor.failures(), 2);
-  EXPECT_FALSE(supervisor.exhausted());
-  supervisor.succeeded();
-  EXPECT_EQ(supervisor.failures(), 0);
-}
-
-TEST(DaemonStatus, OneLineWithEveryFaultAndTheLedShowsTheWorst) {
-  DaemonState state;
-  state.ready = true;
-  EXPECT_EQ(statusLine(state, "every 600 s"), "ready, every 600 s");
-  EXPECT_EQ(ledState(state, false), rig::RigState::ready());
-  EXPECT_EQ(ledState(state, true), rig::RigState::capturing());
-  state.last_stack = "20260621T101503Z-a42.30";
-  state.last_alpha_deg = 42.3;
-  state.last_capture_time = utc("2026-06-21T10:15:03.25Z");
-  state.next_capture_time = utc("2026-06-21T10:25:03Z");
-  state.clock_warning = "not synchronised";
-  EXPECT_EQ(statusLine(state, "every 600 s"),
-            "ready, every 600 s; last 20260621T101503Z-a42.30 (α 42.30°) at "
-            "2026-06-21T10:15:03Z; next at 2026-06-21T10:25:03Z; clock: not synchronised");
-  EXPECT_EQ(ledState(state, false), rig::RigState::faulted(rig::FaultCode::kClock));
-  state.disk_fault = "full";
-  EXPECT_TRUE(statusLine(state, "x").starts_with("paused, x"));
-  EXPECT_EQ(ledState(state, false), rig::RigState::faulted(rig::FaultCode::kDisk));
-  state.camera_fault = "lost";
-  EXPECT_EQ(ledState(state, false), rig::RigState::faulted(rig::FaultCode::kCamera));
-  state.stopping = true;
-  EXPECT_TRUE(statusLine(state, "x").starts_with("stopping, x"));
-  EXPECT_EQ(statusLine(state, "x").find("next at"), std::string::npos);
-}
-
-TEST(DayProducts, TheDayIsTheSitesMeanSolarDay) {
-  EXPECT_EQ(stackDay("20260621T101503Z-a42.30", std::nullopt), "2026-06-21");
-  EXPECT_EQ(stackDay("20260621T231503Z", 7.85), "2026-06-21");    // 23:46 local mean time
-  EXPECT_EQ(stackDay("20260621T234503Z", 7.85), "2026-06-22");    // 00:16
-  EXPECT_EQ(stackDay("20260622T010000Z", -105.0), "2026-06-21");  // Colorado: 18:00 the day before
-  EXPECT_FALSE(stackDay("alpha-40", std::nullopt));
-  EXPECT_FALSE(stackDay("20261341T101503Z", std::nullopt));
-}
-
-TEST(DiskSpace, PauseReasonsInWords) {
-  EXPECT_EQ(diskPauseReason({.free_bytes = 2ull << 30}, 1ull << 30, "/data"), "");
-  EXPECT_EQ(diskPauseReason({.free_bytes = 512ull << 20}, 1ull << 30, "/data"),
-            "512.0 MiB free on /data, below the 1.0 GiB reserve");
-  EXPECT_NE(
-      diskPauseReason({.free_bytes = 2ull << 30, .read_only = true}, 0, "/data").find("read-only"),
-      std::string::npos);
-  EXPECT_EQ(formatBytes(512), "512 B");
-  const auto probed = makeStatvfsDiskProbe()->probe(fs::temp_directory_path() / "not" / "yet");
-  ASSERT_TRUE(probed);  // the nearest existing parent's filesystem
-  EXPECT_GT(probed->total_bytes, 0u);
-}
-
-TEST(DaemonClock, TimeLapseRunsTheWallClockFaster) {
-  const UtcTime start = utc("2026-06-21T05:00:00Z");
-  const TimeLapseClock clock(start, 600.0);
-  const UtcTime later = start + 1h;
-  // An hour of simulated sun is 6 s of real time.
-  const auto real = clock.steadyAt(later) - clock.steadyAt(start);
-  EXPECT_NEAR(std::chrono::duration<double>(real).count(), 6.0, 1e-6);
-  EXPECT_TRUE(clock.clockStatus().synchronised);
-  EXPECT_GE(clock.utcNow(), start);
-}
-
-TEST(JournalSink, EntriesCarryTheScopesFieldsAndDropInvalidNames) {
-  {
-    const ScopedLogFields outer(LogFields{{"GLARECAM_EVENT", "capture"}});
-    const ScopedLogFields inner(
-        LogFields{{"GLARECAM_STACK", "20260621T101503Z-a42.30"}, {"_PID", "1"}, {"lower", "x"}});
-    EXPECT_EQ(journalEntry("glarecamd", 4, "disk: full", currentLogFields()),
-              (std::vector<std::string>{"MESSAGE=disk: full", "PRIORITY=4",
-                                        "SYSLOG_IDENTIFIER=glarecamd", "GLARECAM_EVENT=capture",
-                                        "GLARECAM_STACK=20260621T101503Z-a42.30"}));
-  }
-  EXPECT_TRUE(currentLogFields().empty());  // the scopes are gone
-  // Not connected to the journal here: stderr is a terminal or a file, not $JOURNAL_STREAM's.
-  ::setenv("JOURNAL_STREAM", "1:1", 1);
-  EXPECT_FALSE(stderrIsJournal());
-  ::unsetenv("JOURNAL_STREAM");
-  EXPECT_FALSE(stderrIsJournal());
-  // Without a journal to send to, logging through the sink must not throw or stop anything.
-  auto logger = std::make_shared<spdlog::logger>("journal-test", makeJournalSink("glarecamd"));
-  EXPECT_NO_THROW(logger->error("no journald here"));
 }
 
 }  // namespace

@@ -1,0 +1,56 @@
+// The data sheet files: PDF, SVG and PNG written atomically, and a missing directory an error.
+#include "pipeline/render/datasheet.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "pipeline/sweep_fits_test_support.h"
+#include "pipeline/sweep_table.h"
+#include "support/test_support.h"
+
+namespace glarecam::pipeline {
+namespace {
+
+using testing::fitsOf;
+
+TEST(Datasheet, WritesPdfSvgAndPng) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const SweepFits fits = fitsOf(*table);
+  testing::TempDir dir;
+  auto status = writeDatasheet({.module = "standard",
+                                .date = "2026-11-26",
+                                .table = &*table,
+                                .fits = &fits,
+                                .model_beta_deg = 1.25,
+                                .limit = {.constant_cd_m2 = 30000}},
+                               dir.path());
+  ASSERT_TRUE(status) << status.error().message;
+  EXPECT_EQ(testing::readText(dir / kDatasheetPdf).substr(0, 5), "%PDF-");
+  const std::string svg = testing::readText(dir / kDatasheetSvg);
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  EXPECT_EQ(testing::readText(dir / kDatasheetPng).substr(1, 3), "PNG");
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
+}
+
+TEST(Datasheet, MissingDirectoryIsAnErrorNotACrash) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const SweepFits fits = fitsOf(*table);
+  auto status = writeDatasheet({.module = "m",
+                                .date = "d",
+                                .table = &*table,
+                                .fits = &fits,
+                                .model_beta_deg = std::nullopt,
+                                .limit = {}},
+                               "/nonexistent/dir");
+  EXPECT_FALSE(status);
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline

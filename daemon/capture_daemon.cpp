@@ -5,7 +5,6 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <condition_variable>
 
 #include "capture/camera_registry.h"
 #include "daemon/journal_sink.h"
@@ -18,8 +17,6 @@ namespace {
 
 // How a disk fault from a failed write begins: it ends only when the kept stack is written.
 constexpr std::string_view kWriteFailed = "writing a stack failed: ";
-// After a failed button read, how long the button thread waits before reading again.
-constexpr std::chrono::seconds kButtonRetry{5};
 
 const char* triggerName(CaptureTrigger trigger) {
   switch (trigger) {
@@ -337,29 +334,12 @@ void CaptureDaemon::openGpio() {
     spdlog::error("glarecamd: {}; running without GPIO", opened.error().message);
     return;
   }
-  rig::RigIo* io = rig_->io();
-  if (!io || !services_.watch_button || !io->hasButton()) return;
-  button_thread_ =
-      std::jthread([this, io, debounce = config_.rig.gpio->debounce](std::stop_token stop) {
-        rig::ButtonWatcher watcher(*io, debounce);
-        std::mutex mutex;
-        std::condition_variable_any pause;
-        while (!stop.stop_requested()) {
-          const auto pressed = watcher.waitForPress(rig::RigClock::time_point::max(), stop);
-          if (pressed && *pressed) events_.post(ButtonEvent{});
-          if (pressed) continue;
-          events_.post(ButtonEvent{.error = pressed.error()});
-          std::unique_lock lock(mutex);
-          pause.wait_for(lock, stop, kButtonRetry, [] { return false; });
-        }
-      });
+  if (!services_.watch_button) return;
+  rig_->watchButton([this] { events_.post(ButtonEvent{}); },
+                    [this](const Error& error) { events_.post(ButtonEvent{.error = error}); });
 }
 
 void CaptureDaemon::closeGpio() {
-  if (button_thread_.joinable()) {
-    button_thread_.request_stop();
-    button_thread_.join();
-  }
   if (rig_) rig_->closeGpio();
 }
 

@@ -145,7 +145,6 @@ class CaptureDaemon {
   CameraSupervisor camera_;
   std::unique_ptr<RigSession> rig_;
   std::optional<Calibration> calibration_;
-  std::jthread button_thread_;
   std::unique_ptr<StackWorker> worker_;
   CaptureSchedule schedule_;
   HealthMonitor health_;

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"
@@ -94,7 +96,31 @@ Status RigSession::openGpio() {
   return {};
 }
 
+void RigSession::watchButton(std::function<void()> on_press,
+                             std::function<void(const Error&)> on_error) {
+  if (!io_ || !io_->hasButton()) return;
+  button_thread_ = std::jthread([io = io_.get(), debounce = config_.gpio->debounce,
+                                 on_press = std::move(on_press),
+                                 on_error = std::move(on_error)](std::stop_token stop) {
+    rig::ButtonWatcher watcher(*io, debounce);
+    std::mutex mutex;
+    std::condition_variable_any pause;
+    while (!stop.stop_requested()) {
+      const auto pressed = watcher.waitForPress(rig::RigClock::time_point::max(), stop);
+      if (pressed && *pressed) on_press();
+      if (pressed) continue;
+      on_error(pressed.error());
+      std::unique_lock lock(mutex);
+      pause.wait_for(lock, stop, kButtonRetry, [] { return false; });
+    }
+  });
+}
+
 void RigSession::closeGpio() {
+  if (button_thread_.joinable()) {
+    button_thread_.request_stop();
+    button_thread_.join();
+  }
   if (led_) {
     const Status stopped = led_->stop();  // the LED dark: glarecam no longer drives it
     if (!stopped) spdlog::warn("{}: {}", options_.log_name, stopped.error().message);

@@ -22,6 +22,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <thread>
 
 #include "capture/bracketer.h"
 #include "capture/capture_series.h"
@@ -35,6 +36,9 @@
 #include "sun/clock_sync.h"
 
 namespace glarecam::daemon {
+
+// After a failed button read, how long the button's watcher waits before reading again.
+inline constexpr std::chrono::seconds kButtonRetry{5};
 
 using RigIoOpener = std::function<Result<std::unique_ptr<rig::RigIo>>(const rig::RigIoConfig&)>;
 
@@ -82,8 +86,13 @@ class RigSession final : public capture::SeriesRig {
   // Opens the config's GPIO lines and starts the LED (ready); without [gpio] nothing. Its error
   // when the lines cannot be had: the rig can measure on without them.
   Status openGpio();
+  // Stops watching the button, and releases the lines with the LED dark.
   void closeGpio();
   rig::RigIo* io() const { return io_.get(); }
+  // Watches the button from a thread of its own until closeGpio(): `on_press` for each debounced
+  // press, `on_error` when a read fails (then it waits kButtonRetry and reads again). Both run on
+  // that thread. Without a button line nothing.
+  void watchButton(std::function<void()> on_press, std::function<void(const Error&)> on_error);
   void show(rig::RigState state);
 
   // The camera calibration in the config's calibration file, when it holds one.
@@ -107,6 +116,7 @@ class RigSession final : public capture::SeriesRig {
   std::set<std::string> logged_warnings_;  // the sensors' standing warnings, logged once
   std::unique_ptr<rig::RigIo> io_;
   std::unique_ptr<rig::StatusLed> led_;
+  std::jthread button_thread_;
 };
 
 // The tilt's plausibility rule: kHardware naming the sensor when `geometry`'s measured tilt lies

@@ -1,5 +1,7 @@
 #include "daemon/camera_supervisor.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 namespace glarecam::daemon {
@@ -47,6 +49,15 @@ std::chrono::seconds CameraSupervisor::backoffAfter(int failures) const {
   std::chrono::seconds backoff = faults_.camera_backoff;
   for (int i = 1; i < failures && backoff < faults_.camera_backoff_max; ++i) backoff *= 2;
   return std::min(backoff, faults_.camera_backoff_max);
+}
+
+std::string CameraSupervisor::faultText(const Error& error, SteadyTime now,
+                                        bool mid_bracket) const {
+  const auto wait = retry_at_ ? std::chrono::ceil<std::chrono::seconds>(*retry_at_ - now)
+                              : std::chrono::seconds(0);
+  return fmt::format("{}{}; reopening in {} s (failure {} of {})", error.message,
+                     mid_bracket ? "; the stack was discarded" : "", wait.count(), failures_,
+                     faults_.camera_max_failures);
 }
 
 }  // namespace glarecam::daemon

@@ -47,6 +47,10 @@ class CameraSupervisor {
   const std::optional<Error>& lastError() const { return last_error_; }
   void close() { camera_.reset(); }
 
+  // What the status says after `error` at `now`: "<error>[; the stack was discarded]; reopening in
+  // 8 s (failure 2 of 8)".
+  std::string faultText(const Error& error, SteadyTime now, bool mid_bracket) const;
+
   // The backoff after `failures` failures in a row.
   std::chrono::seconds backoffAfter(int failures) const;
 

@@ -15,9 +15,6 @@ namespace glarecam::daemon {
 
 namespace {
 
-// How a disk fault from a failed write begins: it ends only when the kept stack is written.
-constexpr std::string_view kWriteFailed = "writing a stack failed: ";
-
 const char* triggerName(CaptureTrigger trigger) {
   switch (trigger) {
     case CaptureTrigger::kSchedule:
@@ -185,36 +182,7 @@ void CaptureDaemon::handle(const DaemonEvent& event) {
 
 void CaptureDaemon::handleWorker(const WorkerEvent& event) {
   ScopedLogFields fields(LogFields{{"GLARECAM_STACK", event.stack_id}});
-  if (event.error && event.stage == WorkerEvent::Stage::kWritten && !event.last) {
-    // Kept by the worker: capture pauses until the disk takes a write again.
-    state_.disk_fault =
-        fmt::format("{}{}; it is kept until the disk takes it", kWriteFailed, event.error->message);
-    spdlog::error("glarecamd: {}: {}", event.stack_id, state_.disk_fault);
-  } else if (event.error) {
-    ++state_.stacks_failed;
-    state_.worker_fault = event.error->message;
-    spdlog::error("glarecamd: {}: {}", event.stack_id, event.error->message);
-  } else {
-    switch (event.stage) {
-      case WorkerEvent::Stage::kWritten:
-        ++state_.stacks_written;
-        if (state_.disk_fault.starts_with(kWriteFailed) && !worker_->hasParked()) {
-          spdlog::info("glarecamd: disk: the kept stacks are written; capture resumes");
-          state_.disk_fault.clear();
-        }
-        spdlog::info("glarecamd: wrote {}", event.path.string());
-        break;
-      case WorkerEvent::Stage::kProcessed:
-        ++state_.stacks_processed;
-        spdlog::info("glarecamd: processed {}", event.detail);
-        break;
-      case WorkerEvent::Stage::kPublished:
-        state_.day = fmt::format("{}: {}", event.path.filename().string(), event.detail);
-        spdlog::info("glarecamd: day {}", state_.day);
-        break;
-    }
-    if (event.stage != WorkerEvent::Stage::kWritten) state_.worker_fault.clear();
-  }
+  recordWorkerEvent(state_, event, worker_->hasParked());
   if (event.last && event.captured && options_.max_stacks &&
       ++stacks_done_ >= *options_.max_stacks && !stopping_) {
     spdlog::info("glarecamd: {} stacks done: stopping", stacks_done_);
@@ -385,16 +353,10 @@ Status CaptureDaemon::reopenCamera(SteadyTime now) {
 
 Status CaptureDaemon::cameraFailed(const Error& error, SteadyTime now, bool mid_bracket) {
   if (mid_bracket) camera_.failed(error, now);  // acquire() counted an open that failed
-  const int failures = camera_.failures();
   if (camera_.exhausted())
     return hardwareError(fmt::format("glarecamd: the camera failed {} times in a row; last: {}",
-                                     failures, error.message));
-  const auto retry = camera_.retryAt();
-  const auto wait =
-      retry ? std::chrono::ceil<std::chrono::seconds>(*retry - now) : std::chrono::seconds(0);
-  state_.camera_fault = fmt::format("{}{}; reopening in {} s (failure {} of {})", error.message,
-                                    mid_bracket ? "; the stack was discarded" : "", wait.count(),
-                                    failures, camera_.maxFailures());
+                                     camera_.failures(), error.message));
+  state_.camera_fault = camera_.faultText(error, now, mid_bracket);
   spdlog::error("glarecamd: camera: {}", state_.camera_fault);
   return {};
 }

@@ -1,10 +1,46 @@
 #include "daemon/daemon_status.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <vector>
 
 namespace glarecam::daemon {
+
+void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_remaining) {
+  if (event.error && event.stage == WorkerEvent::Stage::kWritten && !event.last) {
+    // Kept by the worker: capture pauses until the disk takes a write again.
+    state.disk_fault =
+        fmt::format("{}{}; it is kept until the disk takes it", kWriteFailed, event.error->message);
+    spdlog::error("glarecamd: {}: {}", event.stack_id, state.disk_fault);
+    return;
+  }
+  if (event.error) {
+    ++state.stacks_failed;
+    state.worker_fault = event.error->message;
+    spdlog::error("glarecamd: {}: {}", event.stack_id, event.error->message);
+    return;
+  }
+  switch (event.stage) {
+    case WorkerEvent::Stage::kWritten:
+      ++state.stacks_written;
+      if (state.disk_fault.starts_with(kWriteFailed) && !kept_remaining) {
+        spdlog::info("glarecamd: disk: the kept stacks are written; capture resumes");
+        state.disk_fault.clear();
+      }
+      spdlog::info("glarecamd: wrote {}", event.path.string());
+      return;
+    case WorkerEvent::Stage::kProcessed:
+      ++state.stacks_processed;
+      spdlog::info("glarecamd: processed {}", event.detail);
+      break;
+    case WorkerEvent::Stage::kPublished:
+      state.day = fmt::format("{}: {}", event.path.filename().string(), event.detail);
+      spdlog::info("glarecamd: day {}", state.day);
+      break;
+  }
+  state.worker_fault.clear();
+}
 
 namespace {
 

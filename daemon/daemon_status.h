@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
+#include "daemon/stack_worker.h"
 #include "rig/gpio/status_led.h"
 #include "sun/utc_time.h"
 
@@ -37,6 +39,14 @@ struct DaemonState {
   std::uint64_t stacks_captured = 0, stacks_written = 0, stacks_processed = 0, stacks_failed = 0;
   std::uint64_t captures_skipped = 0, watchdog_pings = 0, reloads = 0;
 };
+
+// How a disk fault from a failed write begins: it ends only when the kept stacks are written.
+inline constexpr std::string_view kWriteFailed = "writing a stack failed: ";
+
+// What a report of the stack worker (stack_worker.h) changes in `state`, logged: the counters, a
+// disk fault while a stack whose write failed is kept (`kept_remaining`: stacks still kept after
+// this report), the worker's last fault, the day's products.
+void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_remaining);
 
 // The STATUS= line: what the daemon does, its last and next stack and every fault, e.g.
 // "capturing every 600 s; last 20260621T101503Z-a42.30 (α 42.30°) at 10:15:03Z; next at

@@ -24,10 +24,10 @@
 #include <thread>
 #include <vector>
 
+#include "core/build_config.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
 #include "support/test_support.h"
-#include "core/build_config.h"
 
 extern char** environ;
 

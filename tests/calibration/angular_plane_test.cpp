@@ -9,11 +9,10 @@
 #include <vector>
 
 #include "calibration/camera_model.h"
+#include "core/angles.h"
 
 namespace glarecam::calibration {
 namespace {
-
-constexpr double kRad = std::numbers::pi / 180;
 
 Ray unit(double x, double y, double z) {
   const double n = std::sqrt(x * x + y * y + z * z);
@@ -33,7 +32,7 @@ std::vector<Ray> centres() {
 // Rays around a centre: within `max_angle_deg` of it, in every direction.
 std::vector<Ray> raysAround(const Ray& centre, double max_angle_deg, unsigned seed) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> cosine(std::cos(max_angle_deg * kRad), 1.0);
+  std::uniform_real_distribution<double> cosine(std::cos(radians(max_angle_deg)), 1.0);
   std::uniform_real_distribution<double> azimuth(-std::numbers::pi, std::numbers::pi);
   // A basis around the centre (any will do).
   const Ray helper = std::abs(centre.x) < 0.9 ? Ray{1, 0, 0} : Ray{0, 1, 0};
@@ -119,7 +118,7 @@ TEST(AngularPlane, OnAxisCentreMapsImageXAndYToPlaneXAndY) {
   constexpr double kToleranceDeg = 1e-12;
   const AngularPlane plane(Ray{0, 0, 1});
   for (const double angle_deg : {0.5, 10.0, 45.0, 89.0, 120.0}) {
-    const double s = std::sin(angle_deg * kRad), c = std::cos(angle_deg * kRad);
+    const double s = std::sin(radians(angle_deg)), c = std::cos(radians(angle_deg));
     const PlanePointDeg right = plane.toPlane({s, 0, c});
     EXPECT_NEAR(right.x_deg, angle_deg, kToleranceDeg);
     EXPECT_NEAR(right.y_deg, 0.0, kToleranceDeg);
@@ -141,7 +140,7 @@ TEST(AngularPlane, OffAxisCentreKeepsTheImageHorizontalAtTheCentre) {
   // A small step from the centre to the right in the image (larger x/z, same y/z) goes along
   // plane +x exactly: the plane's horizontal is the image horizontal made perpendicular to the
   // centre. Rounding only: 1e-9 of the step.
-  constexpr double kStep = 1e-4 * kRad;
+  constexpr double kStep = radians(1e-4);
   for (const Ray& centre : centres()) {
     const AngularPlane plane(centre);
     const double x = centre.x / centre.z, y = centre.y / centre.z;
@@ -176,7 +175,7 @@ TEST(AngularPlane, OppositePointsSpanTheSumOfTheirDistances) {
   for (const Ray& centre : centres()) {
     const AngularPlane plane(centre);
     for (const double psi_deg : {0.0, 17.0, 90.0, 133.0, -70.0}) {
-      const double cx = std::cos(psi_deg * kRad), cy = std::sin(psi_deg * kRad);
+      const double cx = std::cos(radians(psi_deg)), cy = std::sin(radians(psi_deg));
       for (const auto& [rho1, rho2] :
            {std::pair{1.0, 1.0}, std::pair{2.5, 7.25}, std::pair{20.0, 35.0}, std::pair{0.01, 0.02},
             std::pair{60.0, 80.0}}) {
@@ -197,7 +196,7 @@ TEST(AngularPlane, PointsOffTheLineAreNotAdditive) {
   // of the origin but not opposite (90° apart in psi) are ~14.1°, not 20°, apart.
   const AngularPlane plane(rayFromDirection({15.0, -10.0}));
   const Ray a = plane.toRay({10, 0}), b = plane.toRay({0, 10});
-  const double expected = std::acos(std::cos(10 * kRad) * std::cos(10 * kRad)) / kRad;
+  const double expected = degrees(std::acos(std::cos(radians(10.0)) * std::cos(radians(10.0))));
   EXPECT_NEAR(angleBetweenDeg(a, b), expected, 1e-10);  // spherical law of cosines
 }
 
@@ -229,9 +228,9 @@ TEST(AngularPlane, DirectionFromAxisConventions) {
   EXPECT_NEAR(d.horizontal_deg, 45.0, 1e-12);
   EXPECT_NEAR(d.vertical_deg, -45.0, 1e-12);
   const Ray r = rayFromDirection({30.0, 0.0});
-  EXPECT_NEAR(r.x, std::sin(30 * kRad), 1e-15);
+  EXPECT_NEAR(r.x, std::sin(radians(30)), 1e-15);
   EXPECT_NEAR(r.y, 0.0, 1e-15);
-  EXPECT_NEAR(r.z, std::cos(30 * kRad), 1e-15);
+  EXPECT_NEAR(r.z, std::cos(radians(30)), 1e-15);
   // A unit vector.
   const Ray s = rayFromDirection({-20.0, 35.0});
   EXPECT_NEAR(s.x * s.x + s.y * s.y + s.z * s.z, 1.0, 1e-15);

@@ -6,6 +6,8 @@
 #include <opencv2/calib3d.hpp>
 #include <vector>
 
+#include "core/angles.h"
+
 namespace glarecam::calibration {
 namespace {
 
@@ -33,7 +35,7 @@ TEST(CameraModel, SmallAnglesAreAccurate) {
   const CameraModel camera({2400, 2400, 1223.5, 1023.5, {}});
   // One pixel at the centre subtends atan(1/2400).
   EXPECT_NEAR(angleBetweenDeg(camera.ray({1223.5, 1023.5}), camera.ray({1224.5, 1023.5})),
-              std::atan(1.0 / 2400) * 180 / M_PI, 1e-9);
+              degrees(std::atan(1.0 / 2400)), 1e-9);
 }
 
 // The forward model against OpenCV's own (cv::projectPoints): every angle glarecam measures

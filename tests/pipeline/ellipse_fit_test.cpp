@@ -8,11 +8,12 @@
 #include <random>
 #include <vector>
 
+#include "core/angles.h"
+
 namespace glarecam::pipeline {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kRad = kPi / 180;
 
 Ellipse makeEllipse(double cx, double cy, double a, double b, double angle_rad) {
   Ellipse e;
@@ -69,11 +70,11 @@ struct Case {
 
 std::vector<Case> exactCases() {
   return {{"0 deg", makeEllipse(12.3, -4.7, 20, 12, 0)},
-          {"30 deg", makeEllipse(-3.1, 7.9, 25, 9, 30 * kRad)},
-          {"89 deg", makeEllipse(100.25, 80.5, 18, 11, 89 * kRad)},
-          {"-60 deg", makeEllipse(0.4, -0.2, 7, 3.5, -60 * kRad)},
+          {"30 deg", makeEllipse(-3.1, 7.9, 25, 9, radians(30))},
+          {"89 deg", makeEllipse(100.25, 80.5, 18, 11, radians(89))},
+          {"-60 deg", makeEllipse(0.4, -0.2, 7, 3.5, radians(-60))},
           {"90 deg", makeEllipse(5, 5, 16, 10, kPi / 2)},
-          {"elongated", makeEllipse(640, 512, 40, 4, 12 * kRad)},
+          {"elongated", makeEllipse(640, 512, 40, 4, radians(12))},
           {"circle", makeEllipse(31.7, 28.2, 15, 15, 0)}};
 }
 
@@ -133,11 +134,11 @@ TEST(EllipseFit, AngleAtTheEndsOfItsRange) {
   EXPECT_GT(vertical->ellipse.angle_rad, -kPi / 2);
   EXPECT_LE(vertical->ellipse.angle_rad, kPi / 2);
   for (const double angle_deg : {-179.0, -120.0, -91.0, 91.0, 135.0, 179.5, 270.0}) {
-    const auto fit = fitEllipse(sample(makeEllipse(3, -2, 14, 6, angle_deg * kRad), 30));
+    const auto fit = fitEllipse(sample(makeEllipse(3, -2, 14, 6, radians(angle_deg)), 30));
     ASSERT_TRUE(fit.has_value()) << angle_deg;
     EXPECT_GT(fit->ellipse.angle_rad, -kPi / 2) << angle_deg;
     EXPECT_LE(fit->ellipse.angle_rad, kPi / 2) << angle_deg;
-    EXPECT_LE(orientationDifference(fit->ellipse.angle_rad, angle_deg * kRad), kTolerance)
+    EXPECT_LE(orientationDifference(fit->ellipse.angle_rad, radians(angle_deg)), kTolerance)
         << angle_deg;
   }
 }
@@ -184,7 +185,7 @@ TEST(EllipseFit, NoisyPointsWithinTheirPropagatedUncertainty) {
   // chance for a correct fit; the seed makes it deterministic anyway) and within an absolute
   // 0.05 (one sigma per point; ~5 standard deviations of sigma * sqrt(2 / 100)).
   constexpr double kSigma = 0.05;
-  const Ellipse truth = makeEllipse(40.5, 33.25, 20, 12, 25 * kRad);
+  const Ellipse truth = makeEllipse(40.5, 33.25, 20, 12, radians(25));
   std::mt19937 rng(20240607);
   std::normal_distribution<double> noise(0.0, kSigma);
   std::vector<Point2> points = sample(truth, 100);
@@ -212,7 +213,7 @@ TEST(EllipseFit, NoisyPointsWithinTheirPropagatedUncertainty) {
   EXPECT_LT(std::abs(e.centre.y - 33.25), kSigma);
   // The orientation: sigma / (a - b) rad per point, averaged over the points, ~1e-3 rad;
   // 0.01 rad is ten times that.
-  EXPECT_LT(orientationDifference(e.angle_rad, 25 * kRad), 0.01);
+  EXPECT_LT(orientationDifference(e.angle_rad, radians(25)), 0.01);
   // The orthogonal residuals are the normal component of the noise: rms ~ sigma, less the
   // five fitted parameters' share (sqrt(95/100)); 20 % covers the sampling scatter of an rms
   // of 100 values (~7 %) three times over.
@@ -231,7 +232,7 @@ TEST(EllipseFit, NoisyFitsScatterAsTheSensitivitiesPredict) {
   // empirical standard deviation scatters by ~1/sqrt(600) ~ 4 %; allow 20 %.
   constexpr double kSigma = 0.05;
   constexpr int kTrials = 300;
-  const Ellipse truth = makeEllipse(0, 0, 20, 12, -40 * kRad);
+  const Ellipse truth = makeEllipse(0, 0, 20, 12, radians(-40));
   const std::vector<Point2> exact = sample(truth, 60);
   const auto reference = fitEllipse(exact);
   ASSERT_TRUE(reference.has_value());

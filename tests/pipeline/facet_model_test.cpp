@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/angles.h"
+
 namespace glarecam::pipeline {
 namespace {
 
@@ -21,7 +23,7 @@ TEST(FacetModel, MatchesTheClosedFormsAtNormalAndGrazingIncidence) {
   EXPECT_LT(grazing.gamma_ew_deg, 0.1);
   EXPECT_FALSE(grazing.valid);  // elevation 1° < β
   // At 60° from the normal (elevation 30°): cos γ = cos²30 - sin²30 + 2 sin²30 cos²β.
-  const double e = 30.0 * std::numbers::pi / 180, b = 2.5 * std::numbers::pi / 180;
+  const double e = radians(30.0), b = radians(2.5);
   const double expected = std::acos(std::cos(e) * std::cos(e) - std::sin(e) * std::sin(e) +
                                     2 * std::sin(e) * std::sin(e) * std::cos(b) * std::cos(b));
   EXPECT_NEAR(facetSpread(60.0, 2.5).gamma_ew_deg, expected * 180 / std::numbers::pi, 1e-9);

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <opencv2/imgproc.hpp>
 
+#include "core/angles.h"
 #include "pipeline/glare_analysis.h"
 #include "support/sim_support.h"
 
@@ -69,7 +70,7 @@ TEST(GlareEllipse, CentredLobeMatchesTruth) {
   EXPECT_NEAR(e.orientation_deg, 0.0, 1.0);
   EXPECT_DOUBLE_EQ(e.major_deg, e.horizontal_deg);
   // Solid angle of a small ellipse: pi a b (in radians) to well under 1 %.
-  const double a = e.major_deg / 2 * M_PI / 180, b = e.minor_deg / 2 * M_PI / 180;
+  const double a = radians(e.major_deg / 2), b = radians(e.minor_deg / 2);
   EXPECT_NEAR(e.solid_angle_sr / (M_PI * a * b), 1.0, 0.005);
 }
 
@@ -158,7 +159,7 @@ TEST(GlareEllipse, BinaryMaskBaselineIsBiasedWhereTheSubPixelContourIsNot) {
   ASSERT_EQ(contours.size(), 1u);
   const cv::RotatedRect binary = cv::fitEllipse(contours.front());
   // Pixels per degree at the image centre, where the lobe is: fx in px per radian.
-  const double px_per_deg = m.scene.intrinsics.fx * M_PI / 180.0;
+  const double px_per_deg = m.scene.intrinsics.fx * radians(1.0);
   const double truth_major_px = m.scene.truth.limit_axes->horizontal_deg * px_per_deg;
   const double binary_error =
       std::max(binary.size.width, binary.size.height) / truth_major_px - 1.0;
@@ -335,7 +336,7 @@ TEST(GlareEllipse, DarkImageHasNoEllipses) {
 TEST(GlareEllipse, SolidAngleOfAConeIsExact) {
   // A circular cone of half-angle theta: 2 pi (1 - cos theta).
   for (const double half_deg : {0.5, 5.0, 30.0}) {
-    const double expected = 2 * M_PI * (1 - std::cos(half_deg * M_PI / 180));
+    const double expected = 2 * M_PI * (1 - std::cos(radians(half_deg)));
     EXPECT_NEAR(ellipseSolidAngleSr(half_deg, half_deg) / expected, 1.0, 1e-12);
   }
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/angles.h"
 #include "pipeline/sweep_fits_test_support.h"
 #include "support/test_support.h"
 
@@ -15,7 +16,7 @@ namespace {
 
 using testing::fitsOf;
 
-constexpr double kMradPerDeg = 1000.0 * std::numbers::pi / 180.0;
+constexpr double kMradPerDeg = 1000.0 * radians(1.0);
 
 TEST(CircularBeamSpread, ACircleIsItsOwnEquivalentCone) {
   // A circular ellipse of full angle 5°: the equal-solid-angle cone is the same cone, so beta is

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <string>
 
+#include "core/angles.h"
 #include "sun/utc_time.h"
 
 namespace glarecam::sun {
@@ -127,8 +128,7 @@ TEST(SolarPositionTest, AgreesWithAstropyAtOtherSitesAndDates) {
     ASSERT_TRUE(position) << position.error().message;
     const double elevation_error = std::abs(position->true_elevation_deg - c.true_elevation_deg);
     const double azimuth_error = azimuthDifferenceDeg(position->azimuth_deg, c.azimuth_deg);
-    const double azimuth_on_sky =
-        azimuth_error * std::cos(c.true_elevation_deg * std::numbers::pi / 180.0);
+    const double azimuth_on_sky = azimuth_error * std::cos(radians(c.true_elevation_deg));
     EXPECT_LT(elevation_error, kToleranceDeg);
     EXPECT_LT(azimuth_on_sky, kToleranceDeg);
     EXPECT_LT(azimuth_error, kBudgetDeg);

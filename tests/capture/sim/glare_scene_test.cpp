@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "core/angles.h"
+
 namespace glarecam::capture {
 namespace {
 
@@ -15,7 +17,7 @@ calibration::Ray rotateTowards(const calibration::Ray& base, calibration::Ray to
   const double d = towards.x * base.x + towards.y * base.y + towards.z * base.z;
   calibration::Ray t{towards.x - d * base.x, towards.y - d * base.y, towards.z - d * base.z};
   const double n = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
-  const double a = angle_deg * M_PI / 180.0;
+  const double a = radians(angle_deg);
   return {std::cos(a) * base.x + std::sin(a) * t.x / n,
           std::cos(a) * base.y + std::sin(a) * t.y / n,
           std::cos(a) * base.z + std::sin(a) * t.z / n};

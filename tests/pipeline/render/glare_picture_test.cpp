@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/angles.h"
 #include "pipeline/glare_analysis.h"
 #include "support/sim_support.h"
 
@@ -73,10 +74,10 @@ TEST(GlarePicture, DrawsTheContourTheCirclesAndNothingElsewhere) {
   }
   // The 10° circle around the maximum, straight below it: f * tan(10°) px on a pinhole camera
   // whose lobe sits on the optical axis. The faint white line lifts the dark background there.
-  const double below_px = p.scene.intrinsics.fy * std::tan(10.0 * M_PI / 180.0);
+  const double below_px = p.scene.intrinsics.fy * std::tan(radians(10.0));
   EXPECT_GT(lift(p, p.scene.centre_px.x, p.scene.centre_px.y + below_px), 60);
   // Half-way between the 5° and 10° circles, off the axes and away from the legend: untouched.
-  const double between_px = p.scene.intrinsics.fy * std::tan(7.5 * M_PI / 180.0);
+  const double between_px = p.scene.intrinsics.fy * std::tan(radians(7.5));
   EXPECT_EQ(lift(p, p.scene.centre_px.x + between_px * 0.7071,
                  p.scene.centre_px.y - between_px * 0.7071, 0),
             0);
@@ -85,10 +86,10 @@ TEST(GlarePicture, DrawsTheContourTheCirclesAndNothingElsewhere) {
 TEST(GlarePicture, WithoutEllipsesOnlyTheCirclesAreDrawn) {
   const Pictures p = render(false);
   // Where the limit contour would cross the horizontal through the centre (2.85° out): nothing.
-  const double contour_px = p.scene.intrinsics.fx * std::tan(2.85 * M_PI / 180.0);
+  const double contour_px = p.scene.intrinsics.fx * std::tan(radians(2.85));
   EXPECT_EQ(lift(p, p.scene.centre_px.x + contour_px, p.scene.centre_px.y, 0), 0);
   // The 5° circle is still there.
-  const double circle_px = p.scene.intrinsics.fy * std::tan(5.0 * M_PI / 180.0);
+  const double circle_px = p.scene.intrinsics.fy * std::tan(radians(5.0));
   EXPECT_GT(lift(p, p.scene.centre_px.x, p.scene.centre_px.y + circle_px), 60);
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/atomic_file.h"
+#include "core/time.h"
 
 namespace glarecam::calibration {
 namespace {
@@ -250,10 +251,9 @@ Status checkCalibrationUse(const Calibration& calibration, const StackManifest& 
     const auto measured =
         part.is_object() ? isoDate(stringField(part, "measured_at")) : std::nullopt;
     if (!measured) continue;
-    const std::chrono::sys_days today =
-        options.today == std::chrono::sys_days{}
-            ? std::chrono::floor<std::chrono::days>(std::chrono::system_clock::now())
-            : options.today;
+    const std::chrono::sys_days today = options.today == std::chrono::sys_days{}
+                                            ? std::chrono::floor<std::chrono::days>(utcNow())
+                                            : options.today;
     const auto age_days = (today - *measured).count();
     if (age_days > options.max_age_days) {
       warnings.push_back(

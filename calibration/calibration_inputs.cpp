@@ -9,6 +9,7 @@
 #include <ctime>
 
 #include "core/progress.h"
+#include "core/time.h"
 
 namespace glarecam::calibration {
 namespace {
@@ -31,15 +32,6 @@ Status checkSameCamera(const CalibrationInputs& inputs, const Stack& stack,
                                 inputs.stack_paths.front(), first.width(), first.height()));
   }
   return {};
-}
-
-std::string nowIso() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
 }
 
 }  // namespace
@@ -89,10 +81,11 @@ CalibrationDocument partDocument(const CalibrationInputs& inputs, const std::str
   CalibrationDocument document;
   document.camera = inputs.camera;
   document.values = std::move(values);
-  document.parts[part] = {
-      .measured_at = inputs.latest_capture.empty() ? nowIso() : inputs.latest_capture,
-      .method = method,
-      .inputs = inputs.stack_paths};
+  document.parts[part] = {.measured_at = inputs.latest_capture.empty()
+                                             ? formatUtc(utcNow(), "%Y-%m-%dT%H:%M:%SZ")
+                                             : inputs.latest_capture,
+                          .method = method,
+                          .inputs = inputs.stack_paths};
   return document;
 }
 

@@ -11,6 +11,7 @@
 #include "capture/sim/sim_camera.h"
 #include "core/progress.h"
 #include "core/stack_io.h"
+#include "core/time.h"
 
 namespace glarecam::capture {
 namespace {
@@ -168,14 +169,6 @@ Result<Bracket> autoBracket(Camera& camera, const CaptureSettings& settings, Pro
   return bracket;
 }
 
-std::string utcTimestamp(std::time_t time, const char* format) {
-  std::tm utc{};
-  gmtime_r(&time, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, format, &utc);
-  return text;
-}
-
 nlohmann::json cameraJson(const Camera& camera) {
   const CameraInfo& info = camera.info();
   const SensorFormat format = camera.format();
@@ -205,11 +198,10 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
                            const Bracket& bracket) {
   const std::optional<double> alpha_deg = alphaFor(camera, settings);
   StackManifest manifest;
-  const std::time_t now = std::chrono::system_clock::to_time_t(
-      settings.start_time.value_or(std::chrono::system_clock::now()));
-  const std::string stamp = utcTimestamp(now, "%Y%m%dT%H%M%SZ");
+  const UtcTime now = settings.start_time.value_or(utcNow());
+  const std::string stamp = formatUtc(now, "%Y%m%dT%H%M%SZ");
   manifest.id = stackId(stamp, alpha_deg);
-  manifest.captured_at = utcTimestamp(now, "%Y-%m-%dT%H:%M:%SZ");
+  manifest.captured_at = formatUtc(now, "%Y-%m-%dT%H:%M:%SZ");
   manifest.alpha_deg = alpha_deg;
   manifest.calibration = calibrationFor(camera, settings);
   const CameraOptics& known = camera.info().optics;

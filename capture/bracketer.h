@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/stack_manifest.h"
+#include "core/time.h"
 
 namespace glarecam::capture {
 
@@ -32,7 +33,7 @@ struct CaptureSettings {
   bool show_progress = false;
   // The stack's time (its id and captured_at); default the system clock's when the bracket
   // starts. The daemon's clock may differ (simulated time).
-  std::optional<std::chrono::system_clock::time_point> start_time;
+  std::optional<UtcTime> start_time;
 };
 
 struct CapturedStack {

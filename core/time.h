@@ -1,8 +1,10 @@
 // An instant in UTC to the microsecond, the time every stack, sun position and schedule uses,
-// and the system clock's now as one. Text in ISO 8601 is sun/utc_time.h's.
+// the system clock's now as one, and its whole seconds as text. Parsing ISO 8601 (zones,
+// fractions) is sun/utc_time.h's.
 #pragma once
 
 #include <chrono>
+#include <string>
 
 namespace glarecam {
 
@@ -12,5 +14,9 @@ using UtcTime = std::chrono::sys_time<std::chrono::microseconds>;
 inline UtcTime utcNow() {
   return std::chrono::time_point_cast<std::chrono::microseconds>(std::chrono::system_clock::now());
 }
+
+// `time`'s whole seconds in UTC through strftime(3)'s `format`: "%Y-%m-%dT%H:%M:%SZ" (a
+// manifest's captured_at), "%Y%m%dT%H%M%SZ" (a stack's id).
+std::string formatUtc(UtcTime time, const char* format);
 
 }  // namespace glarecam

@@ -61,6 +61,19 @@ Result<DriftReport> checkLuminanceDrift(const DriftCheckOptions& options) {
   GLARECAM_ASSIGN(prior, readPriorCalibration(options.calibrations, inputs));
   if (!prior.luminance_factor)
     return badInput("calibrate luminance --check: the calibration has no luminance_factor");
+  if (!(*prior.luminance_factor > 0 && std::isfinite(*prior.luminance_factor))) {
+    return badInput(fmt::format(
+        "calibrate luminance --check: the calibration's luminance_factor {:g} must be a positive "
+        "finite number",
+        *prior.luminance_factor));
+  }
+  if (prior.luminance_factor_u &&
+      !(*prior.luminance_factor_u >= 0 && std::isfinite(*prior.luminance_factor_u))) {
+    return badInput(fmt::format(
+        "calibrate luminance --check: the calibration's luminance_factor_u {:g} must be a "
+        "non-negative finite number",
+        *prior.luminance_factor_u));
+  }
   LuminanceCalibration measured;
   GLARECAM_ASSIGN(measured, measureLuminance(inputs, prior, options.roi, options.reference));
   const double k = *prior.luminance_factor;

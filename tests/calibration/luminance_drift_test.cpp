@@ -192,6 +192,19 @@ TEST_F(LuminanceDrift, BadFilesAreNamed) {
   expectBadInput(calibration::checkLuminanceDrift(check),
                  "the calibration has no luminance_factor");
   EXPECT_FALSE(fs::exists(*check.log));
+
+  // A K of zero would divide the drift by zero, a negative one flip its sign.
+  const std::string zero_k = (dir_->path() / "rig" / "zero-k.json").string();
+  writeCalibration(zero_k, {{"luminance_factor", 0}});
+  check.calibrations = {zero_k};
+  expectBadInput(calibration::checkLuminanceDrift(check),
+                 "the calibration's luminance_factor 0 must be a positive finite number");
+  const std::string negative_u = (dir_->path() / "rig" / "negative-u.json").string();
+  writeCalibration(negative_u, {{"luminance_factor", 1500}, {"luminance_factor_u", -1}});
+  check.calibrations = {negative_u};
+  expectBadInput(calibration::checkLuminanceDrift(check),
+                 "the calibration's luminance_factor_u -1 must be a non-negative");
+  EXPECT_FALSE(fs::exists(*check.log));
 }
 
 }  // namespace

@@ -115,9 +115,11 @@ Status runCapture(const CaptureRunOptions& options) {
     return badInput(fmt::format("capture: --out {} is not a directory", out.string()));
   // A capture killed while writing leaves its hidden staging directory: old ones go now.
   if (std::filesystem::is_directory(out, error)) removeStaleTemporaries(out, kStaleTemporaryAge);
-  const capture::SceneAlphaSource scene_alpha =
-      rig ? capture::SceneAlphaSource([&rig] { return rig->sceneAlphaDeg(); })
-          : capture::SceneAlphaSource([alpha = options.alpha_deg] { return alpha; });
+  // The α the rig measured for this stack; else the --alpha given (a config without [site]).
+  const capture::SceneAlphaSource scene_alpha = [&rig, given = options.alpha_deg] {
+    const std::optional<double> measured = rig ? rig->sceneAlphaDeg() : std::nullopt;
+    return measured ? measured : given;
+  };
   std::unique_ptr<capture::Camera> camera;
   GLARECAM_ASSIGN(camera, capture::openCamera(camera_uri, capture::cameraOptions(options.capture),
                                               scene_alpha));

@@ -95,6 +95,16 @@ Result<double> shownAlphaDeg(double alpha_deg) {
   return alpha_deg;
 }
 
+// A URI's alpha= fixes the scene: every α the rig asks for must show that one.
+Status agreesWithUriAlpha(double uri_alpha_deg, double asked_deg) {
+  const Result<double> shown = shownAlphaDeg(asked_deg);
+  if (shown && *shown == uri_alpha_deg) return {};
+  return badInput(
+      fmt::format("camera URI sim: alpha={:g} contradicts the capture's α {:g} (--alpha, or "
+                  "measured through --config); give the scene's α once",
+                  uri_alpha_deg, asked_deg));
+}
+
 std::string sceneDetail(const SimulationOptions& options) {
   return fmt::format("α {:g}°, {}x{}, seed {}", options.alpha_deg, options.width, options.height,
                      options.seed);
@@ -102,11 +112,13 @@ std::string sceneDetail(const SimulationOptions& options) {
 
 class SimCamera final : public Camera, public SceneTruthSource {
  public:
+  // `alpha_fixed`: the URI gave alpha=, which every α the source gives must agree with.
   SimCamera(SimulationOptions options, SimulatedScene scene, std::string uri,
-            SceneAlphaSource scene_alpha)
+            SceneAlphaSource scene_alpha, bool alpha_fixed)
       : options_(std::move(options)),
         scene_(std::move(scene)),
-        scene_alpha_(std::move(scene_alpha)) {
+        scene_alpha_(std::move(scene_alpha)),
+        alpha_fixed_(alpha_fixed) {
     info_ = {.uri = std::move(uri),
              .backend = "sim",
              .vendor = "glarecam",
@@ -158,11 +170,13 @@ class SimCamera final : public Camera, public SceneTruthSource {
     return frames;
   }
 
-  // The scene at the α the source gives now (a calibration target has none).
+  // The scene at the α the source gives now (a calibration target has none); a URI's alpha=
+  // stays, and refuses an α that contradicts it.
   Status showSourceAlpha() {
     if (!scene_alpha_ || !options_.calibration_target.empty()) return {};
     const std::optional<double> asked = scene_alpha_();
     if (!asked) return {};
+    if (alpha_fixed_) return agreesWithUriAlpha(options_.alpha_deg, *asked);
     double shown = 0;
     GLARECAM_ASSIGN(shown, shownAlphaDeg(*asked));
     if (shown == options_.alpha_deg) return {};
@@ -186,6 +200,7 @@ class SimCamera final : public Camera, public SceneTruthSource {
   SimulationOptions options_;
   SimulatedScene scene_;
   SceneAlphaSource scene_alpha_;
+  bool alpha_fixed_ = false;
   CameraInfo info_;
   std::uint64_t frames_taken_ = 0;
 };
@@ -227,20 +242,18 @@ class SimCameraBackend final : public CameraBackend {
                                   kSimPixelFormat, *options.pixel_format));
     }
     // An α beyond the scene's range (a low sun) does not keep the camera from opening: a bracket
-    // taken there fails, naming it.
+    // taken there fails, naming it. One that contradicts the URI's alpha= does.
+    const bool alpha_fixed = uriGivesAlpha(id);
     std::optional<double> asked_deg = scene_alpha_ ? scene_alpha_() : std::nullopt;
-    if (asked_deg && !shownAlphaDeg(*asked_deg)) asked_deg.reset();
+    if (asked_deg && !alpha_fixed && !shownAlphaDeg(*asked_deg)) asked_deg.reset();
     SimulationOptions sim;
     GLARECAM_ASSIGN(sim, parseSimCameraId(id, asked_deg));
     auto rendered = sim.calibration_target.empty() ? renderSimulatedScene(sim) : targetScene(sim);
     if (!rendered) {
       return badInput(fmt::format("camera URI 'sim:{}': {}", id, rendered.error().message));
     }
-    // A URI that fixes α keeps it: the source may not move the scene (parseSimCameraId checked
-    // that it agrees now).
-    SceneAlphaSource source = uriGivesAlpha(id) ? SceneAlphaSource{} : scene_alpha_;
     return std::make_unique<SimCamera>(std::move(sim), std::move(*rendered),
-                                       "sim:" + std::string(id), std::move(source));
+                                       "sim:" + std::string(id), scene_alpha_, alpha_fixed);
   }
 
  private:
@@ -267,19 +280,16 @@ std::optional<nlohmann::json> sceneTruthOf(const Camera& camera) {
 Result<SimulationOptions> parseSimCameraId(std::string_view id,
                                            std::optional<double> scene_alpha_deg) {
   SimulationOptions sim;
-  if (scene_alpha_deg) {
-    GLARECAM_ASSIGN(sim.alpha_deg, shownAlphaDeg(*scene_alpha_deg));
-  }
-  const double asked_deg = sim.alpha_deg;
+  bool alpha_given = false;
   GLARECAM_CHECK(
       forEachUriParameter(id, kUriName, [&](std::string_view key, std::string_view value) {
+        alpha_given = alpha_given || key == "alpha";
         return applyParameter(key, value, sim);
       }));
-  if (scene_alpha_deg && sim.alpha_deg != asked_deg) {
-    return badInput(
-        fmt::format("camera URI sim: alpha={:g} contradicts the capture's α {:g} (--alpha, or "
-                    "measured through --config); give the scene's α once",
-                    sim.alpha_deg, *scene_alpha_deg));
+  if (scene_alpha_deg && alpha_given) {
+    GLARECAM_CHECK(agreesWithUriAlpha(sim.alpha_deg, *scene_alpha_deg));
+  } else if (scene_alpha_deg) {
+    GLARECAM_ASSIGN(sim.alpha_deg, shownAlphaDeg(*scene_alpha_deg));
   }
   if (!(sim.alpha_deg >= 0 && sim.alpha_deg <= pipeline::kMaxLimitAlphaDeg)) {
     return badInput(

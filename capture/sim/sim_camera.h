@@ -6,7 +6,9 @@
 //   target=dark|flat|linearity|noise|luminance|board   a calibration target instead of the module
 // The scene's α comes from the camera's SceneAlphaSource (camera_registry.h: the rig's measured α,
 // or the capture's --alpha), asked before each bracket; the scene is rendered again when it
-// changed. Without one, the URI's alpha=, else the simulator's default. An α up to
+// changed. Without one, the URI's alpha=, else the simulator's default. A URI's alpha= fixes the
+// scene: an α from the source that contradicts it is refused (at open, or by the bracket), so a
+// stack never records one α and shows another. An α up to
 // kSceneAlphaSlackDeg past the method's 80° (an inclinometer's noise around an 80° target) shows
 // the 80° scene; beyond that a bracket is refused.
 // The camera knows its calibration (CameraInfo::calibration) and the truth of what it shows

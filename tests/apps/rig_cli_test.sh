@@ -180,6 +180,7 @@ expect "capture: geometry block in the manifest" grep -q '"geometry"' "$stack/st
 expect "capture: module tilt in the geometry" near "$(json_number module_tilt_deg "$stack/stack.json")" 60 0.005
 expect "capture: α measured, not given" near "$(json_number alpha_deg "$stack/stack.json")" 30 0.005
 expect "capture: raw inclinometer reading" grep -q '"x_g"' "$stack/stack.json"
+expect "capture: the scene shows the measured α" near "$(json_number alpha_deg "$stack/truth.json")" 30 0.005
 check "capture: processing the geometry-tagged stack" 0 "$GLARECAM" process "$stack" --out "$WORK/result" -q
 check "capture: --alpha contradicts the config" 2 "$GLARECAM" capture --camera sim: --config "$WORK/lab.toml" \
   --alpha 20 --out "$WORK/stacks2"
@@ -187,6 +188,18 @@ expect "capture: contradiction is one line" one_line_naming "--alpha"
 check "capture: no camera anywhere" 2 "$GLARECAM" capture --config "$WORK/lab.toml" --out "$WORK/stacks3"
 check "capture: bad config" 2 "$GLARECAM" capture --camera sim: --config "$WORK/bad.toml" --out "$WORK/stacks4"
 expect "capture: nothing written on a bad config" test ! -e "$WORK/stacks4"
+# A config without [site]: α is the one given, and the simulated scene shows it.
+printf 'camera = "sim:size=64x48"\n' >"$WORK/camera-only.toml"
+check "capture: --alpha with a config that gives no α" 0 "$GLARECAM" capture --config "$WORK/camera-only.toml" \
+  --alpha 20 --out "$WORK/given" --no-progress
+stack=$(cat "$WORK/out")
+expect "capture: the given α recorded" near "$(json_number alpha_deg "$stack/stack.json")" 20 1e-9
+expect "capture: the scene shows the given α" near "$(json_number alpha_deg "$stack/truth.json")" 20 1e-9
+# A sim: URI's alpha= fixes the scene: a measured α that contradicts it is refused, not recorded.
+check "capture: URI alpha= contradicts the measured α" 2 "$GLARECAM" capture \
+  --camera "sim:size=64x48,alpha=50" --config "$WORK/lab.toml" --out "$WORK/fixed" --no-progress
+expect "capture: the contradiction is one line" one_line_naming "alpha=50 contradicts the capture's α"
+expect "capture: nothing written for a contradiction" test ! -e "$WORK/fixed"
 # The same rule as glarecamd: a tilt outside [faults] min/max_tilt_deg is a fault, not an α.
 { cat "$WORK/lab.toml"; printf '[faults]\nmax_tilt_deg = 45\n'; } >"$WORK/implausible.toml"
 check "capture: an implausible tilt is refused" 1 "$GLARECAM" capture --camera "sim:size=160x128" \

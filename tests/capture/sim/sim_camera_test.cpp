@@ -132,11 +132,30 @@ TEST(SimCamera, AnAlphaInItsUriIsKeptAndMayNotBeContradicted) {
   EXPECT_NE(contradicted.error().message.find("alpha=40 contradicts the capture's α 20"),
             std::string::npos)
       << contradicted.error().message;
+  alpha_deg = 85.0;  // beyond the scene's range: still a contradiction, not a low sun
+  contradicted = openCamera("sim:size=64x48,alpha=40", {}, [&] { return alpha_deg; });
+  ASSERT_FALSE(contradicted);
+  EXPECT_NE(contradicted.error().message.find("alpha=40 contradicts the capture's α 85"),
+            std::string::npos)
+      << contradicted.error().message;
+
+  // Opened before α is known, the URI's α is kept, and every bracket checks it: a stack must
+  // never record one α and show another.
   alpha_deg.reset();
   auto fixed = openCamera("sim:size=64x48,alpha=40", {}, [&] { return alpha_deg; });
   ASSERT_TRUE(fixed) << fixed.error().message;
+  const std::vector<ExposureRequest> one{{1000, 0}};
+  ASSERT_TRUE((*fixed)->capture(one));
+  EXPECT_DOUBLE_EQ(truthAlpha(**fixed), 40.0);
+  alpha_deg = 40.0;
+  ASSERT_TRUE((*fixed)->capture(one));
   alpha_deg = 60.0;
-  ASSERT_TRUE((*fixed)->capture(std::vector<ExposureRequest>{{1000, 0}}));
+  auto moved = (*fixed)->capture(one);
+  ASSERT_FALSE(moved);
+  EXPECT_EQ(moved.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(moved.error().message.find("alpha=40 contradicts the capture's α 60"),
+            std::string::npos)
+      << moved.error().message;
   EXPECT_DOUBLE_EQ(truthAlpha(**fixed), 40.0);
 }
 

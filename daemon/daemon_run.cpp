@@ -4,20 +4,13 @@
 
 #include <memory>
 
-#include "daemon/capture_daemon.h"
 #include "daemon/signal_forwarder.h"
 
 namespace glarecam::daemon {
 
-namespace {
-
-struct Rig {
-  DaemonOptions options;
-  std::unique_ptr<DaemonClock> clock;
-};
-
-Result<Rig> rigFor(const DaemonRunOptions& run) {
-  Rig rig;
+Result<DaemonRig> prepareDaemonRig(const DaemonRunOptions& run) {
+  GLARECAM_CHECK(run.validate());
+  DaemonRig rig;
   rig.options.output_root = run.output_root;
   rig.options.interval = run.interval;
   rig.options.max_stacks = run.max_stacks;
@@ -37,8 +30,6 @@ Result<Rig> rigFor(const DaemonRunOptions& run) {
   return rig;
 }
 
-}  // namespace
-
 Status DaemonRunOptions::validate() const {
   if (simulate && config_path)
     return badInput("--simulate runs the simulated rig: give --config or --simulate, not both");
@@ -54,10 +45,7 @@ Status DaemonRunOptions::validate() const {
   return {};
 }
 
-Status runDaemon(const DaemonRunOptions& options) {
-  GLARECAM_CHECK(options.validate());
-  Rig rig;
-  GLARECAM_ASSIGN(rig, rigFor(options));
+Status runDaemon(const DaemonRig& rig) {
   const auto notifier = makeSystemdNotifier();
   const auto disk = makeStatvfsDiskProbe();
   std::unique_ptr<CaptureDaemon> daemon;

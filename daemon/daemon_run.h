@@ -1,18 +1,21 @@
-// glarecamd as one call: the daemon (capture_daemon.h) on the machine's clock, systemd's notifier
-// and the statvfs disk probe, with signals forwarded into its loop (signal_forwarder.h) — or, with
-// `simulate`, on the simulated rig (simulated_rig.h) and a time-lapse clock. Runs until SIGTERM,
-// the stack count or a failure. Errors: kBadInput for an invalid config (glarecamd exits 78, which
-// systemd does not restart on), anything else a failure (exit 1: systemd restarts).
+// glarecamd in two calls: prepareDaemonRig() turns the command line into the daemon's options
+// and clock (with `simulate`, the simulated rig (simulated_rig.h) written under --output, on a
+// time-lapse clock); runDaemon() runs the daemon (capture_daemon.h) on it with systemd's notifier
+// and the statvfs disk probe, signals forwarded into its loop (signal_forwarder.h), until SIGTERM,
+// the stack count or a failure. Two calls because their bad inputs differ for systemd: the
+// command line's exits 2, the config's 78 (which systemd does not restart on).
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "core/error.h"
 #include "core/time.h"
+#include "daemon/capture_daemon.h"
 #include "daemon/simulated_rig.h"
 
 namespace glarecam::daemon {
@@ -37,6 +40,16 @@ struct DaemonRunOptions {
   Status validate() const;
 };
 
-Status runDaemon(const DaemonRunOptions& options);
+// The options and clock the daemon runs on. Errors: kBadInput for bad options (exit 2), anything
+// else a failure (exit 1).
+struct DaemonRig {
+  DaemonOptions options;
+  std::unique_ptr<DaemonClock> clock;
+};
+Result<DaemonRig> prepareDaemonRig(const DaemonRunOptions& options);
+
+// Runs until it stops. Errors: kBadInput for an invalid config (exit 78), anything else a failure
+// (exit 1: systemd restarts).
+Status runDaemon(const DaemonRig& rig);
 
 }  // namespace glarecam::daemon

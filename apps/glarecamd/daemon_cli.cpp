@@ -121,7 +121,12 @@ int runGlarecamd(int argc, char** argv) {
     return kExitBadInput;
   }
   setUpLogging(args);
-  const Status ran = catchExceptions([&] { return daemon::runDaemon(*run); });
+  const Result<daemon::DaemonRig> rig = catchExceptions([&] { return daemon::prepareDaemonRig(*run); });
+  if (!rig) {
+    spdlog::critical("glarecamd: {}", rig.error().message);
+    return rig.error().code == ErrorCode::kBadInput ? kExitBadInput : kExitFailure;
+  }
+  const Status ran = catchExceptions([&] { return daemon::runDaemon(*rig); });
   if (ran) return kExitSuccess;
   spdlog::critical("glarecamd: {}", ran.error().message);
   return ran.error().code == ErrorCode::kBadInput ? kExitConfig : kExitFailure;

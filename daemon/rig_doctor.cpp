@@ -67,9 +67,11 @@ DoctorCheck checkCamera(const Config& config, const CameraOpener& open,
                      [alpha_deg] { return alpha_deg; });
   if (!camera) return failed("camera", camera.error().message);
   const capture::CameraLimits limits = (*camera)->limits();
+  // The camera's own range (Camera::capture refuses anything outside it): a sensor whose least
+  // analogue gain is above 1× takes its test frame there.
   const capture::ExposureRequest request{
       .exposure_us = std::clamp(kTestExposureUs, limits.min_exposure_us, limits.max_exposure_us),
-      .gain_db = 0.0};
+      .gain_db = std::clamp(0.0, limits.min_gain_db, limits.max_gain_db)};
   auto frames = (*camera)->capture(std::span(&request, 1));
   if (!frames) return failed("camera", frames.error().message);
   const RawFrame& frame = frames->front().image;

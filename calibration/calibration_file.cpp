@@ -56,6 +56,16 @@ Result<PartProvenance> parsePart(const json& part, const std::string& name,
   }
   provenance.measured_at = part.at("measured_at").get<std::string>();
   provenance.method = part.at("method").get<std::string>();
+  for (auto [key, size] : {std::pair{"width", &provenance.width}, {"height", &provenance.height}}) {
+    if (!part.contains(key)) continue;
+    const json& value = part.at(key);
+    if (!value.is_number() || !(value.get<double>() >= 1 && value.get<double>() <= kMaxImageSide) ||
+        value.get<double>() != std::floor(value.get<double>()))
+      return badInput(fmt::format("{}.{} must be a whole number of pixels", field, key));
+    *size = value.get<int>();
+  }
+  if (provenance.width.has_value() != provenance.height.has_value())
+    return badInput(field + " gives width and height together or neither");
   if (part.contains("inputs")) {
     if (!part.at("inputs").is_array()) return badInput(field + ".inputs must be a list of paths");
     for (const json& input : part.at("inputs")) {
@@ -107,6 +117,31 @@ Status mergeCamera(CameraIdentity& into, const CameraIdentity& from, const fs::p
   GLARECAM_CHECK(merge(into.model, from.model, "model"));
   GLARECAM_CHECK(merge(into.serial, from.serial, "serial"));
   return merge(into.pixel_format, from.pixel_format, "pixel_format");
+}
+
+// The frame size a part was measured at, and where it was stated, for the merge's check.
+struct SizeWitness {
+  int width = 0, height = 0;
+  std::string what;  // "part flat", "the intrinsics"
+  fs::path file;
+};
+
+// The sizes a document states: each part's, and the intrinsics' own (which `calibrate
+// intrinsics` has always recorded).
+std::vector<SizeWitness> statedSizes(const CalibrationDocument& document, const fs::path& file) {
+  std::vector<SizeWitness> sizes;
+  for (const auto& [name, part] : document.parts) {
+    if (part.width && part.height)
+      sizes.push_back({*part.width, *part.height, "part " + name, file});
+  }
+  const auto intrinsics = document.values.find("intrinsics");
+  if (intrinsics != document.values.end() && intrinsics->is_object() &&
+      intrinsics->contains("width") && intrinsics->contains("height") &&
+      (*intrinsics)["width"].is_number_integer() && (*intrinsics)["height"].is_number_integer()) {
+    sizes.push_back({(*intrinsics)["width"].get<int>(), (*intrinsics)["height"].get<int>(),
+                     "the intrinsics", file});
+  }
+  return sizes;
 }
 
 }  // namespace
@@ -168,6 +203,10 @@ json toJson(const CalibrationDocument& document) {
   for (const auto& [name, part] : document.parts) {
     parts[name] = {
         {"measured_at", part.measured_at}, {"method", part.method}, {"inputs", part.inputs}};
+    if (part.width && part.height) {
+      parts[name]["width"] = *part.width;
+      parts[name]["height"] = *part.height;
+    }
   }
   out[kPartsKey] = parts;
   return out;
@@ -181,10 +220,21 @@ Result<CalibrationDocument> mergeCalibrationDocuments(
     std::span<const CalibrationDocument> documents, std::span<const fs::path> files,
     std::vector<std::string>& warnings) {
   CalibrationDocument merged;
+  std::optional<SizeWitness> first_size;
   for (std::size_t i = 0; i < documents.size(); ++i) {
     const CalibrationDocument& document = documents[i];
     const fs::path directory = files[i].parent_path();
     GLARECAM_CHECK(mergeCamera(merged.camera, document.camera, files[i]));
+    // A flat field or intrinsics of another size than the frames would be wrong for every stack.
+    for (SizeWitness& size : statedSizes(document, files[i])) {
+      if (!first_size) first_size = std::move(size);
+      else if (size.width != first_size->width || size.height != first_size->height)
+        return badInput(fmt::format(
+            "{}: {} was measured at {}x{}, but {} of {} at {}x{}: make every part at the "
+            "camera's capture size",
+            files[i].string(), size.what, size.width, size.height, first_size->what,
+            first_size->file.string(), first_size->width, first_size->height));
+    }
     for (const auto& [key, value] : document.values.items()) {
       json moved = value;
       if (isPathKey(key)) moved = fs::absolute(directory / value.get<std::string>()).string();

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -32,6 +33,9 @@ struct PartProvenance {
   std::string measured_at;          // ISO 8601 UTC
   std::string method;               // how, in one line
   std::vector<std::string> inputs;  // the stacks, as given
+  // The frames' size it was measured at (absent in files written before glarecam recorded it):
+  // parts of one calibration must agree (mergeCalibrationDocuments).
+  std::optional<int> width = std::nullopt, height = std::nullopt;
 };
 
 struct CalibrationDocument {

@@ -58,7 +58,11 @@ Result<CalibrationInputs> readCalibrationInputs(std::span<const std::string> sta
     Stack stack;
     GLARECAM_ASSIGN(stack, readStack(path, read_options));
     if (!inputs.frames.empty()) GLARECAM_CHECK(checkSameCamera(inputs, stack, path));
-    if (inputs.stack_paths.empty()) inputs.camera = cameraIdentityOf(stack.manifest);
+    if (inputs.stack_paths.empty()) {
+      inputs.camera = cameraIdentityOf(stack.manifest);
+      inputs.width = stack.frames.front().width();
+      inputs.height = stack.frames.front().height();
+    }
     inputs.stack_paths.push_back(path);
     for (std::size_t i = 0; i < stack.frames.size(); ++i) {
       inputs.frames.push_back({.frame = std::move(stack.frames[i]),
@@ -85,7 +89,9 @@ CalibrationDocument partDocument(const CalibrationInputs& inputs, const std::str
                                              ? formatUtc(utcNow(), "%Y-%m-%dT%H:%M:%SZ")
                                              : inputs.latest_capture,
                           .method = method,
-                          .inputs = inputs.stack_paths};
+                          .inputs = inputs.stack_paths,
+                          .width = inputs.width,
+                          .height = inputs.height};
   return document;
 }
 

@@ -22,6 +22,7 @@ struct CalibrationInputs {
   std::vector<std::string> stack_paths;  // as given
   std::vector<InputFrame> frames;        // every frame of every stack, in order
   CameraIdentity camera;
+  int width = 0, height = 0;   // every frame's size (refused otherwise)
   std::string latest_capture;  // the newest captured_at of the stacks (ISO 8601), or empty
 };
 

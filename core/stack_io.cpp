@@ -41,6 +41,7 @@ struct ResolvedCalibration {
   Calibration calibration;
   fs::path base_directory;  // where the calibration's relative paths start
   std::string origin;
+  std::string where;  // the file it was read from, for messages
 };
 
 Result<ResolvedCalibration> resolveCalibration(const fs::path& directory,
@@ -51,9 +52,11 @@ Result<ResolvedCalibration> resolveCalibration(const fs::path& directory,
     auto calibration = readCalibrationFile(*options.calibration_file);
     if (!calibration) return std::unexpected(calibration.error());
     return ResolvedCalibration{std::move(*calibration), options.calibration_file->parent_path(),
+                               options.calibration_file->string(),
                                options.calibration_file->string()};
   }
-  if (manifest.calibration) return ResolvedCalibration{*manifest.calibration, directory, "inline"};
+  if (manifest.calibration)
+    return ResolvedCalibration{*manifest.calibration, directory, "inline", where};
   if (manifest.calibration_path) {
     // A calibration path may point outside the stack (a rig-wide file), unlike frames.
     fs::path path = directory / *manifest.calibration_path;
@@ -65,10 +68,10 @@ Result<ResolvedCalibration> resolveCalibration(const fs::path& directory,
     auto calibration = readCalibrationFile(path);
     if (!calibration) return std::unexpected(calibration.error());
     return ResolvedCalibration{std::move(*calibration), path.parent_path(),
-                               *manifest.calibration_path};
+                               *manifest.calibration_path, path.string()};
   }
   if (!options.require_calibration)
-    return ResolvedCalibration{Calibration{}, directory, std::string(kNoCalibration)};
+    return ResolvedCalibration{Calibration{}, directory, std::string(kNoCalibration), where};
   return badInput(where +
                   ": no calibration: give one inline, as a path, or with --calibration FILE");
 }
@@ -101,6 +104,21 @@ Status decodeFrames(Stack& stack, const std::vector<fs::path>& paths, unsigned t
     stack.frames.push_back(std::move(frame->pixels));
   }
   return checkFrameSizes(stack);
+}
+
+// Intrinsics are in pixels of the image size they were calibrated at: applied to frames of another
+// size every angle is off by the ratio (640x480 intrinsics on a 320x256 stack halve its ellipse).
+// A geometry mismatch is never forced.
+Status checkIntrinsicsSize(const Stack& stack, const std::string& calibration_where) {
+  const Intrinsics& intrinsics = stack.calibration.intrinsics;
+  if (!intrinsics.width || !intrinsics.height || stack.frames.empty()) return {};
+  const RawFrame& first = stack.frames.front();
+  if (*intrinsics.width == first.width() && *intrinsics.height == first.height()) return {};
+  return badInput(calibration_where + ": intrinsics were calibrated at " +
+                  std::to_string(*intrinsics.width) + "x" + std::to_string(*intrinsics.height) +
+                  ", frames are " + std::to_string(first.width()) + "x" +
+                  std::to_string(first.height()) +
+                  ": every angle would be wrong (calibrate intrinsics at the capture size)");
 }
 
 Status loadFlatField(Stack& stack, const fs::path& base, const std::string& where) {
@@ -175,6 +193,7 @@ Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& o
   if (!options.decode_frames) return stack;
   GLARECAM_CHECK(
       decodeFrames(stack, paths, options.threads ? options.threads : defaultThreadCount()));
+  GLARECAM_CHECK(checkIntrinsicsSize(stack, resolved.where));
   GLARECAM_CHECK(loadFlatField(stack, resolved.base_directory, where));
   return stack;
 }

@@ -45,6 +45,15 @@ class FieldReader {
     if (!*value) return error(key, "is required");
     return **value;
   }
+  // An image dimension in pixels: a whole number in [1, kMaxImageSide].
+  Result<std::optional<int>> optionalSize(std::string_view key) const {
+    std::optional<double> value;
+    GLARECAM_ASSIGN(value, optionalNumber(key));
+    if (!value) return std::optional<int>{};
+    if (!(*value >= 1 && *value <= kMaxImageSide && *value == std::floor(*value)))
+      return error(key, "must be a whole number of pixels, not " + show(object_.at(key)));
+    return std::optional<int>(static_cast<int>(*value));
+  }
   Result<double> positive(std::string_view key) const {
     auto value = number(key);
     if (value && *value <= 0) return error(key, "must be positive, not " + show(object_.at(key)));
@@ -82,6 +91,10 @@ Result<Intrinsics> parseIntrinsics(const FieldReader& parent, const std::string&
   GLARECAM_ASSIGN(intrinsics.fy, fields.positive("fy"));
   GLARECAM_ASSIGN(intrinsics.cx, fields.positive("cx"));
   GLARECAM_ASSIGN(intrinsics.cy, fields.positive("cy"));
+  GLARECAM_ASSIGN(intrinsics.width, fields.optionalSize("width"));
+  GLARECAM_ASSIGN(intrinsics.height, fields.optionalSize("height"));
+  if (intrinsics.width.has_value() != intrinsics.height.has_value())
+    return parent.error("intrinsics", "gives width and height together or neither");
   if (!fields.has("distortion")) return intrinsics;
   const json& distortion = block.at("distortion");
   if (!distortion.is_array() || distortion.size() > intrinsics.distortion.size()) {

@@ -22,6 +22,9 @@ inline constexpr std::string_view kManifestFileName = "stack.json";
 struct Intrinsics {
   double fx = 0, fy = 0, cx = 0, cy = 0;
   std::array<double, 5> distortion{};
+  // The image size they were calibrated at (`glarecam calibrate intrinsics` records it; older
+  // files and other tools may not): in pixels of another size every angle is wrong.
+  std::optional<int> width = std::nullopt, height = std::nullopt;
 };
 
 // Sensor noise at gain 0 dB: temporal read noise and conversion gain.
@@ -66,6 +69,10 @@ Result<Calibration> parseCalibration(const nlohmann::json& block, const std::str
 
 nlohmann::json toJson(const Calibration& calibration);
 nlohmann::json toJson(const StackManifest& manifest);
+
+// Largest image side a calibration may name, in pixels (the sim camera's URI bound, far above
+// any sensor): keeps a recorded width or height an int.
+inline constexpr int kMaxImageSide = 1 << 20;
 
 // Deepest nesting accepted in a JSON document (manifests need 4).
 inline constexpr int kMaxJsonDepth = 64;

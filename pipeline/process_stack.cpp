@@ -230,6 +230,27 @@ void warnAboutCameraModel(const GlareAnalysis& glare, const fs::path& calibratio
   }
 }
 
+// How far from the image centre a principal point may lie, as a fraction of the frame's width or
+// height, before it looks like intrinsics of another size, crop or orientation: real lenses sit
+// within a few per cent (the simulated board's lens: 2 %).
+constexpr double kPrincipalPointOffCentreFraction = 0.1;
+
+void warnAboutPrincipalPoint(const Stack& stack, const fs::path& calibration_file) {
+  if (stack.frames.empty()) return;
+  const Intrinsics& k = stack.calibration.intrinsics;
+  const double width = stack.frames.front().width(), height = stack.frames.front().height();
+  const double dx = k.cx - (width - 1) / 2, dy = k.cy - (height - 1) / 2;
+  if (std::abs(dx) <= kPrincipalPointOffCentreFraction * width &&
+      std::abs(dy) <= kPrincipalPointOffCentreFraction * height)
+    return;
+  spdlog::warn(
+      "{}: the principal point ({:.1f}, {:.1f}) lies {:.0f} px from the centre of the {}x{} frames "
+      "(more than {:g} % of the frame): were the intrinsics calibrated at this size and "
+      "orientation?",
+      calibration_file.string(), k.cx, k.cy, std::hypot(dx, dy), width, height,
+      100 * kPrincipalPointOffCentreFraction);
+}
+
 // --threshold, else the α curve, else none.
 std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& options) {
   if (options.threshold_cd_m2) return options.threshold_cd_m2;
@@ -271,6 +292,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                                   calibrationSource(stack, options).string(),
                                                   options.calibration_use, warnings));
   for (const std::string& warning : warnings) spdlog::warn("{}", warning);
+  warnAboutPrincipalPoint(stack, calibrationSource(stack, options));
   progress.advance("read");
   MergedStack merged_stack;
   GLARECAM_ASSIGN(merged_stack, mergeStack(stack, options));

@@ -24,10 +24,6 @@ struct SimulateTargetArgs {
 Status runSimulateTarget(const SimulateTargetArgs& args) {
   capture::CalibrationTargetOptions options;
   GLARECAM_ASSIGN(options.target, capture::parseCalibrationTarget(args.target));
-  if (options.target == capture::CalibrationTarget::kBoard) {
-    options.width = 640;  // corners need room: 9x6 inner corners over a third of the width
-    options.height = 480;
-  }
   if (args.size) {
     std::pair<int, int> size;
     GLARECAM_ASSIGN(size, parseSize(*args.size, "--size"));
@@ -54,7 +50,8 @@ void addSimulateCalibrationCommand(CLI::App& app, Action& action) {
   sub->add_option("TARGET", args->target, "dark, flat, linearity, noise, luminance or board")
       ->required();
   sub->add_option("--out", args->out, "directory the stacks go into")->required();
-  sub->add_option("--size", args->size, "WxH (default 320x256; board 640x480)");
+  sub->add_option("--size", args->size, "WxH (default 320x256, for every target: a calibration's parts must share the size of the "
+                  "stacks it calibrates)");
   sub->add_option("--seed", args->seed, "noise seed (default 1)");
   sub->callback([args, &action] { action = [args] { return runSimulateTarget(*args); }; });
 }

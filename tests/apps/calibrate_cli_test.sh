@@ -143,6 +143,36 @@ expect "merge: serials named" one_line_naming "camera serial \"OTHER\" differs"
 printf '{"schema": "glarecam.calibration/1", "black_level_dn": 64,\n' >"$WORK/broken.json"
 check "merge: broken JSON" 2 "$GLARECAM" calibrate merge "$C/dark.json" "$WORK/broken.json" --out "$C/x.json"
 expect "merge: file named" one_line_naming "broken.json"
+# A calibration made at another image size would give wrong angles (640x480 intrinsics halve a
+# 320x256 stack's ellipse): merge refuses parts that disagree, naming both, and process refuses
+# intrinsics of another size than the frames, even forced.
+check "simulate-calibration board at 640x480" 0 "$GLARECAM" simulate-calibration board --size 640x480 \
+  --out "$WORK/big"
+check "calibrate intrinsics at 640x480" 0 "$GLARECAM" calibrate intrinsics "$WORK/big"/board-* --board 9x6 \
+  --square-mm 30 --out "$C/intrinsics-640.json" --no-progress
+expect "intrinsics: the part records its size" grep -q '"width": 640' "$C/intrinsics-640.json"
+check "merge: parts of different sizes" 2 "$GLARECAM" calibrate merge "$C/flat.json" "$C/intrinsics-640.json" \
+  --out "$C/x.json"
+expect "merge: both sizes and files named" one_line_naming \
+  "intrinsics-640.json: part intrinsics was measured at 640x480, but part flat of $C/flat.json at 320x256"
+# The glare stack's own calibration (which records no size) merged with the 640x480 intrinsics.
+python3 - "$WORK/glare/stack.json" "$WORK/own/own.json" <<'PY'
+import json, os, sys
+block = json.load(open(sys.argv[1]))["calibration"]
+block.pop("flat_field", None)
+block["schema"] = "glarecam.calibration/1"
+os.makedirs(os.path.dirname(sys.argv[2]), exist_ok=True)
+json.dump(block, open(sys.argv[2], "w"))
+PY
+check "merge: a sizeless calibration and 640x480 intrinsics" 0 "$GLARECAM" calibrate merge "$WORK/own/own.json" \
+  "$C/intrinsics-640.json" --out "$WORK/own/mixed.json"
+check "process: intrinsics of another size" 2 "$GLARECAM" process "$WORK/glare" \
+  --calibration "$WORK/own/mixed.json" --out "$WORK/mixed-result" --no-progress
+expect "process: sizes named" one_line_naming \
+  "mixed.json: intrinsics were calibrated at 640x480, frames are 320x256"
+check "process: another size is not forced" 2 "$GLARECAM" process "$WORK/glare" \
+  --calibration "$WORK/own/mixed.json" --force-calibration --out "$WORK/mixed-result" --no-progress
+expect "process: nothing written for another size" test ! -e "$WORK/mixed-result"
 check "process: a part is not a calibration" 2 "$GLARECAM" process "$WORK/glare" --calibration "$C/dark.json" \
   --out "$WORK/glare-result" --no-progress
 expect "process: missing key named" one_line_naming "saturation_dn is required (a calibration part: combine the parts with"

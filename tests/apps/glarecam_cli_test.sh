@@ -76,6 +76,20 @@ check "thresholds below the background and above the maximum" 0 "$GLARECAM" proc
 expect "a level below the background fills the image" grep -q '"status": "fills_image"' "$WORK/out"
 expect "a level above the maximum is below_level" grep -q '"status": "below_level"' "$WORK/out"
 
+# A principal point far from the image centre (intrinsics of another crop or orientation) warns.
+python3 - "$WORK/sd/stack.json" "$WORK/off-centre.json" <<'PY'
+import json, sys
+block = json.load(open(sys.argv[1]))["calibration"]
+block.pop("flat_field", None)
+block["intrinsics"]["cx"] += 40  # 25 % of the 160 px width
+json.dump(block, open(sys.argv[2], "w"))
+PY
+check "process with an off-centre principal point" 0 "$GLARECAM" process --no-progress --out "$WORK/r5" \
+  --calibration "$WORK/off-centre.json" "$WORK/sd"
+expect "the off-centre principal point warns" grep -q "off-centre.json: the principal point (119.5, 63.5) lies 40 px" "$WORK/err"
+check "process with a centred principal point" 0 "$GLARECAM" process --no-progress --out "$WORK/r5" "$WORK/sd"
+expect "a centred principal point does not warn" test -z "$(grep "principal point" "$WORK/err")"
+
 # Calibration override from the command line.
 check "process with missing --calibration" 2 "$GLARECAM" process "$WORK/s" --calibration "$WORK/none.json"
 expect "missing calibration named" one_line_naming "none.json"

@@ -114,6 +114,55 @@ TEST(CalibrationFile, PartsOfDifferentCamerasDoNotMerge) {
       << merged.error().message;
 }
 
+// A flat field or intrinsics made at another size than the rest would be wrong for every stack:
+// parts record their frames' size, and the merge refuses parts (or intrinsics) that disagree,
+// naming both files.
+TEST(CalibrationFile, PartsOfDifferentSizesDoNotMerge) {
+  testing::TempDir dir;
+  CalibrationDocument flat = part("flat", {{"flat_field", "flat.exr"}});
+  flat.parts["flat"].width = 320;
+  flat.parts["flat"].height = 256;
+  ASSERT_TRUE(calibration::writeCalibrationDocument(dir.path() / "flat.json", flat));
+  const auto read = calibration::readCalibrationDocument(dir.path() / "flat.json");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->parts.at("flat").width, 320);
+  EXPECT_EQ(read->parts.at("flat").height, 256);
+
+  json intrinsics = kIntrinsics;
+  intrinsics["width"] = 640;
+  intrinsics["height"] = 480;
+  // The intrinsics' own recorded size counts even in a part written before parts had one.
+  const CalibrationDocument parts[] = {*read, part("intrinsics", {{"intrinsics", intrinsics}})};
+  const fs::path files[] = {dir.path() / "flat.json", dir.path() / "intrinsics.json"};
+  std::vector<std::string> warnings;
+  const auto merged = calibration::mergeCalibrationDocuments(parts, files, warnings);
+  ASSERT_FALSE(merged);
+  EXPECT_EQ(merged.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(merged.error().message.find(
+                (dir.path() / "intrinsics.json").string() +
+                ": the intrinsics was measured at 640x480, but part flat of " +
+                (dir.path() / "flat.json").string() + " at 320x256"),
+            std::string::npos)
+      << merged.error().message;
+
+  intrinsics["width"] = 320;
+  intrinsics["height"] = 256;
+  const CalibrationDocument agreeing[] = {*read, part("intrinsics", {{"intrinsics", intrinsics}})};
+  EXPECT_TRUE(calibration::mergeCalibrationDocuments(agreeing, files, warnings));
+
+  const json bad_size = {{"schema", "glarecam.calibration/1"},
+                         {"parts",
+                          {{"flat",
+                            {{"measured_at", "2026-06-21T10:00:00Z"},
+                             {"method", "x"},
+                             {"width", 320}}}}}};
+  const auto half = calibration::parseCalibrationDocument(bad_size, "cal.json");
+  ASSERT_FALSE(half);
+  EXPECT_NE(half.error().message.find("parts.flat gives width and height together or neither"),
+            std::string::npos)
+      << half.error().message;
+}
+
 TEST(CalibrationFile, MergeCopiesTheReferencedImagesBesideTheResult) {
   testing::TempDir dir;
   fs::create_directories(dir.path() / "parts");

@@ -87,6 +87,50 @@ TEST(StackIo, FlatFieldIsLoadedRelativeToTheCalibration) {
   EXPECT_FLOAT_EQ(stack->flat_field->at(3, 3), 0.8f);
 }
 
+// Intrinsics are in pixels of the size they were calibrated at: at another size every angle is
+// off by the ratio, so a recorded size that differs from the frames' is refused, whatever the
+// calibration's origin; one that agrees, or none recorded (older files), is read.
+TEST(StackIo, IntrinsicsOfAnotherImageSizeAreRefused) {
+  testing::TempDir dir;
+  const auto written = testing::writeTestStack(dir / "s");
+  const int width = written.frames[0].width(), height = written.frames[0].height();
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  manifest["calibration"]["intrinsics"]["width"] = width;
+  manifest["calibration"]["intrinsics"]["height"] = height;
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto same = readStack(dir / "s");
+  ASSERT_TRUE(same) << same.error().message;
+  EXPECT_EQ(same->calibration.intrinsics.width, width);
+
+  manifest["calibration"]["intrinsics"]["width"] = 2 * width;
+  manifest["calibration"]["intrinsics"]["height"] = 2 * height;
+  testing::writeText(dir / "calibration.json", manifest["calibration"].dump());
+  StackReadOptions options;
+  options.calibration_file = dir / "calibration.json";
+  auto other = readStack(dir / "s", options);
+  ASSERT_FALSE(other);
+  EXPECT_EQ(other.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(other.error().message.find(
+                (dir / "calibration.json").string() + ": intrinsics were calibrated at " +
+                std::to_string(2 * width) + "x" + std::to_string(2 * height) + ", frames are " +
+                std::to_string(width) + "x" + std::to_string(height)),
+            std::string::npos)
+      << other.error().message;
+
+  for (const json& bad : {json{{"width", width}}, json{{"width", 0.5}, {"height", height}},
+                          json{{"width", "320"}, {"height", height}}}) {
+    json calibration = manifest["calibration"];
+    calibration["intrinsics"].erase("width");
+    calibration["intrinsics"].erase("height");
+    calibration["intrinsics"].update(bad);
+    testing::writeText(dir / "calibration.json", calibration.dump());
+    auto refused = readStack(dir / "s", options);
+    ASSERT_FALSE(refused) << bad;
+    EXPECT_NE(refused.error().message.find("calibration.intrinsics"), std::string::npos)
+        << refused.error().message;
+  }
+}
+
 TEST(StackIo, FNumberNeedsAReferenceFNumber) {
   testing::TempDir dir;
   testing::writeTestStack(dir / "s");

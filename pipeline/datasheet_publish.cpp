@@ -41,7 +41,7 @@ Result<fs::path> publishSweepTable(const SweepPublishOptions& options) {
   GLARECAM_CHECK(options.validate());
   SweepTable table;
   SweepFits fits;
-  GLARECAM_ASSIGN(fits, readAndFitSweep(options.sweep, table));
+  GLARECAM_ASSIGN(fits, readAndFitSweep(options.sweep, table, options.fit));
   const GlareLimit limit = sheetLimit(options.sweep.string(), table, options.threshold_cd_m2);
   const fs::path out = options.out.value_or(options.sweep.parent_path());
   if (!out.empty()) GLARECAM_CHECK(ensureDirectory(out));

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "pipeline/glare_fits.h"
 #include "pipeline/glare_profile.h"
 #include "pipeline/render/datasheet.h"
 
@@ -26,6 +27,7 @@ struct SweepPublishOptions {
   // A constant limit instead of the one the sweep measured its ellipses at (sheetLimit()).
   std::optional<double> threshold_cd_m2;
   std::optional<double> model_beta_deg;  // the five-facet model's overlay, (0, 45]
+  FitOptions fit;                        // include_suspect: fit the suspect rows too
 
   // The first problem in words (kBadInput), or nothing.
   Status validate() const;

@@ -552,7 +552,13 @@ double SweepFits::lmaxCdM2(double alpha_deg) const {
   return cosineIsBetter() ? cosine.curve(alpha_deg) : biquadratic.curve(alpha_deg);
 }
 
-Result<SweepFits> fitSweep(const SweepTable& table) {
+Result<SweepFits> fitSweep(const SweepTable& all, const FitOptions& options) {
+  SweepTable table;
+  int suspects = 0;
+  for (const SweepRow& row : all.rows) {
+    if (row.isSuspect() && !options.include_suspect) ++suspects;
+    else table.rows.push_back(row);
+  }
   const int rows = static_cast<int>(table.rows.size());
   if (rows < kLogisticParameters)
     return badInput(
@@ -579,6 +585,19 @@ Result<SweepFits> fitSweep(const SweepTable& table) {
     ln_l.push_back(std::log(row.lmax_cd_m2));
   }
   SweepFits fits;
+  if (suspects > 0)
+    fits.warnings.push_back(
+        fmt::format("{} suspect row(s) (suspect: frames that disagree with the merge) left out of "
+                    "the fits",
+                    suspects));
+  for (const SweepRow& row : all.rows) {
+    if (!row.isSuspect()) continue;
+    fits.warnings.push_back(fmt::format("suspect{}: \u03b1 {:g}\u00b0 {}: {}",
+                                        options.include_suspect ? " (fitted as asked)" : "",
+                                        row.alpha_deg,
+                                        row.stack_id.empty() ? row.stack : row.stack_id,
+                                        row.suspect));
+  }
   if (bounds > 0)
     fits.warnings.push_back(fmt::format(
         "luminance: {} row(s) whose Lmax is only a bound (lmax_bound) left out of the fits",
@@ -606,11 +625,12 @@ nlohmann::json fitsJson(const SweepFits& fits) {
           {"warnings", fits.warnings}};
 }
 
-Result<SweepFits> readAndFitSweep(const std::filesystem::path& path, SweepTable& table) {
+Result<SweepFits> readAndFitSweep(const std::filesystem::path& path, SweepTable& table,
+                                  const FitOptions& options) {
   if (path.empty()) return badInput("SWEEP: expected a sweep table (CSV), got an empty string");
   GLARECAM_ASSIGN(table, readSweepTable(path));
   sortByAlpha(table);
-  auto fits = fitSweep(table);
+  auto fits = fitSweep(table, options);
   if (!fits) return std::unexpected(withContext(fits.error(), path.string()));
   for (const std::string& warning : fits->warnings) spdlog::warn("{}: {}", path.string(), warning);
   return fits;

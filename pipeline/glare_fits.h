@@ -81,13 +81,21 @@ struct SweepFits {
   double lmaxCdM2(double alpha_deg) const;
 };
 
-// All four fits of a sweep table. kBadInput when the table has fewer rows than the logistic
-// needs parameters; an axis with too few ellipses is left unfitted with a warning.
-Result<SweepFits> fitSweep(const SweepTable& table);
+struct FitOptions {
+  // Fit the suspect rows too (SweepRow::suspect: frames that disagree with the merge). By default
+  // they are left out, with a warning naming how many, as rows whose Lmax is only a bound are.
+  bool include_suspect = false;
+};
+
+// All four fits of a sweep table. kBadInput when the table has fewer rows (after leaving out the
+// suspect ones) than the logistic needs parameters; an axis with too few ellipses is left
+// unfitted with a warning.
+Result<SweepFits> fitSweep(const SweepTable& table, const FitOptions& options = {});
 
 // The sweep table at `path` into `table` (sorted by α) and its fits, the fits' warnings logged;
 // errors name the file. `glarecam fit` and `glarecam datasheet` read a sweep this way.
-Result<SweepFits> readAndFitSweep(const std::filesystem::path& path, SweepTable& table);
+Result<SweepFits> readAndFitSweep(const std::filesystem::path& path, SweepTable& table,
+                                  const FitOptions& options = {});
 
 // {"luminance": {"cos": {a,b,c,r2,...}, "biquadratic": {...}}, "vertical": {"logistic": {...}},
 //  "horizontal": {...}, "warnings": [...]} (docs/datasheet.md).

@@ -324,6 +324,8 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   picture_options.limit_cd_m2 = limit;
   picture_options.title = pictureTitle(stack.manifest.alpha_deg);
   picture_options.overlay = glareOverlay(glare, camera, stats.max);
+  if (summary.result["luminance"]["frames_consistent"] == false)
+    picture_options.banner = "SUSPECT: frames disagree with the merge";
   GLARECAM_CHECK(
       writeOutputs(summary.output_directory, merged, summary, picture_options, progress));
   return summary;

@@ -1,5 +1,6 @@
 #include "pipeline/sweep.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -218,6 +219,20 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
   GLARECAM_CHECK(writeFileAtomic(summary.sweep_csv, formatSweepTable(summary.table)));
   warnAboutEarlierOutputs(options.output_directory, results);
   return summary;
+}
+
+Status checkStrict(const SweepSummary& summary) {
+  if (!summary.skipped.empty()) {
+    const SkippedStack& first = summary.skipped.front();
+    return std::unexpected(withContext(
+        first.error, fmt::format("--strict: {} stack(s) or input(s) skipped, the first {}",
+                                 summary.skipped.size(), first.stack.string())));
+  }
+  const auto suspect = std::ranges::count_if(summary.table.rows, &SweepRow::isSuspect);
+  if (suspect == 0) return {};
+  const SweepRow& first = *std::ranges::find_if(summary.table.rows, &SweepRow::isSuspect);
+  return badInput(fmt::format("--strict: {} suspect row(s), the first {}: {}", suspect,
+                              first.stack, first.suspect));
 }
 
 }  // namespace glarecam::pipeline

@@ -52,4 +52,8 @@ StackSearch findStacks(const std::vector<std::filesystem::path>& inputs);
 // when no stack could be processed (with the first error) or the table cannot be written.
 Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& options);
 
+// `sweep --strict`: the first skipped stack's error (its code), else kBadInput naming the first
+// suspect row (frames that disagree) and why, else nothing.
+Status checkStrict(const SweepSummary& summary);
+
 }  // namespace glarecam::pipeline

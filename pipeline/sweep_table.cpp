@@ -30,6 +30,8 @@ enum Column {
   kGlare,
   kLmaxBound,
   kLimitStatus,
+  kFramesConsistent,
+  kSuspect,
   kStackId,
   kStack,
   kColumnCount
@@ -49,6 +51,8 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "glare",
                                                              "lmax_bound",
                                                              "limit_status",
+                                                             "frames_consistent",
+                                                             "suspect",
                                                              "stack_id",
                                                              "stack"};
 
@@ -158,6 +162,14 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   if (!row.lmax_bound.empty() && row.lmax_bound != "lower" && row.lmax_bound != "upper")
     return badInput("lmax_bound: expected lower, upper or nothing, got \"" + row.lmax_bound + "\"");
   row.limit_status = field(header, fields, kLimitStatus);
+  const std::string consistent = field(header, fields, kFramesConsistent);
+  if (!consistent.empty() && consistent != "true" && consistent != "false")
+    return badInput("frames_consistent: expected true, false or nothing, got \"" + consistent +
+                    "\"");
+  if (!consistent.empty()) row.frames_consistent = consistent == "true";
+  row.suspect = field(header, fields, kSuspect);
+  if (row.frames_consistent == false && row.suspect.empty())
+    row.suspect = "frames disagree with the merge";
   row.stack_id = field(header, fields, kStackId);
   row.stack = field(header, fields, kStack);
   return row;
@@ -276,6 +288,10 @@ std::string formatSweepTable(const SweepTable& table) {
                                                        r.glare ? (*r.glare ? "true" : "false") : "",
                                                        r.lmax_bound,
                                                        quoteCsvField(oneLine(r.limit_status)),
+                                                       r.frames_consistent
+                                                           ? (*r.frames_consistent ? "true" : "false")
+                                                           : "",
+                                                       quoteCsvField(oneLine(r.suspect)),
                                                        quoteCsvField(oneLine(r.stack_id)),
                                                        quoteCsvField(oneLine(r.stack))};
     text += csvLine(fields);
@@ -288,6 +304,22 @@ Status validateSweepAlpha(std::optional<double> alpha_deg) {
   if (*alpha_deg < 0 || *alpha_deg >= kMaxAlphaDeg)
     return badInput(fmt::format("alpha_deg {} is outside [0, 90)", *alpha_deg));
   return {};
+}
+
+// "frames disagree: frame-03.png reads +1610 %, ..." from result.json's frames check.
+std::string disagreeingFrames(const json& result) {
+  std::string reason = "frames disagree with the merge";
+  const auto frames = result.find("frames");
+  if (frames == result.end() || !frames->is_array()) return reason;
+  std::string sep = ": ";
+  for (const json& frame : *frames) {
+    if (!frame.is_object() || frame.value("agrees", json()) != json(false)) continue;
+    const json ratio = frame.value("median_ratio", json());
+    reason += sep + frame.value("file", std::string("a frame"));
+    if (ratio.is_number()) reason += fmt::format(" reads {:+.0f} %", 100 * (ratio.get<double>() - 1));
+    sep = ", ";
+  }
+  return reason;
 }
 
 Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack) {
@@ -313,6 +345,10 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   if (result.value(P("/luminance/max_is_lower_bound"), false)) row.lmax_bound = "lower";
   if (result.value(P("/luminance/max_is_upper_bound"), false)) row.lmax_bound = "upper";
   if (result.contains(P("/limit/status"))) row.limit_status = result.at(P("/limit/status"));
+  if (const json consistent = result.value(P("/luminance/frames_consistent"), json());
+      consistent.is_boolean())
+    row.frames_consistent = consistent.get<bool>();
+  if (row.frames_consistent == false) row.suspect = disagreeingFrames(result);
   if (result.contains("stack") && result["stack"].is_string()) row.stack_id = result["stack"];
   row.stack = stack;
   return row;

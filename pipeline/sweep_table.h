@@ -27,7 +27,13 @@ struct SweepRow {
   std::optional<bool> glare;
   std::string lmax_bound;    // "lower" (saturated top) or "upper" (all dark): Lmax only a bound
   std::string limit_status;  // result.json's limit.status, e.g. "measured", "below_level"
+  // result.json's luminance.frames_consistent: false when a frame disagrees with the merge.
+  std::optional<bool> frames_consistent;
+  // Why the row's numbers are suspect ("frames disagree: frame-03.png reads +1610 %"), empty when
+  // they are not. The fits leave suspect rows out unless asked (FitOptions::include_suspect).
+  std::string suspect;
   std::string stack_id, stack;
+  bool isSuspect() const { return !suspect.empty(); }
 };
 
 struct SweepTable {

@@ -17,6 +17,7 @@ struct DatasheetArgs {
   std::optional<std::string> out, date, threshold;
   std::string module = "unnamed module";
   std::optional<double> model_beta_deg;
+  bool include_suspect = false;
 };
 
 Status runDatasheet(const DatasheetArgs& args) {
@@ -26,7 +27,8 @@ Status runDatasheet(const DatasheetArgs& args) {
                                         .module = args.module,
                                         .date = {},
                                         .threshold_cd_m2 = std::nullopt,
-                                        .model_beta_deg = args.model_beta_deg};
+                                        .model_beta_deg = args.model_beta_deg,
+                                        .fit = {.include_suspect = args.include_suspect}};
   if (args.out) publish.out = *args.out;
   GLARECAM_CHECK(publish.validate());
   GLARECAM_ASSIGN(publish.date, pipeline::sheetDate(args.date));
@@ -56,6 +58,9 @@ void addDatasheetCommand(CLI::App& app, Action& action) {
                   "table's limit_cd_m2: the α curve or a constant)");
   sub->add_option("--model-beta", args->model_beta_deg,
                   "overlay the five-facet model with facet tilt β in degrees (glarecam model)");
+  sub->add_flag("--include-suspect", args->include_suspect,
+                "fit the suspect rows too (frames that disagree with the merge; default: drawn "
+                "hollow, listed and left out)");
   sub->callback([args, &action] { action = [args] { return runDatasheet(*args); }; });
 }
 

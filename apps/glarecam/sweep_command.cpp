@@ -43,12 +43,7 @@ Status runSweep(const SweepArgs& args) {
                summary.table.rows.size(), summary.skipped.size(),
                (options.output_directory / pipeline::kSweepResultsDirectory).string());
   std::printf("%s\n", summary.sweep_csv.c_str());
-  if (args.strict && !summary.skipped.empty()) {
-    const auto& first = summary.skipped.front();
-    return std::unexpected(withContext(
-        first.error, "--strict: " + std::to_string(summary.skipped.size()) +
-                         " stack(s) or input(s) skipped, the first " + first.stack.string()));
-  }
+  if (args.strict) return pipeline::checkStrict(summary);
   return {};
 }
 
@@ -75,7 +70,8 @@ void addSweepCommand(CLI::App& app, Action& action) {
   sub->add_option("--threshold", args->threshold,
                   "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
   sub->add_flag("--strict", args->strict,
-                "exit non-zero when any stack or input was skipped (the table is still written)");
+                "exit non-zero when any stack or input was skipped, or any row is suspect (frames "
+                "that disagree); the table is still written");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSweep(*args); }; });
 }

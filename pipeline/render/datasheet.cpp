@@ -80,6 +80,7 @@ constexpr LineStyle kExtrapolationKeyStyle{
 
 constexpr MarkerStyle kLmaxMarker{.colour = kInk};
 constexpr MarkerStyle kLmaxBoundMarker{.colour = kInk, .hollow = true};  // Lmax only a bound
+constexpr MarkerStyle kSuspectMarker{.colour = kRed, .hollow = true};    // frames disagree
 constexpr MarkerStyle kVerticalMarker{.colour = kBlue};
 constexpr MarkerStyle kHorizontalMarker{
     .colour = kGreen, .shape = MarkerShape::kSquare, .size_pt = 4.2};
@@ -183,11 +184,15 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
   drawCurve(cr, plot, limit, {kAlphaRangeDeg.lo, kMaxLimitAlphaDeg}, kLimitStyle);
   drawFit(cr, plot, cosine, measuredRange(fits), kCosineStyle);
   drawFit(cr, plot, biquadratic, measuredRange(fits), kBiquadraticStyle);
-  std::vector<DataPoint> measured, bounds;
+  std::vector<DataPoint> measured, bounds, suspects;
   for (const SweepRow& row : content.table->rows)
-    (row.lmax_bound.empty() ? measured : bounds).push_back({row.alpha_deg, row.lmax_cd_m2});
+    (row.isSuspect()             ? suspects
+     : row.lmax_bound.empty() ? measured
+                              : bounds)
+        .push_back({row.alpha_deg, row.lmax_cd_m2});
   drawMarkers(cr, plot, measured, kLmaxMarker);
   drawMarkers(cr, plot, bounds, kLmaxBoundMarker);
+  drawMarkers(cr, plot, suspects, kSuspectMarker);
   std::vector<LegendEntry> legend = {
       {"measured Lmax", std::nullopt, kLmaxMarker},
       {content.limit.constant_cd_m2 ? fmt::format("glare limit (constant {})",
@@ -198,6 +203,9 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
       {r2Label("biquadratic fit", fits.biquadratic.quality), kBiquadraticStyle, std::nullopt}};
   if (!bounds.empty())
     legend.push_back({"Lmax only a bound (not fitted)", std::nullopt, kLmaxBoundMarker});
+  if (!suspects.empty())
+    legend.push_back({"suspect: frames disagree (hollow; listed below)", std::nullopt,
+                      kSuspectMarker});
   if (extrapolates(measuredRange(fits)))
     legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, {}});
   drawLegend(cr, plot, legend);
@@ -270,10 +278,14 @@ void drawAxisSeries(cairo_t* cr, Plot& plot, const DatasheetContent& content, co
   const std::optional<Range> glaring = glaringRange(content);
   if (s.fit->logistic && glaring)
     drawFit(cr, plot, s.fit->logistic->curve, measuredRange(*s.fit), s.line, glaring);
-  std::vector<DataPoint> measured;
+  std::vector<DataPoint> measured, suspects;
   for (const SweepRow& row : content.table->rows)
-    if (const std::optional<double>& v = row.*s.column) measured.push_back({row.alpha_deg, *v});
+    if (const std::optional<double>& v = row.*s.column)
+      (row.isSuspect() ? suspects : measured).push_back({row.alpha_deg, *v});
   drawMarkers(cr, plot, measured, s.marker);
+  MarkerStyle hollow = s.marker;
+  hollow.hollow = true;
+  drawMarkers(cr, plot, suspects, hollow);
 }
 
 void drawAxesPlot(cairo_t* cr, const DatasheetContent& content, const Box& block) {

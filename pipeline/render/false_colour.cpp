@@ -27,6 +27,7 @@ constexpr double kFontFractionOfHeight = 1.0 / 40.0;
 constexpr double kMinFontPx = 11.0, kMaxFontPx = 48.0;
 constexpr double kPanelWidthEm = 9.5;      // bar, ticks and labels such as "100k" and "saturated"
 constexpr double kMinCanvasHeightEm = 16;  // room for title, bar and legend on short images
+constexpr double kBannerHeightEm = 1.6;    // the warning band across the image's top
 constexpr double kBarMarginEm = 4.0;       // above the bar (title, unit) and below (legend)
 constexpr double kBarWidthEm = 1.5;
 constexpr double kFineTickDecades = 2.0;
@@ -216,6 +217,13 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
     cairo_translate(cr, 0.5, 0.5);
     options.overlay(cr, font_px);
     cairo_restore(cr);
+  }
+  if (!options.banner.empty()) {
+    setColour(cr, kLimitColour);
+    cairo_rectangle(cr, 0, 0, width, font_px * kBannerHeightEm);
+    cairo_fill(cr);
+    drawText(cr, {width / 2.0, font_px * (kBannerHeightEm / 2 + kBaselineBelowMiddleEm)},
+             options.banner, {{.size = font_px, .bold = true}, kWhite, Align::kCentre});
   }
   const PanelLayout layout{font_px * kBarMarginEm, canvas_height - font_px * kBarMarginEm,
                            width + font_px, font_px * kBarWidthEm, font_px};

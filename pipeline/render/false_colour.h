@@ -32,6 +32,9 @@ struct FalseColourOptions {
   std::optional<double> max_cd_m2;    // top of the scale; default: the image maximum
   std::optional<double> limit_cd_m2;  // marked on the colour bar when given
   std::string title;                  // drawn above the colour bar (e.g. "α 40°")
+  // Across the top of the image on a band of kLimitColour, when not empty: a warning no one who
+  // looks at the picture can miss (e.g. "SUSPECT: frames disagree with the merge").
+  std::string banner;
   PictureOverlay overlay;             // optional
 };
 

@@ -124,6 +124,37 @@ expect "sweep table has 4 rows sorted by alpha" \
 expect "sweep wrote each result" test -s "$WORK/sw/results/a60/result.json"
 check "sweep --strict with a broken stack" 2 "$GLARECAM" sweep "$WORK/sweep-in" --out "$WORK/sw2" --strict --no-progress
 expect "--strict still writes the table" test -s "$WORK/sw2/sweep.csv"
+# A stack whose frames disagree (two frames swapped) is flagged all the way down: sweep.csv marks
+# the row suspect with the reason, --strict fails on it, fit leaves it out and says so, the
+# picture carries a banner.
+mkdir -p "$WORK/swapped-in"
+for alpha in 20 40 60 80; do cp -r "$WORK/sweep-in/a$alpha" "$WORK/swapped-in/"; done
+# A fifth stack: the fits need four rows besides the suspect one.
+check "simulate a fifth sweep stack" 0 "$GLARECAM" simulate --out "$WORK/swapped-in/a70" --alpha 70 \
+  --size 160x128 --fov 16 --seed 70 --no-progress
+python3 - "$WORK/swapped-in/a40/stack.json" <<'PY'
+import json, sys
+manifest = json.load(open(sys.argv[1]))
+frames = manifest["frames"]
+frames[2]["file"], frames[3]["file"] = frames[3]["file"], frames[2]["file"]
+json.dump(manifest, open(sys.argv[1], "w"))
+PY
+check "sweep with a swapped-frame stack" 0 "$GLARECAM" sweep "$WORK/swapped-in" --out "$WORK/sws" --no-progress
+expect "sweep.csv has frames_consistent and suspect" grep -q "frames_consistent,suspect" "$WORK/sws/sweep.csv"
+expect "the swapped stack's row is suspect, with the frames named" \
+  grep -q '^40,.*,false,"\?frames disagree with the merge: frame-0[23].png reads' "$WORK/sws/sweep.csv"
+expect "the other rows are not suspect" test "$(grep -c ',measured,true,,' "$WORK/sws/sweep.csv")" -eq 4
+expect "the picture is bannered" test -s "$WORK/sws/results/a40/luminance.png"
+check "sweep --strict with a suspect row" 2 "$GLARECAM" sweep "$WORK/swapped-in" --out "$WORK/sws2" --strict --no-progress
+expect "--strict names the suspect row" grep -q "1 suspect row(s), the first $WORK/swapped-in/a40: frames disagree" "$WORK/err"
+check "fit leaves the suspect row out" 0 "$GLARECAM" fit "$WORK/sws/sweep.csv" --json
+expect "fit says so" grep -q "1 suspect row(s)" "$WORK/err"
+expect "fit lists the row" grep -q "suspect: α 40° .*frames disagree" "$WORK/err"
+check "fit --include-suspect" 0 "$GLARECAM" fit "$WORK/sws/sweep.csv" --include-suspect
+expect "fit --include-suspect says it fitted the row" grep -q "suspect (fitted as asked): α 40°" "$WORK/err"
+check "datasheet of the sweep with a suspect row" 0 "$GLARECAM" datasheet "$WORK/sws/sweep.csv" --date 2026-06-21
+expect "datasheet warns about the suspect row" grep -q "suspect: α 40°" "$WORK/err"
+
 check "sweep of nothing usable" 2 "$GLARECAM" sweep "$WORK/sweep-in/broken" "$WORK/nowhere" --out "$WORK/sw3"
 expect "nothing usable: no table" test ! -e "$WORK/sw3/sweep.csv"
 check "sweep --jobs 0" 2 "$GLARECAM" sweep "$WORK/sweep-in" --jobs 0

@@ -2,6 +2,7 @@
 // ../shared/data/standard-module-table3.csv) and against curves with known parameters.
 #include "pipeline/glare_fits.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -247,6 +248,37 @@ TEST(GlareFits, RowsWhoseLmaxIsOnlyABoundAreLeftOutOfTheLuminanceFits) {
   bool warned = false;
   for (const auto& w : fits->warnings) warned |= w.find("only a bound") != std::string::npos;
   EXPECT_TRUE(warned);
+}
+
+// A suspect row (frames that disagree) would bend every fit; it is left out unless asked, and
+// the warnings say how many and list each.
+TEST(GlareFits, SuspectRowsAreLeftOutUnlessAsked) {
+  SweepTable table = tableIII();
+  auto reference = fitSweep(table);
+  table.rows[4].lmax_cd_m2 /= 3;  // what swapped frames did to a stack (issue 18)
+  table.rows[4].suspect = "frames disagree with the merge: frame-03.png reads +1610 %";
+  table.rows[4].stack_id = "a40";
+  auto fits = fitSweep(table);
+  ASSERT_TRUE(fits && reference);
+  EXPECT_EQ(fits->biquadratic.quality.points, 8);
+  EXPECT_EQ(fits->vertical.rows_with_ellipse, 8);
+  const std::string listed = fmt::format("suspect: \u03b1 {:g}\u00b0 a40: frames disagree",
+                                         table.rows[4].alpha_deg);
+  int summary = 0, lines = 0;
+  for (const auto& w : fits->warnings) {
+    summary += w.find("1 suspect row(s)") == 0;
+    lines += w.find(listed) == 0;
+  }
+  EXPECT_EQ(summary, 1);
+  EXPECT_EQ(lines, 1);
+  auto included = fitSweep(table, {.include_suspect = true});
+  ASSERT_TRUE(included);
+  EXPECT_EQ(included->biquadratic.quality.points, 9);
+  EXPECT_LT(included->biquadratic.quality.r2, fits->biquadratic.quality.r2);
+  // Without it the fit is the reference's less one row: close to it at that α.
+  EXPECT_NEAR(fits->biquadratic.curve(table.rows[4].alpha_deg) /
+                  reference->biquadratic.curve(table.rows[4].alpha_deg),
+              1.0, 0.1);
 }
 
 TEST(GlareFits, ExactlyAsManyPointsAsParametersIsUnderDetermined) {

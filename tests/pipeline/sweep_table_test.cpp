@@ -180,6 +180,51 @@ TEST(SweepTable, RowFromAResultNeedsAlpha) {
   EXPECT_FALSE(row->fwhm_vertical_deg);
   EXPECT_EQ(row->limit_status, "measured");
   EXPECT_EQ(row->glare, true);
+  EXPECT_EQ(row->frames_consistent, std::nullopt);
+  EXPECT_FALSE(row->isSuspect());
+}
+
+// A stack whose frames disagree with the merge makes a suspect row, the frames named, and the
+// table keeps that through writing and reading.
+TEST(SweepTable, FramesThatDisagreeMakeASuspectRow) {
+  nlohmann::json result = {{"alpha_deg", 40.0},
+                           {"luminance", {{"max_cd_m2", 5e5}, {"frames_consistent", false}}},
+                           {"frames",
+                            {{{"file", "frame-02.png"}, {"median_ratio", 1.0}, {"agrees", true}},
+                             {{"file", "frame-03.png"}, {"median_ratio", 17.1}, {"agrees", false}},
+                             {{"file", "frame-04.png"}, {"median_ratio", nullptr},
+                              {"agrees", nullptr}}}}};
+  auto row = sweepRowFromResult(result, "stacks/a40");
+  ASSERT_TRUE(row) << row.error().message;
+  EXPECT_EQ(row->frames_consistent, false);
+  EXPECT_EQ(row->suspect, "frames disagree with the merge: frame-03.png reads +1610 %");
+  result["luminance"]["frames_consistent"] = true;
+  auto fine = sweepRowFromResult(result, "stacks/a40");
+  ASSERT_TRUE(fine);
+  EXPECT_FALSE(fine->isSuspect());
+
+  SweepTable table;
+  table.rows = {*row, *fine};
+  table.rows[1].alpha_deg = 50;
+  TempDir dir;
+  auto read = readText(dir, formatSweepTable(table));
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->rows[0].frames_consistent, false);
+  EXPECT_EQ(read->rows[0].suspect, row->suspect);
+  EXPECT_EQ(read->rows[1].frames_consistent, true);
+  EXPECT_FALSE(read->rows[1].isSuspect());
+
+  // Written by another tool: frames_consistent false alone still makes the row suspect.
+  auto bare = readText(dir, "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
+                            "frames_consistent\n40,30000,5e5,4,4,false\n");
+  ASSERT_TRUE(bare) << bare.error().message;
+  EXPECT_EQ(bare->rows[0].suspect, "frames disagree with the merge");
+  auto bad = readText(dir, "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
+                           "frames_consistent\n40,30000,5e5,4,4,maybe\n");
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("frames_consistent: expected true, false or nothing"),
+            std::string::npos)
+      << bad.error().message;
 }
 
 }  // namespace

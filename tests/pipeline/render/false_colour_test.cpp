@@ -37,6 +37,26 @@ TEST(FalseColour, MapsLowToDarkBlueHighToDarkRedAndAddsAColourBar) {
   EXPECT_EQ(saturated[2], 255);
 }
 
+// A suspect stack's picture carries a band across the top of the image (kLimitColour, a colour
+// the Turbo map never makes) with its text in white; without a banner the top is the image.
+TEST(FalseColour, ABannerCrossesTheTopOfTheImage) {
+  const calibration::MergedImage merged = gradient(200, 120);
+  auto plain = renderFalseColour(merged, {});
+  FalseColourOptions options;
+  options.banner = "SUSPECT: frames disagree with the merge";
+  auto bannered = renderFalseColour(merged, options);
+  ASSERT_TRUE(plain && bannered);
+  const auto magenta = [](const std::uint8_t* p) { return p[0] == 255 && p[1] == 0 && p[2] == 255; };
+  EXPECT_TRUE(magenta(pixel(*bannered, 1, 1)));
+  EXPECT_TRUE(magenta(pixel(*bannered, 198, 1)));
+  EXPECT_FALSE(magenta(pixel(*plain, 1, 1)));
+  EXPECT_EQ(pixel(*bannered, 100, 100)[0], pixel(*plain, 100, 100)[0]);  // below the band: unchanged
+  int white = 0;  // the text
+  for (int x = 0; x < 200; ++x)
+    for (int y = 0; y < 12; ++y) white += pixel(*bannered, x, y)[1] > 200;
+  EXPECT_GT(white, 20);
+}
+
 TEST(FalseColour, TurboEndsAreTheDocumentedColours) {
   std::uint8_t rgb[3];
   turboColour(0.0, rgb);

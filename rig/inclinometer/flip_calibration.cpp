@@ -89,6 +89,15 @@ Result<FlipCalibration> storeFlipCalibration(const std::filesystem::path& calibr
   GLARECAM_CHECK(checkNearLevel(first));
   GLARECAM_CHECK(checkNearLevel(second));
   FlipCalibration flip;
+  flip.surface_x_deg = (first.raw_tilt.x_deg - second.raw_tilt.x_deg) / 2;
+  flip.surface_y_deg = (first.raw_tilt.y_deg - second.raw_tilt.y_deg) / 2;
+  if (std::abs(flip.surface_x_deg) < kMinFlipSurfaceTiltDeg &&
+      std::abs(flip.surface_y_deg) < kMinFlipSurfaceTiltDeg)
+    return badInput(fmt::format(
+        "inclinometer flip: the two readings agree (surface tilt x {:.3f}°, y {:.3f}°): the frame "
+        "was not turned, or the surface is level, where a turn does not show; turn it 180° on a "
+        "surface tilted at least {:g}° (a shim under one side)",
+        flip.surface_x_deg, flip.surface_y_deg, kMinFlipSurfaceTiltDeg));
   flip.zero = flipZeroOffset(first, second);
   if (std::abs(flip.zero.offset.x_deg) > kMaxPlausibleZeroOffsetDeg ||
       std::abs(flip.zero.offset.y_deg) > kMaxPlausibleZeroOffsetDeg)
@@ -101,8 +110,6 @@ Result<FlipCalibration> storeFlipCalibration(const std::filesystem::path& calibr
   if (!configured_uri.empty() && !sameInclinometer(flip.uri, configured_uri))
     spdlog::warn("inclinometer flip: the readings are of {}, the configured sensor is {}", flip.uri,
                  configured_uri);
-  flip.surface_x_deg = (first.raw_tilt.x_deg - second.raw_tilt.x_deg) / 2;
-  flip.surface_y_deg = (first.raw_tilt.y_deg - second.raw_tilt.y_deg) / 2;
   const nlohmann::json provenance{{"method", "flip"},
                                   {"date", sun::formatIsoTime(utcNow())},
                                   {"uri", flip.uri},

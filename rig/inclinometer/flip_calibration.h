@@ -47,6 +47,13 @@ Result<FlipReadings> takeFlipReadings(Inclinometer& sensor, const std::string& u
 // kBadInput unless the reading is within kMaxPlausibleZeroOffsetDeg of level on both axes.
 Status checkNearLevel(const TiltReading& reading);
 
+// The least surface tilt (half the two readings' difference, on either axis) that shows the
+// frame was turned. On a level surface a turned frame and an unturned one read the same, so the
+// flip cannot tell whether it measured the mounting error or nothing: it asks for a surface
+// tilted at least this much (a shim under one side). 0.1° is 25 times the simulated sensor's
+// reading noise and 100 times an ADXL355's averaged one (docs/rig.md).
+inline constexpr double kMinFlipSurfaceTiltDeg = 0.1;
+
 struct FlipCalibration {
   InclinometerZeroOffset zero;
   std::string uri;           // the sensor the readings are of
@@ -55,8 +62,9 @@ struct FlipCalibration {
 };
 
 // The zero offset of `readings`, stored in `calibration_file` with the readings as provenance.
-// kBadInput when a reading is not near level or the offset is beyond the plausible (the frame was
-// not turned 180°, or the surface moved). `configured_uri`: the rig's sensor, warned about when
+// kBadInput when a reading is not near level, the readings show no turn (surface tilt below
+// kMinFlipSurfaceTiltDeg on both axes) or the offset is beyond the plausible (the frame was not
+// turned 180°, or the surface moved). `configured_uri`: the rig's sensor, warned about when
 // the readings are of another.
 Result<FlipCalibration> storeFlipCalibration(const std::filesystem::path& calibration_file,
                                              const FlipReadings& readings,

@@ -76,12 +76,14 @@ expect "flip: prints the offset" grep -Eq "zero offset x 0\.(29|30)" "$WORK/out"
 expect "flip: offset stored" near "$(json_number zero_offset_x_deg "$WORK/calib.json")" 0.3 0.002
 expect "flip: the calibration's other keys kept" grep -q '"note": "rig 1"' "$WORK/calib.json"
 expect "flip: provenance recorded" grep -q '"method": "flip"' "$WORK/calib.json"
-# Interactive: the operator presses Enter between the readings. On a level surface both readings
-# are the offset itself.
-check "flip: interactive" 0 bash -c "echo | '$GLARECAM' inclinometer flip --inclinometer 'sim:0,offset_y_deg=-0.4' \
+# Interactive: the operator presses Enter between the readings. The simulated sensor cannot be
+# turned: its two readings agree, which shows no turn, and is refused (a turned frame on a level
+# surface reads the same: the flip needs a tilted one). The turn itself: flip_calibration_test.
+check "flip: interactive, not turned" 2 bash -c "echo | '$GLARECAM' inclinometer flip --inclinometer 'sim:0,offset_y_deg=-0.4' \
   --calibration '$WORK/calib2.json' --no-progress"
 expect "flip: interactive prompt on stderr" grep -q "Turn the frame" "$WORK/err"
-expect "flip: interactive y offset" near "$(json_number zero_offset_y_deg "$WORK/calib2.json")" -0.4 0.002
+expect "flip: no turn explained" grep -q "the two readings agree" "$WORK/err"
+expect "flip: nothing stored without a turn" test ! -e "$WORK/calib2.json"
 check "flip: stdin closed" 2 bash -c "'$GLARECAM' inclinometer flip --inclinometer sim:0 --calibration '$WORK/c3.json' --no-progress </dev/null"
 expect "flip: stdin error names --from" grep -q -- "--from" "$WORK/err"
 expect "flip: nothing written when it failed" test ! -e "$WORK/c3.json"

@@ -171,5 +171,30 @@ TEST(StoreFlipCalibration, AnImplausibleOffsetIsRefusedAndNothingIsStored) {
   EXPECT_FALSE(fs::exists(dir / "calib.json"));
 }
 
+// Two readings of the frame not turned (issue 18: an offset of 1.1992° was stored for the same
+// position twice) agree; so do two of a turned frame on a level surface. Either way the flip
+// cannot tell the mounting error from nothing, and refuses; a surface tilted just over
+// kMinFlipSurfaceTiltDeg on one axis is enough.
+TEST(StoreFlipCalibration, ReadingsThatShowNoTurnAreRefused) {
+  TempDir dir;
+  const auto unturned = storeFlipCalibration(
+      dir / "calib.json", flipOf(readingOf(kSurface), readingOf(kSurface)), "sim:0");
+  ASSERT_FALSE(unturned);
+  EXPECT_EQ(unturned.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(unturned.error().message.find("the two readings agree (surface tilt x 0.000°"),
+            std::string::npos)
+      << unturned.error().message;
+  EXPECT_FALSE(fs::exists(dir / "calib.json"));
+  const auto level =
+      storeFlipCalibration(dir / "calib.json", flipOf(readingOf({0, 0}), readingOf({0, 0})), "");
+  ASSERT_FALSE(level);
+  EXPECT_NE(level.error().message.find("a surface tilted at least 0.1°"), std::string::npos);
+  const double just = 1.5 * kMinFlipSurfaceTiltDeg;
+  const auto shimmed = storeFlipCalibration(
+      dir / "calib.json", flipOf(readingOf({0, just}), readingOf({0, -just})), "");
+  ASSERT_TRUE(shimmed) << shimmed.error().message;
+  EXPECT_NEAR(shimmed->zero.offset.x_deg, kOffset.x_deg, 1e-9);
+}
+
 }  // namespace
 }  // namespace glarecam::rig

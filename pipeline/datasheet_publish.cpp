@@ -42,7 +42,8 @@ Result<fs::path> publishSweepTable(const SweepPublishOptions& options) {
   SweepTable table;
   SweepFits fits;
   GLARECAM_ASSIGN(fits, readAndFitSweep(options.sweep, table, options.fit));
-  const GlareLimit limit = sheetLimit(options.sweep.string(), table, options.threshold_cd_m2);
+  GlareLimit limit;
+  GLARECAM_ASSIGN(limit, sheetLimit(options.sweep.string(), table, options.threshold_cd_m2));
   const fs::path out = options.out.value_or(options.sweep.parent_path());
   if (!out.empty()) GLARECAM_CHECK(ensureDirectory(out));
   GLARECAM_CHECK(publishDatasheet({.module = options.module,
@@ -84,20 +85,22 @@ Result<std::string> sheetDate(const std::optional<std::string>& date) {
   return fmt::format("{:%F}", utc);
 }
 
-GlareLimit sheetLimit(const std::string& sweep, const SweepTable& table,
+Result<GlareLimit> sheetLimit(const std::string& sweep, const SweepTable& table,
                       const std::optional<double>& threshold_cd_m2) {
   std::string warning;
   const GlareLimit measured = inferGlareLimit(table, &warning);
   if (!warning.empty()) spdlog::warn("{}: {}", sweep, warning);
   if (!threshold_cd_m2) return measured;
   if (measured.constant_cd_m2 != threshold_cd_m2)
-    spdlog::warn(
-        "{}: --threshold {:g} cd/m² differs from the limit the sweep measured its "
-        "ellipses at ({}); the sheet's glare verdict follows --threshold, the axes do not",
+    return badInput(fmt::format(
+        "{}: --threshold {:g} cd/m² differs from the limit the sweep measured its ellipses at "
+        "({}): a sheet must show the limit its axes were measured at; make the table with "
+        "glarecam sweep --threshold {:g}",
         sweep, *threshold_cd_m2,
         measured.constant_cd_m2 ? fmt::format("{:g} cd/m²", *measured.constant_cd_m2)
-                                : std::string("the α curve"));
-  return {.constant_cd_m2 = threshold_cd_m2};
+                                : std::string("the α curve"),
+        *threshold_cd_m2));
+  return GlareLimit{.constant_cd_m2 = threshold_cd_m2};
 }
 
 }  // namespace glarecam::pipeline

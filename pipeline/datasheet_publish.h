@@ -40,10 +40,10 @@ Result<std::filesystem::path> publishSweepTable(const SweepPublishOptions& optio
 // else today (UTC).
 Result<std::string> sheetDate(const std::optional<std::string>& date);
 
-// The limit a sheet shows: `threshold_cd_m2`, else the one the sweep measured at (the table's).
-// The ellipses were measured at the sweep's limit: a different threshold changes the verdict, not
-// the axes, which is logged as a warning naming `sweep`.
-GlareLimit sheetLimit(const std::string& sweep, const SweepTable& table,
+// The limit a sheet shows: the one the sweep measured its ellipses at (the table's), which
+// `threshold_cd_m2` may confirm. A different threshold is kBadInput naming `sweep`: the sheet's
+// axes would be those at another limit than it shows (make the table with sweep --threshold).
+Result<GlareLimit> sheetLimit(const std::string& sweep, const SweepTable& table,
                       const std::optional<double>& threshold_cd_m2);
 
 }  // namespace glarecam::pipeline

@@ -54,8 +54,9 @@ void addDatasheetCommand(CLI::App& app, Action& action) {
   sub->add_option("--date", args->date,
                   "date printed on the sheet, YYYY-MM-DD (default: SOURCE_DATE_EPOCH or today)");
   sub->add_option("--threshold", args->threshold,
-                  "constant glare limit in cd/m² (default: the one the sweep used, read from the "
-                  "table's limit_cd_m2: the α curve or a constant)");
+                  "the sweep's constant glare limit in cd/m², to confirm it (default: the one the "
+                  "sweep used, read from the table's limit_cd_m2; another is refused: the axes "
+                  "were measured at the sweep's)");
   sub->add_option("--model-beta", args->model_beta_deg,
                   "overlay the five-facet model with facet tilt β in degrees (glarecam model)");
   sub->add_flag("--include-suspect", args->include_suspect,

@@ -194,6 +194,12 @@ check "datasheet: module name in UTF-8" 0 "$GLARECAM" datasheet "$TABLE3" --out 
 check "datasheet: bad model beta" 2 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds1" --model-beta 60
 check "datasheet: bad table" 2 "$GLARECAM" datasheet "$WORK/nonnum.csv" --out "$WORK/ds1"
 expect "nothing written for a bad table" test ! -e "$WORK/ds1/datasheet.pdf"
+# A sheet never shows a limit its axes were not measured at (Table III: the α curve).
+check "datasheet: --threshold other than the sweep's limit" 2 "$GLARECAM" datasheet "$TABLE3" --out "$WORK/ds3" \
+  --threshold 50000
+expect "--threshold refusal names both limits" \
+  grep -qF -- "--threshold 50000 cd/m² differs from the limit the sweep measured its ellipses at (the α curve)" "$WORK/err"
+expect "nothing written for another limit" test ! -e "$WORK/ds3/datasheet.pdf"
 check "datasheet beside the sweep table" 0 "$GLARECAM" datasheet "$WORK/sw/sweep.csv"
 expect "default --out is the table's directory" test -s "$WORK/sw/datasheet.pdf"
 check "sweep into a used directory" 0 "$GLARECAM" sweep "$WORK/sweep-in/a20" "$WORK/sweep-in/a40" --out "$WORK/sw" --no-progress

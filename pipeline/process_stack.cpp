@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/image_io.h"
 #include "core/progress.h"
+#include "core/sha256.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
 #include "pipeline/glare_analysis.h"
@@ -251,6 +252,35 @@ void warnAboutPrincipalPoint(const Stack& stack, const fs::path& calibration_fil
       100 * kPrincipalPointOffCentreFraction);
 }
 
+// The calibration's identity for result.json: the file (and its SHA-256) it was read from, the
+// camera and parts it states, K and u(K).
+CalibrationIdentity calibrationIdentity(const Stack& stack, const ProcessOptions& options) {
+  const nlohmann::json& source = stack.calibration.source;
+  CalibrationIdentity identity{.origin = stack.calibration_origin,
+                               .luminance_factor = stack.calibration.luminance_factor,
+                               .noise_model_assumed = !stack.calibration.noise};
+  if (stack.calibration_origin != "inline") {
+    const fs::path file = fs::absolute(calibrationSource(stack, options)).lexically_normal();
+    identity.file = file.string();
+    // Read a moment ago: a digest that fails now (the file replaced meanwhile) is left out.
+    if (auto digest = sha256OfFile(file)) identity.sha256 = std::move(*digest);
+  }
+  if (const auto camera = source.find("camera"); camera != source.end() && camera->is_object())
+    identity.camera = *camera;
+  if (const auto parts = source.find("parts"); parts != source.end() && parts->is_object()) {
+    identity.parts = nlohmann::json::object();
+    for (const auto& [name, part] : parts->items()) {
+      if (!part.is_object()) continue;
+      identity.parts[name] = {{"measured_at", part.value("measured_at", nlohmann::json())},
+                              {"method", part.value("method", nlohmann::json())}};
+    }
+  }
+  if (const auto u = source.find("luminance_factor_u");
+      u != source.end() && u->is_number() && u->get<double>() >= 0)
+    identity.luminance_factor_u = u->get<double>();
+  return identity;
+}
+
 // --threshold, else the α curve, else none.
 std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& options) {
   if (options.threshold_cd_m2) return options.threshold_cd_m2;
@@ -313,8 +343,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                .alpha_deg = stack.manifest.alpha_deg,
                                .width = merged.luminance_cd_m2.width(),
                                .height = merged.luminance_cd_m2.height(),
-                               .calibration_origin = stack.calibration_origin,
-                               .noise_model_assumed = !stack.calibration.noise,
+                               .calibration = calibrationIdentity(stack, options),
                                .stats = stats,
                                .frames = merged_stack.frames,
                                .limit_cd_m2 = limit,

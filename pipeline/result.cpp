@@ -1,6 +1,7 @@
 #include "pipeline/result.h"
 
 #include <cmath>
+#include <limits>
 
 #include "core/version.h"
 
@@ -60,8 +61,22 @@ nlohmann::json makeResult(const ResultInputs& in) {
   result["stack"] = in.stack_id;
   result["alpha_deg"] = in.alpha_deg ? json(*in.alpha_deg) : json(nullptr);
   result["image"] = {{"width", in.width}, {"height", in.height}};
-  result["calibration"] = {{"origin", in.calibration_origin},
-                           {"noise_model", in.noise_model_assumed ? "assumed" : "calibrated"}};
+  const CalibrationIdentity& cal = in.calibration;
+  const auto optional = [](const auto& value) { return value ? json(*value) : json(nullptr); };
+  result["calibration"] = {{"origin", cal.origin},
+                           {"noise_model", cal.noise_model_assumed ? "assumed" : "calibrated"},
+                           {"file", optional(cal.file)},
+                           {"sha256", optional(cal.sha256)},
+                           {"camera", cal.camera},
+                           {"parts", cal.parts},
+                           {"luminance_factor", cal.luminance_factor},
+                           {"luminance_factor_u", optional(cal.luminance_factor_u)}};
+  // Lmax's uncertainty: the merge's noise, and that combined in quadrature with K's, which scales
+  // every luminance of the stack alike (null when the calibration states no u(K)).
+  const double noise_u = s.max.relative_uncertainty;
+  const double k_u = cal.luminance_factor_u && cal.luminance_factor > 0
+                         ? *cal.luminance_factor_u / cal.luminance_factor
+                         : std::numeric_limits<double>::quiet_NaN();
   result["luminance"] = {{"max_cd_m2", s.max.value_cd_m2},
                          {"max_pixel", {std::lround(s.max.x_px), std::lround(s.max.y_px)}},
                          {"max_position_px", {s.max.x_px, s.max.y_px}},
@@ -69,6 +84,10 @@ nlohmann::json makeResult(const ResultInputs& in) {
                          {"max_relative_uncertainty", std::isfinite(s.max.relative_uncertainty)
                                                           ? json(s.max.relative_uncertainty)
                                                           : json(nullptr)},
+                         {"max_relative_uncertainty_combined",
+                          std::isfinite(noise_u) && std::isfinite(k_u)
+                              ? json(std::hypot(noise_u, k_u))
+                              : json(nullptr)},
                          {"max_is_lower_bound", s.max.method == PeakMethod::kLowerBound},
                          {"max_is_upper_bound", s.max.method == PeakMethod::kUpperBound},
                          {"valid_fraction", s.valid_fraction},

@@ -21,12 +21,23 @@ struct FrameCheck {
   calibration::FrameAgreement agreement;
 };
 
+// What a result's numbers rest on: the calibration's identity and its absolute scale K.
+struct CalibrationIdentity {
+  std::string origin;                  // "inline", the manifest's path as written, or --calibration
+  std::optional<std::string> file = std::nullopt;    // the file read, absolute (absent: inline)
+  std::optional<std::string> sha256 = std::nullopt;  // of that file's bytes
+  nlohmann::json camera = nullptr;     // the calibration's camera block (model, serial), or null
+  nlohmann::json parts = nullptr;      // {name: {measured_at, method}}, or null
+  double luminance_factor = 0;         // K
+  std::optional<double> luminance_factor_u = std::nullopt;  // u(K), when the calibration has it
+  bool noise_model_assumed = false;
+};
+
 struct ResultInputs {
   std::string stack_id;
   std::optional<double> alpha_deg;
   int width = 0, height = 0;
-  std::string calibration_origin;  // "inline", a path
-  bool noise_model_assumed = false;
+  CalibrationIdentity calibration;
   LuminanceStats stats;
   std::vector<FrameCheck> frames;
   std::optional<double> limit_cd_m2;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/image_io.h"
+#include "core/sha256.h"
 #include "pipeline/limit_curve.h"
 #include "support/sim_support.h"
 
@@ -180,6 +181,50 @@ TEST(ProcessStack, ConstantThresholdReplacesTheAlphaCurve) {
   // At α 70 the curve's limit is 100 000: the constant 30 000 contour is wider.
   EXPECT_GT(constant->result["limit"]["ellipse"]["vertical_deg"].get<double>(),
             curve->result["limit"]["ellipse"]["vertical_deg"].get<double>());
+}
+
+// result.json says what its numbers rest on: the calibration file and its SHA-256, the camera and
+// parts it states, K and u(K), and Lmax's uncertainty from noise alone and combined with u(K)
+// (in quadrature: K scales every luminance of the stack alike).
+TEST(ProcessStack, TheResultRecordsTheCalibrationItRestsOn) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  auto inline_run = processStack(dir / "s", quiet());
+  ASSERT_TRUE(inline_run) << inline_run.error().message;
+  const json& inline_cal = inline_run->result["calibration"];
+  EXPECT_EQ(inline_cal["origin"], "inline");
+  EXPECT_TRUE(inline_cal["file"].is_null());
+  EXPECT_TRUE(inline_cal["sha256"].is_null());
+  EXPECT_TRUE(inline_cal["luminance_factor_u"].is_null());
+  EXPECT_TRUE(inline_run->result["luminance"]["max_relative_uncertainty_combined"].is_null());
+
+  json calibration = json::parse(testing::readText(dir / "s" / "stack.json"))["calibration"];
+  calibration.erase("flat_field");
+  const double k = calibration["luminance_factor"].get<double>();
+  calibration["luminance_factor_u"] = 0.0116 * k;  // the calibration walk-through's 1.16 %
+  calibration["camera"] = {{"model", "simulated rig"}, {"serial", "SIM-0001"}};
+  calibration["parts"] = {{"luminance",
+                           {{"measured_at", "2026-06-21T10:00:00Z"},
+                            {"method", "a 5000 cd/m² patch"},
+                            {"inputs", {"stacks/luminance"}}}}};
+  testing::writeText(dir / "calibration.json", calibration.dump());
+  ProcessOptions options = quiet();
+  options.calibration_file = dir / "calibration.json";
+  auto run = processStack(dir / "s", options);
+  ASSERT_TRUE(run) << run.error().message;
+  const json& cal = run->result["calibration"];
+  EXPECT_EQ(cal["file"], fs::absolute(dir / "calibration.json").lexically_normal().string());
+  EXPECT_EQ(cal["sha256"], *sha256OfFile(dir / "calibration.json"));
+  EXPECT_EQ(cal["camera"]["serial"], "SIM-0001");
+  EXPECT_EQ(cal["parts"]["luminance"]["measured_at"], "2026-06-21T10:00:00Z");
+  EXPECT_FALSE(cal["parts"]["luminance"].contains("inputs"));
+  EXPECT_EQ(cal["luminance_factor"], k);
+  EXPECT_DOUBLE_EQ(cal["luminance_factor_u"].get<double>(), 0.0116 * k);
+  const json& luminance = run->result["luminance"];
+  const double noise = luminance["max_relative_uncertainty"].get<double>();
+  EXPECT_LT(noise, 0.0116);  // the merge's noise is the smaller part here
+  EXPECT_NEAR(luminance["max_relative_uncertainty_combined"].get<double>(),
+              std::hypot(noise, 0.0116), 1e-12);
 }
 
 TEST(ProcessStack, ThresholdSweepReportsOneEllipsePerLevel) {

@@ -197,7 +197,7 @@ Result<StackManifest> parseManifest(const json& document, const std::string& whe
   GLARECAM_ASSIGN(manifest.id, fields.optionalString("id"));
   GLARECAM_ASSIGN(manifest.captured_at, fields.optionalString("captured_at"));
   GLARECAM_ASSIGN(manifest.alpha_deg, fields.optionalNumber("alpha_deg"));
-  if (manifest.alpha_deg && (*manifest.alpha_deg < 0 || *manifest.alpha_deg > 90)) {
+  if (manifest.alpha_deg && (*manifest.alpha_deg < 0 || *manifest.alpha_deg > kMaxStackAlphaDeg)) {
     return fields.error("alpha_deg",
                         "must be between 0 and 90 degrees, not " + show(document.at("alpha_deg")));
   }

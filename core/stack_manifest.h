@@ -70,6 +70,9 @@ Result<Calibration> parseCalibration(const nlohmann::json& block, const std::str
 nlohmann::json toJson(const Calibration& calibration);
 nlohmann::json toJson(const StackManifest& manifest);
 
+// A manifest's alpha_deg lies in [0, kMaxStackAlphaDeg]: the angle from the module normal.
+inline constexpr double kMaxStackAlphaDeg = 90.0;
+
 // Largest image side a calibration may name, in pixels (the sim camera's URI bound, far above
 // any sensor): keeps a recorded width or height an int.
 inline constexpr int kMaxImageSide = 1 << 20;

@@ -281,6 +281,21 @@ CalibrationIdentity calibrationIdentity(const Stack& stack, const ProcessOptions
   return identity;
 }
 
+// --alpha for a stack that records no α (true: given so); the same α confirms it, another is
+// refused.
+Result<bool> applyGivenAlpha(Stack& stack, const std::optional<double>& alpha_deg) {
+  if (!alpha_deg) return false;
+  const std::optional<double>& recorded = stack.manifest.alpha_deg;
+  if (recorded && *recorded != *alpha_deg)
+    return badInput(fmt::format(
+        "{}: records alpha_deg {:g}, which --alpha {:g} contradicts (--alpha gives α to a stack "
+        "that records none)",
+        (stack.directory / kManifestFileName).string(), *recorded, *alpha_deg));
+  if (recorded) return false;
+  stack.manifest.alpha_deg = alpha_deg;
+  return true;
+}
+
 // --threshold, else the α curve, else none.
 std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& options) {
   if (options.threshold_cd_m2) return options.threshold_cd_m2;
@@ -306,6 +321,8 @@ Status ProcessOptions::validate() const {
     return badInput("--thresholds: at most " + std::to_string(kMaxThresholds) + " levels");
   if (!std::all_of(thresholds_cd_m2.begin(), thresholds_cd_m2.end(), positive))
     return badInput("--thresholds: must be positive luminances in cd/m²");
+  if (alpha_deg && !(*alpha_deg >= 0 && *alpha_deg <= kMaxStackAlphaDeg))
+    return badInput(fmt::format("--alpha: must be between 0 and {:g} degrees", kMaxStackAlphaDeg));
   return {};
 }
 
@@ -317,6 +334,8 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   Stack stack;
   GLARECAM_ASSIGN(stack, readStack(stack_directory, {.calibration_file = options.calibration_file,
                                                      .threads = options.threads}));
+  bool alpha_given = false;
+  GLARECAM_ASSIGN(alpha_given, applyGivenAlpha(stack, options.alpha_deg));
   std::vector<std::string> warnings;
   GLARECAM_CHECK(calibration::checkCalibrationUse(stack.calibration, stack.manifest,
                                                   calibrationSource(stack, options).string(),
@@ -341,6 +360,9 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   summary.output_directory = options.output_directory.value_or(stack_directory / "result");
   summary.result = makeResult({.stack_id = stackId(stack),
                                .alpha_deg = stack.manifest.alpha_deg,
+                               .alpha_source = alpha_given ? "given"
+                                               : stack.manifest.alpha_deg ? "manifest"
+                                                                          : "",
                                .width = merged.luminance_cd_m2.width(),
                                .height = merged.luminance_cd_m2.height(),
                                .calibration = calibrationIdentity(stack, options),

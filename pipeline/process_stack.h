@@ -23,6 +23,9 @@ struct ProcessOptions {
   // A constant glare limit instead of the α curve (the method's 30 000 cd/m² mode).
   std::optional<double> threshold_cd_m2;
   std::vector<double> thresholds_cd_m2;  // extra ellipses, one per level (threshold sweep)
+  // α for a stack whose manifest records none (another tool's, a rig without an inclinometer),
+  // recorded in result.json as given by the user; one that contradicts the manifest's is refused.
+  std::optional<double> alpha_deg = std::nullopt;
   unsigned threads = 0;                  // 0: all cores
   bool show_progress = true;
   // Whose and how old a calibration may be (a serial mismatch refuses, old parts warn).

@@ -60,6 +60,7 @@ nlohmann::json makeResult(const ResultInputs& in) {
   result["schema"] = kResultSchema;
   result["stack"] = in.stack_id;
   result["alpha_deg"] = in.alpha_deg ? json(*in.alpha_deg) : json(nullptr);
+  result["alpha_source"] = in.alpha_source.empty() ? json(nullptr) : json(in.alpha_source);
   result["image"] = {{"width", in.width}, {"height", in.height}};
   const CalibrationIdentity& cal = in.calibration;
   const auto optional = [](const auto& value) { return value ? json(*value) : json(nullptr); };

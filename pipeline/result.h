@@ -36,6 +36,7 @@ struct CalibrationIdentity {
 struct ResultInputs {
   std::string stack_id;
   std::optional<double> alpha_deg;
+  std::string alpha_source;  // "manifest", "given" (process --alpha), or empty: no α
   int width = 0, height = 0;
   CalibrationIdentity calibration;
   LuminanceStats stats;

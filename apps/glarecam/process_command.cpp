@@ -18,7 +18,7 @@ namespace {
 struct ProcessArgs {
   std::string stack;
   // Optional, so that a given but empty value ("--threshold $UNSET") is an error, not a default.
-  std::optional<std::string> calibration, out, threshold, thresholds;
+  std::optional<std::string> calibration, out, threshold, thresholds, alpha;
   bool json = false, no_progress = false, force_calibration = false;
   unsigned threads = 0;
   double max_calibration_age_days = 365;
@@ -33,6 +33,7 @@ Status runProcess(const ProcessArgs& args) {
   if (args.out) options.output_directory = *args.out;
   options.threads = args.threads;
   GLARECAM_ASSIGN(options.threshold_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
+  GLARECAM_ASSIGN(options.alpha_deg, parseOptionalNumber(args.alpha, "--alpha"));
   if (args.thresholds) {
     auto thresholds =
         parseNumberList(*args.thresholds, "--thresholds", 1, pipeline::kMaxThresholds);
@@ -66,6 +67,9 @@ void addProcessCommand(CLI::App& app, Action& action) {
   sub->add_option("--calibration", args->calibration,
                   "calibration JSON file; overrides the stack's");
   sub->add_option("--out", args->out, "output directory (default STACK/result)");
+  sub->add_option("--alpha", args->alpha,
+                  "angle of incidence α in degrees for a stack that records none (recorded in "
+                  "result.json as given); one that contradicts the stack's is refused");
   sub->add_option("--threshold", args->threshold,
                   "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
   sub->add_option("--thresholds", args->thresholds,

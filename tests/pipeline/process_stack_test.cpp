@@ -75,6 +75,40 @@ TEST(ProcessStack, NoAlphaMeansNoLimitAndNoVerdict) {
   EXPECT_TRUE(fs::exists(dir / "out" / "result.json"));
 }
 
+// --alpha gives α to a stack that records none, recorded as given; the manifest's own α is
+// confirmed by the same value and never overridden by another.
+TEST(ProcessStack, AlphaGivenToAStackThatRecordsNone) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s");
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  const double recorded = manifest["alpha_deg"].get<double>();
+  ProcessOptions options = quiet();
+  options.alpha_deg = recorded;
+  auto confirmed = processStack(dir / "s", options);
+  ASSERT_TRUE(confirmed) << confirmed.error().message;
+  EXPECT_EQ(confirmed->result["alpha_source"], "manifest");
+  options.alpha_deg = recorded + 10;
+  auto contradicted = processStack(dir / "s", options);
+  ASSERT_FALSE(contradicted);
+  EXPECT_EQ(contradicted.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(contradicted.error().message.find("stack.json: records alpha_deg"), std::string::npos)
+      << contradicted.error().message;
+
+  manifest.erase("alpha_deg");
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto given = processStack(dir / "s", options);
+  ASSERT_TRUE(given) << given.error().message;
+  EXPECT_EQ(given->result["alpha_deg"], recorded + 10);
+  EXPECT_EQ(given->result["alpha_source"], "given");
+  EXPECT_EQ(given->result["limit"]["limit_cd_m2"], glareLimitCdM2(recorded + 10));
+  options.alpha_deg.reset();
+  auto none = processStack(dir / "s", options);
+  ASSERT_TRUE(none);
+  EXPECT_TRUE(none->result["alpha_source"].is_null());
+  options.alpha_deg = 91;
+  EXPECT_FALSE(processStack(dir / "s", options));
+}
+
 TEST(ProcessStack, BelowTheLimitDoesNotGlare) {
   testing::TempDir dir;
   capture::SimulationOptions options = testing::smallScene(30.0);

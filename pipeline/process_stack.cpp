@@ -252,6 +252,12 @@ void warnAboutPrincipalPoint(const Stack& stack, const fs::path& calibration_fil
       100 * kPrincipalPointOffCentreFraction);
 }
 
+// The manifest's camera block (backend, model, serial, size), or null.
+nlohmann::json cameraBlock(const StackManifest& manifest) {
+  const auto camera = manifest.source.find("camera");
+  return camera != manifest.source.end() && camera->is_object() ? *camera : nlohmann::json();
+}
+
 // The calibration's identity for result.json: the file (and its SHA-256) it was read from, the
 // camera and parts it states, K and u(K).
 CalibrationIdentity calibrationIdentity(const Stack& stack, const ProcessOptions& options) {
@@ -275,6 +281,8 @@ CalibrationIdentity calibrationIdentity(const Stack& stack, const ProcessOptions
                               {"method", part.value("method", nlohmann::json())}};
     }
   }
+  constexpr std::size_t kIdHexDigits = 16;  // 64 bits: no two calibrations of a lab collide
+  identity.id = sha256Hex(source.dump()).substr(0, kIdHexDigits);
   if (const auto u = source.find("luminance_factor_u");
       u != source.end() && u->is_number() && u->get<double>() >= 0)
     identity.luminance_factor_u = u->get<double>();
@@ -363,6 +371,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                .alpha_source = alpha_given ? "given"
                                                : stack.manifest.alpha_deg ? "manifest"
                                                                           : "",
+                               .camera = cameraBlock(stack.manifest),
                                .width = merged.luminance_cd_m2.width(),
                                .height = merged.luminance_cd_m2.height(),
                                .calibration = calibrationIdentity(stack, options),

@@ -62,6 +62,7 @@ nlohmann::json makeResult(const ResultInputs& in) {
   result["alpha_deg"] = in.alpha_deg ? json(*in.alpha_deg) : json(nullptr);
   result["alpha_source"] = in.alpha_source.empty() ? json(nullptr) : json(in.alpha_source);
   result["image"] = {{"width", in.width}, {"height", in.height}};
+  result["camera"] = in.camera;
   const CalibrationIdentity& cal = in.calibration;
   const auto optional = [](const auto& value) { return value ? json(*value) : json(nullptr); };
   result["calibration"] = {{"origin", cal.origin},
@@ -70,6 +71,7 @@ nlohmann::json makeResult(const ResultInputs& in) {
                            {"sha256", optional(cal.sha256)},
                            {"camera", cal.camera},
                            {"parts", cal.parts},
+                           {"id", cal.id},
                            {"luminance_factor", cal.luminance_factor},
                            {"luminance_factor_u", optional(cal.luminance_factor_u)}};
   // Lmax's uncertainty: the merge's noise, and that combined in quadrature with K's, which scales

@@ -215,10 +215,44 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
     summary.table.notes.push_back("skipped " + s.stack.string() + ": " + s.error.message);
   }
   if (summary.table.rows.empty()) return std::unexpected(noStackError(summary.skipped));
+  if (const std::string mixed = mixedFields(summary.table); !mixed.empty()) {
+    if (!options.allow_mixed)
+      return badInput("sweep: the stacks differ in " + mixed +
+                      ": one table is one module measured with one camera and calibration "
+                      "(--mixed to write it anyway)");
+    spdlog::warn("sweep: the stacks differ in {} (--mixed)", mixed);
+    summary.table.notes.push_back("mixed: the stacks differ in " + mixed);
+  }
   summary.sweep_csv = options.output_directory / kSweepTableFileName;
   GLARECAM_CHECK(writeFileAtomic(summary.sweep_csv, formatSweepTable(summary.table)));
   warnAboutEarlierOutputs(options.output_directory, results);
   return summary;
+}
+
+std::string mixedFields(const SweepTable& table) {
+  const auto distinct = [&](auto value_of) {
+    std::set<std::string> values;
+    for (const SweepRow& row : table.rows)
+      if (std::string value = value_of(row); !value.empty()) values.insert(std::move(value));
+    return values;
+  };
+  const std::pair<const char*, std::set<std::string>> fields[] = {
+      {"camera", distinct([](const SweepRow& r) {
+         return r.camera_serial.empty() ? r.camera_backend
+                                        : r.camera_backend + " " + r.camera_serial;
+       })},
+      {"frame size", distinct([](const SweepRow& r) {
+         return r.width && r.height ? fmt::format("{}x{}", *r.width, *r.height) : std::string();
+       })},
+      {"calibration", distinct([](const SweepRow& r) { return r.calibration_id; })}};
+  std::string mixed;
+  for (const auto& [name, values] : fields) {
+    if (values.size() < 2) continue;
+    std::string list;
+    for (const std::string& value : values) list += (list.empty() ? "" : ", ") + value;
+    mixed += fmt::format("{}{} ({})", mixed.empty() ? "" : "; ", name, list);
+  }
+  return mixed;
 }
 
 Status checkStrict(const SweepSummary& summary) {

@@ -22,6 +22,9 @@ struct SweepOptions {
   std::optional<std::filesystem::path> calibration_file;
   std::optional<double> threshold_cd_m2;  // a constant glare limit instead of the α curve
   bool show_progress = true;
+  // Rows of different cameras, frame sizes or calibrations in one table (mixedFields()) are
+  // refused unless allowed: their fits would describe no one module measurement.
+  bool allow_mixed = false;
 };
 
 struct SkippedStack {
@@ -51,6 +54,11 @@ StackSearch findStacks(const std::vector<std::filesystem::path>& inputs);
 // Processes the stacks and writes the table, listing every skipped input and stack. Fails only
 // when no stack could be processed (with the first error) or the table cannot be written.
 Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& options);
+
+// What differs among the rows ("camera (sim SIM-0001, aravis 40012345); calibration (...)"), or
+// empty when they share one camera, frame size and calibration. Rows that do not say (tables of
+// other tools) are not compared.
+std::string mixedFields(const SweepTable& table);
 
 // `sweep --strict`: the first skipped stack's error (its code), else kBadInput naming the first
 // suspect row (frames that disagree) and why, else nothing.

@@ -32,6 +32,11 @@ enum Column {
   kLimitStatus,
   kFramesConsistent,
   kSuspect,
+  kCameraBackend,
+  kCameraSerial,
+  kWidth,
+  kHeight,
+  kCalibrationId,
   kStackId,
   kStack,
   kColumnCount
@@ -53,6 +58,11 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "limit_status",
                                                              "frames_consistent",
                                                              "suspect",
+                                                             "camera_backend",
+                                                             "camera_serial",
+                                                             "width",
+                                                             "height",
+                                                             "calibration_id",
                                                              "stack_id",
                                                              "stack"};
 
@@ -168,6 +178,19 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
                     "\"");
   if (!consistent.empty()) row.frames_consistent = consistent == "true";
   row.suspect = field(header, fields, kSuspect);
+  row.camera_backend = field(header, fields, kCameraBackend);
+  row.camera_serial = field(header, fields, kCameraSerial);
+  for (auto [column, size] : {std::pair{kWidth, &row.width}, {kHeight, &row.height}}) {
+    const std::string text = field(header, fields, column);
+    if (text.empty()) continue;
+    int value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size() || value < 1)
+      return badInput(fmt::format("{}: expected a whole number of pixels, got \"{}\"",
+                                  kColumnNames[column], text));
+    *size = value;
+  }
+  row.calibration_id = field(header, fields, kCalibrationId);
   if (row.frames_consistent == false && row.suspect.empty())
     row.suspect = "frames disagree with the merge";
   row.stack_id = field(header, fields, kStackId);
@@ -292,6 +315,11 @@ std::string formatSweepTable(const SweepTable& table) {
                                                            ? (*r.frames_consistent ? "true" : "false")
                                                            : "",
                                                        quoteCsvField(oneLine(r.suspect)),
+                                                       quoteCsvField(oneLine(r.camera_backend)),
+                                                       quoteCsvField(oneLine(r.camera_serial)),
+                                                       r.width ? std::to_string(*r.width) : "",
+                                                       r.height ? std::to_string(*r.height) : "",
+                                                       quoteCsvField(oneLine(r.calibration_id)),
                                                        quoteCsvField(oneLine(r.stack_id)),
                                                        quoteCsvField(oneLine(r.stack))};
     text += csvLine(fields);
@@ -349,6 +377,15 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
       consistent.is_boolean())
     row.frames_consistent = consistent.get<bool>();
   if (row.frames_consistent == false) row.suspect = disagreeingFrames(result);
+  const auto text = [&](const char* pointer) {
+    const json value = result.value(P(pointer), json());
+    return value.is_string() ? value.get<std::string>() : std::string();
+  };
+  row.camera_backend = text("/camera/backend");
+  row.camera_serial = text("/camera/serial");
+  row.calibration_id = text("/calibration/id");
+  if (const auto w = numberAt(result, P("/image/width"))) row.width = static_cast<int>(*w);
+  if (const auto h = numberAt(result, P("/image/height"))) row.height = static_cast<int>(*h);
   if (result.contains("stack") && result["stack"].is_string()) row.stack_id = result["stack"];
   row.stack = stack;
   return row;

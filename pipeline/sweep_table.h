@@ -32,6 +32,11 @@ struct SweepRow {
   // Why the row's numbers are suspect ("frames disagree: frame-03.png reads +1610 %"), empty when
   // they are not. The fits leave suspect rows out unless asked (FitOptions::include_suspect).
   std::string suspect;
+  // What the row was measured with (result.json's camera, image and calibration.id): a sweep
+  // refuses to mix them unless asked, and a sheet of a simulated camera says so.
+  std::string camera_backend, camera_serial;
+  std::optional<int> width, height;
+  std::string calibration_id;
   std::string stack_id, stack;
   bool isSuspect() const { return !suspect.empty(); }
 };

@@ -19,7 +19,7 @@ struct SweepArgs {
   std::vector<std::string> inputs;
   std::optional<std::string> out, calibration, threshold;
   unsigned jobs = 0, threads = 0;
-  bool no_progress = false, strict = false;
+  bool no_progress = false, strict = false, mixed = false;
 };
 
 Status runSweep(const SweepArgs& args) {
@@ -32,6 +32,7 @@ Status runSweep(const SweepArgs& args) {
   options.jobs = args.jobs;
   options.threads = args.threads;
   options.show_progress = !args.no_progress;
+  options.allow_mixed = args.mixed;
   std::vector<std::filesystem::path> inputs;
   for (const std::string& input : args.inputs) {
     if (input.empty()) return badInput("STACKS: expected a path, got an empty string");
@@ -72,6 +73,9 @@ void addSweepCommand(CLI::App& app, Action& action) {
   sub->add_flag("--strict", args->strict,
                 "exit non-zero when any stack or input was skipped, or any row is suspect (frames "
                 "that disagree); the table is still written");
+  sub->add_flag("--mixed", args->mixed,
+                "write one table of stacks of different cameras, frame sizes or calibrations "
+                "(refused otherwise; a '# mixed' note says what differs)");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSweep(*args); }; });
 }

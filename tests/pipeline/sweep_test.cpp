@@ -76,6 +76,50 @@ TEST(Sweep, ProcessesGoodStacksSortedByAlphaAndReportsBadOnes) {
   EXPECT_TRUE(fs::exists(dir / "out/results/s2/luminance.png"));
 }
 
+// One table is one module measured with one camera and calibration: stacks whose calibrations
+// differ are refused, naming what differs, and no table is written; --mixed writes it with a note.
+// Each row records what it was measured with.
+TEST(Sweep, StacksOfDifferentCalibrationsAreNotMixedUnlessAsked) {
+  TempDir dir;
+  writeStackAt(dir / "stacks/s1", 20);
+  writeStackAt(dir / "stacks/s2", 40);
+  writeStackAt(dir / "stacks/s3", 60);
+  auto manifest = nlohmann::json::parse(testing::readText(dir / "stacks/s3/stack.json"));
+  manifest["calibration"]["luminance_factor"] = 2 * manifest["calibration"]["luminance_factor"].get<double>();
+  testing::writeText(dir / "stacks/s3/stack.json", manifest.dump());
+
+  auto refused = runSweep(findStacks({dir / "stacks"}), quiet(dir / "out", 2));
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(refused.error().message.find("the stacks differ in calibration ("), std::string::npos)
+      << refused.error().message;
+  EXPECT_EQ(refused.error().message.find("camera ("), std::string::npos);  // one camera
+  EXPECT_FALSE(fs::exists(dir / "out/sweep.csv"));
+
+  SweepOptions mixed = quiet(dir / "out", 2);
+  mixed.allow_mixed = true;
+  auto summary = runSweep(findStacks({dir / "stacks"}), mixed);
+  ASSERT_TRUE(summary) << summary.error().message;
+  auto table = readSweepTable(dir / "out/sweep.csv");
+  ASSERT_TRUE(table) << table.error().message;
+  ASSERT_EQ(table->notes.size(), 1u);
+  EXPECT_EQ(table->notes[0].rfind("mixed: the stacks differ in calibration (", 0), 0u);
+  const SweepRow& row = table->rows[0];
+  EXPECT_EQ(row.camera_backend, "sim");
+  EXPECT_FALSE(row.camera_serial.empty());
+  EXPECT_TRUE(row.width && row.height);
+  EXPECT_EQ(row.calibration_id.size(), 16u);
+  EXPECT_EQ(table->rows[1].calibration_id, row.calibration_id);
+  EXPECT_NE(table->rows[2].calibration_id, row.calibration_id);
+  EXPECT_NE(mixedFields(*table).find("calibration"), std::string::npos);
+  table->rows.pop_back();
+  EXPECT_EQ(mixedFields(*table), "");
+  table->rows[1].width = 2 * *row.width;
+  table->rows[1].camera_serial = "40012345";
+  EXPECT_EQ(mixedFields(*table).rfind("camera (", 0), 0u) << mixedFields(*table);
+  EXPECT_NE(mixedFields(*table).find("frame size ("), std::string::npos);
+}
+
 TEST(Sweep, OneJobAndManyJobsGiveTheSameTable) {
   TempDir dir;
   for (double alpha : {10.0, 50.0, 70.0})

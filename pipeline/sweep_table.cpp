@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <functional>
 #include <cmath>
 #include <fstream>
 
@@ -394,6 +395,37 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
 void sortByAlpha(SweepTable& table) {
   std::stable_sort(table.rows.begin(), table.rows.end(),
                    [](const SweepRow& a, const SweepRow& b) { return a.alpha_deg < b.alpha_deg; });
+}
+
+bool isSimulated(const SweepTable& table) {
+  return std::ranges::any_of(table.rows,
+                             [](const SweepRow& row) { return row.camera_backend == "sim"; });
+}
+
+namespace {
+
+std::vector<std::string> distinctValues(const SweepTable& table,
+                                        const std::function<std::string(const SweepRow&)>& of) {
+  std::vector<std::string> values;
+  for (const SweepRow& row : table.rows) {
+    std::string value = of(row);
+    if (!value.empty() && std::ranges::find(values, value) == values.end())
+      values.push_back(std::move(value));
+  }
+  return values;
+}
+
+}  // namespace
+
+std::vector<std::string> tableCameras(const SweepTable& table) {
+  return distinctValues(table, [](const SweepRow& row) {
+    return row.camera_serial.empty() ? row.camera_backend
+                                     : row.camera_backend + " " + row.camera_serial;
+  });
+}
+
+std::vector<std::string> tableCalibrations(const SweepTable& table) {
+  return distinctValues(table, [](const SweepRow& row) { return row.calibration_id; });
 }
 
 }  // namespace glarecam::pipeline

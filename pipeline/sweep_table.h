@@ -58,6 +58,15 @@ void sortByAlpha(SweepTable& table);
 // (the α curve is then assumed).
 GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning = nullptr);
 
+// True when any row was measured with the simulated camera (camera_backend "sim"): a sheet or
+// profile made from it must say so, so that it can never pass for a measurement.
+bool isSimulated(const SweepTable& table);
+
+// The distinct cameras ("sim SIM-0001") and calibration ids of the rows, in order, empty ones
+// left out.
+std::vector<std::string> tableCameras(const SweepTable& table);
+std::vector<std::string> tableCalibrations(const SweepTable& table);
+
 // The table as CSV text, rows sorted by α, notes as leading '#' lines.
 std::string formatSweepTable(const SweepTable& table);
 

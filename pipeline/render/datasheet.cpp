@@ -78,6 +78,10 @@ constexpr LineStyle kModelEwStyle{.colour = kModelGrey, .width_pt = 0.8, .dash =
 constexpr LineStyle kExtrapolationKeyStyle{
     .colour = kModelGrey, .width_pt = 1.0, .dash = Dash::kDotted};
 
+constexpr Font kSimulatedMarkFont{.size = 120, .bold = true};
+constexpr double kSimulatedMarkAngleRad = 0.5;  // ~29°, bottom left to top right
+constexpr double kSimulatedMarkAlpha = 0.28;     // the plots stay readable through it
+
 constexpr MarkerStyle kLmaxMarker{.colour = kInk};
 constexpr MarkerStyle kLmaxBoundMarker{.colour = kInk, .hollow = true};  // Lmax only a bound
 constexpr MarkerStyle kSuspectMarker{.colour = kRed, .hollow = true};    // frames disagree
@@ -494,10 +498,20 @@ std::string subtitle(const DatasheetContent& content) {
                         formatLuminance(*content.limit.constant_cd_m2))
           : fmt::format("the limit curve of the SPF method (undefined above {:g}\u00b0)",
                         kMaxLimitAlphaDeg);
+  std::string measured_with;
+  for (const std::string& camera : tableCameras(*content.table))
+    measured_with += (measured_with.empty() ? " Camera " : ", ") + camera;
+  for (const std::string& id : tableCalibrations(*content.table))
+    measured_with += fmt::format("{}{}", measured_with.find("calibration") == std::string::npos
+                                             ? "; calibration "
+                                             : ", ",
+                                 id);
+  if (!measured_with.empty()) measured_with += ".";
   return fmt::format(
       "Sweep of {} stack{}, \u03b1 {:g}\u00b0 to {:g}\u00b0 (angle of incidence from the module "
-      "normal). Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.",
-      n, n == 1 ? "" : "s", lo->alpha_deg, hi->alpha_deg, limit, glareRangesText(content));
+      "normal). Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.{}",
+      n, n == 1 ? "" : "s", lo->alpha_deg, hi->alpha_deg, limit, glareRangesText(content),
+      measured_with);
 }
 
 void drawHeader(cairo_t* cr, const DatasheetContent& content, const Box& box) {
@@ -555,6 +569,22 @@ void drawWarnings(cairo_t* cr, const std::vector<std::string>& warnings, const B
   }
 }
 
+// Across the page's face, translucent red: a sheet of the simulated camera's stacks can never
+// pass for a measurement, whatever is cut from it.
+void drawSimulatedMark(cairo_t* cr) {
+  cairo_save(cr);
+  cairo_push_group(cr);
+  cairo_translate(cr, kPageWidthPt / 2, kPageHeightPt / 2);
+  cairo_rotate(cr, -kSimulatedMarkAngleRad);
+  drawText(cr, {0, kSimulatedMarkFont.size * kBaselineBelowMiddleEm}, "SIMULATED",
+           {kSimulatedMarkFont, kRed, Align::kCentre});
+  drawText(cr, {0, kSimulatedMarkFont.size * 0.75}, "stacks of the simulated camera: not a measurement",
+           {kSectionFont, kRed, Align::kCentre});
+  cairo_pop_group_to_source(cr);
+  cairo_paint_with_alpha(cr, kSimulatedMarkAlpha);
+  cairo_restore(cr);
+}
+
 void drawDatasheet(cairo_t* cr, const DatasheetContent& content) {
   paint(cr, kWhite);
   const Layout layout = pageLayout(cr, content);
@@ -563,6 +593,7 @@ void drawDatasheet(cairo_t* cr, const DatasheetContent& content) {
   drawAxesPlot(cr, content, layout.axes_plot);
   drawTables(cr, content, layout.right_column);
   drawWarnings(cr, content.fits->warnings, layout.warnings);
+  if (isSimulated(*content.table)) drawSimulatedMark(cr);
 }
 
 // ---- Output ----

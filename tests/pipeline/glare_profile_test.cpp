@@ -78,6 +78,20 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
   EXPECT_EQ(j["measured"].size(), 9u);
   EXPECT_TRUE(j["fits"]["vertical"]["logistic"]["r2"].is_number());
   EXPECT_TRUE(j["profile"][60]["circular_beam"]["slope_error_mrad"].is_number());
+  EXPECT_EQ(j["simulated"], false);
+  EXPECT_TRUE(j["cameras"].empty());  // Table III says nothing of its camera
+
+  // A sweep of the simulated camera makes a simulated profile, naming the camera and calibration.
+  SweepTable simulated = *table;
+  for (SweepRow& row : simulated.rows) {
+    row.camera_backend = "sim";
+    row.camera_serial = "SIM-0001";
+    row.calibration_id = "0123456789abcdef";
+  }
+  const nlohmann::json s = glareProfileJson({"standard", "2026-11-26", "t.csv"}, simulated, fits, {});
+  EXPECT_EQ(s["simulated"], true);
+  EXPECT_EQ(s["cameras"], nlohmann::json::array({"sim SIM-0001"}));
+  EXPECT_EQ(s["calibrations"], nlohmann::json::array({"0123456789abcdef"}));
 }
 
 TEST(GlareProfile, NoAxesWhereTheModuleDoesNotGlare) {

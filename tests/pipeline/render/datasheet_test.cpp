@@ -38,6 +38,34 @@ TEST(Datasheet, WritesPdfSvgAndPng) {
     EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
 }
 
+// Stacks of the simulated camera mark the sheet's face (and name the camera in the subtitle): the
+// same table drawn with and without a "sim" row differs.
+TEST(Datasheet, ASimulatedSweepIsMarkedOnTheSheet) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const SweepFits fits = fitsOf(*table);
+  testing::TempDir dir;
+  const auto draw = [&](const SweepTable& drawn, const std::filesystem::path& out) {
+    std::filesystem::create_directories(out);
+    auto status = writeDatasheet({.module = "standard",
+                                  .date = "2026-11-26",
+                                  .table = &drawn,
+                                  .fits = &fits,
+                                  .model_beta_deg = std::nullopt,
+                                  .limit = {}},
+                                 out);
+    EXPECT_TRUE(status) << status.error().message;
+    return testing::readText(out / kDatasheetPng);
+  };
+  const std::string plain = draw(*table, dir / "plain");
+  EXPECT_EQ(draw(*table, dir / "again"), plain);  // drawing is deterministic
+  SweepTable simulated = *table;
+  for (SweepRow& row : simulated.rows) row.camera_backend = "sim";
+  ASSERT_TRUE(isSimulated(simulated));
+  EXPECT_FALSE(isSimulated(*table));
+  EXPECT_NE(draw(simulated, dir / "simulated"), plain);
+}
+
 TEST(Datasheet, MissingDirectoryIsAnErrorNotACrash) {
   auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
   ASSERT_TRUE(table);

@@ -53,7 +53,9 @@ json measuredJson(const SweepRow& row) {
 
 std::optional<double> axisAt(const AxisFit& axis, double alpha_deg) {
   if (!axis.logistic) return std::nullopt;
-  return axis.logistic->curve(alpha_deg);
+  const double axis_deg = axis.logistic->curve(alpha_deg);
+  if (!isPhysicalAxisDeg(axis_deg)) return std::nullopt;  // an extrapolated fit run off
+  return axis_deg;
 }
 
 // The method's verdict on the fits: the fitted Lmax at or above the limit (as in result.json).
@@ -67,6 +69,8 @@ bool outside(double alpha_deg, double lo_deg, double hi_deg) {
 }
 
 }  // namespace
+
+bool isPhysicalAxisDeg(double axis_deg) { return axis_deg > 0 && axis_deg <= kMaxFullAxisDeg; }
 
 CircularBeamSpread circularBeamSpread(double vertical_deg, double horizontal_deg) {
   CircularBeamSpread beam;

@@ -53,6 +53,11 @@ inline constexpr double kGlareRangeResolutionDeg = 0.1;
 // glares by its data sheet (empty: nowhere).
 std::vector<AlphaRange> glareRanges(const SweepFits& fits, const GlareLimit& limit);
 
+// A full ellipse axis is an angle between two rays: (0, 180°]. A fitted axis curve outside it
+// (a logistic extrapolated past its data falls below zero) is neither exported nor drawn.
+inline constexpr double kMaxFullAxisDeg = 180.0;
+bool isPhysicalAxisDeg(double axis_deg);
+
 struct ProfileIdentity {
   std::string module;
   std::string date;    // ISO 8601

@@ -280,8 +280,13 @@ void drawAxisSeries(cairo_t* cr, Plot& plot, const DatasheetContent& content, co
   // An axis exists only where the module glares: its fit is drawn there only (it can
   // extrapolate to anything elsewhere), as in glare-profile.json.
   const std::optional<Range> glaring = glaringRange(content);
-  if (s.fit->logistic && glaring)
-    drawFit(cr, plot, s.fit->logistic->curve, measuredRange(*s.fit), s.line, glaring);
+  // Where an extrapolated fit runs off physical values it is not drawn (as not exported).
+  const PlotFunction physical = [curve = s.fit->logistic ? s.fit->logistic->curve
+                                                         : PlotFunction()](double alpha_deg) {
+    const double axis_deg = curve(alpha_deg);
+    return isPhysicalAxisDeg(axis_deg) ? axis_deg : kNaN;
+  };
+  if (s.fit->logistic && glaring) drawFit(cr, plot, physical, measuredRange(*s.fit), s.line, glaring);
   std::vector<DataPoint> measured, suspects;
   for (const SweepRow& row : content.table->rows)
     if (const std::optional<double>& v = row.*s.column)
@@ -480,9 +485,17 @@ std::string glareRangesText(const DatasheetContent& content) {
     return fmt::format("by the fits it does not glare at any \u03b1 from 0 to {:g}\u00b0",
                        kMaxLimitAlphaDeg);
   std::string text;
-  for (const AlphaRange& r : ranges)
+  bool extrapolated = false;
+  const SweepFits& fits = *content.fits;
+  for (const AlphaRange& r : ranges) {
     text +=
         fmt::format("{}{:.1f}\u2013{:.1f}\u00b0", text.empty() ? "" : ", ", r.from_deg, r.to_deg);
+    extrapolated = extrapolated || r.from_deg < fits.alpha_min_deg || r.to_deg > fits.alpha_max_deg;
+  }
+  // The fits are measured over their rows' α only: beyond, the range is extrapolated.
+  if (extrapolated)
+    text += fmt::format(" (measured over \u03b1 {:.1f}\u2013{:.1f}\u00b0, extrapolated beyond)",
+                        fits.alpha_min_deg, fits.alpha_max_deg);
   return "by the fits it glares for \u03b1 " + text;
 }
 

@@ -94,6 +94,26 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
   EXPECT_EQ(s["calibrations"], nlohmann::json::array({"0123456789abcdef"}));
 }
 
+// A logistic extrapolated past its rows can leave physical values (issue 18: a day sheet's
+// vertical fit fell to 0° at α ≈ 42°): an axis is exported only within (0, 180°].
+TEST(GlareProfile, AnAxisFitThatLeavesPhysicalValuesIsNotExported) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  SweepFits fits = fitsOf(*table);
+  ASSERT_TRUE(fits.vertical.logistic);
+  // y = 10 / (1 + exp(-(α - 50) 0.5)) - 2: below zero under ~47°, 8° at 80°.
+  fits.vertical.logistic->curve = {.a = 10, .b = 50, .c = -2, .d = 0.5};
+  const auto rows = glareProfile(fits, {});
+  ASSERT_TRUE(rows[10].glares && rows[80].glares);  // Table III glares throughout
+  EXPECT_FALSE(rows[10].vertical_deg);
+  EXPECT_FALSE(rows[10].beam);
+  ASSERT_TRUE(rows[80].vertical_deg);
+  EXPECT_NEAR(*rows[80].vertical_deg, 8, 1e-5);
+  EXPECT_TRUE(isPhysicalAxisDeg(180));
+  EXPECT_FALSE(isPhysicalAxisDeg(0));
+  EXPECT_FALSE(isPhysicalAxisDeg(180.5));
+}
+
 TEST(GlareProfile, NoAxesWhereTheModuleDoesNotGlare) {
   // Lmax crosses the 30 000 limit at 22°: ellipses from the 40° row on.
   const auto rows = glareProfile(fitsOf(exponentialSweep(10000, 40)), {});

@@ -1,7 +1,6 @@
 #include "calibration/luminance_drift.h"
 
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <fstream>
@@ -26,6 +25,14 @@ Status DriftCheckOptions::validate() const {
 }
 
 bool DriftReport::exceedsTwiceUncertainty() const { return std::abs(drift) > 2 * drift_u; }
+
+Status DriftReport::verdict() const {
+  if (!exceedsTwiceUncertainty()) return {};
+  return fail(ErrorCode::kInternal,
+              fmt::format("calibrate luminance --check: the drift {:+.2f} % exceeds twice its "
+                          "uncertainty ({:.2f} %): recalibrate K (docs/calibration.md)",
+                          100 * drift, 100 * drift_u));
+}
 
 nlohmann::json DriftReport::toJson() const {
   return {{"stacks", stacks},
@@ -86,10 +93,6 @@ Result<DriftReport> checkLuminanceDrift(const DriftCheckOptions& options) {
                      .drift = measured.luminance_factor / k - 1,
                      .drift_u = std::hypot(measured.relative.combined(), u_k)};
   if (options.log) GLARECAM_CHECK(appendDriftLog(*options.log, report));
-  if (report.exceedsTwiceUncertainty())
-    spdlog::warn(
-        "calibrate luminance --check: the drift exceeds twice its uncertainty: "
-        "recalibrate K (docs/calibration.md)");
   return report;
 }
 

@@ -38,6 +38,9 @@ struct DriftReport {
   double drift_u = 0;                    // its standard uncertainty (relative)
 
   bool exceedsTwiceUncertainty() const;  // |drift| > 2 drift_u: recalibrate K
+  // kInternal (exit 1) "... recalibrate K" when the drift exceeds twice its uncertainty, so that a
+  // scheduled check can act on its exit status; else nothing.
+  Status verdict() const;
   nlohmann::json toJson() const;
   std::string logLine() const;  // the CSV log's line for this check, with its newline
 };

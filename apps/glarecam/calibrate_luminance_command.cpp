@@ -40,7 +40,7 @@ Status runCheck(const LuminanceArgs& args, const std::optional<calibration::Roi>
     std::printf("K %.6g, measured %.6g: drift %+.2f %% (u %.2f %%)\n", report.luminance_factor,
                 report.measured_luminance_factor, 100 * report.drift, 100 * report.drift_u);
   }
-  return {};
+  return report.verdict();
 }
 
 Status runLuminance(const LuminanceArgs& args) {

@@ -85,10 +85,11 @@ expect "process: the age warning names the part" grep -q "part dark was measured
 check "luminance --check" 0 "$GLARECAM" calibrate luminance "$T/luminance" --check \
   --calibration "$WORK/rig/calibration.json" --reference 5000 --roi 84,68,152,120 --log "$WORK/drift.csv" --no-progress
 expect "check: drift printed" grep -q "drift" "$WORK/out"
-check "luminance --check again" 0 "$GLARECAM" calibrate luminance "$T/luminance" --check \
+check "luminance --check with a 6 % drift exits 1" 1 "$GLARECAM" calibrate luminance "$T/luminance" --check \
   --calibration "$WORK/rig/calibration.json" --reference 5300 --roi 84,68,152,120 --log "$WORK/drift.csv" --no-progress
 expect "check: two lines and a header" test "$(wc -l <"$WORK/drift.csv")" -eq 3
-expect "check: a 6 % drift warns" grep -q "recalibrate K" "$WORK/err"
+expect "check: a 6 % drift says recalibrate" one_line_naming "recalibrate K"
+expect "check: the report still printed" grep -q "drift +6" "$WORK/out"
 
 # ---- capturing with --camera: the simulated camera in front of a target ----------------------
 check "flat --camera" 0 "$GLARECAM" calibrate flat --camera sim:target=flat,size=320x256 \

@@ -88,6 +88,7 @@ TEST_F(LuminanceDrift, TheTrueKHasNoDrift) {
   // Its uncertainty: the meter's and the calibration's 1 % in quadrature.
   EXPECT_NEAR(report->drift_u, std::hypot(kMeterU, 0.01), 0.0005);
   EXPECT_FALSE(report->exceedsTwiceUncertainty());
+  EXPECT_TRUE(report->verdict());
   EXPECT_EQ(report->stacks, std::vector<std::string>{stack_});
   EXPECT_EQ(report->captured_at, "2026-06-21T10:00:00Z");
 }
@@ -97,6 +98,10 @@ TEST_F(LuminanceDrift, AReadingSixPercentHighIsASignificantDrift) {
   ASSERT_TRUE(report) << report.error().message;
   EXPECT_NEAR(report->drift, 0.06, 0.004);
   EXPECT_TRUE(report->exceedsTwiceUncertainty());
+  const Status verdict = report->verdict();
+  ASSERT_FALSE(verdict);
+  EXPECT_NE(verdict.error().code, ErrorCode::kBadInput);  // a finding: exit 1, not 2
+  EXPECT_NE(verdict.error().message.find("recalibrate K"), std::string::npos);
   const json document = report->toJson();
   EXPECT_EQ(document["drift"], report->drift);
   EXPECT_EQ(document["measured_luminance_factor"], report->measured_luminance_factor);

@@ -5,11 +5,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
+#include <fstream>
 #include <mutex>
 #include <set>
 #include <thread>
 
 #include "core/atomic_file.h"
+#include "core/csv.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/stack_manifest.h"
@@ -57,11 +60,15 @@ Status checkAlpha(const fs::path& stack) {
 
 Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_directory,
                             const SweepOptions& options, unsigned threads_per_job) {
-  GLARECAM_CHECK(checkAlpha(stack));  // the caller names the stack
+  const auto given = options.given_alpha_deg.find(stack.filename().string());
+  const std::optional<double> given_alpha_deg =
+      given != options.given_alpha_deg.end() ? std::optional(given->second) : std::nullopt;
+  if (!given_alpha_deg) GLARECAM_CHECK(checkAlpha(stack));  // the caller names the stack
   ProcessOptions process{.calibration_file = options.calibration_file,
                          .output_directory = result_directory,
                          .threshold_cd_m2 = options.threshold_cd_m2,
                          .thresholds_cd_m2 = {},
+                         .alpha_deg = given_alpha_deg,
                          .threads = threads_per_job,
                          .show_progress = false,
                          .calibration_use = {}};
@@ -184,6 +191,11 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
   const unsigned jobs = std::clamp(options.jobs ? options.jobs : threads, 1u, most_jobs);
   const unsigned threads_per_job = std::max(1u, threads / jobs);
   const std::vector<fs::path> results = resultDirectories(stacks, options.output_directory);
+  for (const auto& [name, alpha_deg] : options.given_alpha_deg) {
+    if (std::ranges::none_of(stacks, [&](const fs::path& s) { return s.filename() == name; }))
+      spdlog::warn("sweep: --alpha-from names {} (α {:g}°), which is not among the stacks", name,
+                   alpha_deg);
+  }
 
   std::vector<std::optional<Result<SweepRow>>> outcomes(stacks.size());
   std::atomic<std::size_t> next{0};
@@ -227,6 +239,45 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
   GLARECAM_CHECK(writeFileAtomic(summary.sweep_csv, formatSweepTable(summary.table)));
   warnAboutEarlierOutputs(options.output_directory, results);
   return summary;
+}
+
+Result<std::map<std::string, double>> readAlphaTable(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) return badInput(path.string() + ": cannot read the α table");
+  std::map<std::string, double> alpha_by_stack;
+  std::optional<std::size_t> stack_column, alpha_column;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line.starts_with('#')) continue;
+    const std::string where = fmt::format("{}:{}", path.string(), number);
+    std::vector<std::string> fields;
+    GLARECAM_ASSIGN(fields, splitCsvLine(line));
+    if (!stack_column) {
+      for (std::size_t i = 0; i < fields.size(); ++i) {
+        if (fields[i] == "stack") stack_column = i;
+        if (fields[i] == "alpha_deg") alpha_column = i;
+      }
+      if (!stack_column || !alpha_column)
+        return badInput(where + ": the header must name the columns stack and alpha_deg");
+      continue;
+    }
+    if (fields.size() <= std::max(*stack_column, *alpha_column))
+      return badInput(where + ": fewer fields than the header");
+    const std::string& stack = fields[*stack_column];
+    double alpha_deg = 0;
+    const std::string& text = fields[*alpha_column];
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), alpha_deg);
+    if (stack.empty() || error != std::errc() || end != text.data() + text.size())
+      return badInput(fmt::format("{}: expected a stack name and a number, got \"{}\"", where,
+                                  line));
+    if (const Status valid = validateSweepAlpha(alpha_deg); !valid)
+      return std::unexpected(withContext(valid.error(), where));
+    if (!alpha_by_stack.emplace(stack, alpha_deg).second)
+      return badInput(fmt::format("{}: stack {} is given twice", where, stack));
+  }
+  if (!stack_column) return badInput(path.string() + ": empty α table (no header)");
+  return alpha_by_stack;
 }
 
 std::string mixedFields(const SweepTable& table) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,7 +26,16 @@ struct SweepOptions {
   // Rows of different cameras, frame sizes or calibrations in one table (mixedFields()) are
   // refused unless allowed: their fits would describe no one module measurement.
   bool allow_mixed = false;
+  // α for stacks that record none (sweep --alpha-from), by the stack directory's name: given to
+  // process as --alpha (result.json's alpha_source "given"); one that contradicts a stack's own
+  // α skips that stack.
+  std::map<std::string, double> given_alpha_deg;
 };
+
+// The α table of `sweep --alpha-from`: CSV with a header naming `stack` (a stack directory's
+// name) and `alpha_deg` columns (others ignored, '#' lines allowed), α in [0, 90), each stack
+// once. Errors name the file and line.
+Result<std::map<std::string, double>> readAlphaTable(const std::filesystem::path& path);
 
 struct SkippedStack {
   std::filesystem::path stack;

@@ -17,7 +17,7 @@ namespace {
 
 struct SweepArgs {
   std::vector<std::string> inputs;
-  std::optional<std::string> out, calibration, threshold;
+  std::optional<std::string> out, calibration, threshold, alpha_from;
   unsigned jobs = 0, threads = 0;
   bool no_progress = false, strict = false, mixed = false;
 };
@@ -33,6 +33,8 @@ Status runSweep(const SweepArgs& args) {
   options.threads = args.threads;
   options.show_progress = !args.no_progress;
   options.allow_mixed = args.mixed;
+  GLARECAM_CHECK(requireNonEmptyPath(args.alpha_from, "--alpha-from"));
+  if (args.alpha_from) GLARECAM_ASSIGN(options.given_alpha_deg, pipeline::readAlphaTable(*args.alpha_from));
   std::vector<std::filesystem::path> inputs;
   for (const std::string& input : args.inputs) {
     if (input.empty()) return badInput("STACKS: expected a path, got an empty string");
@@ -73,6 +75,9 @@ void addSweepCommand(CLI::App& app, Action& action) {
   sub->add_flag("--strict", args->strict,
                 "exit non-zero when any stack or input was skipped, or any row is suspect (frames "
                 "that disagree); the table is still written");
+  sub->add_option("--alpha-from", args->alpha_from,
+                  "CSV with columns stack (a stack directory's name) and alpha_deg: α for stacks "
+                  "that record none (result.json: alpha_source given)");
   sub->add_flag("--mixed", args->mixed,
                 "write one table of stacks of different cameras, frame sizes or calibrations "
                 "(refused otherwise; a '# mixed' note says what differs)");

@@ -120,6 +120,46 @@ TEST(Sweep, StacksOfDifferentCalibrationsAreNotMixedUnlessAsked) {
   EXPECT_NE(mixedFields(*table).find("frame size ("), std::string::npos);
 }
 
+// sweep --alpha-from gives α to stacks that record none, by directory name, recorded as given;
+// one that contradicts a stack's own α skips that stack; the table's bad lines are named.
+TEST(Sweep, AlphaFromATableForStacksThatRecordNone) {
+  TempDir dir;
+  writeStackAt(dir / "stacks/s1", 20);
+  writeStackAt(dir / "stacks/s2", 40);
+  writeStackAt(dir / "stacks/s3", 60);
+  removeAlpha(dir / "stacks/s1");
+  removeAlpha(dir / "stacks/s2");
+  testing::writeText(dir / "alpha.csv",
+                     "# measured by hand\nstack,alpha_deg,note\ns1,20,x\ns2,40,\ns3,65,\n");
+  auto given = readAlphaTable(dir / "alpha.csv");
+  ASSERT_TRUE(given) << given.error().message;
+  EXPECT_EQ(given->at("s2"), 40);
+  SweepOptions options = quiet(dir / "out", 2);
+  options.given_alpha_deg = *given;
+  auto summary = runSweep(findStacks({dir / "stacks"}), options);
+  ASSERT_TRUE(summary) << summary.error().message;
+  ASSERT_EQ(summary->table.rows.size(), 2u);
+  EXPECT_EQ(summary->table.rows[0].alpha_deg, 20);
+  ASSERT_EQ(summary->skipped.size(), 1u);  // s3 records 60: the table's 65 contradicts it
+  EXPECT_NE(summary->skipped[0].error.message.find("contradicts"), std::string::npos);
+  const auto result = nlohmann::json::parse(testing::readText(dir / "out/results/s1/result.json"));
+  EXPECT_EQ(result["alpha_source"], "given");
+
+  const std::pair<std::string, std::string> bad[] = {
+      {"alpha_deg\n20\n", "alpha.csv:1: the header must name the columns stack and alpha_deg"},
+      {"stack,alpha_deg\ns1,steep\n", "alpha.csv:2: expected a stack name and a number"},
+      {"stack,alpha_deg\ns1,95\n", "alpha.csv:2: alpha_deg 95 is outside"},
+      {"stack,alpha_deg\ns1,20\ns1,21\n", "alpha.csv:3: stack s1 is given twice"},
+      {"", "empty α table"}};
+  for (const auto& [text, message] : bad) {
+    testing::writeText(dir / "alpha.csv", text);
+    auto refused = readAlphaTable(dir / "alpha.csv");
+    ASSERT_FALSE(refused) << text;
+    EXPECT_NE(refused.error().message.find(message), std::string::npos)
+        << refused.error().message;
+  }
+}
+
 TEST(Sweep, OneJobAndManyJobsGiveTheSameTable) {
   TempDir dir;
   for (double alpha : {10.0, 50.0, 70.0})

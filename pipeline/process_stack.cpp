@@ -20,6 +20,7 @@
 #include "pipeline/luminance_stats.h"
 #include "pipeline/render/false_colour.h"
 #include "pipeline/render/glare_picture.h"
+#include "pipeline/render/number_format.h"
 #include "pipeline/result.h"
 
 namespace glarecam::pipeline {
@@ -192,6 +193,25 @@ Result<MergedStack> mergeStack(Stack& stack, const ProcessOptions& options) {
   result.frames = checkFrames(stack, input, result.image);
   stack.frames.clear();
   return result;
+}
+
+// The picture's caption: the stack, Lmax (≥/≤ for a bound), the limit and the verdict, as in
+// result.json, so that the picture alone says what was measured.
+std::vector<std::string> pictureCaption(const nlohmann::json& result) {
+  constexpr int kCaptionDigits = 4;  // as the data sheet: a measurement is not known better
+  const nlohmann::json& luminance = result["luminance"];
+  const char* bound = luminance.value("max_is_lower_bound", false)   ? "\u2265 "
+                      : luminance.value("max_is_upper_bound", false) ? "\u2264 "
+                                                                     : "";
+  const nlohmann::json limit = result["limit"]["limit_cd_m2"];
+  const nlohmann::json glare = result["glare"];
+  return {result.value("stack", std::string()),
+          fmt::format("Lmax {}{} cd/m\u00b2", bound,
+                      formatGrouped(luminance.value("max_cd_m2", 0.0), kCaptionDigits)),
+          limit.is_number() ? fmt::format("limit {} cd/m\u00b2", formatGrouped(limit.get<double>(), kCaptionDigits))
+                            : std::string("no limit"),
+          glare.is_boolean() ? (glare.get<bool>() ? "glare: yes" : "glare: no")
+                             : std::string("glare: \u2013")};
 }
 
 std::string pictureTitle(const std::optional<double>& alpha_deg) {
@@ -384,6 +404,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   picture_options.limit_cd_m2 = limit;
   picture_options.title = pictureTitle(stack.manifest.alpha_deg);
   picture_options.overlay = glareOverlay(glare, camera, stats.max);
+  picture_options.caption = pictureCaption(summary.result);
   if (summary.result["luminance"]["frames_consistent"] == false)
     picture_options.banner = "SUSPECT: frames disagree with the merge";
   GLARECAM_CHECK(

@@ -142,6 +142,13 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const ColourScale& scale,
   }
   drawText(cr, {p.bar_x, p.bar_top - p.font_px * 0.8}, "cd/m\u00b2", label_style);
   if (!options.title.empty()) drawText(cr, {p.bar_x, p.font_px * 1.2}, options.title, label_style);
+  const double caption_width = p.font_px * (kPanelWidthEm - 1.5);
+  for (std::size_t i = 0; i < options.caption.size(); ++i) {
+    const std::string& line = options.caption[i];
+    const double scale = std::min(1.0, caption_width / textWidth(cr, line, font));
+    drawText(cr, {p.bar_x, p.font_px * (1.2 + kLineSpacingEm * static_cast<double>(i + 1))}, line,
+             {{.size = p.font_px * scale}, kWhite});
+  }
   // The limit is marked only where it lies on the scale: pinned to an end it would read as
   // "the maximum is the limit".
   const bool limit_on_scale = options.limit_cd_m2 && *options.limit_cd_m2 > 0 &&
@@ -200,7 +207,9 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
   // The panel scales with the image so labels stay legible from thumbnails to 12 MP.
   const double font_px = std::clamp(height * kFontFractionOfHeight, kMinFontPx, kMaxFontPx);
   const int panel_width = static_cast<int>(font_px * kPanelWidthEm);
-  const int canvas_height = std::max(height, static_cast<int>(font_px * kMinCanvasHeightEm));
+  const double caption_em = kLineSpacingEm * static_cast<double>(options.caption.size());
+  const int canvas_height =
+      std::max(height, static_cast<int>(font_px * (kMinCanvasHeightEm + caption_em)));
   const Result<CairoSurface> surface = createRgbSurface(width + panel_width, canvas_height);
   if (!surface) return std::unexpected(withContext(surface.error(), "false colour"));
   const Result<CairoContext> context = createContext(surface->get());
@@ -225,7 +234,8 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
     drawText(cr, {width / 2.0, font_px * (kBannerHeightEm / 2 + kBaselineBelowMiddleEm)},
              options.banner, {{.size = font_px, .bold = true}, kWhite, Align::kCentre});
   }
-  const PanelLayout layout{font_px * kBarMarginEm, canvas_height - font_px * kBarMarginEm,
+  const PanelLayout layout{font_px * (kBarMarginEm + caption_em),
+                           canvas_height - font_px * kBarMarginEm,
                            width + font_px, font_px * kBarWidthEm, font_px};
   paintColourBar(cr, layout, scale, options, hasSaturated(merged));
   return copyRgb(surface->get());

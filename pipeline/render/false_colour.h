@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "calibration/hdr_merge.h"
 #include "core/error.h"
@@ -32,6 +33,9 @@ struct FalseColourOptions {
   std::optional<double> max_cd_m2;    // top of the scale; default: the image maximum
   std::optional<double> limit_cd_m2;  // marked on the colour bar when given
   std::string title;                  // drawn above the colour bar (e.g. "α 40°")
+  // Lines under the title (the stack, Lmax, the limit, the verdict), each shrunk to the panel's
+  // width when longer.
+  std::vector<std::string> caption;
   // Across the top of the image on a band of kLimitColour, when not empty: a warning no one who
   // looks at the picture can miss (e.g. "SUSPECT: frames disagree with the merge").
   std::string banner;

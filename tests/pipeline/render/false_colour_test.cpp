@@ -57,6 +57,39 @@ TEST(FalseColour, ABannerCrossesTheTopOfTheImage) {
   EXPECT_GT(white, 20);
 }
 
+// The caption's lines (stack, Lmax, limit, verdict) go under the title in the panel, which grows
+// to keep the colour bar whole; without one the panel's caption rows stay background.
+TEST(FalseColour, TheCaptionIsWrittenUnderTheTitle) {
+  const calibration::MergedImage merged = gradient(200, 120);
+  FalseColourOptions options;
+  options.title = "\u03b1 60\u00b0";
+  auto plain = renderFalseColour(merged, options);
+  options.caption = {"sim-standard-a60.00-s1", "Lmax 2 194 000 cd/m\u00b2", "limit 40 000 cd/m\u00b2",
+                     "glare: yes"};
+  auto captioned = renderFalseColour(merged, options);
+  ASSERT_TRUE(plain && captioned);
+  EXPECT_GT(captioned->height, plain->height);
+  // The colour bar's first row: the first saturated (Turbo) pixel down its middle column.
+  const auto barTop = [](const RgbImage& image) {
+    const int x = 200 + 11 + 4;  // image width + one em (11 px font) + a few px into the bar
+    for (int y = 0; y < image.height; ++y) {
+      const std::uint8_t* p = pixel(image, x, y);
+      if (std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) > 60) return y;
+    }
+    return -1;
+  };
+  const int plain_top = barTop(*plain), captioned_top = barTop(*captioned);
+  ASSERT_GT(plain_top, 0);
+  EXPECT_NEAR(captioned_top - plain_top, 4 * 1.3 * 11, 2);  // four lines of 1.3 em
+  int white = 0;  // the caption's text between the title and the bar
+  for (int y = 16; y < captioned_top - 20; ++y)
+    for (int x = 200; x < captioned->width; ++x) {
+      const std::uint8_t* p = pixel(*captioned, x, y);
+      white += p[0] > 200 && p[1] > 200 && p[2] > 200;
+    }
+  EXPECT_GT(white, 100);
+}
+
 TEST(FalseColour, TurboEndsAreTheDocumentedColours) {
   std::uint8_t rgb[3];
   turboColour(0.0, rgb);

@@ -80,7 +80,7 @@ constexpr LineStyle kExtrapolationKeyStyle{
 
 constexpr Font kSimulatedMarkFont{.size = 120, .bold = true};
 constexpr double kSimulatedMarkAngleRad = 0.5;  // ~29°, bottom left to top right
-constexpr double kSimulatedMarkAlpha = 0.28;     // the plots stay readable through it
+constexpr Rgb kSimulatedMarkColour{1.0, 0.78, 0.78};  // pale: the plots stay readable over it
 
 constexpr MarkerStyle kLmaxMarker{.colour = kInk};
 constexpr MarkerStyle kLmaxBoundMarker{.colour = kInk, .hollow = true};  // Lmax only a bound
@@ -582,31 +582,30 @@ void drawWarnings(cairo_t* cr, const std::vector<std::string>& warnings, const B
   }
 }
 
-// Across the page's face, translucent red: a sheet of the simulated camera's stacks can never
-// pass for a measurement, whatever is cut from it.
+// Across the page's face, pale red under everything drawn after it: a sheet of the simulated
+// camera's stacks can never pass for a measurement, whatever is cut from it. (Opaque pale red
+// drawn first rather than translucent red drawn last: the same look, and no group surface.)
 void drawSimulatedMark(cairo_t* cr) {
   cairo_save(cr);
-  cairo_push_group(cr);
   cairo_translate(cr, kPageWidthPt / 2, kPageHeightPt / 2);
   cairo_rotate(cr, -kSimulatedMarkAngleRad);
   drawText(cr, {0, kSimulatedMarkFont.size * kBaselineBelowMiddleEm}, "SIMULATED",
-           {kSimulatedMarkFont, kRed, Align::kCentre});
-  drawText(cr, {0, kSimulatedMarkFont.size * 0.75}, "stacks of the simulated camera: not a measurement",
-           {kSectionFont, kRed, Align::kCentre});
-  cairo_pop_group_to_source(cr);
-  cairo_paint_with_alpha(cr, kSimulatedMarkAlpha);
+           {kSimulatedMarkFont, kSimulatedMarkColour, Align::kCentre});
+  drawText(cr, {0, kSimulatedMarkFont.size * 0.75},
+           "stacks of the simulated camera: not a measurement",
+           {kSectionFont, kSimulatedMarkColour, Align::kCentre});
   cairo_restore(cr);
 }
 
 void drawDatasheet(cairo_t* cr, const DatasheetContent& content) {
   paint(cr, kWhite);
+  if (isSimulated(*content.table)) drawSimulatedMark(cr);
   const Layout layout = pageLayout(cr, content);
   drawHeader(cr, content, layout.header);
   drawLmaxPlot(cr, content, layout.lmax_plot);
   drawAxesPlot(cr, content, layout.axes_plot);
   drawTables(cr, content, layout.right_column);
   drawWarnings(cr, content.fits->warnings, layout.warnings);
-  if (isSimulated(*content.table)) drawSimulatedMark(cr);
 }
 
 // ---- Output ----

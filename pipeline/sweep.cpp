@@ -251,8 +251,9 @@ Result<std::map<std::string, double>> readAlphaTable(const fs::path& path) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line.starts_with('#')) continue;
     const std::string where = fmt::format("{}:{}", path.string(), number);
-    std::vector<std::string> fields;
-    GLARECAM_ASSIGN(fields, splitCsvLine(line));
+    auto split = splitCsvLine(line);
+    if (!split) return std::unexpected(withContext(split.error(), where));
+    const std::vector<std::string>& fields = *split;
     if (!stack_column) {
       for (std::size_t i = 0; i < fields.size(); ++i) {
         if (fields[i] == "stack") stack_column = i;

@@ -150,7 +150,8 @@ TEST(Sweep, AlphaFromATableForStacksThatRecordNone) {
       {"stack,alpha_deg\ns1,steep\n", "alpha.csv:2: expected a stack name and a number"},
       {"stack,alpha_deg\ns1,95\n", "alpha.csv:2: alpha_deg 95 is outside"},
       {"stack,alpha_deg\ns1,20\ns1,21\n", "alpha.csv:3: stack s1 is given twice"},
-      {"", "empty α table"}};
+      {"", "empty α table"},
+      {"stack,alpha_deg\n\"s1,20\n", "alpha.csv:2: "}};
   for (const auto& [text, message] : bad) {
     testing::writeText(dir / "alpha.csv", text);
     auto refused = readAlphaTable(dir / "alpha.csv");

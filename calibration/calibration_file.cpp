@@ -59,8 +59,7 @@ Result<PartProvenance> parsePart(const json& part, const std::string& name,
   for (auto [key, size] : {std::pair{"width", &provenance.width}, {"height", &provenance.height}}) {
     if (!part.contains(key)) continue;
     const json& value = part.at(key);
-    if (!value.is_number() || !(value.get<double>() >= 1 && value.get<double>() <= kMaxImageSide) ||
-        value.get<double>() != std::floor(value.get<double>()))
+    if (!value.is_number() || !isImageSidePx(value.get<double>()))
       return badInput(fmt::format("{}.{} must be a whole number of pixels", field, key));
     *size = value.get<int>();
   }

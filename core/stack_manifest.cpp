@@ -50,7 +50,7 @@ class FieldReader {
     std::optional<double> value;
     GLARECAM_ASSIGN(value, optionalNumber(key));
     if (!value) return std::optional<int>{};
-    if (!(*value >= 1 && *value <= kMaxImageSide && *value == std::floor(*value)))
+    if (!isImageSidePx(*value))
       return error(key, "must be a whole number of pixels, not " + show(object_.at(key)));
     return std::optional<int>(static_cast<int>(*value));
   }
@@ -147,6 +147,10 @@ Result<FrameSpec> parseFrame(const json& entry, std::size_t index, const std::st
 }
 
 }  // namespace
+
+bool isImageSidePx(double value) {
+  return value >= 1 && value <= kMaxImageSide && value == std::floor(value);
+}
 
 bool isContainedRelativePath(std::string_view relative) {
   std::filesystem::path path(relative);

@@ -77,6 +77,9 @@ inline constexpr double kMaxStackAlphaDeg = 90.0;
 // any sensor): keeps a recorded width or height an int.
 inline constexpr int kMaxImageSide = 1 << 20;
 
+// An image side a calibration may record: a whole number of pixels in [1, kMaxImageSide].
+bool isImageSidePx(double value);
+
 // Deepest nesting accepted in a JSON document (manifests need 4).
 inline constexpr int kMaxJsonDepth = 64;
 

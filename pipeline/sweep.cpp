@@ -1,6 +1,7 @@
 #include "pipeline/sweep.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -282,27 +283,14 @@ Result<std::map<std::string, double>> readAlphaTable(const fs::path& path) {
 }
 
 std::string mixedFields(const SweepTable& table) {
-  const auto distinct = [&](auto value_of) {
-    std::set<std::string> values;
-    for (const SweepRow& row : table.rows)
-      if (std::string value = value_of(row); !value.empty()) values.insert(std::move(value));
-    return values;
-  };
-  const std::pair<const char*, std::set<std::string>> fields[] = {
-      {"camera", distinct([](const SweepRow& r) {
-         return r.camera_serial.empty() ? r.camera_backend
-                                        : r.camera_backend + " " + r.camera_serial;
-       })},
-      {"frame size", distinct([](const SweepRow& r) {
-         return r.width && r.height ? fmt::format("{}x{}", *r.width, *r.height) : std::string();
-       })},
-      {"calibration", distinct([](const SweepRow& r) { return r.calibration_id; })}};
+  const std::pair<const char*, std::vector<std::string>> fields[] = {
+      {"camera", tableCameras(table)},
+      {"frame size", tableFrameSizes(table)},
+      {"calibration", tableCalibrations(table)}};
   std::string mixed;
   for (const auto& [name, values] : fields) {
     if (values.size() < 2) continue;
-    std::string list;
-    for (const std::string& value : values) list += (list.empty() ? "" : ", ") + value;
-    mixed += fmt::format("{}{} ({})", mixed.empty() ? "" : "; ", name, list);
+    mixed += fmt::format("{}{} ({})", mixed.empty() ? "" : "; ", name, fmt::join(values, ", "));
   }
   return mixed;
 }

@@ -424,6 +424,13 @@ std::vector<std::string> tableCameras(const SweepTable& table) {
   });
 }
 
+std::vector<std::string> tableFrameSizes(const SweepTable& table) {
+  return distinctValues(table, [](const SweepRow& row) {
+    return row.width && row.height ? fmt::format("{}x{}", *row.width, *row.height)
+                                   : std::string();
+  });
+}
+
 std::vector<std::string> tableCalibrations(const SweepTable& table) {
   return distinctValues(table, [](const SweepRow& row) { return row.calibration_id; });
 }

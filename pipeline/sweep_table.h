@@ -62,9 +62,10 @@ GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning = nullp
 // profile made from it must say so, so that it can never pass for a measurement.
 bool isSimulated(const SweepTable& table);
 
-// The distinct cameras ("sim SIM-0001") and calibration ids of the rows, in order, empty ones
-// left out.
+// The distinct cameras ("sim SIM-0001"), frame sizes ("320x256") and calibration ids of the
+// rows, in order, empty ones left out.
 std::vector<std::string> tableCameras(const SweepTable& table);
+std::vector<std::string> tableFrameSizes(const SweepTable& table);
 std::vector<std::string> tableCalibrations(const SweepTable& table);
 
 // The table as CSV text, rows sorted by α, notes as leading '#' lines.

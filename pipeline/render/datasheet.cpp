@@ -4,6 +4,7 @@
 #include <cairo-svg.h>
 #include <cairo.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -511,15 +512,15 @@ std::string subtitle(const DatasheetContent& content) {
                         formatLuminance(*content.limit.constant_cd_m2))
           : fmt::format("the limit curve of the SPF method (undefined above {:g}\u00b0)",
                         kMaxLimitAlphaDeg);
-  std::string measured_with;
-  for (const std::string& camera : tableCameras(*content.table))
-    measured_with += (measured_with.empty() ? " Camera " : ", ") + camera;
-  for (const std::string& id : tableCalibrations(*content.table))
-    measured_with += fmt::format("{}{}", measured_with.find("calibration") == std::string::npos
-                                             ? "; calibration "
-                                             : ", ",
-                                 id);
-  if (!measured_with.empty()) measured_with += ".";
+  // What the rows were measured with, when the table says: " Camera sim SIM-0001; calibration
+  // 55e5f09d95ab9da6."
+  std::vector<std::string> measured;
+  if (const auto cameras = tableCameras(*content.table); !cameras.empty())
+    measured.push_back(fmt::format("Camera {}", fmt::join(cameras, ", ")));
+  if (const auto ids = tableCalibrations(*content.table); !ids.empty())
+    measured.push_back(fmt::format("calibration {}", fmt::join(ids, ", ")));
+  const std::string measured_with =
+      measured.empty() ? std::string() : fmt::format(" {}.", fmt::join(measured, "; "));
   return fmt::format(
       "Sweep of {} stack{}, \u03b1 {:g}\u00b0 to {:g}\u00b0 (angle of incidence from the module "
       "normal). Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.{}",

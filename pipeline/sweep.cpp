@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <atomic>
 #include <charconv>
-#include <fstream>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -243,41 +242,32 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
 }
 
 Result<std::map<std::string, double>> readAlphaTable(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) return badInput(path.string() + ": cannot read the α table");
   std::map<std::string, double> alpha_by_stack;
   std::optional<std::size_t> stack_column, alpha_column;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line.starts_with('#')) continue;
-    const std::string where = fmt::format("{}:{}", path.string(), number);
-    auto split = splitCsvLine(line);
-    if (!split) return std::unexpected(withContext(split.error(), where));
-    const std::vector<std::string>& fields = *split;
+  GLARECAM_CHECK(readCsvFile(path, "α table", [&](std::vector<std::string>& fields) -> Status {
     if (!stack_column) {
       for (std::size_t i = 0; i < fields.size(); ++i) {
         if (fields[i] == "stack") stack_column = i;
         if (fields[i] == "alpha_deg") alpha_column = i;
       }
       if (!stack_column || !alpha_column)
-        return badInput(where + ": the header must name the columns stack and alpha_deg");
-      continue;
+        return badInput("the header must name the columns stack and alpha_deg");
+      return {};
     }
     if (fields.size() <= std::max(*stack_column, *alpha_column))
-      return badInput(where + ": fewer fields than the header");
+      return badInput("fewer fields than the header");
     const std::string& stack = fields[*stack_column];
-    double alpha_deg = 0;
     const std::string& text = fields[*alpha_column];
+    double alpha_deg = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), alpha_deg);
     if (stack.empty() || error != std::errc() || end != text.data() + text.size())
-      return badInput(fmt::format("{}: expected a stack name and a number, got \"{}\"", where,
-                                  line));
-    if (const Status valid = validateSweepAlpha(alpha_deg); !valid)
-      return std::unexpected(withContext(valid.error(), where));
+      return badInput(
+          fmt::format("expected a stack name and a number, got \"{}\", \"{}\"", stack, text));
+    GLARECAM_CHECK(validateSweepAlpha(alpha_deg));
     if (!alpha_by_stack.emplace(stack, alpha_deg).second)
-      return badInput(fmt::format("{}: stack {} is given twice", where, stack));
-  }
+      return badInput(fmt::format("stack {} is given twice", stack));
+    return {};
+  }));
   if (!stack_column) return badInput(path.string() + ": empty α table (no header)");
   return alpha_by_stack;
 }

@@ -75,12 +75,7 @@ constexpr double kMaxAxisDeg = 180.0;
 // α is the angle from the module normal; at 90° the cosine function is undefined.
 constexpr double kMaxAlphaDeg = 90.0;
 
-std::string trim(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = text.find_last_not_of(" \t\r");
-  return std::string(text.substr(first, last - first + 1));
-}
+std::string trim(std::string_view text) { return trimCsvText(text); }
 
 Result<std::optional<double>> parseNumber(const std::string& text, const char* column) {
   if (text.empty()) return std::nullopt;
@@ -254,38 +249,21 @@ GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning) {
 }
 
 Result<SweepTable> readSweepTable(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    return badInput(path.string() + ": a directory, not a sweep table (CSV)");
-  std::ifstream in(path);
-  if (!in) return badInput(path.string() + ": cannot open the sweep table");
-  auto context = [&](int line) { return fmt::format("{}:{}", path.string(), line); };
   SweepTable table;
   std::optional<Header> header;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";  // spreadsheets write one
-    if (number == 1 && line.starts_with(kUtf8ByteOrderMark))
-      line.erase(0, kUtf8ByteOrderMark.size());
-    const std::string text = trim(line);
-    if (text.empty()) continue;
-    if (text.front() == '#') {
-      table.notes.push_back(trim(std::string_view(text).substr(1)));
-      continue;
-    }
-    auto fields = splitCsvLine(text);
-    if (!fields) return std::unexpected(withContext(fields.error(), context(number)));
-    if (!header) {
-      auto parsed = parseHeader(*fields);
-      if (!parsed) return std::unexpected(withContext(parsed.error(), context(number)));
-      header = *parsed;
-      continue;
-    }
-    auto row = parseRow(*header, *fields);
-    if (!row) return std::unexpected(withContext(row.error(), context(number)));
-    table.rows.push_back(std::move(*row));
-  }
-  if (in.bad()) return ioError(path.string() + ": read failed");
+  GLARECAM_CHECK(readCsvFile(
+      path, "sweep table",
+      [&](std::vector<std::string>& fields) -> Status {
+        if (!header) {
+          GLARECAM_ASSIGN(header, parseHeader(fields));
+          return {};
+        }
+        SweepRow row;
+        GLARECAM_ASSIGN(row, parseRow(*header, fields));
+        table.rows.push_back(std::move(row));
+        return {};
+      },
+      [&](std::string comment) { table.notes.push_back(std::move(comment)); }));
   if (!header) return badInput(path.string() + ": empty sweep table (no header line)");
   if (table.rows.empty()) return badInput(path.string() + ": the sweep table has no rows");
   return table;

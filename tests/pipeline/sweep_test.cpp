@@ -134,6 +134,11 @@ TEST(Sweep, AlphaFromATableForStacksThatRecordNone) {
   auto given = readAlphaTable(dir / "alpha.csv");
   ASSERT_TRUE(given) << given.error().message;
   EXPECT_EQ(given->at("s2"), 40);
+  // A spreadsheet's export (byte-order mark, CRLF) reads the same (core/csv.h's reader).
+  testing::writeText(dir / "exported.csv", "\xEF\xBB\xBFstack,alpha_deg\r\ns1,20\r\ns2,40\r\n");
+  auto exported = readAlphaTable(dir / "exported.csv");
+  ASSERT_TRUE(exported) << exported.error().message;
+  EXPECT_EQ(exported->at("s2"), 40);
   SweepOptions options = quiet(dir / "out", 2);
   options.given_alpha_deg = *given;
   auto summary = runSweep(findStacks({dir / "stacks"}), options);

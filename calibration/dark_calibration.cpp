@@ -53,6 +53,22 @@ Status checkNoLight(std::span<const InputFrame> frames) {
   return {};
 }
 
+// The least-squares slope of the levels' medians over exposure, in DN/µs (0 with one exposure).
+double darkCurrent(const std::vector<DarkLevel>& levels) {
+  if (levels.size() < 2) return 0;
+  double mean_t = 0, mean_dn = 0;
+  for (const DarkLevel& level : levels) {
+    mean_t += level.exposure_us / static_cast<double>(levels.size());
+    mean_dn += level.median_dn / static_cast<double>(levels.size());
+  }
+  double covariance = 0, variance = 0;
+  for (const DarkLevel& level : levels) {
+    covariance += (level.exposure_us - mean_t) * (level.median_dn - mean_dn);
+    variance += (level.exposure_us - mean_t) * (level.exposure_us - mean_t);
+  }
+  return variance > 0 ? covariance / variance : 0;
+}
+
 }  // namespace
 
 Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames) {
@@ -74,6 +90,8 @@ Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames) {
   dark.black_level_dn = dark.levels.front().median_dn;
 
   dark.dark_frame_dn = meanFrame(framesOf(frames, groups.back()));
+  dark.dark_frame_exposure_us = groups.back().exposure_us;
+  dark.dark_current_dn_per_us = darkCurrent(dark.levels);
   const RobustSpread spread = robustSpread(dark.dark_frame_dn);
   dark.hot_threshold_dn = spread.median + std::max(kHotPixelSigmas * spread.sigma, kMinHotExcessDn);
   dark.hot_pixels = ByteImage(dark.dark_frame_dn.width(), dark.dark_frame_dn.height());
@@ -97,6 +115,8 @@ nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_f
   }
   return {{"black_level_dn", dark.black_level_dn},
           {"dark_frame", dark_frame_file},
+          {"dark_frame_exposure_us", dark.dark_frame_exposure_us},
+          {"dark_current_dn_per_us", dark.dark_current_dn_per_us},
           {"hot_pixels", hot_pixels_file},
           {"dark",
            {{"hot_pixel_count", dark.hot_pixel_count},

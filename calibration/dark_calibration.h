@@ -1,7 +1,9 @@
 // `glarecam calibrate dark`: frames with the lens capped at one or more exposures give the black
 // level (the median of the per-pixel mean at the shortest exposure, so that hot pixels and dark
-// current do not bias it), the dark frame (the per-pixel mean at the longest exposure), its
-// hot-pixel map, and the temporal noise at each exposure (from pairs of frames).
+// current do not bias it), the dark frame (the per-pixel mean at the longest exposure), the mean
+// dark current (how the levels' medians grow with exposure), its hot-pixel map, and the temporal
+// noise at each exposure (from pairs of frames). `process` subtracts the dark frame pixel by pixel
+// and masks the hot pixels out of the merge (hdr_merge.h).
 #pragma once
 
 #include <cstddef>
@@ -41,7 +43,11 @@ struct DarkLevel {
 struct DarkCalibration {
   double black_level_dn = 0;
   FloatImage dark_frame_dn;  // per-pixel mean at the longest exposure
-  ByteImage hot_pixels;      // 255 where hot, else 0
+  double dark_frame_exposure_us = 0;
+  // The sensor's mean dark current: the least-squares slope of the levels' medians over exposure
+  // (0 with one exposure). `process` moves the dark frame to each frame's exposure with it.
+  double dark_current_dn_per_us = 0;
+  ByteImage hot_pixels;  // 255 where hot, else 0
   std::size_t hot_pixel_count = 0;
   double hot_threshold_dn = 0;
   std::vector<DarkLevel> levels;  // by exposure
@@ -50,7 +56,8 @@ struct DarkCalibration {
 // A frame that saw light is named in the error.
 Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames);
 
-// The part's values: black_level_dn, dark frame and hot-pixel file names, the levels.
+// The part's values: black_level_dn, dark frame (with its exposure and the dark current) and
+// hot-pixel file names, the levels.
 nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_frame_file,
                           const std::string& hot_pixels_file);
 

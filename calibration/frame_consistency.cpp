@@ -41,10 +41,10 @@ struct FrameView {
 void frameViews(const MergeInput& input, std::size_t pixel, double merged_cd_m2,
                 std::vector<FrameView>& views) {
   const double flat = input.flat_field ? input.flat_field->data()[pixel] : 1.0;
-  const double black = input.black_level_dn;
   views.resize(input.frames.size());
   for (std::size_t f = 0; f < input.frames.size(); ++f) {
     const FrameRadiometry& r = input.radiometry[f];
+    const double black = blackDn(input, f, pixel);
     // Chosen by what the merge predicts for this frame, not by the frame's own reading:
     // choosing by the reading keeps the readings noise pushed up near the bound.
     const double predicted_dn = black + merged_cd_m2 * flat / r.scale_cd_m2_per_dn;

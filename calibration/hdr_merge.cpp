@@ -25,6 +25,7 @@ struct FrameConstants {
   float exposure_weight;   // 1 / shot_coefficient: the pilot's weight
   float shot_coefficient;  // var(L_i) = shot_coefficient * L + read_coefficient
   float read_coefficient;
+  float dark_offset_dn;  // added to the dark frame's pixel (0 with the black level)
 };
 
 // Frames sorted from the longest effective exposure (smallest scale) to the shortest.
@@ -41,7 +42,8 @@ std::vector<FrameConstants> frameConstants(const MergeInput& input) {
          static_cast<float>(r.min_signal_dn * r.scale_cd_m2_per_dn),
          static_cast<float>(1.0 / shot_coefficient), static_cast<float>(shot_coefficient),
          static_cast<float>(r.scale_cd_m2_per_dn * r.scale_cd_m2_per_dn * r.read_noise_dn *
-                            r.read_noise_dn)});
+                            r.read_noise_dn),
+         static_cast<float>(input.dark_frame_dn ? input.dark_offsets_dn[i] : 0.0)});
   }
   std::stable_sort(constants.begin(), constants.end(),
                    [](const auto& a, const auto& b) { return a.scale < b.scale; });
@@ -83,6 +85,7 @@ template <typename Lanes, typename T>
 // Where one row's eight pixels come from and go to.
 struct LanePointers {
   const std::uint16_t* const* frames;  // one row pointer per frame
+  const float* black;                  // per pixel: the dark frame's row, or the black level
   const float* inverse_flat;
   float* luminance;
   float* relative;
@@ -94,7 +97,7 @@ struct LanePointers {
 struct KernelConstants {
   const FrameConstants* frames;  // from the longest effective exposure to the shortest
   int frame_count;
-  float black, upper_bound;
+  float upper_bound;
 };
 
 // One frame's eight pixels: raw values, and their luminance estimates.
@@ -103,9 +106,9 @@ struct FrameLanes {
 };
 
 [[gnu::always_inline]] inline FrameLanes loadFrame(const FrameConstants& f,
-                                                   const std::uint16_t* row, float black) {
+                                                   const std::uint16_t* row, FloatLanes black) {
   const FloatLanes value = __builtin_convertvector(loadLanes<WordLanes>(row), FloatLanes);
-  return {value, (value - black) * f.scale};
+  return {value, (value - (black + f.dark_offset_dn)) * f.scale};
 }
 
 // A frame pixel judged by its own reading: below the frame's saturation, above its dark threshold.
@@ -140,11 +143,12 @@ struct LaneSums {
                                               int offset) {
   constexpr float kSaturationMarginSigmas = 3.0f;
   const FloatLanes zero{}, one = zero + 1.0f;
+  const FloatLanes black = loadLanes<FloatLanes>(p.black + offset);
   LaneSums pilot_sums;
   FloatLanes lower = zero;
   for (int i = 0; i < k.frame_count; ++i) {
     const FrameConstants& f = k.frames[i];
-    const FrameLanes x = loadFrame(f, p.frames[i] + offset, k.black);
+    const FrameLanes x = loadFrame(f, p.frames[i] + offset, black);
     pilot_sums.add(validByReading(f, x), zero + f.exposure_weight, x.estimate);
     const IntLanes saturated = x.value >= f.saturation_dn;
     lower = (saturated & (lower < f.saturated_cd_m2)) ? zero + f.saturated_cd_m2 : lower;
@@ -155,7 +159,7 @@ struct LaneSums {
   LaneSums final_sums, fallback_sums;
   for (int i = 0; i < k.frame_count; ++i) {
     const FrameConstants& f = k.frames[i];
-    const FrameLanes x = loadFrame(f, p.frames[i] + offset, k.black);
+    const FrameLanes x = loadFrame(f, p.frames[i] + offset, black);
     // The smallest normal float keeps 0/0 out of lanes with no pilot and no read noise.
     const FloatLanes variance =
         f.shot_coefficient * pilot + f.read_coefficient + std::numeric_limits<float>::min();
@@ -188,11 +192,13 @@ struct LaneSums {
 
 // Zero-padded copies of every frame's row tail, allocated once per worker.
 struct TailScratch {
-  explicit TailScratch(int frame_count)
+  TailScratch(int frame_count, float black_level_dn)
       : pixels(static_cast<std::size_t>(frame_count) * kLanes),
-        rows(static_cast<std::size_t>(frame_count)) {}
+        rows(static_cast<std::size_t>(frame_count)),
+        padding_black_dn(black_level_dn) {}
   std::vector<std::uint16_t> pixels;
   std::vector<const std::uint16_t*> rows;
+  float padding_black_dn;  // a zero DN below it is under-exposed in every frame
 };
 
 // The last width % 8 pixels of a row, through zero-padded copies.
@@ -204,10 +210,13 @@ void mergeTail(const KernelConstants& k, const LanePointers& p, int whole, int r
     std::copy_n(p.frames[i] + whole, rest, tail);
     scratch.rows[static_cast<std::size_t>(i)] = tail;
   }
-  float flat[kLanes] = {}, luminance[kLanes], relative[kLanes], valid[kLanes], bound[kLanes],
-        weight_sum[kLanes];
+  float black[kLanes], flat[kLanes] = {}, luminance[kLanes], relative[kLanes], valid[kLanes],
+                       bound[kLanes], weight_sum[kLanes];
+  std::fill_n(black, kLanes, scratch.padding_black_dn);
+  std::copy_n(p.black + whole, rest, black);
   std::copy_n(p.inverse_flat + whole, rest, flat);
-  mergeLanes(k, {scratch.rows.data(), flat, luminance, relative, valid, bound, weight_sum}, 0);
+  mergeLanes(k, {scratch.rows.data(), black, flat, luminance, relative, valid, bound, weight_sum},
+             0);
   std::copy_n(luminance, rest, p.luminance + whole);
   std::copy_n(relative, rest, p.relative + whole);
   std::copy_n(valid, rest, p.valid + whole);
@@ -215,9 +224,9 @@ void mergeTail(const KernelConstants& k, const LanePointers& p, int whole, int r
   std::copy_n(weight_sum, rest, p.weight_sum + whole);
 }
 
-// A row: whole groups of eight in place, the rest through zero-padded copies (a zero DN is
-// under-exposed, so padding never disturbs anything and is never stored). Then the counts and
-// flags are narrowed to bytes.
+// A row: whole groups of eight in place, the rest through zero-padded copies (a zero DN below
+// the black level is under-exposed, so padding never disturbs anything and is never stored). Then
+// the counts and flags are narrowed to bytes.
 GLARECAM_SIMD_CLONES void mergeRow(const KernelConstants& k, const LanePointers& p, int width,
                                    std::uint8_t* __restrict valid, std::uint8_t* __restrict bound,
                                    TailScratch& scratch) {
@@ -234,26 +243,31 @@ GLARECAM_SIMD_CLONES void mergeRow(const KernelConstants& k, const LanePointers&
 class MergeKernel {
  public:
   MergeKernel(const MergeInput& input, MergedImage& output)
-      : output_(output), frames_(frameConstants(input)), flat_(input.flat_field) {
-    constants_ = {frames_.data(), static_cast<int>(frames_.size()),
-                  static_cast<float>(input.black_level_dn), upperBound(frames_)};
+      : output_(output),
+        frames_(frameConstants(input)),
+        flat_(input.flat_field),
+        dark_(input.dark_frame_dn),
+        black_level_dn_(static_cast<float>(input.black_level_dn)) {
+    constants_ = {frames_.data(), static_cast<int>(frames_.size()), upperBound(frames_)};
   }
 
   void runRows(int begin, int end) const {
     const int width = output_.luminance_cd_m2.width();
     std::vector<const std::uint16_t*> rows(frames_.size());
     std::vector<float> inverse_flat(static_cast<std::size_t>(width), 1.0f);
+    const std::vector<float> black_level(static_cast<std::size_t>(width), black_level_dn_);
     std::vector<float> valid(static_cast<std::size_t>(width)), bound(valid.size()),
         weight_sum(valid.size());
-    TailScratch tail(static_cast<int>(frames_.size()));
+    TailScratch tail(static_cast<int>(frames_.size()), black_level_dn_);
     for (int y = begin; y < end; ++y) {
+      const float* black = dark_ ? dark_->row(y).data() : black_level.data();
       for (std::size_t i = 0; i < frames_.size(); ++i) rows[i] = frames_[i].frame->row(y).data();
       if (flat_) {
         auto flat = flat_->row(y);
         for (std::size_t x = 0; x < flat.size(); ++x) inverse_flat[x] = 1.0f / flat[x];
       }
       mergeRow(constants_,
-               {rows.data(), inverse_flat.data(), output_.luminance_cd_m2.row(y).data(),
+               {rows.data(), black, inverse_flat.data(), output_.luminance_cd_m2.row(y).data(),
                 output_.relative_uncertainty.row(y).data(), valid.data(), bound.data(),
                 weight_sum.data()},
                width, output_.valid_frames.row(y).data(), output_.bound.row(y).data(), tail);
@@ -271,6 +285,8 @@ class MergeKernel {
   MergedImage& output_;
   std::vector<FrameConstants> frames_;
   const FloatImage* flat_;
+  const FloatImage* dark_;
+  float black_level_dn_;
   KernelConstants constants_{};
 };
 
@@ -279,7 +295,56 @@ void ensureSize(Image<T>& image, int width, int height) {
   if (!image.sameSize(width, height)) image = Image<T>(width, height);
 }
 
+// Masked pixels take the median of their unmasked 8-neighbours (hot pixels are isolated: a
+// cluster of them has no value, NaN). Only unmasked pixels are read, so the order is free.
+void fillMaskedPixels(const ByteImage& mask, MergedImage& output) {
+  const int width = mask.width(), height = mask.height();
+  std::vector<float> neighbours;
+  for (int y = 0; y < height; ++y) {
+    const auto row = mask.row(y);
+    for (int x = 0; x < width; ++x) {
+      if (row[static_cast<std::size_t>(x)] == 0) continue;
+      neighbours.clear();
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= width || ny >= height || mask.at(nx, ny) != 0) continue;
+          const float v = output.luminance_cd_m2.at(nx, ny);
+          if (std::isfinite(v)) neighbours.push_back(v);
+        }
+      }
+      float value = std::numeric_limits<float>::quiet_NaN();
+      if (!neighbours.empty()) {
+        const auto middle = neighbours.begin() + static_cast<std::ptrdiff_t>(neighbours.size() / 2);
+        std::nth_element(neighbours.begin(), middle, neighbours.end());
+        value = *middle;
+      }
+      output.luminance_cd_m2.at(x, y) = value;
+      output.relative_uncertainty.at(x, y) = std::numeric_limits<float>::quiet_NaN();
+      output.valid_frames.at(x, y) = 0;
+      output.bound.at(x, y) = static_cast<std::uint8_t>(PixelBound::kMasked);
+    }
+  }
+}
+
 }  // namespace
+
+double blackDn(const MergeInput& input, std::size_t frame, std::size_t pixel) {
+  if (!input.dark_frame_dn) return input.black_level_dn;
+  return input.dark_frame_dn->data()[pixel] + input.dark_offsets_dn[frame];
+}
+
+std::vector<double> darkOffsetsDn(std::span<const FrameSpec> frames,
+                                  const Calibration& calibration) {
+  std::vector<double> offsets;
+  for (const FrameSpec& frame : frames) {
+    offsets.push_back(calibration.dark_frame_exposure_us
+                          ? calibration.dark_current_dn_per_us *
+                                (frame.exposure_us - *calibration.dark_frame_exposure_us)
+                          : 0.0);
+  }
+  return offsets;
+}
 
 double frameSaturationDn(const MergeInput& input, std::size_t frame) {
   const int bits = frame < input.bit_depths.size() ? input.bit_depths[frame] : 16;
@@ -318,6 +383,15 @@ Status validate(const MergeInput& input) {
   if (input.flat_field && !input.flat_field->sameSize(first.width(), first.height())) {
     return badInput("merge: flat field differs in size from the frames");
   }
+  if (input.dark_frame_dn) {
+    if (!input.dark_frame_dn->sameSize(first.width(), first.height()))
+      return badInput("merge: dark frame differs in size from the frames");
+    if (input.dark_offsets_dn.size() != input.frames.size())
+      return fail(ErrorCode::kInternal, "merge: one dark offset per frame needed");
+  }
+  if (input.masked_pixels && !input.masked_pixels->sameSize(first.width(), first.height())) {
+    return badInput("merge: hot-pixel map differs in size from the frames");
+  }
   return {};
 }
 
@@ -332,6 +406,7 @@ Status mergeInto(const MergeInput& input, const MergeOptions& options, MergedIma
   const MergeKernel kernel(input, output);
   parallelRows(height, options.threads ? options.threads : defaultThreadCount(),
                [&](int begin, int end) { kernel.runRows(begin, end); });
+  if (input.masked_pixels) fillMaskedPixels(*input.masked_pixels, output);
   return {};
 }
 

@@ -108,7 +108,9 @@ Result<Calibration> mergeCalibration(const PriorCalibration& prior, const Sensor
   block["luminance_factor"] = 1.0;  // placeholders: the merge needs them, the result does not
   if (!block.contains("intrinsics"))
     block["intrinsics"] = {{"fx", 1}, {"fy", 1}, {"cx", 1}, {"cy", 1}};
-  block.erase("flat_field");  // absolute: the block's parser takes contained paths only
+  // Absolute paths: the block's parser takes contained paths only. The procedures measure above
+  // the black level; the flat field comes back below.
+  for (std::string_view key : kPathKeys) block.erase(std::string(key));
   Calibration calibration;
   GLARECAM_ASSIGN(calibration, parseCalibration(block, "--calibration"));
   if (prior.flat_field) calibration.flat_field = prior.flat_field->string();

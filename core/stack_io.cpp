@@ -121,25 +121,72 @@ Status checkIntrinsicsSize(const Stack& stack, const std::string& calibration_wh
                   ": every angle would be wrong (calibrate intrinsics at the capture size)");
 }
 
-Status loadFlatField(Stack& stack, const fs::path& base, const std::string& where) {
-  if (!stack.calibration.flat_field) return {};
-  fs::path path;
-  const std::string base_name =
-      stack.calibration_origin == "inline" ? "the stack directory" : "the calibration's directory";
-  GLARECAM_ASSIGN(
-      path, resolveInside(base, *stack.calibration.flat_field, where, "flat_field", base_name));
-  GLARECAM_ASSIGN(stack.flat_field, readExr(path));
-  const RawFrame& first = stack.frames.front();
-  if (!stack.flat_field->sameSize(first.width(), first.height())) {
-    return badInput(path.string() + ": flat field is " + std::to_string(stack.flat_field->width()) +
-                    "x" + std::to_string(stack.flat_field->height()) + ", frames are " +
+// The absolute path of one of the calibration's images, and the check that an image has the
+// frames' size: a calibration image of another size belongs to another camera or binning, and is
+// never forced.
+struct CalibrationImages {
+  const Stack& stack;
+  const fs::path& base;
+  const std::string& where;
+
+  Result<fs::path> path(const std::string& relative, const std::string& key) const {
+    const std::string base_name = stack.calibration_origin == "inline"
+                                      ? "the stack directory"
+                                      : "the calibration's directory";
+    return resolveInside(base, relative, where, key, base_name);
+  }
+
+  template <typename T>
+  Status checkSize(const fs::path& path, const Image<T>& image, const std::string& what) const {
+    const RawFrame& first = stack.frames.front();
+    if (image.sameSize(first.width(), first.height())) return {};
+    return badInput(path.string() + ": " + what + " is " + std::to_string(image.width()) + "x" +
+                    std::to_string(image.height()) + ", frames are " +
                     std::to_string(first.width()) + "x" + std::to_string(first.height()));
   }
+};
+
+Status loadFlatField(Stack& stack, const CalibrationImages& images) {
+  if (!stack.calibration.flat_field) return {};
+  fs::path path;
+  GLARECAM_ASSIGN(path, images.path(*stack.calibration.flat_field, "flat_field"));
+  GLARECAM_ASSIGN(stack.flat_field, readExr(path));
+  GLARECAM_CHECK(images.checkSize(path, *stack.flat_field, "flat field"));
   const float* values = stack.flat_field->data();
   bool usable = std::all_of(values, values + stack.flat_field->pixelCount(),
                             [](float v) { return v > 0 && std::isfinite(v); });
   if (!usable)
     return badInput(path.string() + ": flat field has non-positive or non-finite values");
+  return {};
+}
+
+// The dark frame's values are DN of the sensor: finite, not negative, below saturation.
+Status loadDarkFrame(Stack& stack, const CalibrationImages& images) {
+  if (!stack.calibration.dark_frame) return {};
+  fs::path path;
+  GLARECAM_ASSIGN(path, images.path(*stack.calibration.dark_frame, "dark_frame"));
+  GLARECAM_ASSIGN(stack.dark_frame_dn, readExr(path));
+  GLARECAM_CHECK(images.checkSize(path, *stack.dark_frame_dn, "dark frame"));
+  const float* values = stack.dark_frame_dn->data();
+  const double saturation = stack.calibration.saturation_dn;
+  if (!std::all_of(values, values + stack.dark_frame_dn->pixelCount(),
+                   [&](float v) { return v >= 0 && v < saturation; })) {
+    return badInput(path.string() +
+                    ": dark frame has values that are negative, not finite or at saturation");
+  }
+  return {};
+}
+
+Status loadHotPixels(Stack& stack, const CalibrationImages& images) {
+  if (!stack.calibration.hot_pixels) return {};
+  fs::path path;
+  GLARECAM_ASSIGN(path, images.path(*stack.calibration.hot_pixels, "hot_pixels"));
+  DecodedFrame map;
+  GLARECAM_ASSIGN(map, readRawFrame(path));
+  GLARECAM_CHECK(images.checkSize(path, map.pixels, "hot-pixel map"));
+  ByteImage& hot = stack.hot_pixels.emplace(map.pixels.width(), map.pixels.height());
+  std::transform(map.pixels.data(), map.pixels.data() + map.pixels.pixelCount(), hot.data(),
+                 [](std::uint16_t v) { return static_cast<std::uint8_t>(v != 0 ? 255 : 0); });
   return {};
 }
 
@@ -194,7 +241,10 @@ Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& o
   GLARECAM_CHECK(
       decodeFrames(stack, paths, options.threads ? options.threads : defaultThreadCount()));
   GLARECAM_CHECK(checkIntrinsicsSize(stack, resolved.where));
-  GLARECAM_CHECK(loadFlatField(stack, resolved.base_directory, where));
+  const CalibrationImages images{stack, resolved.base_directory, where};
+  GLARECAM_CHECK(loadFlatField(stack, images));
+  GLARECAM_CHECK(loadDarkFrame(stack, images));
+  GLARECAM_CHECK(loadHotPixels(stack, images));
   return stack;
 }
 

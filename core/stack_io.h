@@ -1,6 +1,7 @@
 // Reading and writing recorded stacks (docs/stack-format.md).
 // readStack() resolves the calibration (command-line file > manifest path > inline block),
-// decodes every frame (in parallel) and the flat field, and checks the whole stack; the first
+// decodes every frame (in parallel) and the calibration's images (flat field, dark frame, hot
+// pixels; each must have the frames' size), and checks the whole stack; the first
 // problem is returned as a kBadInput Error naming the file. writeStack() builds the stack in a
 // hidden sibling directory and renames it into place, so readers never see half a stack.
 #pragma once
@@ -28,6 +29,8 @@ struct Stack {
   std::vector<RawFrame> frames;    // in manifest order
   std::vector<int> bit_depths;     // of each frame's file
   std::optional<FloatImage> flat_field;
+  std::optional<FloatImage> dark_frame_dn;  // the calibration's dark frame, in DN
+  std::optional<ByteImage> hot_pixels;      // non-zero where hot
 };
 
 struct StackReadOptions {

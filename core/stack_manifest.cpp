@@ -173,7 +173,18 @@ Result<Calibration> parseCalibration(const json& block, const std::string& where
   GLARECAM_ASSIGN(calibration.reference_f_number, fields.optionalNumber("reference_f_number"));
   GLARECAM_ASSIGN(calibration.intrinsics, parseIntrinsics(fields, where));
   GLARECAM_ASSIGN(calibration.flat_field, fields.optionalContainedPath("flat_field"));
+  GLARECAM_ASSIGN(calibration.dark_frame, fields.optionalContainedPath("dark_frame"));
+  GLARECAM_ASSIGN(calibration.dark_frame_exposure_us,
+                  fields.optionalNumber("dark_frame_exposure_us"));
+  std::optional<double> dark_current;
+  GLARECAM_ASSIGN(dark_current, fields.optionalNumber("dark_current_dn_per_us"));
+  calibration.dark_current_dn_per_us = dark_current.value_or(0.0);
+  GLARECAM_ASSIGN(calibration.hot_pixels, fields.optionalContainedPath("hot_pixels"));
   GLARECAM_ASSIGN(calibration.noise, parseNoise(fields, where));
+  if (calibration.dark_frame_exposure_us && !(*calibration.dark_frame_exposure_us > 0))
+    return fields.error("dark_frame_exposure_us", "must be positive");
+  if (!std::isfinite(calibration.dark_current_dn_per_us))
+    return fields.error("dark_current_dn_per_us", "must be finite");
   if (calibration.black_level_dn < 0) return fields.error("black_level_dn", "must not be negative");
   if (calibration.black_level_dn >= calibration.saturation_dn) {
     return badInput(where + ": calibration.black_level_dn (" + show(block.at("black_level_dn")) +
@@ -183,6 +194,22 @@ Result<Calibration> parseCalibration(const json& block, const std::string& where
     return fields.error("reference_f_number", "must be positive");
   }
   return calibration;
+}
+
+std::vector<std::pair<std::string, std::string>> calibrationImages(const Calibration& calibration) {
+  std::vector<std::pair<std::string, std::string>> images;
+  if (calibration.flat_field) images.emplace_back("flat_field", *calibration.flat_field);
+  if (calibration.dark_frame) images.emplace_back("dark_frame", *calibration.dark_frame);
+  if (calibration.hot_pixels) images.emplace_back("hot_pixels", *calibration.hot_pixels);
+  return images;
+}
+
+void setCalibrationImage(Calibration& calibration, const std::string& key,
+                         const std::string& path) {
+  if (key == "flat_field") calibration.flat_field = path;
+  if (key == "dark_frame") calibration.dark_frame = path;
+  if (key == "hot_pixels") calibration.hot_pixels = path;
+  if (calibration.source.is_object()) calibration.source[key] = path;
 }
 
 Result<StackManifest> parseManifest(const json& document, const std::string& where) {
@@ -238,6 +265,12 @@ json toJson(const Calibration& calibration) {
       json{{"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}, {"distortion", k.distortion}});
   block["intrinsics"] = intrinsics;
   if (calibration.flat_field) block["flat_field"] = *calibration.flat_field;
+  if (calibration.dark_frame) block["dark_frame"] = *calibration.dark_frame;
+  if (calibration.dark_frame_exposure_us)
+    block["dark_frame_exposure_us"] = *calibration.dark_frame_exposure_us;
+  if (calibration.dark_current_dn_per_us != 0)
+    block["dark_current_dn_per_us"] = calibration.dark_current_dn_per_us;
+  if (calibration.hot_pixels) block["hot_pixels"] = *calibration.hot_pixels;
   if (calibration.noise) {
     json noise =
         block.contains("noise") && block["noise"].is_object() ? block["noise"] : json::object();

@@ -5,10 +5,12 @@
 #pragma once
 
 #include <array>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -40,8 +42,20 @@ struct Calibration {
   std::optional<double> reference_f_number;
   Intrinsics intrinsics;
   std::optional<std::string> flat_field;  // path relative to the calibration's directory
+  // The dark frame (`glarecam calibrate dark`): the per-pixel mean of capped frames at
+  // dark_frame_exposure_us, subtracted per pixel in place of black_level_dn; the sensor's mean dark
+  // current (DN/µs, from the dark levels' medians) moves it to each frame's exposure. Hot pixels:
+  // a PNG, non-zero where hot, masked out of the merge. Paths as flat_field's.
+  std::optional<std::string> dark_frame;
+  std::optional<double> dark_frame_exposure_us;
+  double dark_current_dn_per_us = 0;
+  std::optional<std::string> hot_pixels;
   std::optional<NoiseModel> noise;
   nlohmann::json source = nlohmann::json::object();  // the block as read, unknown keys kept
+  // Where its relative image paths start, absolute: the file's directory for a calibration read
+  // from a file (readCalibrationFile), empty for a stack's inline block (the stack's directory).
+  // Not written: a capture copies the images into the stack instead (capture/bracketer.h).
+  std::filesystem::path directory;
 };
 
 struct FrameSpec {
@@ -68,6 +82,12 @@ Result<StackManifest> parseManifest(const nlohmann::json& document, const std::s
 Result<Calibration> parseCalibration(const nlohmann::json& block, const std::string& where);
 
 nlohmann::json toJson(const Calibration& calibration);
+
+// The keys of a calibration block that name an image file (flat_field, dark_frame, hot_pixels),
+// with their relative paths, in that order; absent ones left out.
+std::vector<std::pair<std::string, std::string>> calibrationImages(const Calibration& calibration);
+// Sets the image path `key` (one of calibrationImages') to `path`.
+void setCalibrationImage(Calibration& calibration, const std::string& key, const std::string& path);
 nlohmann::json toJson(const StackManifest& manifest);
 
 // A manifest's alpha_deg lies in [0, kMaxStackAlphaDeg]: the angle from the module normal.

@@ -31,14 +31,21 @@ bool isBound(const calibration::MergedImage& merged, int x, int y, PixelBound bo
   return merged.bound.at(x, y) == static_cast<std::uint8_t>(bound);
 }
 
+// A pixel that may be bright: a measurement or a lower bound (upper bounds are not bright, and a
+// masked hot pixel's value is only its neighbours').
+bool mayBeBright(std::uint8_t flag) {
+  return flag == std::uint8_t(PixelBound::kMeasured) ||
+         flag == std::uint8_t(PixelBound::kLowerBound);
+}
+
 // Second-largest of a pixel's 3x3 neighbourhood (outside the image counts as 0), over the
-// pixels that are measurements or lower bounds: upper bounds are not bright pixels.
+// pixels that may be bright.
 float secondLargestAt(const calibration::MergedImage& merged, int x, int y) {
   const FloatImage& image = merged.luminance_cd_m2;
   float first = 0, second = 0;
   forEach3x3(image.width(), image.height(), x, y, [&](int xx, int yy) {
     const float v = image.at(xx, yy);
-    if (!(v > second) || isBound(merged, xx, yy, PixelBound::kUpperBound)) return;
+    if (!(v > second) || !mayBeBright(merged.bound.at(xx, yy))) return;
     second = std::min(v, first);
     first = std::max(v, first);
   });
@@ -54,7 +61,7 @@ struct Located {
 };
 
 // Each row's best value of secondLargestAt, computed at every pixel (`everywhere`) or only at
-// the row's brightest pixel that is not an upper bound. On all cores.
+// the row's brightest pixel that may be bright. On all cores.
 std::vector<Located> rowBests(const calibration::MergedImage& merged, bool everywhere) {
   const FloatImage& image = merged.luminance_cd_m2;
   const auto width = static_cast<std::size_t>(image.width());
@@ -69,7 +76,7 @@ std::vector<Located> rowBests(const calibration::MergedImage& merged, bool every
         if (everywhere) {
           const Located here{first + x, secondLargestAt(merged, static_cast<int>(x), y)};
           if (here.beats(best)) best = here;
-        } else if (row[x] > best.value && bound[x] != std::uint8_t(PixelBound::kUpperBound)) {
+        } else if (row[x] > best.value && mayBeBright(bound[x])) {
           best = {first + x, row[x]};
         }
       }

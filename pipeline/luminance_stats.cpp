@@ -17,6 +17,7 @@ LuminanceStats luminanceStats(const calibration::MergedImage& merged) {
     measured += flag == PixelBound::kMeasured;
     stats.saturated_pixels += flag == PixelBound::kLowerBound;
     stats.dark_pixels += flag == PixelBound::kUpperBound;
+    stats.masked_pixels += flag == PixelBound::kMasked;
   }
   if (count == 0) return stats;
   stats.max = findLuminancePeak(merged);

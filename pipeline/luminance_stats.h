@@ -22,6 +22,7 @@ struct LuminanceStats {
   double valid_fraction = 0;               // pixels with at least one valid frame
   std::size_t saturated_pixels = 0;        // saturated in every frame (lower bounds)
   std::size_t dark_pixels = 0;             // under-exposed in every frame (upper bounds)
+  std::size_t masked_pixels = 0;           // the calibration's hot pixels
   double median_relative_uncertainty = 0;  // over measured pixels
 };
 

@@ -181,12 +181,18 @@ Result<MergedStack> mergeStack(Stack& stack, const ProcessOptions& options) {
   if (!stack.calibration.noise) {
     spdlog::warn("{}: calibration has no noise model; assuming a typical sensor", stackId(stack));
   }
-  calibration::MergeInput input{stack.frames,
-                                radiometry,
-                                stack.calibration.black_level_dn,
-                                stack.calibration.saturation_dn,
-                                stack.flat_field ? &*stack.flat_field : nullptr,
-                                stack.bit_depths};
+  const std::vector<double> dark_offsets =
+      calibration::darkOffsetsDn(stack.manifest.frames, stack.calibration);
+  const calibration::MergeInput input{
+      .frames = stack.frames,
+      .radiometry = radiometry,
+      .black_level_dn = stack.calibration.black_level_dn,
+      .saturation_dn = stack.calibration.saturation_dn,
+      .flat_field = stack.flat_field ? &*stack.flat_field : nullptr,
+      .bit_depths = stack.bit_depths,
+      .dark_frame_dn = stack.dark_frame_dn ? &*stack.dark_frame_dn : nullptr,
+      .dark_offsets_dn = dark_offsets,
+      .masked_pixels = stack.hot_pixels ? &*stack.hot_pixels : nullptr};
   warnAboutClipping(stack, input, options);
   MergedStack result;
   GLARECAM_ASSIGN(result.image, calibration::merge(input, {.threads = options.threads}));
@@ -208,7 +214,8 @@ std::vector<std::string> pictureCaption(const nlohmann::json& result) {
   return {result.value("stack", std::string()),
           fmt::format("Lmax {}{} cd/m\u00b2", bound,
                       formatGrouped(luminance.value("max_cd_m2", 0.0), kCaptionDigits)),
-          limit.is_number() ? fmt::format("limit {} cd/m\u00b2", formatGrouped(limit.get<double>(), kCaptionDigits))
+          limit.is_number() ? fmt::format("limit {} cd/m\u00b2",
+                                          formatGrouped(limit.get<double>(), kCaptionDigits))
                             : std::string("no limit"),
           glare.is_boolean() ? (glare.get<bool>() ? "glare: yes" : "glare: no")
                              : std::string("glare: \u2013")};
@@ -284,7 +291,9 @@ CalibrationIdentity calibrationIdentity(const Stack& stack, const ProcessOptions
   const nlohmann::json& source = stack.calibration.source;
   CalibrationIdentity identity{.origin = stack.calibration_origin,
                                .luminance_factor = stack.calibration.luminance_factor,
-                               .noise_model_assumed = !stack.calibration.noise};
+                               .noise_model_assumed = !stack.calibration.noise,
+                               .dark_frame = stack.dark_frame_dn.has_value(),
+                               .hot_pixels = stack.hot_pixels.has_value()};
   if (stack.calibration_origin != "inline") {
     const fs::path file = fs::absolute(calibrationSource(stack, options)).lexically_normal();
     identity.file = file.string();

@@ -61,12 +61,16 @@ nlohmann::json makeResult(const ResultInputs& in) {
   result["stack"] = in.stack_id;
   result["alpha_deg"] = in.alpha_deg ? json(*in.alpha_deg) : json(nullptr);
   result["alpha_source"] = in.alpha_source.empty() ? json(nullptr) : json(in.alpha_source);
+  result["alpha_uncertainty_deg"] =
+      in.alpha_uncertainty_deg ? json(*in.alpha_uncertainty_deg) : json(nullptr);
   result["image"] = {{"width", in.width}, {"height", in.height}};
   result["camera"] = in.camera;
   const CalibrationIdentity& cal = in.calibration;
   const auto optional = [](const auto& value) { return value ? json(*value) : json(nullptr); };
   result["calibration"] = {{"origin", cal.origin},
                            {"noise_model", cal.noise_model_assumed ? "assumed" : "calibrated"},
+                           {"black", cal.dark_frame ? "dark_frame" : "black_level"},
+                           {"hot_pixels_masked", cal.hot_pixels},
                            {"file", optional(cal.file)},
                            {"sha256", optional(cal.sha256)},
                            {"camera", cal.camera},
@@ -80,23 +84,24 @@ nlohmann::json makeResult(const ResultInputs& in) {
   const double k_u = cal.luminance_factor_u && cal.luminance_factor > 0
                          ? *cal.luminance_factor_u / cal.luminance_factor
                          : std::numeric_limits<double>::quiet_NaN();
-  result["luminance"] = {{"max_cd_m2", s.max.value_cd_m2},
-                         {"max_pixel", {std::lround(s.max.x_px), std::lround(s.max.y_px)}},
-                         {"max_position_px", {s.max.x_px, s.max.y_px}},
-                         {"max_method", toString(s.max.method)},
-                         {"max_relative_uncertainty", std::isfinite(s.max.relative_uncertainty)
-                                                          ? json(s.max.relative_uncertainty)
-                                                          : json(nullptr)},
-                         {"max_relative_uncertainty_combined",
-                          std::isfinite(noise_u) && std::isfinite(k_u)
-                              ? json(std::hypot(noise_u, k_u))
-                              : json(nullptr)},
-                         {"max_is_lower_bound", s.max.method == PeakMethod::kLowerBound},
-                         {"max_is_upper_bound", s.max.method == PeakMethod::kUpperBound},
-                         {"valid_fraction", s.valid_fraction},
-                         {"saturated_pixels", s.saturated_pixels},
-                         {"dark_pixels", s.dark_pixels},
-                         {"median_relative_uncertainty", s.median_relative_uncertainty}};
+  result["luminance"] = {
+      {"max_cd_m2", s.max.value_cd_m2},
+      {"max_pixel", {std::lround(s.max.x_px), std::lround(s.max.y_px)}},
+      {"max_position_px", {s.max.x_px, s.max.y_px}},
+      {"max_method", toString(s.max.method)},
+      {"max_relative_uncertainty", std::isfinite(s.max.relative_uncertainty)
+                                       ? json(s.max.relative_uncertainty)
+                                       : json(nullptr)},
+      {"max_relative_uncertainty_combined", std::isfinite(noise_u) && std::isfinite(k_u)
+                                                ? json(std::hypot(noise_u, k_u))
+                                                : json(nullptr)},
+      {"max_is_lower_bound", s.max.method == PeakMethod::kLowerBound},
+      {"max_is_upper_bound", s.max.method == PeakMethod::kUpperBound},
+      {"valid_fraction", s.valid_fraction},
+      {"saturated_pixels", s.saturated_pixels},
+      {"dark_pixels", s.dark_pixels},
+      {"masked_pixels", s.masked_pixels},
+      {"median_relative_uncertainty", s.median_relative_uncertainty}};
   const auto& limit = in.glare.limit;
   // true: every frame checked and agreeing; false: one disagrees; null: some frame had too few
   // well-exposed pixels to be checked (and none disagrees).

@@ -23,24 +23,28 @@ struct FrameCheck {
 
 // What a result's numbers rest on: the calibration's identity and its absolute scale K.
 struct CalibrationIdentity {
-  std::string origin;                  // "inline", the manifest's path as written, or --calibration
+  std::string origin;  // "inline", the manifest's path as written, or --calibration
   std::optional<std::string> file = std::nullopt;    // the file read, absolute (absent: inline)
   std::optional<std::string> sha256 = std::nullopt;  // of that file's bytes
-  nlohmann::json camera = nullptr;     // the calibration's camera block (model, serial), or null
-  nlohmann::json parts = nullptr;      // {name: {measured_at, method}}, or null
+  nlohmann::json camera = nullptr;  // the calibration's camera block (model, serial), or null
+  nlohmann::json parts = nullptr;   // {name: {measured_at, method}}, or null
   // The calibration's values as used, in a short stable form: the first 16 hex digits of the
   // SHA-256 of the block's JSON with sorted keys. Equal for a file and its inline copy; what a
   // sweep compares to refuse mixing calibrations.
   std::string id = {};
-  double luminance_factor = 0;         // K
+  double luminance_factor = 0;                              // K
   std::optional<double> luminance_factor_u = std::nullopt;  // u(K), when the calibration has it
   bool noise_model_assumed = false;
+  bool dark_frame = false;  // black subtracted pixel by pixel (else the black level)
+  bool hot_pixels = false;  // the calibration's hot pixels masked out of the merge
 };
 
 struct ResultInputs {
   std::string stack_id;
   std::optional<double> alpha_deg;
   std::string alpha_source;  // "manifest", "given" (process --alpha), or empty: no α
+  // The manifest's geometry.alpha_uncertainty_deg (inclinometer and clock), when α is its.
+  std::optional<double> alpha_uncertainty_deg;
   nlohmann::json camera = nullptr;  // the manifest's camera block (backend, model, serial), or null
   int width = 0, height = 0;
   CalibrationIdentity calibration;

@@ -17,7 +17,7 @@ namespace glarecam::apps {
 namespace {
 
 struct SimulateTargetArgs {
-  std::string target, out, seed = "1";
+  std::string target, out, seed = "1", sensor_seed = "1";
   std::optional<std::string> size;
 };
 
@@ -30,6 +30,7 @@ Status runSimulateTarget(const SimulateTargetArgs& args) {
     std::tie(options.width, options.height) = size;
   }
   GLARECAM_ASSIGN(options.seed, parseUnsigned(args.seed, "--seed"));
+  GLARECAM_ASSIGN(options.sensor_seed, parseUnsigned(args.sensor_seed, "--sensor-seed"));
   if (args.out.empty()) return badInput("--out: expected a directory");
   std::vector<capture::CalibrationTargetStack> stacks;
   GLARECAM_ASSIGN(stacks, capture::simulateCalibrationTarget(options));
@@ -50,9 +51,15 @@ void addSimulateCalibrationCommand(CLI::App& app, Action& action) {
   sub->add_option("TARGET", args->target, "dark, flat, linearity, noise, luminance or board")
       ->required();
   sub->add_option("--out", args->out, "directory the stacks go into")->required();
-  sub->add_option("--size", args->size, "WxH (default 320x256, for every target: a calibration's parts must share the size of the "
-                  "stacks it calibrates)");
-  sub->add_option("--seed", args->seed, "noise seed (default 1)");
+  sub->add_option(
+      "--size", args->size,
+      "WxH (default 320x256, for every target: a calibration's parts must share the size of the "
+      "stacks it calibrates)");
+  sub->add_option("--seed", args->seed, "noise seed (default 1)")->type_name("UINT");
+  sub->add_option("--sensor-seed", args->sensor_seed,
+                  "places the sensor's defects (dark: 12 hot pixels, a 0.5 DN fixed pattern); "
+                  "`simulate --sensor-seed` with the same seed and size has the same (default 1)")
+      ->type_name("UINT");
   sub->callback([args, &action] { action = [args] { return runSimulateTarget(*args); }; });
 }
 

@@ -18,6 +18,7 @@ struct SimulateArgs {
   std::string size = "1224x1024";
   std::optional<std::string> distortion, offset;  // given but empty is an error
   std::string seed = "1";
+  std::string sensor_seed = "1";
   capture::SimulationOptions options;
 };
 
@@ -28,6 +29,9 @@ Status runSimulate(SimulateArgs& args) {
   auto seed = parseUnsigned(args.seed, "--seed");
   if (!seed) return std::unexpected(seed.error());
   args.options.seed = *seed;
+  auto sensor_seed = parseUnsigned(args.sensor_seed, "--sensor-seed");
+  if (!sensor_seed) return std::unexpected(sensor_seed.error());
+  args.options.sensor_seed = *sensor_seed;
   if (args.distortion) {
     auto k = parseNumberList(*args.distortion, "--distortion", 1, 5);
     if (!k) return std::unexpected(k.error());
@@ -79,6 +83,17 @@ void addSimulateCommand(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_option("--peak-scale", args->options.peak_scale, "scale the module's luminance maximum")
       ->capture_default_str();
+  sub->add_option("--hot-pixels", args->options.defects.hot_pixels,
+                  "hot pixels of the sensor (dark current 20-60 DN/ms), up to 1 % of the pixels")
+      ->capture_default_str();
+  sub->add_option("--fixed-pattern", args->options.defects.fixed_pattern_dn,
+                  "standard deviation of the sensor's per-pixel offset, DN (0..100)")
+      ->capture_default_str();
+  sub->add_option("--sensor-seed", args->sensor_seed,
+                  "places the sensor's defects; simulate-calibration dark with the same seed "
+                  "and size measures the same ones")
+      ->capture_default_str()
+      ->type_name("UINT");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSimulate(*args); }; });
 }

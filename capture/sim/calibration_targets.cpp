@@ -6,7 +6,6 @@
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <set>
 
 #include "calibration/camera_model.h"
 #include "capture/sim/simulated_stack.h"
@@ -28,7 +27,6 @@ constexpr std::pair<CalibrationTarget, std::string_view> kTargetNames[] = {
 // The plans (exposures in µs; with the source at K cd/m² they are also the signal in DN).
 constexpr double kDarkExposuresUs[] = {1000, 10000};
 constexpr int kDarkFramesPerExposure = 4;
-constexpr double kHotRateMinDnPerMs = 20, kHotRateMaxDnPerMs = 60;  // dark current of hot pixels
 constexpr double kFlatExposureUs = 2000;  // half the range at the principal point
 constexpr int kFlatFrames = 8;
 // Equal steps, as EMVA 1288 takes them: 120 µs apart, 3 % of the signal where the response bends.
@@ -129,24 +127,15 @@ CalibrationTargetStack darkTarget(const CalibrationTargetOptions& options) {
   const FloatImage black(options.width, options.height, 0.0f);
   CalibrationTargetStack stack =
       exposeStack(options, black, repeated(kDarkExposuresUs, kDarkFramesPerExposure));
-  std::mt19937_64 rng(options.seed);
-  std::normal_distribution<double> pattern(0.0, options.fixed_pattern_dn);
-  FloatImage offset(options.width, options.height);
-  for (std::size_t i = 0; i < offset.pixelCount(); ++i)
-    offset.data()[i] = static_cast<float>(pattern(rng));
-  std::uniform_int_distribution<int> column(0, options.width - 1), row(0, options.height - 1);
-  std::uniform_real_distribution<double> rate(kHotRateMinDnPerMs, kHotRateMaxDnPerMs);
-  FloatImage hot_rate(options.width, options.height, 0.0f);  // DN per ms
-  std::set<std::pair<int, int>> hot;
-  while (static_cast<int>(hot.size()) < options.hot_pixels) {
-    const std::pair<int, int> p{column(rng), row(rng)};
-    if (hot.insert(p).second) hot_rate.at(p.first, p.second) = static_cast<float>(rate(rng));
-  }
-  transformFrames(stack, options.sensor, [&](int x, int y, double dn, double exposure_us) {
-    return dn + offset.at(x, y) + hot_rate.at(x, y) * exposure_us / 1000.0;
-  });
+  const SensorDefectMap defects = sensorDefectMap(
+      options.width, options.height,
+      {.fixed_pattern_dn = options.fixed_pattern_dn, .hot_pixels = options.hot_pixels},
+      options.sensor_seed);
+  for (std::size_t f = 0; f < stack.frames.size(); ++f)
+    applySensorDefects(stack.frames[f], defects, stack.manifest.frames[f].exposure_us,
+                       options.sensor);
   json hot_list = json::array();
-  for (const auto& [x, y] : hot) hot_list.push_back({x, y});
+  for (const auto& [x, y] : defects.hot_pixels) hot_list.push_back({x, y});
   stack.truth["black_level_dn"] = options.sensor.black_level_dn;
   stack.truth["fixed_pattern_dn"] = options.fixed_pattern_dn;
   stack.truth["hot_pixels"] = hot_list;

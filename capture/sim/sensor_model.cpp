@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "calibration/radiometry.h"
 #include "core/parallel.h"
@@ -58,6 +59,37 @@ RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame,
     }
   });
   return raw;
+}
+
+SensorDefectMap sensorDefectMap(int width, int height, const SensorDefects& defects,
+                                std::uint64_t sensor_seed) {
+  SensorDefectMap map{FloatImage(width, height, 0.0f), FloatImage(width, height, 0.0f), {}};
+  std::mt19937_64 rng(mix(sensor_seed));
+  std::normal_distribution<double> unit_normal(0.0, 1.0);
+  // Every pixel draws its offset even without a fixed pattern: the hot pixels then fall where
+  // they fall with one, whatever the pattern's size.
+  for (std::size_t i = 0; i < map.offset_dn.pixelCount(); ++i)
+    map.offset_dn.data()[i] = static_cast<float>(defects.fixed_pattern_dn * unit_normal(rng));
+  std::uniform_int_distribution<int> column(0, width - 1), row(0, height - 1);
+  std::uniform_real_distribution<double> rate(kHotRateMinDnPerUs, kHotRateMaxDnPerUs);
+  std::set<std::pair<int, int>> hot;
+  while (static_cast<int>(hot.size()) < std::min(defects.hot_pixels, width * height)) {
+    const std::pair<int, int> p{column(rng), row(rng)};
+    if (hot.insert(p).second)
+      map.dark_current_dn_per_us.at(p.first, p.second) = static_cast<float>(rate(rng));
+  }
+  map.hot_pixels.assign(hot.begin(), hot.end());
+  return map;
+}
+
+void applySensorDefects(RawFrame& frame, const SensorDefectMap& defects, double exposure_us,
+                        const SensorModel& sensor) {
+  const double full_scale = sensor.full_scale_dn();
+  for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
+    const double dn = frame.data()[i] + defects.offset_dn.data()[i] +
+                      defects.dark_current_dn_per_us.data()[i] * exposure_us;
+    frame.data()[i] = static_cast<std::uint16_t>(std::clamp(std::round(dn), 0.0, full_scale));
+  }
 }
 
 }  // namespace glarecam::capture

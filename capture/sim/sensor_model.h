@@ -7,6 +7,8 @@
 #include <array>
 #include <cstdint>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "core/image.h"
 #include "core/stack_manifest.h"
@@ -39,7 +41,40 @@ struct SimulatedCameraModel {
   SensorModel sensor;
   double luminance_factor = 1500.0;  // K, cd/m² per DN/µs at f/8 without the ND filter
   double f_number = 8.0;
+  // The sensor's own defects (fixed pattern, hot pixels) are drawn from this seed, not from the
+  // noise seed: one sensor has the same defects in its dark frames and in its glare stacks.
+  std::uint64_t sensor_seed = 1;
 };
+
+// A sensor's defects, the same in every frame it takes: each pixel's offset from the black level
+// (the fixed pattern) and hot pixels, whose dark current adds rate × exposure.
+// Above this a fixed pattern is no sensor's (a few DN on machine-vision sensors).
+inline constexpr double kMaxFixedPatternDn = 100.0;
+
+struct SensorDefects {
+  double fixed_pattern_dn = 0;  // standard deviation of the per-pixel offset
+  int hot_pixels = 0;
+  bool any() const { return fixed_pattern_dn != 0 || hot_pixels != 0; }
+};
+
+// Dark current of the simulated hot pixels, DN per µs (20–60 DN/ms: a hot pixel of a warm CMOS
+// sensor; a 10 ms dark frame shows it hundreds of DN above black).
+inline constexpr double kHotRateMinDnPerUs = 0.020, kHotRateMaxDnPerUs = 0.060;
+
+struct SensorDefectMap {
+  FloatImage offset_dn;                         // fixed pattern
+  FloatImage dark_current_dn_per_us;            // non-zero at hot pixels
+  std::vector<std::pair<int, int>> hot_pixels;  // (x, y), sorted
+};
+
+// The defects of a width x height sensor with `sensor_seed`: the same for the same arguments.
+SensorDefectMap sensorDefectMap(int width, int height, const SensorDefects& defects,
+                                std::uint64_t sensor_seed);
+
+// Adds the defects to a frame taken at `exposure_us` (before the ADC: rounded, clipped at full
+// scale).
+void applySensorDefects(RawFrame& frame, const SensorDefectMap& defects, double exposure_us,
+                        const SensorModel& sensor);
 
 // Renders the frame `frame` of a stack calibrated by `calibration` (whose radiometry the sensor
 // obeys exactly) looking at `luminance_cd_m2`.

@@ -137,6 +137,10 @@ Status SimulationOptions::validate() const {
                    [](double k) { return std::isfinite(k); })) {
     return badInput("simulate: --distortion coefficients must be finite");
   }
+  if (defects.hot_pixels < 0 || defects.hot_pixels > width * height / 100)
+    return badInput("simulate: --hot-pixels must be between 0 and 1 % of the pixels");
+  if (!(defects.fixed_pattern_dn >= 0 && defects.fixed_pattern_dn <= kMaxFixedPatternDn))
+    return badInput("simulate: --fixed-pattern must be between 0 and 100 DN");
   if (!(luminance_factor > 0 && nd_transmission > 0 && nd_transmission <= 1 && f_number > 0)) {
     return fail(ErrorCode::kInternal,
                 "simulate: the simulated camera's K, ND and f-number must be positive");
@@ -185,6 +189,11 @@ nlohmann::json SimulatedStack::truthJson() const {
   document["stack"] = manifest.id.value_or("");
   document["bracket"] = {{"exposures_us", bracket.exposures_us},
                          {"peak_clipped", bracket.peak_clipped}};
+  if (!defects.offset_dn.empty()) {
+    nlohmann::json hot = nlohmann::json::array();
+    for (const auto& [x, y] : defects.hot_pixels) hot.push_back({x, y});
+    document["hot_pixels"] = hot;
+  }
   return document;
 }
 
@@ -261,9 +270,17 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
                   calibration.saturation_dn - calibration.black_level_dn, options.bracket));
   result.manifest = makeManifest(options, calibration, result.bracket);
   progress.setTotal(1 + static_cast<int>(result.manifest.frames.size()));
+  if (options.defects.any()) {
+    result.defects =
+        sensorDefectMap(options.width, options.height, options.defects, options.sensor_seed);
+  }
   for (std::size_t i = 0; i < result.manifest.frames.size(); ++i) {
     result.frames.push_back(exposeFrame(result.true_luminance_cd_m2, result.manifest.frames[i],
                                         calibration, options.sensor, frameSeed(options.seed, i)));
+    if (options.defects.any()) {
+      applySensorDefects(result.frames.back(), result.defects,
+                         result.manifest.frames[i].exposure_us, options.sensor);
+    }
     progress.advance("frame " + std::to_string(i + 1) + "/" +
                      std::to_string(result.manifest.frames.size()));
   }

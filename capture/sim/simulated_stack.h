@@ -28,6 +28,7 @@ struct SimulationOptions : SimulatedCameraModel {
   double peak_scale = 1.0;  // multiplies the module's luminance maximum (e.g. below-limit scenes)
   double nd_transmission = 1.0e-3;  // ND 3.0 filter: sun reflections need it
   BracketOptions bracket;
+  SensorDefects defects;       // none by default: a clean sensor (the sensor's seed places them)
   bool show_progress = false;  // progress on stderr (the CLI turns it on)
   // The `sim:` camera only: a calibration target (calibration_targets.h) instead of the module.
   std::string calibration_target;
@@ -41,6 +42,7 @@ struct SimulatedStack {
   SceneTruth truth;
   std::array<double, 2> centre_pixel{0, 0};
   BracketPlan bracket;
+  SensorDefectMap defects;  // empty images when the sensor has none
   nlohmann::json truthJson() const;
 };
 

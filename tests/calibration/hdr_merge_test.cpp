@@ -164,6 +164,93 @@ TEST(HdrMerge, RefusesInconsistentInput) {
   EXPECT_EQ(merged.error().code, ErrorCode::kBadInput);
 }
 
+TEST(HdrMerge, SubtractsTheDarkFramePixelByPixelAtEachFramesExposure) {
+  // A fixed pattern of 0..4 DN across columns, and a dark current of 0.01 DN/µs: the dark frame
+  // (taken at 1000 µs) is 10 DN above the frames' black at 0 µs, 9 DN at 100 µs, 8 at 200 µs.
+  Calibration calibration = basicCalibration();
+  calibration.dark_frame_exposure_us = 1000;
+  calibration.dark_current_dn_per_us = 0.01;
+  const std::vector<FrameSpec> specs{frame(100), frame(200)};
+  const std::vector<double> offsets = darkOffsetsDn(specs, calibration);
+  ASSERT_EQ(offsets.size(), 2u);
+  EXPECT_DOUBLE_EQ(offsets[0], -9.0);
+  EXPECT_DOUBLE_EQ(offsets[1], -8.0);
+  FloatImage dark(MergeCase::kWidth, MergeCase::kHeight);
+  MergeCase c;
+  for (const FrameSpec& spec : specs) {
+    c.frames.emplace_back(MergeCase::kWidth, MergeCase::kHeight);
+    c.radiometry.push_back(frameRadiometry(spec, calibration));
+  }
+  for (int y = 0; y < MergeCase::kHeight; ++y) {
+    for (int x = 0; x < MergeCase::kWidth; ++x) {
+      const int black_at_zero = 64 + x % 5;  // black at 0 µs
+      dark.at(x, y) = static_cast<float>(black_at_zero + 10);
+      c.frames[0].at(x, y) = static_cast<std::uint16_t>(black_at_zero + 1 + 1000);  // 15 000 cd/m²
+      c.frames[1].at(x, y) = static_cast<std::uint16_t>(black_at_zero + 2 + 2000);
+    }
+  }
+  MergeInput input{c.frames, c.radiometry, 64, 4000};
+  input.dark_frame_dn = &dark;
+  input.dark_offsets_dn = offsets;
+  auto merged = merge(input);
+  ASSERT_TRUE(merged) << merged.error().message;
+  // Exact in lanes (x 1..4) and in the tail (x 33..36): float arithmetic on whole DN.
+  for (int x : {1, 2, 3, 4, 33, 34, 35, 36}) {
+    EXPECT_NEAR(merged->luminance_cd_m2.at(x, 1), 15000.0, 1e-2) << x;
+    EXPECT_EQ(merged->valid_frames.at(x, 1), 2) << x;
+  }
+  // The black level alone reads the pattern and the dark current as signal.
+  auto plain = merge({c.frames, c.radiometry, 64, 4000});
+  ASSERT_TRUE(plain);
+  EXPECT_GT(plain->luminance_cd_m2.at(4, 1), 15000.0 * 1.002);  // 1.003 .. 1.005
+}
+
+TEST(HdrMerge, MasksHotPixelsAndFillsThemFromTheirNeighbours) {
+  MergeCase c;
+  c.add(1064, frame(100));
+  ByteImage mask(MergeCase::kWidth, MergeCase::kHeight, 0);
+  for (const auto& [x, y] : {std::pair{1, 1}, std::pair{35, 1}}) {
+    c.frames[0].at(x, y) = 3000;  // hot
+    mask.at(x, y) = 255;
+  }
+  for (int y = 0; y < MergeCase::kHeight; ++y)  // a block: its centre has no unmasked neighbour
+    for (int x = 10; x <= 12; ++x) mask.at(x, y) = 255;
+  c.frames[0].at(11, 1) = 3000;
+  MergeInput input{c.frames, c.radiometry, 64, 4000};
+  input.masked_pixels = &mask;
+  auto merged = merge(input);
+  ASSERT_TRUE(merged) << merged.error().message;
+  for (const auto& [x, y] : {std::pair{1, 1}, std::pair{35, 1}}) {
+    EXPECT_EQ(static_cast<PixelBound>(merged->bound.at(x, y)), PixelBound::kMasked);
+    EXPECT_EQ(merged->valid_frames.at(x, y), 0);
+    EXPECT_TRUE(std::isnan(merged->relative_uncertainty.at(x, y)));
+    EXPECT_NEAR(merged->luminance_cd_m2.at(x, y), 15000.0, 1e-2);  // not the hot reading
+  }
+  EXPECT_TRUE(std::isnan(merged->luminance_cd_m2.at(11, 1)));
+  EXPECT_EQ(static_cast<PixelBound>(merged->bound.at(0, 0)), PixelBound::kMeasured);
+  EXPECT_NEAR(merged->luminance_cd_m2.at(0, 0), 15000.0, 1e-2);
+}
+
+TEST(HdrMerge, RefusesADarkFrameOrHotPixelMapOfAnotherSize) {
+  MergeCase c;
+  c.add(1064, frame(100));
+  const FloatImage dark(MergeCase::kWidth + 1, MergeCase::kHeight, 64.0f);
+  const std::vector<double> offsets{0.0};
+  MergeInput input{c.frames, c.radiometry, 64, 4000};
+  input.dark_frame_dn = &dark;
+  input.dark_offsets_dn = offsets;
+  auto merged = merge(input);
+  ASSERT_FALSE(merged);
+  EXPECT_EQ(merged.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(merged.error().message.find("dark frame"), std::string::npos);
+  const ByteImage mask(MergeCase::kWidth, MergeCase::kHeight + 1, 0);
+  MergeInput masked{c.frames, c.radiometry, 64, 4000};
+  masked.masked_pixels = &mask;
+  merged = merge(masked);
+  ASSERT_FALSE(merged);
+  EXPECT_NE(merged.error().message.find("hot-pixel map"), std::string::npos);
+}
+
 struct AccuracyReport {
   double median_ratio;
   double normalised_residual_rms;  // (L - L_true) / sigma, which should have unit spread

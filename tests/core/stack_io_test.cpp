@@ -87,6 +87,56 @@ TEST(StackIo, FlatFieldIsLoadedRelativeToTheCalibration) {
   EXPECT_FLOAT_EQ(stack->flat_field->at(3, 3), 0.8f);
 }
 
+// The dark frame and hot-pixel map are read like the flat field; each of another size than the
+// frames (another camera or binning), a dark frame with values no sensor gives, or a path that
+// escapes, is refused naming the file.
+TEST(StackIo, DarkFrameAndHotPixelsAreLoadedAndCheckedAgainstTheFrames) {
+  testing::TempDir dir;
+  const auto written = testing::writeTestStack(dir / "s");
+  const int width = written.frames[0].width(), height = written.frames[0].height();
+  FloatImage dark(width, height, 65.5f);
+  RawFrame hot(width, height, 0);
+  hot.at(2, 3) = 255;
+  ASSERT_TRUE(writeExr(dir / "s" / "dark.exr", dark));
+  ASSERT_TRUE(writePngGray(dir / "s" / "hot.png", hot, 8));
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  manifest["calibration"]["dark_frame"] = "dark.exr";
+  manifest["calibration"]["dark_frame_exposure_us"] = 10000;
+  manifest["calibration"]["dark_current_dn_per_us"] = 1e-4;
+  manifest["calibration"]["hot_pixels"] = "hot.png";
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  auto stack = readStack(dir / "s");
+  ASSERT_TRUE(stack) << stack.error().message;
+  ASSERT_TRUE(stack->dark_frame_dn && stack->hot_pixels);
+  EXPECT_FLOAT_EQ(stack->dark_frame_dn->at(3, 3), 65.5f);
+  EXPECT_EQ(stack->hot_pixels->at(2, 3), 255);
+  EXPECT_EQ(stack->hot_pixels->at(3, 3), 0);
+  EXPECT_EQ(stack->calibration.dark_frame_exposure_us, 10000.0);
+  EXPECT_EQ(stack->calibration.dark_current_dn_per_us, 1e-4);
+  EXPECT_EQ(toJson(stack->calibration)["dark_frame"], "dark.exr");
+
+  const auto refused = [&](const std::string& needle) {
+    auto bad = readStack(dir / "s");
+    ASSERT_FALSE(bad);
+    EXPECT_EQ(bad.error().code, ErrorCode::kBadInput);
+    EXPECT_NE(bad.error().message.find(needle), std::string::npos) << bad.error().message;
+  };
+  ASSERT_TRUE(writeExr(dir / "s" / "dark.exr", FloatImage(width / 2, height, 65.0f)));
+  refused("dark.exr: dark frame is " + std::to_string(width / 2) + "x" + std::to_string(height));
+  ASSERT_TRUE(writeExr(dir / "s" / "dark.exr", FloatImage(width, height, -1.0f)));
+  refused("dark.exr: dark frame has values that are negative");
+  ASSERT_TRUE(writeExr(dir / "s" / "dark.exr", dark));
+  ASSERT_TRUE(writePngGray(dir / "s" / "hot.png", RawFrame(width, height + 2, 0), 8));
+  refused("hot.png: hot-pixel map is " + std::to_string(width) + "x" + std::to_string(height + 2));
+  manifest["calibration"]["hot_pixels"] = "../hot.png";
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  refused("calibration.hot_pixels \"../hot.png\" escapes");
+  manifest["calibration"].erase("hot_pixels");
+  manifest["calibration"]["dark_frame_exposure_us"] = 0;
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
+  refused("calibration.dark_frame_exposure_us must be positive");
+}
+
 // Intrinsics are in pixels of the size they were calibrated at: at another size every angle is
 // off by the ratio, so a recorded size that differs from the frames' is refused, whatever the
 // calibration's origin; one that agrees, or none recorded (older files), is read.

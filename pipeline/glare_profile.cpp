@@ -1,7 +1,10 @@
 #include "pipeline/glare_profile.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "core/version.h"
 #include "pipeline/glare_ellipse.h"
@@ -49,6 +52,23 @@ json measuredJson(const SweepRow& row) {
           {"lmax_bound", row.lmax_bound.empty() ? json(nullptr) : json(row.lmax_bound)},
           {"vertical_deg", optionalNumber(row.vertical_deg)},
           {"horizontal_deg", optionalNumber(row.horizontal_deg)}};
+}
+
+// Each distinct calibration of the rows (by id, in order): its date and K ± u(K).
+json calibrationDetails(const SweepTable& table) {
+  json details = json::array();
+  std::vector<std::string> seen;
+  for (const SweepRow& row : table.rows) {
+    if (row.calibration_id.empty() || std::ranges::find(seen, row.calibration_id) != seen.end())
+      continue;
+    seen.push_back(row.calibration_id);
+    details.push_back(
+        {{"id", row.calibration_id},
+         {"date", row.calibration_date.empty() ? json(nullptr) : json(row.calibration_date)},
+         {"luminance_factor", optionalNumber(row.luminance_factor)},
+         {"luminance_factor_u", optionalNumber(row.luminance_factor_u)}});
+  }
+  return details;
 }
 
 std::optional<double> axisAt(const AxisFit& axis, double alpha_deg) {
@@ -135,6 +155,7 @@ json glareProfileJson(const ProfileIdentity& identity, const SweepTable& table,
       {"simulated", isSimulated(table)},
       {"cameras", tableCameras(table)},
       {"calibrations", tableCalibrations(table)},
+      {"calibration_details", calibrationDetails(table)},
       {"luminance_fit", fits.cosineIsBetter() ? "cos" : "biquadratic"},
       {"glare_ranges_deg", rangesJson(glareRanges(fits, limit))},
       {"limit", {{"mode", limit.mode()}, {"constant_cd_m2", optionalNumber(limit.constant_cd_m2)}}},

@@ -279,6 +279,16 @@ void warnAboutPrincipalPoint(const Stack& stack, const fs::path& calibration_fil
       100 * kPrincipalPointOffCentreFraction);
 }
 
+// The manifest's geometry.alpha_uncertainty_deg (rig_geometry.h) when it is a positive number.
+std::optional<double> alphaUncertaintyDeg(const StackManifest& manifest) {
+  const auto geometry = manifest.source.find("geometry");
+  if (geometry == manifest.source.end() || !geometry->is_object()) return std::nullopt;
+  const auto u = geometry->find("alpha_uncertainty_deg");
+  if (u == geometry->end() || !u->is_number()) return std::nullopt;
+  const double value = u->get<double>();
+  return value > 0 && std::isfinite(value) ? std::optional(value) : std::nullopt;
+}
+
 // The manifest's camera block (backend, model, serial, size), or null.
 nlohmann::json cameraBlock(const StackManifest& manifest) {
   const auto camera = manifest.source.find("camera");
@@ -395,23 +405,26 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   progress.advance("analysed");
   ProcessSummary summary;
   summary.output_directory = options.output_directory.value_or(stack_directory / "result");
-  summary.result = makeResult({.stack_id = stackId(stack),
-                               .alpha_deg = stack.manifest.alpha_deg,
-                               .alpha_source = alpha_given ? "given"
-                                               : stack.manifest.alpha_deg ? "manifest"
-                                                                          : "",
-                               .camera = cameraBlock(stack.manifest),
-                               .width = merged.luminance_cd_m2.width(),
-                               .height = merged.luminance_cd_m2.height(),
-                               .calibration = calibrationIdentity(stack, options),
-                               .stats = stats,
-                               .frames = merged_stack.frames,
-                               .limit_cd_m2 = limit,
-                               .constant_limit = options.threshold_cd_m2.has_value(),
-                               .glare = glare});
+  summary.result = makeResult(
+      {.stack_id = stackId(stack),
+       .alpha_deg = stack.manifest.alpha_deg,
+       .alpha_source = alpha_given                ? "given"
+                       : stack.manifest.alpha_deg ? "manifest"
+                                                  : "",
+       .alpha_uncertainty_deg = alpha_given ? std::nullopt : alphaUncertaintyDeg(stack.manifest),
+       .camera = cameraBlock(stack.manifest),
+       .width = merged.luminance_cd_m2.width(),
+       .height = merged.luminance_cd_m2.height(),
+       .calibration = calibrationIdentity(stack, options),
+       .stats = stats,
+       .frames = merged_stack.frames,
+       .limit_cd_m2 = limit,
+       .constant_limit = options.threshold_cd_m2.has_value(),
+       .glare = glare});
   FalseColourOptions picture_options;
   picture_options.limit_cd_m2 = limit;
   picture_options.title = pictureTitle(stack.manifest.alpha_deg);
+  picture_options.min_image_height_px = kPictureMinImageHeightPx;
   picture_options.overlay = glareOverlay(glare, camera, stats.max);
   picture_options.caption = pictureCaption(summary.result);
   if (summary.result["luminance"]["frames_consistent"] == false)

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <functional>
 #include <cmath>
 #include <fstream>
+#include <functional>
 
 #include "core/csv.h"
 
@@ -26,6 +26,7 @@ enum Column {
   kLmaxUncertainty,
   kVerticalUncertainty,
   kHorizontalUncertainty,
+  kAlphaUncertainty,
   kFwhmVertical,
   kFwhmHorizontal,
   kGlare,
@@ -38,6 +39,9 @@ enum Column {
   kWidth,
   kHeight,
   kCalibrationId,
+  kCalibrationDate,
+  kLuminanceFactor,
+  kLuminanceFactorU,
   kStackId,
   kStack,
   kColumnCount
@@ -52,6 +56,7 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "lmax_uncertainty_cd_m2",
                                                              "vertical_uncertainty_deg",
                                                              "horizontal_uncertainty_deg",
+                                                             "alpha_uncertainty_deg",
                                                              "fwhm_vertical_deg",
                                                              "fwhm_horizontal_deg",
                                                              "glare",
@@ -64,6 +69,9 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "width",
                                                              "height",
                                                              "calibration_id",
+                                                             "calibration_date",
+                                                             "luminance_factor",
+                                                             "luminance_factor_u",
                                                              "stack_id",
                                                              "stack"};
 
@@ -141,13 +149,14 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   SweepRow row;
   std::array<std::optional<double>, kColumnCount> numbers;
   for (int c : {kAlpha, kLimit, kLmax, kVertical, kHorizontal, kLmaxUncertainty,
-                kVerticalUncertainty, kHorizontalUncertainty, kFwhmVertical, kFwhmHorizontal}) {
+                kVerticalUncertainty, kHorizontalUncertainty, kAlphaUncertainty, kFwhmVertical,
+                kFwhmHorizontal, kLuminanceFactor, kLuminanceFactorU}) {
     GLARECAM_ASSIGN(numbers[c], parseNumber(field(header, fields, Column(c)), kColumnNames[c]));
   }
   GLARECAM_CHECK(validateSweepAlpha(numbers[kAlpha]));
   if (!numbers[kLmax]) return badInput("lmax_cd_m2 is empty");
   row.alpha_deg = *numbers[kAlpha];
-  for (int c : {kLimit, kLmax, kVertical, kHorizontal})
+  for (int c : {kLimit, kLmax, kVertical, kHorizontal, kAlphaUncertainty, kLuminanceFactor})
     GLARECAM_CHECK(requirePositive(numbers[c], kColumnNames[c]));
   for (int c : {kLimit, kLmax})
     GLARECAM_CHECK(requireAtMost(numbers[c], kMaxLuminanceCdM2, kColumnNames[c]));
@@ -160,6 +169,7 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   row.lmax_uncertainty_cd_m2 = numbers[kLmaxUncertainty];
   row.vertical_uncertainty_deg = numbers[kVerticalUncertainty];
   row.horizontal_uncertainty_deg = numbers[kHorizontalUncertainty];
+  row.alpha_uncertainty_deg = numbers[kAlphaUncertainty];
   row.fwhm_vertical_deg = numbers[kFwhmVertical];
   row.fwhm_horizontal_deg = numbers[kFwhmHorizontal];
   const std::string glare = field(header, fields, kGlare);
@@ -187,6 +197,12 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
     *size = value;
   }
   row.calibration_id = field(header, fields, kCalibrationId);
+  row.calibration_date = field(header, fields, kCalibrationDate);
+  row.luminance_factor = numbers[kLuminanceFactor];
+  row.luminance_factor_u = numbers[kLuminanceFactorU];
+  if (row.luminance_factor_u && *row.luminance_factor_u < 0)
+    return badInput(
+        fmt::format("luminance_factor_u: {} must not be negative", *row.luminance_factor_u));
   if (row.frames_consistent == false && row.suspect.empty())
     row.suspect = "frames disagree with the merge";
   row.stack_id = field(header, fields, kStackId);
@@ -277,30 +293,33 @@ std::string formatSweepTable(const SweepTable& table) {
   std::stable_sort(rows.begin(), rows.end(),
                    [](const SweepRow& a, const SweepRow& b) { return a.alpha_deg < b.alpha_deg; });
   for (const SweepRow& r : rows) {
-    const std::array<std::string, kColumnCount> fields{number(r.alpha_deg),
-                                                       number(r.limit_cd_m2),
-                                                       number(r.lmax_cd_m2),
-                                                       number(r.vertical_deg),
-                                                       number(r.horizontal_deg),
-                                                       number(r.lmax_uncertainty_cd_m2),
-                                                       number(r.vertical_uncertainty_deg),
-                                                       number(r.horizontal_uncertainty_deg),
-                                                       number(r.fwhm_vertical_deg),
-                                                       number(r.fwhm_horizontal_deg),
-                                                       r.glare ? (*r.glare ? "true" : "false") : "",
-                                                       r.lmax_bound,
-                                                       quoteCsvField(oneLine(r.limit_status)),
-                                                       r.frames_consistent
-                                                           ? (*r.frames_consistent ? "true" : "false")
-                                                           : "",
-                                                       quoteCsvField(oneLine(r.suspect)),
-                                                       quoteCsvField(oneLine(r.camera_backend)),
-                                                       quoteCsvField(oneLine(r.camera_serial)),
-                                                       r.width ? std::to_string(*r.width) : "",
-                                                       r.height ? std::to_string(*r.height) : "",
-                                                       quoteCsvField(oneLine(r.calibration_id)),
-                                                       quoteCsvField(oneLine(r.stack_id)),
-                                                       quoteCsvField(oneLine(r.stack))};
+    const std::array<std::string, kColumnCount> fields{
+        number(r.alpha_deg),
+        number(r.limit_cd_m2),
+        number(r.lmax_cd_m2),
+        number(r.vertical_deg),
+        number(r.horizontal_deg),
+        number(r.lmax_uncertainty_cd_m2),
+        number(r.vertical_uncertainty_deg),
+        number(r.horizontal_uncertainty_deg),
+        number(r.alpha_uncertainty_deg),
+        number(r.fwhm_vertical_deg),
+        number(r.fwhm_horizontal_deg),
+        r.glare ? (*r.glare ? "true" : "false") : "",
+        r.lmax_bound,
+        quoteCsvField(oneLine(r.limit_status)),
+        r.frames_consistent ? (*r.frames_consistent ? "true" : "false") : "",
+        quoteCsvField(oneLine(r.suspect)),
+        quoteCsvField(oneLine(r.camera_backend)),
+        quoteCsvField(oneLine(r.camera_serial)),
+        r.width ? std::to_string(*r.width) : "",
+        r.height ? std::to_string(*r.height) : "",
+        quoteCsvField(oneLine(r.calibration_id)),
+        quoteCsvField(oneLine(r.calibration_date)),
+        number(r.luminance_factor),
+        number(r.luminance_factor_u),
+        quoteCsvField(oneLine(r.stack_id)),
+        quoteCsvField(oneLine(r.stack))};
     text += csvLine(fields);
   }
   return text;
@@ -323,11 +342,31 @@ std::string disagreeingFrames(const json& result) {
     if (!frame.is_object() || frame.value("agrees", json()) != json(false)) continue;
     const json ratio = frame.value("median_ratio", json());
     reason += sep + frame.value("file", std::string("a frame"));
-    if (ratio.is_number()) reason += fmt::format(" reads {:+.0f} %", 100 * (ratio.get<double>() - 1));
+    if (ratio.is_number())
+      reason += fmt::format(" reads {:+.0f} %", 100 * (ratio.get<double>() - 1));
     sep = ", ";
   }
   return reason;
 }
+
+namespace {
+
+// The day (YYYY-MM-DD) of the newest measured_at among result.json's calibration parts, or "".
+std::string newestPartDate(const json& result) {
+  const json parts = result.value(json::json_pointer("/calibration/parts"), json());
+  std::string newest;
+  if (!parts.is_object()) return newest;
+  for (const auto& [name, part] : parts.items()) {
+    if (!part.is_object()) continue;
+    const json measured = part.value("measured_at", json());
+    // ISO 8601 in UTC ("2026-06-21T10:00:00Z"): the text orders as the time.
+    if (measured.is_string() && measured.get<std::string>().size() >= 10)
+      newest = std::max(newest, measured.get<std::string>().substr(0, 10));
+  }
+  return newest;
+}
+
+}  // namespace
 
 Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack) {
   using P = json::json_pointer;
@@ -337,6 +376,7 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   const auto lmax = numberAt(result, P("/luminance/max_cd_m2"));
   if (!lmax || *lmax <= 0) return badInput("no positive luminance maximum in the result");
   row.alpha_deg = *alpha;
+  row.alpha_uncertainty_deg = numberAt(result, P("/alpha_uncertainty_deg"));
   row.lmax_cd_m2 = *lmax;
   row.limit_cd_m2 = numberAt(result, P("/limit/limit_cd_m2"));
   if (const auto relative = numberAt(result, P("/luminance/max_relative_uncertainty")))
@@ -363,6 +403,9 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   row.camera_backend = text("/camera/backend");
   row.camera_serial = text("/camera/serial");
   row.calibration_id = text("/calibration/id");
+  row.calibration_date = newestPartDate(result);
+  row.luminance_factor = numberAt(result, P("/calibration/luminance_factor"));
+  row.luminance_factor_u = numberAt(result, P("/calibration/luminance_factor_u"));
   if (const auto w = numberAt(result, P("/image/width"))) row.width = static_cast<int>(*w);
   if (const auto h = numberAt(result, P("/image/height"))) row.height = static_cast<int>(*h);
   if (result.contains("stack") && result["stack"].is_string()) row.stack_id = result["stack"];
@@ -404,13 +447,28 @@ std::vector<std::string> tableCameras(const SweepTable& table) {
 
 std::vector<std::string> tableFrameSizes(const SweepTable& table) {
   return distinctValues(table, [](const SweepRow& row) {
-    return row.width && row.height ? fmt::format("{}x{}", *row.width, *row.height)
-                                   : std::string();
+    return row.width && row.height ? fmt::format("{}x{}", *row.width, *row.height) : std::string();
   });
 }
 
 std::vector<std::string> tableCalibrations(const SweepTable& table) {
   return distinctValues(table, [](const SweepRow& row) { return row.calibration_id; });
+}
+
+std::string calibrationSummary(const SweepRow& row) {
+  if (row.calibration_id.empty()) return {};
+  std::string text = row.calibration_id;
+  if (!row.calibration_date.empty()) text += " of " + row.calibration_date;
+  if (row.luminance_factor) {
+    text += fmt::format(", K {:.5g}", *row.luminance_factor);
+    if (row.luminance_factor_u) text += fmt::format(" \u00b1 {:.3g}", *row.luminance_factor_u);
+    text += " cd/m\u00b2 per DN/\u00b5s";
+  }
+  return text;
+}
+
+std::vector<std::string> tableCalibrationSummaries(const SweepTable& table) {
+  return distinctValues(table, calibrationSummary);
 }
 
 }  // namespace glarecam::pipeline

@@ -23,6 +23,8 @@ struct SweepRow {
   // Extras (optional columns).
   std::optional<double> lmax_uncertainty_cd_m2;
   std::optional<double> vertical_uncertainty_deg, horizontal_uncertainty_deg;
+  std::optional<double>
+      alpha_uncertainty_deg;  // the rig's (inclinometer, clock); the sheet rounds α to it
   std::optional<double> fwhm_vertical_deg, fwhm_horizontal_deg;
   std::optional<bool> glare;
   std::string lmax_bound;    // "lower" (saturated top) or "upper" (all dark): Lmax only a bound
@@ -37,6 +39,10 @@ struct SweepRow {
   std::string camera_backend, camera_serial;
   std::optional<int> width, height;
   std::string calibration_id;
+  // What the calibration rests on (result.json's calibration block): the day its newest part was
+  // measured (YYYY-MM-DD) and K with its standard uncertainty.
+  std::string calibration_date;
+  std::optional<double> luminance_factor, luminance_factor_u;
   std::string stack_id, stack;
   bool isSuspect() const { return !suspect.empty(); }
 };
@@ -67,6 +73,12 @@ bool isSimulated(const SweepTable& table);
 std::vector<std::string> tableCameras(const SweepTable& table);
 std::vector<std::string> tableFrameSizes(const SweepTable& table);
 std::vector<std::string> tableCalibrations(const SweepTable& table);
+
+// One line for a row's calibration, as the sheet states it: "55e5f09d95ab9da6 of 2026-06-21,
+// K 1500 ± 18.9 cd/m² per DN/µs" (the parts the row knows); empty without an id.
+std::string calibrationSummary(const SweepRow& row);
+// The distinct calibration summaries of the rows, in order.
+std::vector<std::string> tableCalibrationSummaries(const SweepTable& table);
 
 // The table as CSV text, rows sorted by α, notes as leading '#' lines.
 std::string formatSweepTable(const SweepTable& table);

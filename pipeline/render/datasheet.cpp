@@ -80,7 +80,7 @@ constexpr LineStyle kExtrapolationKeyStyle{
     .colour = kModelGrey, .width_pt = 1.0, .dash = Dash::kDotted};
 
 constexpr Font kSimulatedMarkFont{.size = 120, .bold = true};
-constexpr double kSimulatedMarkAngleRad = 0.5;  // ~29°, bottom left to top right
+constexpr double kSimulatedMarkAngleRad = 0.5;        // ~29°, bottom left to top right
 constexpr Rgb kSimulatedMarkColour{1.0, 0.78, 0.78};  // pale: the plots stay readable over it
 
 constexpr MarkerStyle kLmaxMarker{.colour = kInk};
@@ -191,7 +191,7 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
   drawFit(cr, plot, biquadratic, measuredRange(fits), kBiquadraticStyle);
   std::vector<DataPoint> measured, bounds, suspects;
   for (const SweepRow& row : content.table->rows)
-    (row.isSuspect()             ? suspects
+    (row.isSuspect()          ? suspects
      : row.lmax_bound.empty() ? measured
                               : bounds)
         .push_back({row.alpha_deg, row.lmax_cd_m2});
@@ -209,8 +209,8 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
   if (!bounds.empty())
     legend.push_back({"Lmax only a bound (not fitted)", std::nullopt, kLmaxBoundMarker});
   if (!suspects.empty())
-    legend.push_back({"suspect: frames disagree (hollow; listed below)", std::nullopt,
-                      kSuspectMarker});
+    legend.push_back(
+        {"suspect: frames disagree (hollow; listed below)", std::nullopt, kSuspectMarker});
   if (extrapolates(measuredRange(fits)))
     legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, {}});
   drawLegend(cr, plot, legend);
@@ -287,7 +287,8 @@ void drawAxisSeries(cairo_t* cr, Plot& plot, const DatasheetContent& content, co
     const double axis_deg = curve(alpha_deg);
     return isPhysicalAxisDeg(axis_deg) ? axis_deg : kNaN;
   };
-  if (s.fit->logistic && glaring) drawFit(cr, plot, physical, measuredRange(*s.fit), s.line, glaring);
+  if (s.fit->logistic && glaring)
+    drawFit(cr, plot, physical, measuredRange(*s.fit), s.line, glaring);
   std::vector<DataPoint> measured, suspects;
   for (const SweepRow& row : content.table->rows)
     if (const std::optional<double>& v = row.*s.column)
@@ -342,17 +343,26 @@ std::string lmaxCell(const SweepRow& row) {
   return prefix + formatLuminance(row.lmax_cd_m2);
 }
 
-TextTable sweepTable(const SweepTable& sweep) {
+}  // namespace
+
+// α without a recorded uncertainty (given by hand, another tool's table): to 0.1°, an
+// inclinometer's usual accuracy; the paper's table gives whole degrees, which this keeps exact.
+constexpr int kAlphaDefaultDecimals = 1;
+
+TextTable datasheetSweepTable(const SweepTable& sweep) {
   TextTable table{.rows = {{"\u03b1 (\u00b0)", "limit (cd/m\u00b2)", "Lmax (cd/m\u00b2)",
                             "vertical (\u00b0)", "horizontal (\u00b0)", "glare"}}};
   for (const SweepRow& row : sweep.rows) {
-    table.rows.push_back({formatPlain(row.alpha_deg),
-                          row.limit_cd_m2 ? formatLuminance(*row.limit_cd_m2) : kNoValue,
-                          lmaxCell(row), formatFixed(row.vertical_deg, kAxisDecimals),
-                          formatFixed(row.horizontal_deg, kAxisDecimals), glareCell(row)});
+    table.rows.push_back(
+        {formatToUncertainty(row.alpha_deg, row.alpha_uncertainty_deg, kAlphaDefaultDecimals),
+         row.limit_cd_m2 ? formatLuminance(*row.limit_cd_m2) : kNoValue, lmaxCell(row),
+         formatFixed(row.vertical_deg, kAxisDecimals),
+         formatFixed(row.horizontal_deg, kAxisDecimals), glareCell(row)});
   }
   return table;
 }
+
+namespace {
 
 // One fitted function's column of the parameter table.
 struct FitColumn {
@@ -513,12 +523,12 @@ std::string subtitle(const DatasheetContent& content) {
           : fmt::format("the limit curve of the SPF method (undefined above {:g}\u00b0)",
                         kMaxLimitAlphaDeg);
   // What the rows were measured with, when the table says: " Camera sim SIM-0001; calibration
-  // 55e5f09d95ab9da6."
+  // 55e5f09d95ab9da6 of 2026-06-21, K 1500 ± 18.9 cd/m² per DN/µs."
   std::vector<std::string> measured;
   if (const auto cameras = tableCameras(*content.table); !cameras.empty())
     measured.push_back(fmt::format("Camera {}", fmt::join(cameras, ", ")));
-  if (const auto ids = tableCalibrations(*content.table); !ids.empty())
-    measured.push_back(fmt::format("calibration {}", fmt::join(ids, ", ")));
+  if (const auto calibrations = tableCalibrationSummaries(*content.table); !calibrations.empty())
+    measured.push_back(fmt::format("calibration {}", fmt::join(calibrations, "; ")));
   const std::string measured_with =
       measured.empty() ? std::string() : fmt::format(" {}.", fmt::join(measured, "; "));
   return fmt::format(
@@ -563,7 +573,7 @@ void drawTables(cairo_t* cr, const DatasheetContent& content, const Box& column)
   drawBlockTitle(cr, column, "Sweep");
   const Box sweep_box{column.x0, column.y0 + kBlockTitleHeightPt, column.x1,
                       column.y1 - fits_pt - kSectionGapPt};
-  const double sweep_pt = drawTable(cr, sweepTable(*content.table), sweep_box, kTableFont);
+  const double sweep_pt = drawTable(cr, datasheetSweepTable(*content.table), sweep_box, kTableFont);
   const Box fits_block{column.x0, sweep_box.y0 + sweep_pt + kSectionGapPt, column.x1, column.y1};
   drawBlockTitle(cr, fits_block, "Fit parameters");
   const Box fits_box{fits_block.x0, fits_block.y0 + kBlockTitleHeightPt, fits_block.x1,

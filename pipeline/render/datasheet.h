@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/limit_curve.h"
+#include "pipeline/render/text_table.h"
 #include "pipeline/sweep_table.h"
 
 namespace glarecam::pipeline {
@@ -28,6 +29,10 @@ struct DatasheetContent {
 inline constexpr const char* kDatasheetPdf = "datasheet.pdf";
 inline constexpr const char* kDatasheetSvg = "datasheet.svg";
 inline constexpr const char* kDatasheetPng = "datasheet.png";
+
+// The sheet's table of the sweep's rows, cell by cell as drawn (α rounded to its uncertainty, Lmax
+// to 4 significant digits, axes to 2 decimals).
+TextTable datasheetSweepTable(const SweepTable& sweep);
 
 // Writes the three files into directory (which must exist), each atomically.
 Status writeDatasheet(const DatasheetContent& content, const std::filesystem::path& directory);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -23,6 +24,18 @@ std::string superscriptDigits(int value) {
 }  // namespace
 
 std::string formatPlain(double value) { return fmt::format("{:g}", value); }
+
+std::string formatToUncertainty(double value, const std::optional<double>& uncertainty,
+                                int default_decimals) {
+  constexpr int kMaxDecimals = 6;  // below a micro-unit no instrument of ours resolves
+  int decimals = default_decimals;
+  if (uncertainty && *uncertainty > 0 && std::isfinite(*uncertainty)) {
+    const int exponent = static_cast<int>(std::floor(std::log10(*uncertainty)));
+    const double leading = *uncertainty / std::pow(10.0, exponent);
+    decimals = std::clamp(-exponent + (leading < 2.0 ? 1 : 0), 0, kMaxDecimals);
+  }
+  return fmt::format("{:.{}f}", value, decimals);
+}
 
 std::string formatSignificant(double value, int digits) {
   return fmt::format("{:.{}g}", value, digits);

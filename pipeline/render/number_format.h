@@ -16,6 +16,12 @@ std::string formatPlain(double value);
 // `digits` significant digits, %g style ("1.235", "2.5e-05").
 std::string formatSignificant(double value, int digits);
 
+// A measured value to the decimal its standard uncertainty reaches: one significant digit of the
+// uncertainty, two when that digit is 1 (u 0.05 -> "4.99", u 0.12 -> "5.00", u 2 -> "5"; GUM
+// 7.2.6). Without a usable uncertainty, `default_decimals`.
+std::string formatToUncertainty(double value, const std::optional<double>& uncertainty,
+                                int default_decimals);
+
 // Fixed-point with `decimals` decimals; kNoValue for none.
 std::string formatFixed(const std::optional<double>& value, int decimals);
 

@@ -130,7 +130,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadCsv{"LmaxBeyondPhysical", std::string(kHeader) + "5,30000,1e300,5,5\n",
                "beyond the physical range"},
         BadCsv{"Semicolons", "alpha_deg;limit_cd_m2;lmax_cd_m2;vertical_deg;horizontal_deg\n",
-               "comma-separated"}),
+               "comma-separated"},
+        BadCsv{"KZero",
+               "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
+               "luminance_factor\n5,30000,5e5,5,5,0\n",
+               "luminance_factor: 0 must be positive"},
+        BadCsv{"KUncertaintyNegative",
+               "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,"
+               "horizontal_deg,luminance_factor_u\n5,30000,5e5,5,5,-1\n",
+               "luminance_factor_u: -1 must not be negative"},
+        BadCsv{"AlphaUncertaintyZero",
+               "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,"
+               "horizontal_deg,alpha_uncertainty_deg\n5,30000,5e5,5,5,0\n",
+               "alpha_uncertainty_deg: 0 must be positive"}),
     [](const auto& info) { return info.param.name; });
 
 SweepTable limits(std::initializer_list<std::pair<double, double>> alpha_limit) {
@@ -184,16 +196,55 @@ TEST(SweepTable, RowFromAResultNeedsAlpha) {
   EXPECT_FALSE(row->isSuspect());
 }
 
+// What each number rests on travels from result.json through sweep.csv: α's uncertainty, the
+// calibration's id, the day of its newest part, and K ± u(K); the sheet's one-line summary.
+TEST(SweepTable, TheCalibrationAndAlphaUncertaintyTravelThroughTheTable) {
+  nlohmann::json result = {{"alpha_deg", 40.0},
+                           {"alpha_uncertainty_deg", 0.05},
+                           {"luminance", {{"max_cd_m2", 5e5}}},
+                           {"calibration",
+                            {{"id", "55e5f09d95ab9da6"},
+                             {"luminance_factor", 1500.2},
+                             {"luminance_factor_u", 18.9},
+                             {"parts",
+                              {{"dark", {{"measured_at", "2026-06-20T10:00:00Z"}}},
+                               {"luminance", {{"measured_at", "2026-06-21T09:30:00Z"}}},
+                               {"flat", {{"measured_at", nullptr}}}}}}}};
+  auto row = sweepRowFromResult(result, "stacks/a40");
+  ASSERT_TRUE(row) << row.error().message;
+  EXPECT_EQ(row->alpha_uncertainty_deg, 0.05);
+  EXPECT_EQ(row->calibration_date, "2026-06-21");
+  EXPECT_EQ(row->luminance_factor, 1500.2);
+  EXPECT_EQ(row->luminance_factor_u, 18.9);
+  EXPECT_EQ(calibrationSummary(*row),
+            "55e5f09d95ab9da6 of 2026-06-21, K 1500.2 \u00b1 18.9 cd/m\u00b2 per DN/\u00b5s");
+  SweepTable table;
+  table.rows = {*row};
+  TempDir dir;
+  auto read = readText(dir, formatSweepTable(table));
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->rows[0].alpha_uncertainty_deg, 0.05);
+  EXPECT_EQ(read->rows[0].calibration_date, "2026-06-21");
+  EXPECT_EQ(read->rows[0].luminance_factor, 1500.2);
+  EXPECT_EQ(read->rows[0].luminance_factor_u, 18.9);
+  EXPECT_EQ(tableCalibrationSummaries(*read), std::vector<std::string>{calibrationSummary(*row)});
+  // An inline calibration (no parts, no u(K)): the id and K only.
+  result["calibration"] = {{"id", "0123456789abcdef"}, {"luminance_factor", 1500.0}};
+  auto plain = sweepRowFromResult(result, "s");
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(calibrationSummary(*plain), "0123456789abcdef, K 1500 cd/m\u00b2 per DN/\u00b5s");
+}
+
 // A stack whose frames disagree with the merge makes a suspect row, the frames named, and the
 // table keeps that through writing and reading.
 TEST(SweepTable, FramesThatDisagreeMakeASuspectRow) {
-  nlohmann::json result = {{"alpha_deg", 40.0},
-                           {"luminance", {{"max_cd_m2", 5e5}, {"frames_consistent", false}}},
-                           {"frames",
-                            {{{"file", "frame-02.png"}, {"median_ratio", 1.0}, {"agrees", true}},
-                             {{"file", "frame-03.png"}, {"median_ratio", 17.1}, {"agrees", false}},
-                             {{"file", "frame-04.png"}, {"median_ratio", nullptr},
-                              {"agrees", nullptr}}}}};
+  nlohmann::json result = {
+      {"alpha_deg", 40.0},
+      {"luminance", {{"max_cd_m2", 5e5}, {"frames_consistent", false}}},
+      {"frames",
+       {{{"file", "frame-02.png"}, {"median_ratio", 1.0}, {"agrees", true}},
+        {{"file", "frame-03.png"}, {"median_ratio", 17.1}, {"agrees", false}},
+        {{"file", "frame-04.png"}, {"median_ratio", nullptr}, {"agrees", nullptr}}}}};
   auto row = sweepRowFromResult(result, "stacks/a40");
   ASSERT_TRUE(row) << row.error().message;
   EXPECT_EQ(row->frames_consistent, false);
@@ -215,12 +266,14 @@ TEST(SweepTable, FramesThatDisagreeMakeASuspectRow) {
   EXPECT_FALSE(read->rows[1].isSuspect());
 
   // Written by another tool: frames_consistent false alone still makes the row suspect.
-  auto bare = readText(dir, "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
-                            "frames_consistent\n40,30000,5e5,4,4,false\n");
+  auto bare = readText(dir,
+                       "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
+                       "frames_consistent\n40,30000,5e5,4,4,false\n");
   ASSERT_TRUE(bare) << bare.error().message;
   EXPECT_EQ(bare->rows[0].suspect, "frames disagree with the merge");
-  auto bad = readText(dir, "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
-                           "frames_consistent\n40,30000,5e5,4,4,maybe\n");
+  auto bad = readText(dir,
+                      "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
+                      "frames_consistent\n40,30000,5e5,4,4,maybe\n");
   ASSERT_FALSE(bad);
   EXPECT_NE(bad.error().message.find("frames_consistent: expected true, false or nothing"),
             std::string::npos)

@@ -66,6 +66,24 @@ TEST(Datasheet, ASimulatedSweepIsMarkedOnTheSheet) {
   EXPECT_NE(draw(simulated, dir / "simulated"), plain);
 }
 
+// α in the table is rounded to its own uncertainty (4.99985 ± 0.05° is "5.00", not "4.99985"),
+// to 0.1° when the row records none.
+TEST(Datasheet, AlphaIsShownToItsOwnUncertainty) {
+  SweepTable table;
+  table.rows.resize(2);
+  for (SweepRow& row : table.rows) {
+    row.limit_cd_m2 = 30000;
+    row.lmax_cd_m2 = 5e5;
+  }
+  table.rows[0].alpha_deg = 4.99985;
+  table.rows[0].alpha_uncertainty_deg = 0.05;
+  table.rows[1].alpha_deg = 10.0432;
+  const TextTable cells = datasheetSweepTable(table);
+  ASSERT_EQ(cells.rows.size(), 3u);
+  EXPECT_EQ(cells.rows[1][0], "5.00");
+  EXPECT_EQ(cells.rows[2][0], "10.0");
+}
+
 TEST(Datasheet, MissingDirectoryIsAnErrorNotACrash) {
   auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
   ASSERT_TRUE(table);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 namespace glarecam::pipeline {
@@ -19,6 +20,20 @@ TEST(NumberFormat, SignificantDigits) {
   EXPECT_EQ(formatSignificant(1.23456, 4), "1.235");
   EXPECT_EQ(formatSignificant(2.5e-5, 4), "2.5e-05");
   EXPECT_EQ(formatSignificant(0.0123456, 2), "0.012");
+}
+
+// GUM 7.2.6: the value to the uncertainty's first significant digit, its second when that is 1.
+TEST(NumberFormat, ToItsOwnUncertainty) {
+  EXPECT_EQ(formatToUncertainty(4.99985, 0.05, 1), "5.00");
+  EXPECT_EQ(formatToUncertainty(4.99985, 0.12, 1), "5.00");
+  EXPECT_EQ(formatToUncertainty(4.99985, 0.3, 1), "5.0");
+  EXPECT_EQ(formatToUncertainty(42.3456, 0.012, 1), "42.346");
+  EXPECT_EQ(formatToUncertainty(42.3456, 2.0, 1), "42");
+  EXPECT_EQ(formatToUncertainty(42.3456, 30.0, 1), "42");
+  EXPECT_EQ(formatToUncertainty(4.99985, std::nullopt, 1), "5.0");
+  EXPECT_EQ(formatToUncertainty(4.99985, 0.0, 1), "5.0");  // no usable uncertainty
+  EXPECT_EQ(formatToUncertainty(5.0, std::nan(""), 1), "5.0");
+  EXPECT_EQ(formatToUncertainty(5.0, 1e-12, 1), "5.000000");  // capped
 }
 
 TEST(NumberFormat, FixedOrNoValue) {

@@ -201,6 +201,10 @@ Result<MergedStack> mergeStack(Stack& stack, const ProcessOptions& options) {
   return result;
 }
 
+// luminance.png shows a frame under this height enlarged (a 160x128 frame 4x, 320x256 2x): its
+// spot, ellipses and labels then stay readable.
+constexpr int kPictureMinImageHeightPx = 512;
+
 // The picture's caption: the stack, Lmax (≥/≤ for a bound), the limit and the verdict, as in
 // result.json, so that the picture alone says what was measured.
 std::vector<std::string> pictureCaption(const nlohmann::json& result) {

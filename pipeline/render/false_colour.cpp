@@ -67,8 +67,9 @@ ColourScale chooseScale(const calibration::MergedImage& merged, const FalseColou
   return {std::log10(bottom), std::log10(top)};
 }
 
+// Each pixel as a zoom x zoom block.
 void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged,
-                const ColourScale& scale) {
+                const ColourScale& scale, int zoom) {
   std::array<std::uint32_t, kLutSize> lut;
   for (int i = 0; i < kLutSize; ++i) {
     std::uint8_t rgb[3];
@@ -81,19 +82,27 @@ void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged
   const FloatImage& luminance = merged.luminance_cd_m2;
   parallelRows(luminance.height(), defaultThreadCount(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
-      auto* out = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+      auto* out =
+          reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * zoom * stride);
       auto in = luminance.row(y);
       auto bound = merged.bound.row(y);
       for (int x = 0; x < luminance.width(); ++x) {
         const auto flag = static_cast<calibration::PixelBound>(bound[static_cast<std::size_t>(x)]);
         const float v = in[static_cast<std::size_t>(x)];
+        std::uint32_t colour;
         if (flag == calibration::PixelBound::kLowerBound) {
-          out[x] = kSaturatedArgb;
+          colour = kSaturatedArgb;
         } else if (flag == calibration::PixelBound::kUpperBound || !std::isfinite(v)) {
-          out[x] = kDarkArgb;
+          colour = kDarkArgb;
         } else {
-          out[x] = lut[static_cast<std::size_t>(scale.position(v) * (kLutSize - 1) + 0.5)];
+          colour = lut[static_cast<std::size_t>(scale.position(v) * (kLutSize - 1) + 0.5)];
         }
+        std::fill_n(out + static_cast<std::ptrdiff_t>(x) * zoom, zoom, colour);
+      }
+      for (int copy = 1; copy < zoom; ++copy) {
+        std::copy_n(out, static_cast<std::size_t>(luminance.width() * zoom),
+                    reinterpret_cast<std::uint32_t*>(reinterpret_cast<unsigned char*>(out) +
+                                                     static_cast<std::ptrdiff_t>(copy) * stride));
       }
     }
   });
@@ -201,9 +210,11 @@ void turboColour(double t, std::uint8_t rgb[3]) {
 
 Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
                                    const FalseColourOptions& options) {
-  const int width = merged.luminance_cd_m2.width();
-  const int height = merged.luminance_cd_m2.height();
-  if (width <= 0 || height <= 0) return badInput("false colour: empty image");
+  const int frame_width = merged.luminance_cd_m2.width();
+  const int frame_height = merged.luminance_cd_m2.height();
+  if (frame_width <= 0 || frame_height <= 0) return badInput("false colour: empty image");
+  const int zoom = std::clamp(options.min_image_height_px / frame_height, 1, kMaxPictureZoom);
+  const int width = frame_width * zoom, height = frame_height * zoom;  // as shown
   // The panel scales with the image so labels stay legible from thumbnails to 12 MP.
   const double font_px = std::clamp(height * kFontFractionOfHeight, kMinFontPx, kMaxFontPx);
   const int panel_width = static_cast<int>(font_px * kPanelWidthEm);
@@ -217,14 +228,16 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
   cairo_t* const cr = context->get();
   const ColourScale scale = chooseScale(merged, options);
   paint(cr, kBackground);
-  paintImage(surface->get(), merged, scale);
+  paintImage(surface->get(), merged, scale, zoom);
   if (options.overlay) {
     cairo_save(cr);
     cairo_rectangle(cr, 0, 0, width, height);
     cairo_clip(cr);
-    // Pixel (x, y) covers [x, x + 1] on the canvas; overlays draw in pixel-centre coordinates.
+    // Pixel (x, y) covers [x, x + 1] of the frame (zoomed on the canvas); overlays draw in the
+    // frame's pixel-centre coordinates, their font and lines sized for the canvas.
+    cairo_scale(cr, zoom, zoom);
     cairo_translate(cr, 0.5, 0.5);
-    options.overlay(cr, font_px);
+    options.overlay(cr, font_px / zoom);
     cairo_restore(cr);
   }
   if (!options.banner.empty()) {
@@ -235,8 +248,8 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
              options.banner, {{.size = font_px, .bold = true}, kWhite, Align::kCentre});
   }
   const PanelLayout layout{font_px * (kBarMarginEm + caption_em),
-                           canvas_height - font_px * kBarMarginEm,
-                           width + font_px, font_px * kBarWidthEm, font_px};
+                           canvas_height - font_px * kBarMarginEm, width + font_px,
+                           font_px * kBarWidthEm, font_px};
   paintColourBar(cr, layout, scale, options, hasSaturated(merged));
   return copyRgb(surface->get());
 }

@@ -39,8 +39,14 @@ struct FalseColourOptions {
   // Across the top of the image on a band of kLimitColour, when not empty: a warning no one who
   // looks at the picture can miss (e.g. "SUSPECT: frames disagree with the merge").
   std::string banner;
-  PictureOverlay overlay;             // optional
+  // A frame shorter than this is drawn enlarged by a whole factor (each pixel a square block, at
+  // most kMaxPictureZoom), so that a small frame's spot, ellipses and labels stay readable; 0:
+  // pixel for pixel. The overlay still draws in the frame's pixel coordinates.
+  int min_image_height_px = 0;
+  PictureOverlay overlay;  // optional
 };
+
+inline constexpr int kMaxPictureZoom = 8;
 
 // Turbo colour map (Google, 2019; polynomial approximation), t in [0, 1].
 void turboColour(double t, std::uint8_t rgb[3]);

@@ -9,6 +9,8 @@
 
 #include "calibration/angular_plane.h"
 #include "pipeline/render/colour.h"
+#include "pipeline/render/label_placement.h"
+#include "pipeline/render/number_format.h"
 #include "pipeline/render/text.h"
 
 namespace glarecam::pipeline {
@@ -18,7 +20,6 @@ using calibration::AngularPlane;
 using calibration::PixelPoint;
 using calibration::PlanePointDeg;
 using calibration::Ray;
-using Polyline = std::vector<PixelPoint>;
 
 constexpr int kCurvePoints = 360;  // per ellipse or circle: smooth at any picture size
 constexpr int kAxisPoints = 48;    // an axis is a great-circle arc, curved by the lens
@@ -36,11 +37,20 @@ constexpr Style kLimitFitStyle{kWhite, 1, 0.12, true};
 constexpr Style kFwhmFitStyle{{0.8, 0.8, 0.8}, 0.9, 0.10, true};
 constexpr Style kAxisStyle{kWhite, 1, 0.08, false};
 constexpr Style kCircleStyle{kWhite, 0.5, 0.07, false};
+// The --thresholds ellipses: pale yellow, dotted, each labelled with its level.
+constexpr Style kThresholdStyle{{1.0, 1.0, 0.6}, 0.9, 0.08, true};
 
 constexpr Rgb kLabelOutline{0, 0, 0};
 constexpr double kSmallLabelEm = 0.8;  // the circles' labels and the legend, below the axes'
 
 Font labelFont(double font_px) { return {.size = font_px, .bold = true}; }
+
+// One pixel of the canvas in the overlay's units (the picture may show a small frame enlarged).
+double devicePixel(cairo_t* cr) {
+  double dx = 1, dy = 0;
+  cairo_device_to_user_distance(cr, &dx, &dy);
+  return std::hypot(dx, dy);
+}
 
 struct ClipBox {
   double x0, y0, x1, y1;
@@ -79,7 +89,7 @@ std::vector<Ray> planeCurve(const AngularPlane& plane, Curve curve, double t0, d
 }
 
 void stroke(cairo_t* cr, const std::vector<Polyline>& pieces, const Style& style, double font_px) {
-  const double width = std::max(1.0, style.width_em * font_px);
+  const double width = std::max(devicePixel(cr), style.width_em * font_px);
   cairo_set_line_width(cr, width);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   const double dash[] = {4 * width, 3 * width};
@@ -100,22 +110,27 @@ void label(cairo_t* cr, double x, double y, const std::string& text, double font
   cairo_move_to(cr, x, y);
   cairo_text_path(cr, text.c_str());
   setColour(cr, kLabelOutline);
-  cairo_set_line_width(cr, std::max(1.5, font_px / 6));
+  cairo_set_line_width(cr, std::max(1.5 * devicePixel(cr), font_px / 6));
   cairo_stroke_preserve(cr);
   setColour(cr, kWhite);
   cairo_fill(cr);
 }
 
-// A label at `at`, moved inside the picture when it would stick out (an ellipse cut by the
-// frame); nothing when `at` is not a point (an axis end behind the camera).
-void labelInside(cairo_t* cr, const PixelPoint& at, const std::string& text, const ClipBox& box,
-                 double font_px) {
+// A label at `at`, inside the picture and off the drawn `lines` (label_placement.h); nothing when
+// `at` is not a point (an axis end behind the camera).
+void labelOffLines(cairo_t* cr, const PixelPoint& at, const PixelPoint& away,
+                   const std::string& text, const ClipBox& box, double font_px,
+                   const std::vector<Polyline>& lines) {
   if (!std::isfinite(at.x) || !std::isfinite(at.y)) return;
-  const double width = textWidth(cr, text, labelFont(font_px));
-  // min(max(...)): defined even on pictures too small for the label (unlike std::clamp).
-  const double x = std::min(std::max(at.x, box.x0 + font_px * 0.2), box.x1 - width - font_px * 0.2);
-  const double y = std::min(std::max(at.y, box.y0 + font_px * 1.1), box.y1 - font_px * 0.3);
-  label(cr, x, y, text, font_px);
+  const PixelPoint p = placeLabel({at, away, textWidth(cr, text, labelFont(font_px)), font_px},
+                                  {box.x0, box.y0, box.x1, box.y1}, lines);
+  label(cr, p.x, p.y, text, font_px);
+}
+
+PixelPoint unitAway(const PixelPoint& from, const PixelPoint& to) {
+  const double length = std::hypot(to.x - from.x, to.y - from.y);
+  if (!(length > 0)) return {0, -1};
+  return {(to.x - from.x) / length, (to.y - from.y) / length};
 }
 
 struct Overlay {
@@ -123,6 +138,7 @@ struct Overlay {
   Ray peak_ray;
   std::optional<GlareEllipse> limit, fwhm;
   bool below_limit = false;  // the maximum does not reach the limit: no glare
+  std::vector<std::pair<double, GlareEllipse>> thresholds;  // level (cd/m²), ellipse
 };
 
 std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, const ClipBox& box) {
@@ -131,9 +147,9 @@ std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, co
   return project(o.camera, planeCurve(plane, curve, 0, 2 * std::numbers::pi, kCurvePoints), box);
 }
 
-// The two axes of an ellipse as arcs, each labelled at its upper or right end.
+// The two axes of an ellipse as arcs, each labelled at its upper or right end, off `lines`.
 void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::string& prefix,
-              const ClipBox& box, double font_px) {
+              const ClipBox& box, double font_px, const std::vector<Polyline>& lines) {
   const AngularPlane plane(e.plane_centre);
   const Ellipse& ellipse = e.plane_ellipse;
   for (const double t_end : {0.0, std::numbers::pi / 2}) {
@@ -152,12 +168,13 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::s
     if (ra.z <= 0 && rb.z <= 0) continue;
     const PixelPoint pa = o.camera.project(ra.z > 0 ? ra : rb);
     const PixelPoint pb = o.camera.project(rb.z > 0 ? rb : ra);
-    const PixelPoint end = vertical ? (pa.y < pb.y ? pa : pb) : (pa.x > pb.x ? pa : pb);
+    const bool a_end = vertical ? pa.y < pb.y : pa.x > pb.x;
+    const PixelPoint end = a_end ? pa : pb, other = a_end ? pb : pa;
     const std::string text =
         fmt::format("{}{} {:.2f}\u00b0", prefix, vertical ? "V" : "H", length_deg);
     const double dx = vertical ? font_px * 0.3 : font_px * 0.4;
     const double dy = vertical ? -font_px * 0.4 : font_px * 0.35;
-    labelInside(cr, {end.x + dx, end.y + dy}, text, box, font_px);
+    labelOffLines(cr, {end.x + dx, end.y + dy}, unitAway(other, end), text, box, font_px, lines);
   }
 }
 
@@ -201,6 +218,7 @@ void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_p
     lines.push_back(o.limit || !o.below_limit ? "FWHM ellipse (grey dashed)"
                                               : "no glare: FWHM ellipse (grey dashed)");
   }
+  if (!o.thresholds.empty()) lines.push_back("--thresholds ellipses (yellow dotted), by level");
   lines.push_back("circles: radius 1\u00b0, 5\u00b0, 10\u00b0, 20\u00b0 around the maximum");
   double y = box.y0 + font_px * 1.2;
   for (const std::string& line : lines) {
@@ -209,23 +227,46 @@ void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_p
   }
 }
 
+// Each --thresholds ellipse, labelled with its level at its upper-right point, off `lines`.
+void drawThresholds(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_px,
+                    const std::vector<Polyline>& lines) {
+  for (const auto& [level_cd_m2, e] : o.thresholds) {
+    const AngularPlane plane(e.plane_centre);
+    const Point2 at = e.plane_ellipse.pointAt(std::numbers::pi / 4);
+    const Ray ray = plane.toRay({at.x, at.y});
+    if (ray.z <= 0) continue;
+    const PixelPoint p = o.camera.project(ray);
+    const PixelPoint centre = o.camera.project(plane.toRay({0, 0}));
+    labelOffLines(cr, {p.x + font_px * 0.3, p.y - font_px * 0.3}, unitAway(centre, p),
+                  formatSiPrefixed(level_cd_m2), box, font_px * kSmallLabelEm, lines);
+  }
+}
+
 void drawOverlay(cairo_t* cr, const Overlay& o, double font_px) {
   ClipBox box{};
   cairo_clip_extents(cr, &box.x0, &box.y0, &box.x1, &box.y1);
   drawCircles(cr, o, box, font_px);
-  if (o.fwhm) stroke(cr, ellipseOutline(o, *o.fwhm, box), kFwhmFitStyle, font_px);
+  // Every line first, then the labels, each kept off all of them.
+  std::vector<Polyline> lines;
+  const auto draw = [&](std::vector<Polyline> pieces, const Style& style) {
+    stroke(cr, pieces, style, font_px);
+    lines.insert(lines.end(), pieces.begin(), pieces.end());
+  };
+  for (const auto& [level, e] : o.thresholds) draw(ellipseOutline(o, e, box), kThresholdStyle);
+  if (o.fwhm) draw(ellipseOutline(o, *o.fwhm, box), kFwhmFitStyle);
   if (o.limit) {
     Polyline contour(o.limit->contour_px.begin(), o.limit->contour_px.end());
     if (!contour.empty()) contour.push_back(contour.front());
-    stroke(cr, {contour}, kContourStyle, font_px);
-    stroke(cr, ellipseOutline(o, *o.limit, box), kLimitFitStyle, font_px);
+    draw({contour}, kContourStyle);
+    draw(ellipseOutline(o, *o.limit, box), kLimitFitStyle);
   }
   // Axes of the limit ellipse, or of the FWHM ellipse when the module does not glare.
   if (o.limit) {
-    drawAxes(cr, o, *o.limit, "", box, font_px);
+    drawAxes(cr, o, *o.limit, "", box, font_px, lines);
   } else if (o.fwhm) {
-    drawAxes(cr, o, *o.fwhm, "FWHM ", box, font_px);
+    drawAxes(cr, o, *o.fwhm, "FWHM ", box, font_px, lines);
   }
+  drawThresholds(cr, o, box, font_px, lines);
   drawLegend(cr, o, box, font_px);
 }
 
@@ -233,9 +274,15 @@ void drawOverlay(cairo_t* cr, const Overlay& o, double font_px) {
 
 PictureOverlay glareOverlay(const GlareAnalysis& analysis, const calibration::CameraModel& camera,
                             const LuminancePeak& peak) {
-  Overlay overlay{camera, camera.ray({peak.x_px, peak.y_px}), std::nullopt, analysis.fwhm.ellipse,
-                  analysis.limit && analysis.limit->status == EllipseStatus::kBelowLevel};
+  Overlay overlay{camera,
+                  camera.ray({peak.x_px, peak.y_px}),
+                  std::nullopt,
+                  analysis.fwhm.ellipse,
+                  analysis.limit && analysis.limit->status == EllipseStatus::kBelowLevel,
+                  {}};
   if (analysis.limit) overlay.limit = analysis.limit->ellipse;
+  for (const EllipseMeasurement& m : analysis.thresholds)
+    if (m.ellipse) overlay.thresholds.emplace_back(m.level_cd_m2, *m.ellipse);
   return [overlay](cairo_t* cr, double font_px) { drawOverlay(cr, overlay, font_px); };
 }
 

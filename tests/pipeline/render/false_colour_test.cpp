@@ -46,12 +46,15 @@ TEST(FalseColour, ABannerCrossesTheTopOfTheImage) {
   options.banner = "SUSPECT: frames disagree with the merge";
   auto bannered = renderFalseColour(merged, options);
   ASSERT_TRUE(plain && bannered);
-  const auto magenta = [](const std::uint8_t* p) { return p[0] == 255 && p[1] == 0 && p[2] == 255; };
+  const auto magenta = [](const std::uint8_t* p) {
+    return p[0] == 255 && p[1] == 0 && p[2] == 255;
+  };
   EXPECT_TRUE(magenta(pixel(*bannered, 1, 1)));
   EXPECT_TRUE(magenta(pixel(*bannered, 198, 1)));
   EXPECT_FALSE(magenta(pixel(*plain, 1, 1)));
-  EXPECT_EQ(pixel(*bannered, 100, 100)[0], pixel(*plain, 100, 100)[0]);  // below the band: unchanged
-  int white = 0;  // the text
+  EXPECT_EQ(pixel(*bannered, 100, 100)[0],
+            pixel(*plain, 100, 100)[0]);  // below the band: unchanged
+  int white = 0;                          // the text
   for (int x = 0; x < 200; ++x)
     for (int y = 0; y < 12; ++y) white += pixel(*bannered, x, y)[1] > 200;
   EXPECT_GT(white, 20);
@@ -64,8 +67,8 @@ TEST(FalseColour, TheCaptionIsWrittenUnderTheTitle) {
   FalseColourOptions options;
   options.title = "\u03b1 60\u00b0";
   auto plain = renderFalseColour(merged, options);
-  options.caption = {"sim-standard-a60.00-s1", "Lmax 2 194 000 cd/m\u00b2", "limit 40 000 cd/m\u00b2",
-                     "glare: yes"};
+  options.caption = {"sim-standard-a60.00-s1", "Lmax 2 194 000 cd/m\u00b2",
+                     "limit 40 000 cd/m\u00b2", "glare: yes"};
   auto captioned = renderFalseColour(merged, options);
   ASSERT_TRUE(plain && captioned);
   EXPECT_GT(captioned->height, plain->height);
@@ -88,6 +91,35 @@ TEST(FalseColour, TheCaptionIsWrittenUnderTheTitle) {
       white += p[0] > 200 && p[1] > 200 && p[2] > 200;
     }
   EXPECT_GT(white, 100);
+}
+
+// A frame under min_image_height_px is drawn enlarged by a whole factor, each pixel a block of
+// one colour; taller frames stay 1:1.
+TEST(FalseColour, SmallFramesAreEnlargedPixelByPixel) {
+  const calibration::MergedImage merged = gradient(100, 60);
+  auto plain = renderFalseColour(merged, {});
+  FalseColourOptions options;
+  options.min_image_height_px = 250;  // 4x: the largest whole factor that stays under it
+  auto zoomed = renderFalseColour(merged, options);
+  ASSERT_TRUE(plain && zoomed);
+  EXPECT_GE(zoomed->height, 240);
+  EXPECT_GT(zoomed->width, 400);
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{37, 21}, std::pair{99, 59}}) {
+    const std::uint8_t* source = pixel(*plain, x, y);
+    for (int dy = 0; dy < 4; ++dy) {
+      for (int dx = 0; dx < 4; ++dx) {
+        const std::uint8_t* shown = pixel(*zoomed, 4 * x + dx, 4 * y + dy);
+        EXPECT_EQ(shown[0], source[0]) << x << "," << y;
+        EXPECT_EQ(shown[1], source[1]) << x << "," << y;
+        EXPECT_EQ(shown[2], source[2]) << x << "," << y;
+      }
+    }
+  }
+  options.min_image_height_px = 60;  // not under it: 1:1
+  auto same = renderFalseColour(merged, options);
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same->width, plain->width);
+  EXPECT_EQ(same->rgb, plain->rgb);
 }
 
 TEST(FalseColour, TurboEndsAreTheDocumentedColours) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "core/angles.h"
 #include "pipeline/glare_analysis.h"
@@ -19,7 +20,7 @@ struct Pictures {
 
 // The same scene drawn without and with the overlay; `with_ellipses` false draws the overlay of
 // an analysis that found no ellipse.
-Pictures render(bool with_ellipses = true) {
+Pictures render(bool with_ellipses = true, std::vector<double> thresholds_cd_m2 = {}) {
   testing::SceneSpec spec;
   spec.lobe = testing::lobeAtLimit(30'000, 594'000, 5.0, 5.7);
   Pictures p;
@@ -28,7 +29,7 @@ Pictures render(bool with_ellipses = true) {
   const LuminancePeak peak = findLuminancePeak(p.scene.merged);
   if (with_ellipses) {
     p.analysis = analyseGlare(p.scene.merged, camera, peak,
-                              {.limit_cd_m2 = 30'000.0, .thresholds_cd_m2 = {}});
+                              {.limit_cd_m2 = 30'000.0, .thresholds_cd_m2 = thresholds_cd_m2});
   }
   FalseColourOptions options;
   options.limit_cd_m2 = 30'000.0;
@@ -81,6 +82,26 @@ TEST(GlarePicture, DrawsTheContourTheCirclesAndNothingElsewhere) {
   EXPECT_EQ(lift(p, p.scene.centre_px.x + between_px * 0.7071,
                  p.scene.centre_px.y - between_px * 0.7071, 0),
             0);
+}
+
+// Each --thresholds ellipse is drawn (dotted pale yellow): the overlay lifts the picture along
+// its traced contour, where the picture without thresholds is left alone (away from the limit
+// ellipse, the axes and the circles).
+TEST(GlarePicture, DrawsTheThresholdEllipses) {
+  const Pictures with = render(true, {200'000.0});
+  const Pictures without = render(true);
+  ASSERT_EQ(with.analysis.thresholds.size(), 1u);
+  ASSERT_TRUE(with.analysis.thresholds[0].ellipse);
+  const GlareEllipse& e = *with.analysis.thresholds[0].ellipse;
+  int lifted = 0, checked = 0;
+  for (std::size_t i = 0; i < e.contour_px.size(); i += 10) {
+    const auto& c = e.contour_px[i];
+    ++checked;
+    // Dotted: a point may fall in a gap, so most, not all, points are lifted.
+    lifted += lift(with, c.x, c.y) > 60 && lift(without, c.x, c.y) < lift(with, c.x, c.y);
+  }
+  ASSERT_GT(checked, 10);
+  EXPECT_GT(lifted, checked / 3) << lifted << " of " << checked;
 }
 
 TEST(GlarePicture, WithoutEllipsesOnlyTheCirclesAreDrawn) {

@@ -8,6 +8,8 @@
 #include <iostream>
 #include <string>
 
+#include "apps/common/parse_error.h"
+#include "apps/common/value_types.h"
 #include "apps/glarecam/commands.h"
 #include "core/error.h"
 #include "core/logging.h"
@@ -17,20 +19,6 @@
 namespace glarecam::apps {
 
 namespace {
-
-// CLI11 says "A subcommand is required" for a misspelt command too: name it instead.
-std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error, int argc,
-                              char** argv) {
-  if (!app.get_subcommands().empty()) return error.what();
-  for (int i = 1; i < argc; ++i) {
-    if (argv[i][0] == '-') continue;  // global options (-v, --debug) take no value
-    std::string known;
-    for (const CLI::App* sub : app.get_subcommands({}))
-      known += (known.empty() ? "" : ", ") + sub->get_name();
-    return std::string("unknown command \"") + argv[i] + "\" (known: " + known + ")";
-  }
-  return error.what();
-}
 
 // "glarecam inclinometer read": the command line's chosen (sub)commands, for the help hint.
 std::string commandPath(const CLI::App& app) {
@@ -60,6 +48,8 @@ int runGlarecam(int argc, char** argv) {
       "docs/cameras.md, docs/calibration.md, docs/rig.md, docs/operator.md, docs/simulate.md,\n"
       "docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
+  // `--json=yes` is refused, not read as true: a flag takes no value (subcommands inherit this).
+  app.option_defaults()->disable_flag_override();
   app.require_subcommand(1);
   app.fallthrough();  // global options (-v, -q) also after the subcommand
   bool verbose = false, quiet = false, debug = false;
@@ -84,6 +74,7 @@ int runGlarecam(int argc, char** argv) {
   addGpioCommand(app, action);
   addDoctorCommand(app, action);
   addCalibrateCommand(app, action);
+  nameOptionValues(app);
 
   try {
     app.parse(argc, argv);

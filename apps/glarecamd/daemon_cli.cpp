@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "apps/common/parse_error.h"
+#include "apps/common/value_types.h"
 #include "core/logging.h"
 #include "core/version.h"
 #include "daemon/daemon_run.h"
@@ -103,8 +105,10 @@ int runGlarecamd(int argc, char** argv) {
       "each one, keeps each day's sweep table and data sheet current, and reports to systemd.\n"
       "Signals: SIGTERM stops, SIGHUP reloads the config, SIGUSR1 takes a stack now.\n"
       "Docs: docs/operator.md"};
+  app.option_defaults()->disable_flag_override();  // `--simulate=yes` is refused
   DaemonArgs args;
   addOptions(app, args);
+  nameOptionValues(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -112,7 +116,8 @@ int runGlarecamd(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "glarecamd: %s (see glarecamd --help)\n", e.what());
+    std::fprintf(stderr, "glarecamd: %s (see glarecamd --help)\n",
+                 parseErrorMessage(app, e, argc, argv).c_str());
     return kExitBadInput;
   }
   const Result<daemon::DaemonRunOptions> run = runOptions(args);
@@ -121,7 +126,8 @@ int runGlarecamd(int argc, char** argv) {
     return kExitBadInput;
   }
   setUpLogging(args);
-  const Result<daemon::DaemonRig> rig = catchExceptions([&] { return daemon::prepareDaemonRig(*run); });
+  const Result<daemon::DaemonRig> rig =
+      catchExceptions([&] { return daemon::prepareDaemonRig(*run); });
   if (!rig) {
     spdlog::critical("glarecamd: {}", rig.error().message);
     return rig.error().code == ErrorCode::kBadInput ? kExitBadInput : kExitFailure;

@@ -13,6 +13,17 @@ source "$(dirname "$0")/cli_test_lib.sh"
 check "help" 0 "$GLARECAM" --help
 expect "help lists commands" grep -q "simulate" "$WORK/out"
 check "process help" 0 "$GLARECAM" process --help
+expect "process help types --alpha" grep -qE -- "--alpha DEG" "$WORK/out"
+# Every option's value is named in --help (DEG, CD_M2, WxH, FILE, ...), never CLI11's bare TEXT.
+for command in simulate simulate-calibration process sweep fit datasheet model cameras capture \
+    fake-camera sun alpha "inclinometer read" "inclinometer flip" gpio doctor "calibrate dark" \
+    "calibrate flat" "calibrate linearity" "calibrate noise" "calibrate luminance" \
+    "calibrate intrinsics" "calibrate merge"; do
+  # shellcheck disable=SC2086 # the command's words
+  "$GLARECAM" $command --help > "$WORK/help" 2>&1
+  expect "$command --help names every option's value" \
+    sh -c "! grep -E '^ +-[^ ]+ TEXT' '$WORK/help'"
+done
 check "no command" 2 "$GLARECAM"
 check "unknown command" 2 "$GLARECAM" frobnicate
 check "unknown option" 2 "$GLARECAM" process --frobnicate x
@@ -24,6 +35,21 @@ check "unknown module" 2 "$GLARECAM" simulate --out "$WORK/x" --module bifacial
 expect "unknown module lists the known ones" one_line_naming "known: standard"
 check "unknown command named" 2 "$GLARECAM" frobnicate
 expect "unknown command is named" one_line_naming 'unknown command "frobnicate"'
+check "misspelt command" 2 "$GLARECAM" procss
+expect "misspelt command gets a suggestion" one_line_naming 'unknown command "procss" (did you mean process?)'
+check "misspelt subcommand" 2 "$GLARECAM" calibrate drak
+expect "misspelt subcommand gets a suggestion" one_line_naming 'calibrate: unknown command "drak" (did you mean dark?)'
+check "misspelt option" 2 "$GLARECAM" process --threshhold 3e4 "$WORK/x"
+expect "misspelt option gets a suggestion" one_line_naming 'process: unknown option --threshhold (did you mean --threshold?)'
+check "misspelt option with =" 2 "$GLARECAM" simulate --aplha=40 --out "$WORK/x"
+expect "misspelt option with = gets a suggestion" one_line_naming 'simulate: unknown option --aplha (did you mean --alpha?)'
+check "unknown option, nothing close" 2 "$GLARECAM" process --frobnicate x
+expect "unknown option without a guess" one_line_naming 'process: unknown option --frobnicate'
+expect "no guess when nothing is close" sh -c "! grep -q 'did you mean' '$WORK/err'"
+check "a flag given a value" 2 "$GLARECAM" process --json=yes "$WORK/x"
+expect "a flag given a value is refused" one_line_naming 'process: --json is a flag and takes no value (got "yes")'
+check "a global flag given a value" 2 "$GLARECAM" --quiet=false simulate --out "$WORK/x"
+expect "a global flag given a value is refused" one_line_naming "--quiet is a flag and takes no value"
 check "negative seed" 2 "$GLARECAM" simulate --out "$WORK/x" --seed -1
 check "trailing comma" 2 "$GLARECAM" simulate --out "$WORK/x" --distortion=0.1,
 check "folding distortion" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --distortion=-5

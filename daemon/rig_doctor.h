@@ -14,6 +14,7 @@
 
 #include "daemon/camera_supervisor.h"
 #include "daemon/disk_space.h"
+#include "sun/clock_sync.h"
 
 namespace glarecam::daemon {
 
@@ -31,10 +32,11 @@ using UnitStateQuery = std::function<Result<std::string>(const std::string& unit
 
 struct DoctorOptions {
   std::filesystem::path config_path;
-  CameraOpener open_camera{};     // default openCamera
-  DiskProbe* disk = nullptr;      // default statvfs
-  UnitStateQuery unit_state{};    // default `systemctl show glarecamd.service`
-  bool config_bad_input = false;  // out: the config itself is invalid
+  CameraOpener open_camera{};                        // default openCamera
+  DiskProbe* disk = nullptr;                         // default statvfs
+  UnitStateQuery unit_state{};                       // default `systemctl show glarecamd.service`
+  std::function<sun::ClockStatus()> clock_status{};  // default the kernel's (adjtimex)
+  bool config_bad_input = false;                     // out: the config itself is invalid
 };
 
 std::vector<DoctorCheck> runDoctor(DoctorOptions& options);

@@ -52,13 +52,42 @@ TEST_F(RigDoctor, TheSimulatedLabRigIsReady) {
   EXPECT_FALSE(doctor.config_bad_input);
 }
 
+// An unsynchronised clock fails a real rig that takes α from the sun, but only warns on the
+// simulated rig (glarecamd --simulate runs on its own time-lapse clock), saying why.
+TEST_F(RigDoctor, AnUnsynchronisedClockFailsARealRigButNotTheSimulatedOne) {
+  const auto unsynchronised = [] {
+    return sun::ClockStatus{.synchronised = false, .detail = "the kernel says so"};
+  };
+  DoctorOptions simulated = options({.site = true});
+  simulated.clock_status = unsynchronised;
+  const std::vector<DoctorCheck> sim_checks = runDoctor(simulated);
+  const DoctorCheck& sim_clock = check(sim_checks, "clock");
+  EXPECT_EQ(sim_clock.level, CheckLevel::kWarn) << sim_clock.detail;
+  EXPECT_NE(sim_clock.detail.find("simulated rig"), std::string::npos) << sim_clock.detail;
+
+  RigSpec real{.site = true};
+  real.inclinometer = "adxl355:/dev/i2c-1@0x1d";
+  DoctorOptions doctor = options(real);
+  doctor.clock_status = unsynchronised;
+  const std::vector<DoctorCheck> checks = runDoctor(doctor);
+  const DoctorCheck& real_clock = check(checks, "clock");
+  EXPECT_EQ(real_clock.level, CheckLevel::kFail) << real_clock.detail;
+  EXPECT_NE(real_clock.detail.find("a wrong clock is a wrong"), std::string::npos);
+
+  DoctorOptions synchronised = options({.site = true});
+  synchronised.clock_status = [] {
+    return sun::ClockStatus{.synchronised = true, .estimated_error_s = 0.002};
+  };
+  EXPECT_EQ(check(runDoctor(synchronised), "clock").level, CheckLevel::kOk);
+}
+
 // Camera::capture refuses a gain outside limits(): the test frame must ask for one inside, also
 // on a sensor whose least gain is above 0 dB (1×).
 TEST_F(RigDoctor, TheTestFrameIsTakenWithinTheCamerasGainRange) {
   DoctorOptions doctor = options();
-  doctor.open_camera = [](std::string_view, const capture::CameraOptions&,
-                          const capture::SceneAlphaSource&)
-      -> Result<std::unique_ptr<capture::Camera>> {
+  doctor.open_camera =
+      [](std::string_view, const capture::CameraOptions&,
+         const capture::SceneAlphaSource&) -> Result<std::unique_ptr<capture::Camera>> {
     return std::make_unique<testing::CountingCamera>(capture::CameraLimits{
         .min_exposure_us = 10, .max_exposure_us = 1e6, .min_gain_db = 1.5, .max_gain_db = 24});
   };
@@ -68,9 +97,9 @@ TEST_F(RigDoctor, TheTestFrameIsTakenWithinTheCamerasGainRange) {
 
 TEST_F(RigDoctor, AFailingCameraIsNamedInItsCheck) {
   DoctorOptions doctor = options();
-  doctor.open_camera = [](std::string_view, const capture::CameraOptions&,
-                          const capture::SceneAlphaSource&)
-      -> Result<std::unique_ptr<capture::Camera>> {
+  doctor.open_camera =
+      [](std::string_view, const capture::CameraOptions&,
+         const capture::SceneAlphaSource&) -> Result<std::unique_ptr<capture::Camera>> {
     return std::make_unique<testing::CountingCamera>(
         capture::CameraLimits{.min_exposure_us = 10, .max_exposure_us = 1e6},
         testing::CountingCamera::Answer::kError);
@@ -93,9 +122,9 @@ TEST_F(RigDoctor, AnInvalidConfigFailsAloneAndSkipsTheParts) {
 TEST_F(RigDoctor, TheCameraIsLeftAloneWhileGlarecamdRuns) {
   DoctorOptions doctor = options();
   bool opened = false;
-  doctor.open_camera = [&](std::string_view, const capture::CameraOptions&,
-                           const capture::SceneAlphaSource&)
-      -> Result<std::unique_ptr<capture::Camera>> {
+  doctor.open_camera =
+      [&](std::string_view, const capture::CameraOptions&,
+          const capture::SceneAlphaSource&) -> Result<std::unique_ptr<capture::Camera>> {
     opened = true;
     return hardwareError("must not be opened");
   };

@@ -268,10 +268,36 @@ Status checkSettings(const Camera& camera, const CaptureSettings& settings) {
   return settings.auto_bracket.validate();
 }
 
+// The calibration's images, to be copied into the stack's calibration/ folder, with the manifest's
+// paths pointing there. Checked before the bracket: a capture whose stacks could not be
+// processed is refused at once.
+constexpr const char* kCalibrationImagesFolder = "calibration";
+
+Result<std::vector<StackAttachment>> calibrationAttachments(Calibration& calibration) {
+  std::vector<StackAttachment> attachments;
+  if (calibration.directory.empty()) return attachments;  // a camera's own: nothing to copy
+  for (const auto& [key, relative] : calibrationImages(calibration)) {
+    const std::filesystem::path source = calibration.directory / relative;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(source, ec)) {
+      return badInput(
+          fmt::format("capture: the calibration's {} {} does not exist", key, source.string()));
+    }
+    const std::string inside = fmt::format("{}/{}", kCalibrationImagesFolder,
+                                           std::filesystem::path(relative).filename().string());
+    attachments.push_back({inside, source});
+    setCalibrationImage(calibration, key, inside);
+  }
+  return attachments;
+}
+
 }  // namespace
 
 Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settings) {
   GLARECAM_CHECK(checkSettings(camera, settings));
+  std::optional<Calibration> calibration = calibrationFor(camera, settings);
+  std::vector<StackAttachment> attachments;
+  if (calibration) GLARECAM_ASSIGN(attachments, calibrationAttachments(*calibration));
   const int planned = settings.exposures_us ? 1 : kAutoBracketStages;
   Progress progress("capture", planned, settings.show_progress);
   Bracket bracket;
@@ -284,6 +310,8 @@ Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settin
   progress.finish();
   CapturedStack stack;
   stack.manifest = makeManifest(camera, settings, bracket);
+  stack.manifest.calibration = calibration;
+  stack.attachments = std::move(attachments);
   stack.bit_depth = camera.format().bits_per_pixel <= 8 ? 8 : 16;
   stack.truth = sceneTruthOf(camera);
   for (CapturedFrame& frame : bracket.frames) stack.frames.push_back(std::move(frame.image));
@@ -297,6 +325,7 @@ Result<std::filesystem::path> writeCapturedStack(const std::filesystem::path& pa
   request.manifest = stack.manifest;
   request.frames = stack.frames;
   request.bit_depth = stack.bit_depth;
+  request.attachments = stack.attachments;
   request.may_replace = false;
   if (stack.truth) request.text_files.emplace_back("truth.json", jsonText(*stack.truth));
   for (int suffix = 1; suffix <= kMaxStackNameSuffix; ++suffix) {

@@ -13,6 +13,7 @@
 #include "capture/camera.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/stack_io.h"
 #include "core/stack_manifest.h"
 #include "core/time.h"
 
@@ -21,8 +22,10 @@ namespace glarecam::capture {
 struct CaptureSettings {
   std::optional<std::vector<double>> exposures_us;  // none: auto-bracket
   double gain_db = 0;
-  std::optional<Calibration> calibration;  // written inline; its black level and saturation
-                                           // also guide the auto-bracket
+  // Written inline, its images (flat field, dark frame, hot pixels: calibrationImages()) copied
+  // from its directory into the stack's calibration/ folder, so that the stack stands alone; its
+  // black level and saturation also guide the auto-bracket.
+  std::optional<Calibration> calibration;
   std::optional<double> alpha_deg;
   // Without alpha_deg: a simulated camera's scene α (glarecam capture --camera sim:). Off where
   // a rig measures α, so that an α it could not measure stays unknown.
@@ -39,8 +42,9 @@ struct CaptureSettings {
 struct CapturedStack {
   StackManifest manifest;
   std::vector<RawFrame> frames;
-  int bit_depth = 16;                   // of the stack's PNG files
-  std::optional<nlohmann::json> truth;  // a simulated camera's scene truth, as truth.json
+  int bit_depth = 16;                        // of the stack's PNG files
+  std::optional<nlohmann::json> truth;       // a simulated camera's scene truth, as truth.json
+  std::vector<StackAttachment> attachments;  // the calibration's images, into calibration/
 };
 
 Result<CapturedStack> captureStack(Camera& camera, const CaptureSettings& settings);

@@ -196,6 +196,10 @@ Result<Calibration> readCalibrationFile(const fs::path& path) {
   auto document = readJsonFile(path.string());
   if (!document) return std::unexpected(document.error());
   auto calibration = parseCalibration(*document, path.string());
+  if (calibration) {
+    std::error_code ec;
+    calibration->directory = fs::absolute(path, ec).parent_path();
+  }
   if (!calibration && document->is_object() && document->contains("parts") &&
       calibration.error().message.find(" is required") != std::string::npos) {
     // One part of a calibration (docs/calibration.md): say how to make a whole one.

@@ -13,6 +13,7 @@
 #include "capture/auto_bracket.h"
 #include "capture/sim/sim_camera.h"
 #include "capture/test_cameras.h"
+#include "core/image_io.h"
 #include "core/stack_io.h"
 #include "support/sim_support.h"
 
@@ -87,6 +88,55 @@ TEST(Bracketer, FixedExposuresAreRecordedAsApplied) {
   auto written = writeCapturedStack(dir.path(), *stack);
   ASSERT_TRUE(written);
   EXPECT_TRUE(std::filesystem::is_regular_file(*written / "truth.json"));
+}
+
+// A calibration read from a file names its images relative to that file: the stack gets copies
+// in its calibration/ folder and the manifest's paths point there, so that the stack is processed
+// on its own (and by glarecamd, which reads it back). An image that is missing refuses the
+// capture before any frame is taken.
+TEST(Bracketer, TheCalibrationsImagesTravelWithTheStack) {
+  testing::TempDir dir;
+  auto camera = openSim("size=160x128");
+  ASSERT_TRUE(camera);
+  Calibration calibration = *camera->info().calibration;
+  std::filesystem::create_directories(dir / "rig");
+  ASSERT_TRUE(writeExr(dir / "rig" / "flat.exr", FloatImage(160, 128, 1.0f)));
+  ASSERT_TRUE(writeExr(dir / "rig" / "dark.exr", FloatImage(160, 128, 64.0f)));
+  RawFrame hot(160, 128, 0);
+  hot.at(3, 4) = 255;
+  ASSERT_TRUE(writePngGray(dir / "rig" / "hot.png", hot, 8));
+  nlohmann::json block = toJson(calibration);
+  block["flat_field"] = "flat.exr";
+  block["dark_frame"] = "dark.exr";
+  block["dark_frame_exposure_us"] = 10000;
+  block["hot_pixels"] = "hot.png";
+  testing::writeText(dir / "rig" / "calibration.json", block.dump());
+  auto from_file = readCalibrationFile(dir / "rig" / "calibration.json");
+  ASSERT_TRUE(from_file) << from_file.error().message;
+  EXPECT_EQ(from_file->directory, std::filesystem::absolute(dir / "rig"));
+
+  CaptureSettings settings = quietAuto(40);
+  settings.exposures_us = std::vector<double>{1000, 10000};
+  settings.calibration = *from_file;
+  auto stack = captureStack(*camera, settings);
+  ASSERT_TRUE(stack) << stack.error().message;
+  EXPECT_EQ(stack->manifest.calibration->flat_field, "calibration/flat.exr");
+  EXPECT_EQ(stack->manifest.calibration->dark_frame, "calibration/dark.exr");
+  EXPECT_EQ(stack->manifest.calibration->hot_pixels, "calibration/hot.png");
+  auto written = writeCapturedStack(dir / "runs", *stack);
+  ASSERT_TRUE(written) << written.error().message;
+  auto read = readStack(*written);
+  ASSERT_TRUE(read) << read.error().message;
+  ASSERT_TRUE(read->dark_frame_dn && read->hot_pixels && read->flat_field);
+  EXPECT_EQ(read->hot_pixels->at(3, 4), 255);
+  EXPECT_FLOAT_EQ(read->dark_frame_dn->at(5, 5), 64.0f);
+
+  std::filesystem::remove(dir / "rig" / "dark.exr");
+  auto missing = captureStack(*camera, settings);
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(missing.error().message.find("dark_frame"), std::string::npos)
+      << missing.error().message;
 }
 
 TEST(Bracketer, ACaptureNeverReplacesAStackWrittenMeanwhile) {

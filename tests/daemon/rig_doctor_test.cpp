@@ -76,7 +76,7 @@ TEST_F(RigDoctor, AnUnsynchronisedClockFailsARealRigButNotTheSimulatedOne) {
 
   DoctorOptions synchronised = options({.site = true});
   synchronised.clock_status = [] {
-    return sun::ClockStatus{.synchronised = true, .estimated_error_s = 0.002};
+    return sun::ClockStatus{.synchronised = true, .estimated_error_s = 0.002, .detail = ""};
   };
   EXPECT_EQ(check(runDoctor(synchronised), "clock").level, CheckLevel::kOk);
 }

@@ -134,6 +134,15 @@ Status IntrinsicsPartOptions::validate() const {
   return board.validate();
 }
 
+namespace {
+
+std::vector<std::string> darkWarnings(const DarkCalibration& dark) {
+  if (auto warning = darkFrameNoiseWarning(dark)) return {std::move(*warning)};
+  return {};
+}
+
+}  // namespace
+
 Result<DarkPart> calibrateDarkPart(const DarkPartOptions& options) {
   Started started;
   GLARECAM_ASSIGN(started, start(options));
@@ -156,7 +165,7 @@ Result<DarkPart> calibrateDarkPart(const DarkPartOptions& options) {
                                  "median of the per-pixel mean at the shortest",
                                  inputs.frames.size(), dark.levels.size()),
            .values = darkValues(dark, dark_file.filename().string(), hot_file.filename().string()),
-           .warnings = {}}));
+           .warnings = darkWarnings(dark)}));
   return part;
 }
 

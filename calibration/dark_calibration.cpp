@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "calibration/frame_statistics.h"
 
@@ -92,6 +93,12 @@ Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames) {
   dark.dark_frame_dn = meanFrame(framesOf(frames, groups.back()));
   dark.dark_frame_exposure_us = groups.back().exposure_us;
   dark.dark_current_dn_per_us = darkCurrent(dark.levels);
+  if (const auto noise = dark.levels.back().temporal_noise_dn) {
+    dark.dark_frame_noise_dn = *noise / std::sqrt(static_cast<double>(dark.levels.back().frames));
+    const double spread = robustSpread(dark.dark_frame_dn).sigma;
+    dark.fixed_pattern_dn = std::sqrt(
+        std::max(0.0, spread * spread - dark.dark_frame_noise_dn * dark.dark_frame_noise_dn));
+  }
   const RobustSpread spread = robustSpread(dark.dark_frame_dn);
   dark.hot_threshold_dn = spread.median + std::max(kHotPixelSigmas * spread.sigma, kMinHotExcessDn);
   dark.hot_pixels = ByteImage(dark.dark_frame_dn.width(), dark.dark_frame_dn.height());
@@ -101,6 +108,25 @@ Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames) {
     dark.hot_pixel_count += hot;
   }
   return dark;
+}
+
+std::optional<std::string> darkFrameNoiseWarning(const DarkCalibration& dark) {
+  const DarkLevel& longest = dark.levels.back();
+  if (!longest.temporal_noise_dn || !(dark.dark_frame_noise_dn > dark.fixed_pattern_dn))
+    return std::nullopt;
+  // Frames for the dark frame's noise to fall to the fixed pattern: (sigma_t / fixed pattern)².
+  const double needed =
+      dark.fixed_pattern_dn > 0
+          ? std::ceil(std::pow(*longest.temporal_noise_dn / dark.fixed_pattern_dn, 2))
+          : std::numeric_limits<double>::infinity();
+  return fmt::format(
+      "the dark frame's own noise ({:.2f} DN: {:.2f} DN over the square root of {} frames) exceeds "
+      "the fixed pattern it removes ({:.2f} DN): subtracting it adds noise to every stack; {}",
+      dark.dark_frame_noise_dn, *longest.temporal_noise_dn, longest.frames, dark.fixed_pattern_dn,
+      std::isfinite(needed) && needed <= kMaxUsefulDarkFrames
+          ? fmt::format("capture {:.0f} or more frames at the longest exposure", needed)
+          : std::string("this sensor has no fixed pattern to remove; its hot pixels are masked all "
+                        "the same"));
 }
 
 nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_frame_file,
@@ -120,6 +146,8 @@ nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_f
           {"hot_pixels", hot_pixels_file},
           {"dark",
            {{"hot_pixel_count", dark.hot_pixel_count},
+            {"fixed_pattern_dn", dark.fixed_pattern_dn},
+            {"dark_frame_noise_dn", dark.dark_frame_noise_dn},
             {"hot_threshold_dn", dark.hot_threshold_dn},
             {"levels", levels}}}};
 }

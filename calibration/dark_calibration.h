@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "calibration/input_frame.h"
@@ -32,6 +33,9 @@ inline constexpr double kLightLeakDn = 50.0;
 // hundreds.
 inline constexpr double kMaxDarkSpreadDn = 25.0;
 inline constexpr std::size_t kMinDarkFrames = 2;
+// Past this many frames a dark frame's noise is no longer worth chasing: the sensor's pattern is
+// below what subtraction can remove.
+inline constexpr double kMaxUsefulDarkFrames = 256;
 
 struct DarkLevel {
   double exposure_us = 0;
@@ -51,7 +55,16 @@ struct DarkCalibration {
   std::size_t hot_pixel_count = 0;
   double hot_threshold_dn = 0;
   std::vector<DarkLevel> levels;  // by exposure
+  // What subtracting the dark frame does to a stack: it removes the fixed pattern (the dark
+  // frame's spread across pixels, less its own noise) and adds its own noise (the temporal noise
+  // over the square root of its frames). Unknown (0) with one frame at the longest exposure.
+  double fixed_pattern_dn = 0;
+  double dark_frame_noise_dn = 0;
 };
+
+// Subtracting a dark frame pays only where the fixed pattern it removes exceeds the noise it adds:
+// a warning (with the frames it takes) when it does not, else nothing.
+std::optional<std::string> darkFrameNoiseWarning(const DarkCalibration& dark);
 
 // A frame that saw light is named in the error.
 Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames);

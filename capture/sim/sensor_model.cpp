@@ -25,8 +25,8 @@ std::uint64_t mix(std::uint64_t x) {  // splitmix64 finaliser: independent strea
 }  // namespace
 
 RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame,
-                     const Calibration& calibration, const SensorModel& sensor,
-                     std::uint64_t seed) {
+                     const Calibration& calibration, const SensorModel& sensor, std::uint64_t seed,
+                     const SensorDefectMap* defects) {
   const calibration::FrameRadiometry radiometry = calibration::frameRadiometry(frame, calibration);
   const double electrons_per_cd_m2 =
       1.0 / (radiometry.scale_cd_m2_per_dn * radiometry.dn_per_electron);
@@ -52,8 +52,12 @@ RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame,
         } else {
           electrons = 0.0;
         }
-        const double dn = sensor.black_level_dn + electrons * radiometry.dn_per_electron +
-                          radiometry.read_noise_dn * unit_normal(rng);
+        double dn = sensor.black_level_dn + electrons * radiometry.dn_per_electron +
+                    radiometry.read_noise_dn * unit_normal(rng);
+        if (defects) {
+          dn += defects->offset_dn.row(y)[x] +
+                defects->dark_current_dn_per_us.row(y)[x] * frame.exposure_us;
+        }
         out[x] = static_cast<std::uint16_t>(std::clamp(std::round(dn), 0.0, full_scale));
       }
     }
@@ -80,16 +84,6 @@ SensorDefectMap sensorDefectMap(int width, int height, const SensorDefects& defe
   }
   map.hot_pixels.assign(hot.begin(), hot.end());
   return map;
-}
-
-void applySensorDefects(RawFrame& frame, const SensorDefectMap& defects, double exposure_us,
-                        const SensorModel& sensor) {
-  const double full_scale = sensor.full_scale_dn();
-  for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
-    const double dn = frame.data()[i] + defects.offset_dn.data()[i] +
-                      defects.dark_current_dn_per_us.data()[i] * exposure_us;
-    frame.data()[i] = static_cast<std::uint16_t>(std::clamp(std::round(dn), 0.0, full_scale));
-  }
 }
 
 }  // namespace glarecam::capture

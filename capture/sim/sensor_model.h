@@ -71,14 +71,12 @@ struct SensorDefectMap {
 SensorDefectMap sensorDefectMap(int width, int height, const SensorDefects& defects,
                                 std::uint64_t sensor_seed);
 
-// Adds the defects to a frame taken at `exposure_us` (before the ADC: rounded, clipped at full
-// scale).
-void applySensorDefects(RawFrame& frame, const SensorDefectMap& defects, double exposure_us,
-                        const SensorModel& sensor);
-
 // Renders the frame `frame` of a stack calibrated by `calibration` (whose radiometry the sensor
-// obeys exactly) looking at `luminance_cd_m2`.
+// obeys exactly) looking at `luminance_cd_m2`; with `defects`, each pixel's offset and dark current
+// join the signal before the ADC quantises it (so a fixed pattern below 1 DN survives, as on a
+// real sensor).
 RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame,
-                     const Calibration& calibration, const SensorModel& sensor, std::uint64_t seed);
+                     const Calibration& calibration, const SensorModel& sensor, std::uint64_t seed,
+                     const SensorDefectMap* defects = nullptr);
 
 }  // namespace glarecam::capture

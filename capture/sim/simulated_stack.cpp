@@ -276,11 +276,8 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   }
   for (std::size_t i = 0; i < result.manifest.frames.size(); ++i) {
     result.frames.push_back(exposeFrame(result.true_luminance_cd_m2, result.manifest.frames[i],
-                                        calibration, options.sensor, frameSeed(options.seed, i)));
-    if (options.defects.any()) {
-      applySensorDefects(result.frames.back(), result.defects,
-                         result.manifest.frames[i].exposure_us, options.sensor);
-    }
+                                        calibration, options.sensor, frameSeed(options.seed, i),
+                                        options.defects.any() ? &result.defects : nullptr));
     progress.advance("frame " + std::to_string(i + 1) + "/" +
                      std::to_string(result.manifest.frames.size()));
   }

@@ -136,6 +136,22 @@ struct CalibrationImages {
     return resolveInside(base, relative, where, key, base_name);
   }
 
+  // The EXR at `relative` (none: nothing), of the frames' size and every value `valid`.
+  template <typename Valid>
+  Result<std::optional<FloatImage>> exr(const std::optional<std::string>& relative,
+                                        const std::string& key, const std::string& what,
+                                        Valid valid, const std::string& invalid) const {
+    if (!relative) return std::optional<FloatImage>{};
+    fs::path file;
+    GLARECAM_ASSIGN(file, path(*relative, key));
+    FloatImage image;
+    GLARECAM_ASSIGN(image, readExr(file));
+    GLARECAM_CHECK(checkSize(file, image, what));
+    if (!std::all_of(image.data(), image.data() + image.pixelCount(), valid))
+      return badInput(file.string() + ": " + what + " has " + invalid);
+    return std::optional(std::move(image));
+  }
+
   template <typename T>
   Status checkSize(const fs::path& path, const Image<T>& image, const std::string& what) const {
     const RawFrame& first = stack.frames.front();
@@ -147,33 +163,21 @@ struct CalibrationImages {
 };
 
 Status loadFlatField(Stack& stack, const CalibrationImages& images) {
-  if (!stack.calibration.flat_field) return {};
-  fs::path path;
-  GLARECAM_ASSIGN(path, images.path(*stack.calibration.flat_field, "flat_field"));
-  GLARECAM_ASSIGN(stack.flat_field, readExr(path));
-  GLARECAM_CHECK(images.checkSize(path, *stack.flat_field, "flat field"));
-  const float* values = stack.flat_field->data();
-  bool usable = std::all_of(values, values + stack.flat_field->pixelCount(),
-                            [](float v) { return v > 0 && std::isfinite(v); });
-  if (!usable)
-    return badInput(path.string() + ": flat field has non-positive or non-finite values");
+  GLARECAM_ASSIGN(stack.flat_field, images.exr(
+                                        stack.calibration.flat_field, "flat_field", "flat field",
+                                        [](float v) { return v > 0 && std::isfinite(v); },
+                                        "non-positive or non-finite values"));
   return {};
 }
 
 // The dark frame's values are DN of the sensor: finite, not negative, below saturation.
 Status loadDarkFrame(Stack& stack, const CalibrationImages& images) {
-  if (!stack.calibration.dark_frame) return {};
-  fs::path path;
-  GLARECAM_ASSIGN(path, images.path(*stack.calibration.dark_frame, "dark_frame"));
-  GLARECAM_ASSIGN(stack.dark_frame_dn, readExr(path));
-  GLARECAM_CHECK(images.checkSize(path, *stack.dark_frame_dn, "dark frame"));
-  const float* values = stack.dark_frame_dn->data();
   const double saturation = stack.calibration.saturation_dn;
-  if (!std::all_of(values, values + stack.dark_frame_dn->pixelCount(),
-                   [&](float v) { return v >= 0 && v < saturation; })) {
-    return badInput(path.string() +
-                    ": dark frame has values that are negative, not finite or at saturation");
-  }
+  GLARECAM_ASSIGN(stack.dark_frame_dn,
+                  images.exr(
+                      stack.calibration.dark_frame, "dark_frame", "dark frame",
+                      [&](float v) { return v >= 0 && v < saturation; },
+                      "values that are negative, not finite or at saturation"));
   return {};
 }
 

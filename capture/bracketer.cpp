@@ -226,6 +226,7 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
   if (!settings.exposures_us) capture["auto_bracket"] = bracket.log.toJson();
   manifest.source = {{"camera", cameraJson(camera)}, {"capture", std::move(capture)}};
   if (settings.geometry) manifest.source["geometry"] = *settings.geometry;
+  if (settings.module) manifest.source["module"] = *settings.module;
   return manifest;
 }
 

@@ -27,6 +27,9 @@ struct CaptureSettings {
   // black level and saturation also guide the auto-bracket.
   std::optional<Calibration> calibration;
   std::optional<double> alpha_deg;
+  // The module measured (its name or serial), recorded as the manifest's "module": a sweep
+  // refuses to mix stacks of different modules.
+  std::optional<std::string> module;
   // Without alpha_deg: a simulated camera's scene α (glarecam capture --camera sim:). Off where
   // a rig measures α, so that an α it could not measure stays unknown.
   bool alpha_from_scene = true;

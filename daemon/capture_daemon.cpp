@@ -383,6 +383,8 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   checkClock();
   capture::CaptureSettings settings = capture::captureSettings(config_.daemon.capture);
   settings.calibration = calibration_;
+  if (config_.daemon.output.module != kUnnamedModule)
+    settings.module = config_.daemon.output.module;
   settings.alpha_from_scene = !rig_->measuresAlpha();
   bool pause = false;
   const std::optional<rig::RigGeometry> geometry = measureGeometry(settings, pause);

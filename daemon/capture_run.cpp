@@ -46,6 +46,8 @@ Result<std::unique_ptr<RigSession>> openRig(const CaptureRunOptions& options,
   GLARECAM_CHECK(session->openSensors());
   GLARECAM_CHECK(session->openGpio());
   if (!options.calibration) GLARECAM_ASSIGN(settings.calibration, session->cameraCalibration());
+  if (!options.module && config.daemon.output.module != kUnnamedModule)
+    settings.module = config.daemon.output.module;
   if (!session->measuresAlpha()) return session;
   // With the button, each press measures again, so a rig still moving now only warns.
   const auto measured = session->measure(utcNow(), sun::systemClockStatus());
@@ -102,6 +104,7 @@ Status runCapture(const CaptureRunOptions& options) {
   capture::CaptureSettings settings = capture::captureSettings(options.capture);
   settings.alpha_deg = options.alpha_deg;
   settings.calibration = options.calibration;
+  settings.module = options.module;
   settings.show_progress = options.show_progress;
   std::unique_ptr<RigSession> rig;
   if (options.config_path) GLARECAM_ASSIGN(rig, openRig(options, settings));

@@ -24,6 +24,7 @@ struct CaptureRunOptions {
   capture::CaptureConfig capture;                    // the bracket and the camera's options
   std::optional<double> alpha_deg;                   // α given; contradicts a config that gives α
   std::optional<Calibration> calibration;            // default: the config's calibration file's
+  std::optional<std::string> module;                 // default: the config's [output] module
   capture::SeriesOptions series;
   bool on_button = false;  // before each stack, wait for the config's [gpio] button
   bool show_progress = true;

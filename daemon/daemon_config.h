@@ -34,6 +34,9 @@ enum class ScheduleMode {
 
 // [schedule]. Whatever the mode, SIGUSR1 takes a stack now, and so does the button when
 // `button` is on and the rig has one.
+// [output] module when the config names none: the sheets say so; the stacks record no module.
+inline constexpr std::string_view kUnnamedModule = "unnamed module";
+
 struct ScheduleConfig {
   ScheduleMode mode = ScheduleMode::kInterval;
   std::chrono::seconds interval{600};
@@ -48,9 +51,9 @@ struct ScheduleConfig {
 // [output]: OUTPUT/stacks/<id>/, OUTPUT/results/<id>/, OUTPUT/days/<YYYY-MM-DD>/.
 struct OutputConfig {
   std::filesystem::path root = "/var/lib/glarecam";
-  std::uint64_t reserve_bytes = 1024ull << 20;  // capture pauses below this much free space
-  std::string module = "unnamed module";        // the data sheet's module name
-  unsigned processing_threads = 1;              // the worker's: the camera keeps the other cores
+  std::uint64_t reserve_bytes = 1024ull << 20;       // capture pauses below this much free space
+  std::string module = std::string(kUnnamedModule);  // the data sheets' and stacks' module name
+  unsigned processing_threads = 1;  // the worker's: the camera keeps the other cores
 };
 
 enum class InclinometerFaultPolicy {

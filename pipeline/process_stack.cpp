@@ -293,6 +293,14 @@ std::optional<double> alphaUncertaintyDeg(const StackManifest& manifest) {
   return value > 0 && std::isfinite(value) ? std::optional(value) : std::nullopt;
 }
 
+// The manifest's module (its name or serial), when it is a non-empty string.
+std::optional<std::string> moduleName(const StackManifest& manifest) {
+  const auto module = manifest.source.find("module");
+  if (module == manifest.source.end() || !module->is_string() || module->get<std::string>().empty())
+    return std::nullopt;
+  return module->get<std::string>();
+}
+
 // The manifest's camera block (backend, model, serial, size), or null.
 nlohmann::json cameraBlock(const StackManifest& manifest) {
   const auto camera = manifest.source.find("camera");
@@ -417,6 +425,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                                   : "",
        .alpha_uncertainty_deg = alpha_given ? std::nullopt : alphaUncertaintyDeg(stack.manifest),
        .camera = cameraBlock(stack.manifest),
+       .module = moduleName(stack.manifest),
        .width = merged.luminance_cd_m2.width(),
        .height = merged.luminance_cd_m2.height(),
        .calibration = calibrationIdentity(stack, options),

@@ -65,6 +65,7 @@ nlohmann::json makeResult(const ResultInputs& in) {
       in.alpha_uncertainty_deg ? json(*in.alpha_uncertainty_deg) : json(nullptr);
   result["image"] = {{"width", in.width}, {"height", in.height}};
   result["camera"] = in.camera;
+  result["module"] = in.module ? nlohmann::json(*in.module) : nlohmann::json(nullptr);
   const CalibrationIdentity& cal = in.calibration;
   const auto optional = [](const auto& value) { return value ? json(*value) : json(nullptr); };
   result["calibration"] = {{"origin", cal.origin},

@@ -46,6 +46,7 @@ struct ResultInputs {
   // The manifest's geometry.alpha_uncertainty_deg (inclinometer and clock), when α is its.
   std::optional<double> alpha_uncertainty_deg;
   nlohmann::json camera = nullptr;  // the manifest's camera block (backend, model, serial), or null
+  std::optional<std::string> module;  // the manifest's module, when it names one
   int width = 0, height = 0;
   CalibrationIdentity calibration;
   LuminanceStats stats;

@@ -274,6 +274,7 @@ Result<std::map<std::string, double>> readAlphaTable(const fs::path& path) {
 
 std::string mixedFields(const SweepTable& table) {
   const std::pair<const char*, std::vector<std::string>> fields[] = {
+      {"module", tableModules(table)},
       {"camera", tableCameras(table)},
       {"frame size", tableFrameSizes(table)},
       {"calibration", tableCalibrations(table)}};
@@ -295,8 +296,8 @@ Status checkStrict(const SweepSummary& summary) {
   const auto suspect = std::ranges::count_if(summary.table.rows, &SweepRow::isSuspect);
   if (suspect == 0) return {};
   const SweepRow& first = *std::ranges::find_if(summary.table.rows, &SweepRow::isSuspect);
-  return badInput(fmt::format("--strict: {} suspect row(s), the first {}: {}", suspect,
-                              first.stack, first.suspect));
+  return badInput(fmt::format("--strict: {} suspect row(s), the first {}: {}", suspect, first.stack,
+                              first.suspect));
 }
 
 }  // namespace glarecam::pipeline

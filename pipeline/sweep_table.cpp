@@ -36,6 +36,7 @@ enum Column {
   kSuspect,
   kCameraBackend,
   kCameraSerial,
+  kModule,
   kWidth,
   kHeight,
   kCalibrationId,
@@ -66,6 +67,7 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "suspect",
                                                              "camera_backend",
                                                              "camera_serial",
+                                                             "module",
                                                              "width",
                                                              "height",
                                                              "calibration_id",
@@ -186,6 +188,7 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   row.suspect = field(header, fields, kSuspect);
   row.camera_backend = field(header, fields, kCameraBackend);
   row.camera_serial = field(header, fields, kCameraSerial);
+  row.module = field(header, fields, kModule);
   for (auto [column, size] : {std::pair{kWidth, &row.width}, {kHeight, &row.height}}) {
     const std::string text = field(header, fields, column);
     if (text.empty()) continue;
@@ -312,6 +315,7 @@ std::string formatSweepTable(const SweepTable& table) {
         quoteCsvField(oneLine(r.suspect)),
         quoteCsvField(oneLine(r.camera_backend)),
         quoteCsvField(oneLine(r.camera_serial)),
+        quoteCsvField(oneLine(r.module)),
         r.width ? std::to_string(*r.width) : "",
         r.height ? std::to_string(*r.height) : "",
         quoteCsvField(oneLine(r.calibration_id)),
@@ -402,6 +406,7 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   };
   row.camera_backend = text("/camera/backend");
   row.camera_serial = text("/camera/serial");
+  row.module = text("/module");
   row.calibration_id = text("/calibration/id");
   row.calibration_date = newestPartDate(result);
   row.luminance_factor = numberAt(result, P("/calibration/luminance_factor"));
@@ -453,6 +458,10 @@ std::vector<std::string> tableFrameSizes(const SweepTable& table) {
 
 std::vector<std::string> tableCalibrations(const SweepTable& table) {
   return distinctValues(table, [](const SweepRow& row) { return row.calibration_id; });
+}
+
+std::vector<std::string> tableModules(const SweepTable& table) {
+  return distinctValues(table, [](const SweepRow& row) { return row.module; });
 }
 
 std::string calibrationSummary(const SweepRow& row) {

@@ -37,6 +37,7 @@ struct SweepRow {
   // What the row was measured with (result.json's camera, image and calibration.id): a sweep
   // refuses to mix them unless asked, and a sheet of a simulated camera says so.
   std::string camera_backend, camera_serial;
+  std::string module;  // result.json's module: the stack's module name or serial
   std::optional<int> width, height;
   std::string calibration_id;
   // What the calibration rests on (result.json's calibration block): the day its newest part was
@@ -68,11 +69,12 @@ GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning = nullp
 // profile made from it must say so, so that it can never pass for a measurement.
 bool isSimulated(const SweepTable& table);
 
-// The distinct cameras ("sim SIM-0001"), frame sizes ("320x256") and calibration ids of the
-// rows, in order, empty ones left out.
+// The distinct cameras ("sim SIM-0001"), frame sizes ("320x256"), calibration ids and modules of
+// the rows, in order, empty ones left out.
 std::vector<std::string> tableCameras(const SweepTable& table);
 std::vector<std::string> tableFrameSizes(const SweepTable& table);
 std::vector<std::string> tableCalibrations(const SweepTable& table);
+std::vector<std::string> tableModules(const SweepTable& table);
 
 // One line for a row's calibration, as the sheet states it: "55e5f09d95ab9da6 of 2026-06-21,
 // K 1500 ± 18.9 cd/m² per DN/µs" (the parts the row knows); empty without an id.

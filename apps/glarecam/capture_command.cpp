@@ -19,7 +19,7 @@ constexpr std::uint64_t kMaxFrameRetries = 1000;  // beyond this a link is broke
 struct CaptureArgs {
   std::optional<std::string> camera, config;
   std::string out;
-  std::optional<std::string> alpha, gain, f_number, nd, calibration, pixel_format;
+  std::optional<std::string> alpha, gain, f_number, nd, calibration, pixel_format, module;
   std::string exposures = "auto";
   std::string count = "1";
   double interval_s = 0;
@@ -46,6 +46,8 @@ Result<daemon::CaptureRunOptions> runOptions(const CaptureArgs& args) {
   GLARECAM_CHECK(requireNonEmptyPath(args.calibration, "--calibration"));
   if (args.calibration) GLARECAM_ASSIGN(run.calibration, readCalibrationFile(*args.calibration));
   run.capture.pixel_format = args.pixel_format;
+  if (args.module && args.module->empty()) return badInput("capture: --module must not be empty");
+  run.module = args.module;
   std::uint64_t retries = 0;
   GLARECAM_ASSIGN(retries, parseUnsigned(args.max_retries, "--max-retries"));
   if (retries > kMaxFrameRetries) return badInput("capture: --max-retries must be at most 1000");
@@ -90,6 +92,9 @@ void addCaptureCommand(CLI::App& app, Action& action) {
                   "'auto' (meter, plan, check) or a list of exposure times in µs, e.g. 10,100,1000")
       ->capture_default_str();
   sub->add_option("--gain", args->gain, "analogue gain in dB (default 0)");
+  sub->add_option("--module", args->module,
+                  "the module measured (name or serial), recorded in each stack; a sweep refuses "
+                  "to mix modules (default: the config's [output] module)");
   sub->add_option("--calibration", args->calibration,
                   "calibration file written inline into each stack; its black level and "
                   "saturation guide the auto-bracket");

@@ -78,6 +78,7 @@ StackManifest makeManifest(const SimulationOptions& options, const Calibration& 
                        {"pixel_format", "Mono" + std::to_string(options.sensor.adc_bits)},
                        {"width", options.width},
                        {"height", options.height}}},
+                     {"module", "simulated " + options.module + " module"},
                      {"simulation",
                       {{"module", options.module},
                        {"seed", options.seed},

@@ -246,11 +246,15 @@ check "cameras" 0 "$GLARECAM" cameras
 expect "cameras lists the simulator" grep -q "^sim:" "$WORK/out"
 check "cameras --json" 0 "$GLARECAM" cameras --json
 expect "cameras --json has a cameras array" grep -q '"cameras": \[' "$WORK/out"
-check "capture sim" 0 "$GLARECAM" capture --camera sim:size=200x160,fov=16 --alpha 70 --out "$WORK/cap" --no-progress
+check "capture sim" 0 "$GLARECAM" capture --camera sim:size=200x160,fov=16 --alpha 70 --out "$WORK/cap" \
+  --module "ACME 400 #17" --no-progress
 expect "capture prints the stack path" grep -q "^$WORK/cap/.*-a70.00$" "$WORK/out"
 captured=$(cat "$WORK/out")
 check "process a captured stack" 0 "$GLARECAM" process --no-progress --json "$captured"
 expect "captured stack glares at α 70" grep -q '"glare": true' "$WORK/out"
+expect "the module travels from capture to result.json" grep -q '"module": "ACME 400 #17"' "$WORK/out"
+check "capture: empty --module" 2 "$GLARECAM" capture --camera sim:size=64x48 --module "" --out "$WORK/x" --no-progress
+expect "empty --module is one line" one_line_naming "--module must not be empty"
 check "capture series" 0 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/series" --exposures 100,1000 --count 2 --no-progress
 expect "series wrote two stacks" test "$(wc -l <"$WORK/out")" -eq 2 -a "$(ls "$WORK/series" | wc -l)" -eq 2
 # Ctrl-C stops a series after the stack being captured: complete stacks only, exit 1, one line.

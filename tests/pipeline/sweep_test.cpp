@@ -85,7 +85,8 @@ TEST(Sweep, StacksOfDifferentCalibrationsAreNotMixedUnlessAsked) {
   writeStackAt(dir / "stacks/s2", 40);
   writeStackAt(dir / "stacks/s3", 60);
   auto manifest = nlohmann::json::parse(testing::readText(dir / "stacks/s3/stack.json"));
-  manifest["calibration"]["luminance_factor"] = 2 * manifest["calibration"]["luminance_factor"].get<double>();
+  manifest["calibration"]["luminance_factor"] =
+      2 * manifest["calibration"]["luminance_factor"].get<double>();
   testing::writeText(dir / "stacks/s3/stack.json", manifest.dump());
 
   auto refused = runSweep(findStacks({dir / "stacks"}), quiet(dir / "out", 2));
@@ -118,6 +119,11 @@ TEST(Sweep, StacksOfDifferentCalibrationsAreNotMixedUnlessAsked) {
   table->rows[1].camera_serial = "40012345";
   EXPECT_EQ(mixedFields(*table).rfind("camera (", 0), 0u) << mixedFields(*table);
   EXPECT_NE(mixedFields(*table).find("frame size ("), std::string::npos);
+  // Each simulated stack names its module; another module's row is mixing, named first.
+  EXPECT_EQ(row.module, "simulated standard module");
+  table->rows[1].module = "ACME 400 #17";
+  EXPECT_EQ(mixedFields(*table).rfind("module (simulated standard module, ACME 400 #17)", 0), 0u)
+      << mixedFields(*table);
 }
 
 // sweep --alpha-from gives α to stacks that record none, by directory name, recorded as given;
@@ -161,8 +167,7 @@ TEST(Sweep, AlphaFromATableForStacksThatRecordNone) {
     testing::writeText(dir / "alpha.csv", text);
     auto refused = readAlphaTable(dir / "alpha.csv");
     ASSERT_FALSE(refused) << text;
-    EXPECT_NE(refused.error().message.find(message), std::string::npos)
-        << refused.error().message;
+    EXPECT_NE(refused.error().message.find(message), std::string::npos) << refused.error().message;
   }
 }
 

@@ -92,6 +92,7 @@ Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames) {
 
   dark.dark_frame_dn = meanFrame(framesOf(frames, groups.back()));
   dark.dark_frame_exposure_us = groups.back().exposure_us;
+  dark.dark_frame_gain_db = groups.back().gain_db;
   dark.dark_current_dn_per_us = darkCurrent(dark.levels);
   if (const auto noise = dark.levels.back().temporal_noise_dn) {
     dark.dark_frame_noise_dn = *noise / std::sqrt(static_cast<double>(dark.levels.back().frames));
@@ -125,8 +126,8 @@ std::optional<std::string> darkFrameNoiseWarning(const DarkCalibration& dark) {
       dark.dark_frame_noise_dn, *longest.temporal_noise_dn, longest.frames, dark.fixed_pattern_dn,
       std::isfinite(needed) && needed <= kMaxUsefulDarkFrames
           ? fmt::format("capture {:.0f} or more frames at the longest exposure", needed)
-          : std::string("this sensor has no fixed pattern to remove; its hot pixels are masked all "
-                        "the same"));
+          : std::string("the fixed pattern is too small to be worth removing (subtracting the dark "
+                        "frame only adds noise); its hot pixels are masked all the same"));
 }
 
 nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_frame_file,
@@ -142,6 +143,7 @@ nlohmann::json darkValues(const DarkCalibration& dark, const std::string& dark_f
   return {{"black_level_dn", dark.black_level_dn},
           {"dark_frame", dark_frame_file},
           {"dark_frame_exposure_us", dark.dark_frame_exposure_us},
+          {"dark_frame_gain_db", dark.dark_frame_gain_db},
           {"dark_current_dn_per_us", dark.dark_current_dn_per_us},
           {"hot_pixels", hot_pixels_file},
           {"dark",

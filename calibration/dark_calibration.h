@@ -48,6 +48,7 @@ struct DarkCalibration {
   double black_level_dn = 0;
   FloatImage dark_frame_dn;  // per-pixel mean at the longest exposure
   double dark_frame_exposure_us = 0;
+  double dark_frame_gain_db = 0;  // calibrate dark refuses frames at more than one gain
   // The sensor's mean dark current: the least-squares slope of the levels' medians over exposure
   // (0 with one exposure). `process` moves the dark frame to each frame's exposure with it.
   double dark_current_dn_per_us = 0;

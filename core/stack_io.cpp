@@ -170,14 +170,13 @@ Status loadFlatField(Stack& stack, const CalibrationImages& images) {
   return {};
 }
 
-// The dark frame's values are DN of the sensor: finite, not negative, below saturation.
+// The dark frame's values are DN of the sensor: finite and not negative (a stuck pixel may sit at
+// full scale: the hot-pixel map masks it).
 Status loadDarkFrame(Stack& stack, const CalibrationImages& images) {
-  const double saturation = stack.calibration.saturation_dn;
-  GLARECAM_ASSIGN(stack.dark_frame_dn,
-                  images.exr(
-                      stack.calibration.dark_frame, "dark_frame", "dark frame",
-                      [&](float v) { return v >= 0 && v < saturation; },
-                      "values that are negative, not finite or at saturation"));
+  GLARECAM_ASSIGN(stack.dark_frame_dn, images.exr(
+                                           stack.calibration.dark_frame, "dark_frame", "dark frame",
+                                           [](float v) { return v >= 0 && std::isfinite(v); },
+                                           "negative or non-finite values"));
   return {};
 }
 

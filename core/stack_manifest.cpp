@@ -176,6 +176,9 @@ Result<Calibration> parseCalibration(const json& block, const std::string& where
   GLARECAM_ASSIGN(calibration.dark_frame, fields.optionalContainedPath("dark_frame"));
   GLARECAM_ASSIGN(calibration.dark_frame_exposure_us,
                   fields.optionalNumber("dark_frame_exposure_us"));
+  std::optional<double> dark_gain;
+  GLARECAM_ASSIGN(dark_gain, fields.optionalNumber("dark_frame_gain_db"));
+  calibration.dark_frame_gain_db = dark_gain.value_or(0.0);
   std::optional<double> dark_current;
   GLARECAM_ASSIGN(dark_current, fields.optionalNumber("dark_current_dn_per_us"));
   calibration.dark_current_dn_per_us = dark_current.value_or(0.0);
@@ -268,6 +271,8 @@ json toJson(const Calibration& calibration) {
   if (calibration.dark_frame) block["dark_frame"] = *calibration.dark_frame;
   if (calibration.dark_frame_exposure_us)
     block["dark_frame_exposure_us"] = *calibration.dark_frame_exposure_us;
+  if (calibration.dark_frame && calibration.dark_frame_gain_db != 0)
+    block["dark_frame_gain_db"] = calibration.dark_frame_gain_db;
   if (calibration.dark_current_dn_per_us != 0)
     block["dark_current_dn_per_us"] = calibration.dark_current_dn_per_us;
   if (calibration.hot_pixels) block["hot_pixels"] = *calibration.hot_pixels;

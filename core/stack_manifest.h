@@ -48,6 +48,7 @@ struct Calibration {
   // a PNG, non-zero where hot, masked out of the merge. Paths as flat_field's.
   std::optional<std::string> dark_frame;
   std::optional<double> dark_frame_exposure_us;
+  double dark_frame_gain_db = 0;  // the gain it was taken at: frames at another gain do not use it
   double dark_current_dn_per_us = 0;
   std::optional<std::string> hot_pixels;
   std::optional<NoiseModel> noise;

@@ -172,6 +172,23 @@ std::vector<FrameCheck> checkFrames(const Stack& stack, const calibration::Merge
   return checks;
 }
 
+// A dark frame holds the offsets at the gain it was taken at: a frame at another gain (whose
+// fixed pattern and dark current scale with it) is merged above the black level instead, said
+// once; the hot pixels stay masked.
+void dropDarkFrameAtAnotherGain(Stack& stack) {
+  constexpr double kSameGainDb = 0.01;  // a camera's readback of one gain setting
+  if (!stack.dark_frame_dn) return;
+  for (const FrameSpec& frame : stack.manifest.frames) {
+    if (std::abs(frame.gain_db - stack.calibration.dark_frame_gain_db) <= kSameGainDb) continue;
+    spdlog::warn(
+        "{}: frame {} is at {:g} dB but the dark frame was taken at {:g} dB: the black level is "
+        "subtracted instead (calibrate dark at this gain to use one)",
+        stackId(stack), frame.file, frame.gain_db, stack.calibration.dark_frame_gain_db);
+    stack.dark_frame_dn.reset();
+    return;
+  }
+}
+
 // The radiometric checks, the merge and the frames' agreement with it; the raw frames are
 // freed once merged.
 Result<MergedStack> mergeStack(Stack& stack, const ProcessOptions& options) {
@@ -181,6 +198,7 @@ Result<MergedStack> mergeStack(Stack& stack, const ProcessOptions& options) {
   if (!stack.calibration.noise) {
     spdlog::warn("{}: calibration has no noise model; assuming a typical sensor", stackId(stack));
   }
+  dropDarkFrameAtAnotherGain(stack);
   const std::vector<double> dark_offsets =
       calibration::darkOffsetsDn(stack.manifest.frames, stack.calibration);
   const calibration::MergeInput input{

@@ -124,7 +124,11 @@ TEST(StackIo, DarkFrameAndHotPixelsAreLoadedAndCheckedAgainstTheFrames) {
   ASSERT_TRUE(writeExr(dir / "s" / "dark.exr", FloatImage(width / 2, height, 65.0f)));
   refused("dark.exr: dark frame is " + std::to_string(width / 2) + "x" + std::to_string(height));
   ASSERT_TRUE(writeExr(dir / "s" / "dark.exr", FloatImage(width, height, -1.0f)));
-  refused("dark.exr: dark frame has values that are negative");
+  refused("dark.exr: dark frame has negative or non-finite values");
+  FloatImage stuck = dark;  // a pixel stuck at full scale: the hot-pixel map's business
+  stuck.at(1, 1) = 4095.0f;
+  ASSERT_TRUE(writeExr(dir / "s" / "dark.exr", stuck));
+  EXPECT_TRUE(readStack(dir / "s")) << "a saturated dark pixel is read";
   ASSERT_TRUE(writeExr(dir / "s" / "dark.exr", dark));
   ASSERT_TRUE(writePngGray(dir / "s" / "hot.png", RawFrame(width, height + 2, 0), 8));
   refused("hot.png: hot-pixel map is " + std::to_string(width) + "x" + std::to_string(height + 2));

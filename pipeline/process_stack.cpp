@@ -351,7 +351,14 @@ CalibrationIdentity calibrationIdentity(const Stack& stack, const ProcessOptions
     }
   }
   constexpr std::size_t kIdHexDigits = 16;  // 64 bits: no two calibrations of a lab collide
-  identity.id = sha256Hex(source.dump()).substr(0, kIdHexDigits);
+  // Image paths by file name: a stack's inline copy (calibration/dark.exr) and the file it was
+  // captured with (dark.exr) are one calibration.
+  nlohmann::json hashed = source;
+  for (std::string_view key : {"flat_field", "dark_frame", "hot_pixels"}) {
+    if (const auto path = hashed.find(key); path != hashed.end() && path->is_string())
+      *path = fs::path(path->get<std::string>()).filename().string();
+  }
+  identity.id = sha256Hex(hashed.dump()).substr(0, kIdHexDigits);
   if (const auto u = source.find("luminance_factor_u");
       u != source.end() && u->is_number() && u->get<double>() >= 0)
     identity.luminance_factor_u = u->get<double>();

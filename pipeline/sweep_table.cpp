@@ -10,6 +10,7 @@
 #include <functional>
 
 #include "core/csv.h"
+#include "core/stack_manifest.h"
 
 namespace glarecam::pipeline {
 
@@ -357,7 +358,8 @@ namespace {
 
 // The day (YYYY-MM-DD) of the newest measured_at among result.json's calibration parts, or "".
 std::string newestPartDate(const json& result) {
-  const json parts = result.value(json::json_pointer("/calibration/parts"), json());
+  const json::json_pointer pointer("/calibration/parts");
+  const json parts = result.contains(pointer) ? result.at(pointer) : json();
   std::string newest;
   if (!parts.is_object()) return newest;
   for (const auto& [name, part] : parts.items()) {
@@ -375,6 +377,14 @@ std::string newestPartDate(const json& result) {
 Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack) {
   using P = json::json_pointer;
   SweepRow row;
+  // Absent, or under a value of another type (a result.json from elsewhere): null, never a throw.
+  const auto at = [&](const char* pointer) {
+    return result.contains(P(pointer)) ? result.at(P(pointer)) : json();
+  };
+  const auto text = [&](const char* pointer) {
+    const json value = at(pointer);
+    return value.is_string() ? value.get<std::string>() : std::string();
+  };
   const auto alpha = numberAt(result, P("/alpha_deg"));
   GLARECAM_CHECK(validateSweepAlpha(alpha));
   const auto lmax = numberAt(result, P("/luminance/max_cd_m2"));
@@ -393,17 +403,12 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   row.fwhm_horizontal_deg = numberAt(result, P("/fwhm/ellipse/horizontal_deg"));
   if (result.contains("glare") && result["glare"].is_boolean())
     row.glare = result["glare"].get<bool>();
-  if (result.value(P("/luminance/max_is_lower_bound"), false)) row.lmax_bound = "lower";
-  if (result.value(P("/luminance/max_is_upper_bound"), false)) row.lmax_bound = "upper";
-  if (result.contains(P("/limit/status"))) row.limit_status = result.at(P("/limit/status"));
-  if (const json consistent = result.value(P("/luminance/frames_consistent"), json());
-      consistent.is_boolean())
+  if (at("/luminance/max_is_lower_bound") == json(true)) row.lmax_bound = "lower";
+  if (at("/luminance/max_is_upper_bound") == json(true)) row.lmax_bound = "upper";
+  row.limit_status = text("/limit/status");
+  if (const json consistent = at("/luminance/frames_consistent"); consistent.is_boolean())
     row.frames_consistent = consistent.get<bool>();
   if (row.frames_consistent == false) row.suspect = disagreeingFrames(result);
-  const auto text = [&](const char* pointer) {
-    const json value = result.value(P(pointer), json());
-    return value.is_string() ? value.get<std::string>() : std::string();
-  };
   row.camera_backend = text("/camera/backend");
   row.camera_serial = text("/camera/serial");
   row.module = text("/module");
@@ -411,8 +416,10 @@ Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack
   row.calibration_date = newestPartDate(result);
   row.luminance_factor = numberAt(result, P("/calibration/luminance_factor"));
   row.luminance_factor_u = numberAt(result, P("/calibration/luminance_factor_u"));
-  if (const auto w = numberAt(result, P("/image/width"))) row.width = static_cast<int>(*w);
-  if (const auto h = numberAt(result, P("/image/height"))) row.height = static_cast<int>(*h);
+  if (const auto w = numberAt(result, P("/image/width")); w && isImageSidePx(*w))
+    row.width = static_cast<int>(*w);
+  if (const auto h = numberAt(result, P("/image/height")); h && isImageSidePx(*h))
+    row.height = static_cast<int>(*h);
   if (result.contains("stack") && result["stack"].is_string()) row.stack_id = result["stack"];
   row.stack = stack;
   return row;

@@ -235,6 +235,30 @@ TEST(SweepTable, TheCalibrationAndAlphaUncertaintyTravelThroughTheTable) {
   EXPECT_EQ(calibrationSummary(*plain), "0123456789abcdef, K 1500 cd/m\u00b2 per DN/\u00b5s");
 }
 
+// A result.json from elsewhere whose blocks have other types (an array for calibration, a number
+// for luminance's flags, a huge width) gives a row without those values, never an exception.
+TEST(SweepTable, AResultWithBlocksOfOtherTypesNeverThrows) {
+  const nlohmann::json result = {
+      {"alpha_deg", 40.0},
+      {"luminance", {{"max_cd_m2", 5e5}, {"max_is_lower_bound", 1}, {"frames_consistent", "yes"}}},
+      {"calibration", nlohmann::json::array({1, 2})},
+      {"camera", "sim"},
+      {"module", 7},
+      {"limit", {{"status", 3}}},
+      {"image", {{"width", 1e300}, {"height", -5}}}};
+  Result<SweepRow> row = badInput("not run");
+  EXPECT_NO_THROW(row = sweepRowFromResult(result, "s"));
+  ASSERT_TRUE(row) << row.error().message;
+  EXPECT_EQ(row->lmax_bound, "");
+  EXPECT_FALSE(row->frames_consistent);
+  EXPECT_EQ(row->calibration_id, "");
+  EXPECT_EQ(row->calibration_date, "");
+  EXPECT_EQ(row->camera_backend, "");
+  EXPECT_EQ(row->module, "");
+  EXPECT_EQ(row->limit_status, "");
+  EXPECT_FALSE(row->width || row->height);
+}
+
 // A stack whose frames disagree with the merge makes a suspect row, the frames named, and the
 // table keeps that through writing and reading.
 TEST(SweepTable, FramesThatDisagreeMakeASuspectRow) {

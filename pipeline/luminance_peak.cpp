@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <opencv2/core.hpp>
 
 #include "core/neighbourhood.h"
@@ -239,13 +240,22 @@ bool saturatedTop(const calibration::MergedImage& merged, int cx, int cy, Lumina
 }
 
 // An image under-exposed in every pixel: its maximum is at most the largest upper bound.
+// Masked hot pixels and values that are not numbers (a masked cluster) do not count.
 LuminancePeak darkImagePeak(const calibration::MergedImage& merged) {
   const FloatImage& image = merged.luminance_cd_m2;
-  const float* top = std::max_element(image.data(), image.data() + image.pixelCount());
-  const auto index = static_cast<std::size_t>(top - image.data());
+  std::size_t index = 0;
+  float top = -std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < image.pixelCount(); ++i) {
+    const float v = image.data()[i];
+    if (merged.bound.data()[i] == std::uint8_t(PixelBound::kMasked) || !std::isfinite(v)) continue;
+    if (v > top) {
+      top = v;
+      index = i;
+    }
+  }
+  if (!std::isfinite(top)) top = 0;  // every pixel masked: nothing to bound
   const auto width = static_cast<std::size_t>(image.width());
-  return {*top, double(index % width), double(index / width), std::nan(""),
-          PeakMethod::kUpperBound};
+  return {top, double(index % width), double(index / width), std::nan(""), PeakMethod::kUpperBound};
 }
 
 }  // namespace

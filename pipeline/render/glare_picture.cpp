@@ -147,11 +147,17 @@ std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, co
   return project(o.camera, planeCurve(plane, curve, 0, 2 * std::numbers::pi, kCurvePoints), box);
 }
 
-// The two axes of an ellipse as arcs, each labelled at its upper or right end, off `lines`.
+// The two axes of an ellipse as arcs (added to `lines`), then each labelled at its upper or right
+// end, off every line drawn (the other axis included).
 void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::string& prefix,
-              const ClipBox& box, double font_px, const std::vector<Polyline>& lines) {
+              const ClipBox& box, double font_px, std::vector<Polyline>& lines) {
   const AngularPlane plane(e.plane_centre);
   const Ellipse& ellipse = e.plane_ellipse;
+  struct AxisLabel {
+    PixelPoint at, away;
+    std::string text;
+  };
+  std::vector<AxisLabel> labels;
   for (const double t_end : {0.0, std::numbers::pi / 2}) {
     const Point2 a = ellipse.pointAt(t_end), b = ellipse.pointAt(t_end + std::numbers::pi);
     const auto chord = [&](double s) {
@@ -159,6 +165,7 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::s
     };
     const auto pieces = project(o.camera, planeCurve(plane, chord, 0, 1, kAxisPoints), box);
     stroke(cr, pieces, kAxisStyle, font_px);
+    lines.insert(lines.end(), pieces.begin(), pieces.end());
     const bool is_major = t_end == 0.0;
     const bool vertical = e.majorIsVertical() == is_major;
     const double length_deg = vertical ? e.vertical_deg : e.horizontal_deg;
@@ -170,12 +177,13 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::s
     const PixelPoint pb = o.camera.project(rb.z > 0 ? rb : ra);
     const bool a_end = vertical ? pa.y < pb.y : pa.x > pb.x;
     const PixelPoint end = a_end ? pa : pb, other = a_end ? pb : pa;
-    const std::string text =
-        fmt::format("{}{} {:.2f}\u00b0", prefix, vertical ? "V" : "H", length_deg);
     const double dx = vertical ? font_px * 0.3 : font_px * 0.4;
     const double dy = vertical ? -font_px * 0.4 : font_px * 0.35;
-    labelOffLines(cr, {end.x + dx, end.y + dy}, unitAway(other, end), text, box, font_px, lines);
+    labels.push_back({{end.x + dx, end.y + dy},
+                      unitAway(other, end),
+                      fmt::format("{}{} {:.2f}\u00b0", prefix, vertical ? "V" : "H", length_deg)});
   }
+  for (const AxisLabel& l : labels) labelOffLines(cr, l.at, l.away, l.text, box, font_px, lines);
 }
 
 void drawCircles(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_px) {

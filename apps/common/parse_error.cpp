@@ -55,6 +55,18 @@ std::string didYouMean(const std::optional<std::string>& suggestion) {
   return suggestion ? " (did you mean " + *suggestion + "?)" : std::string();
 }
 
+// Several short flags in one word ("-vq"), each known.
+bool isShortFlags(std::string_view word, const std::vector<KnownOption>& known) {
+  if (word.size() < 3 || word[1] == '-' || word.find('=') != std::string_view::npos) return false;
+  for (const char c : word.substr(1)) {
+    const std::string name{'-', c};
+    if (std::none_of(known.begin(), known.end(),
+                     [&](const KnownOption& k) { return k.name == name; }))
+      return false;
+  }
+  return true;
+}
+
 // The first option word no chosen command knows, or a flag given a value.
 std::optional<std::string> optionProblem(const std::vector<const CLI::App*>& chain, int argc,
                                          char** argv) {
@@ -70,6 +82,7 @@ std::optional<std::string> optionProblem(const std::vector<const CLI::App*>& cha
     const std::string name(word.substr(0, equals));
     const auto match = std::find_if(known.begin(), known.end(),
                                     [&](const KnownOption& k) { return k.name == name; });
+    if (match == known.end() && isShortFlags(word, known)) continue;
     if (match == known.end()) {
       return fmt::format("{}unknown option {}{}", commandName(chain), name,
                          didYouMean(closestSpelling(name, names)));
@@ -93,10 +106,14 @@ std::optional<std::string> commandProblem(const std::vector<const CLI::App*>& ch
   for (const CLI::App* sub : commands) names.push_back(sub->get_name());
   for (int i = 1; i < argc; ++i) {
     const std::string_view word = argv[i];
+    if (word == "--") break;  // positional arguments follow
     if (isOptionWord(word)) {
+      const std::string_view name = word.substr(0, word.find('='));
       const auto match = std::find_if(known.begin(), known.end(),
-                                      [&](const KnownOption& k) { return k.name == word; });
-      if (match != known.end() && match->option->get_expected_min() > 0) ++i;  // its value
+                                      [&](const KnownOption& k) { return k.name == name; });
+      // An unknown option may take the next word as its value: that option is the problem.
+      if (match == known.end() && !isShortFlags(word, known)) return std::nullopt;
+      if (match != known.end() && match->option->get_expected_min() > 0 && name == word) ++i;
       continue;
     }
     if (std::any_of(chain.begin() + 1, chain.end(),

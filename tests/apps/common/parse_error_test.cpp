@@ -60,6 +60,14 @@ TEST(ParseError, NamesTheClosestOption) {
             "process: unknown option --treshold (did you mean --threshold?)");
 }
 
+// The value after an unknown option is not taken for a command; short flags may be combined;
+// nothing after "--" is an option or a command.
+TEST(ParseError, TheUnknownOptionIsNamedNotItsValue) {
+  EXPECT_EQ(messageFor({"calibrate", "--bogus", "3", "dark"}),
+            "calibrate dark: unknown option --bogus");
+  EXPECT_EQ(messageFor({"process", "-qq", "--zzz"}), "process: unknown option --zzz");
+}
+
 TEST(ParseError, RefusesAValueGivenToAFlag) {
   EXPECT_EQ(messageFor({"process", "--json=yes"}),
             "process: --json is a flag and takes no value (got \"yes\"): give --json alone");

@@ -286,6 +286,14 @@ Result<std::vector<StackAttachment>> calibrationAttachments(Calibration& calibra
     }
     const std::string inside = fmt::format("{}/{}", kCalibrationImagesFolder,
                                            std::filesystem::path(relative).filename().string());
+    if (std::ranges::any_of(attachments, [&](const StackAttachment& other) {
+          return other.relative_path == inside;
+        })) {
+      return badInput(
+          fmt::format("capture: the calibration names two images called {}: give "
+                      "them different file names",
+                      std::filesystem::path(relative).filename().string()));
+    }
     attachments.push_back({inside, source});
     setCalibrationImage(calibration, key, inside);
   }

@@ -531,11 +531,14 @@ std::string subtitle(const DatasheetContent& content) {
     measured.push_back(fmt::format("calibration {}", fmt::join(calibrations, "; ")));
   const std::string measured_with =
       measured.empty() ? std::string() : fmt::format(" {}.", fmt::join(measured, "; "));
+  // α as the table shows it: to its own uncertainty (not "4.99985").
   return fmt::format(
-      "Sweep of {} stack{}, \u03b1 {:g}\u00b0 to {:g}\u00b0 (angle of incidence from the module "
+      "Sweep of {} stack{}, \u03b1 {}\u00b0 to {}\u00b0 (angle of incidence from the module "
       "normal). Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.{}",
-      n, n == 1 ? "" : "s", lo->alpha_deg, hi->alpha_deg, limit, glareRangesText(content),
-      measured_with);
+      n, n == 1 ? "" : "s",
+      formatToUncertainty(lo->alpha_deg, lo->alpha_uncertainty_deg, kAlphaDefaultDecimals),
+      formatToUncertainty(hi->alpha_deg, hi->alpha_uncertainty_deg, kAlphaDefaultDecimals), limit,
+      glareRangesText(content), measured_with);
 }
 
 void drawHeader(cairo_t* cr, const DatasheetContent& content, const Box& box) {

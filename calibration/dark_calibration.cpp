@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "calibration/frame_statistics.h"
 
@@ -82,25 +83,24 @@ Result<DarkCalibration> calibrateDark(std::span<const InputFrame> frames) {
   GLARECAM_CHECK(checkOneGain(groups, "dark"));
   DarkCalibration dark;
   for (const ExposureGroup& group : groups) {
-    const FloatImage mean = meanFrame(framesOf(frames, group));
+    FloatImage mean = meanFrame(framesOf(frames, group));
     dark.levels.push_back({.exposure_us = group.exposure_us,
                            .frames = group.frames.size(),
                            .median_dn = robustSpread(mean).median,
                            .temporal_noise_dn = temporalNoise(frames, group)});
+    dark.dark_frame_dn = std::move(mean);  // the longest exposure's (the last group) stays
   }
   dark.black_level_dn = dark.levels.front().median_dn;
 
-  dark.dark_frame_dn = meanFrame(framesOf(frames, groups.back()));
   dark.dark_frame_exposure_us = groups.back().exposure_us;
   dark.dark_frame_gain_db = groups.back().gain_db;
   dark.dark_current_dn_per_us = darkCurrent(dark.levels);
+  const RobustSpread spread = robustSpread(dark.dark_frame_dn);
   if (const auto noise = dark.levels.back().temporal_noise_dn) {
     dark.dark_frame_noise_dn = *noise / std::sqrt(static_cast<double>(dark.levels.back().frames));
-    const double spread = robustSpread(dark.dark_frame_dn).sigma;
-    dark.fixed_pattern_dn = std::sqrt(
-        std::max(0.0, spread * spread - dark.dark_frame_noise_dn * dark.dark_frame_noise_dn));
+    dark.fixed_pattern_dn = std::sqrt(std::max(
+        0.0, spread.sigma * spread.sigma - dark.dark_frame_noise_dn * dark.dark_frame_noise_dn));
   }
-  const RobustSpread spread = robustSpread(dark.dark_frame_dn);
   dark.hot_threshold_dn = spread.median + std::max(kHotPixelSigmas * spread.sigma, kMinHotExcessDn);
   dark.hot_pixels = ByteImage(dark.dark_frame_dn.width(), dark.dark_frame_dn.height());
   for (std::size_t i = 0; i < dark.dark_frame_dn.pixelCount(); ++i) {

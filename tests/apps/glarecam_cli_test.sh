@@ -51,6 +51,15 @@ expect "a flag given a value is refused" one_line_naming 'process: --json is a f
 check "a global flag given a value" 2 "$GLARECAM" --quiet=false simulate --out "$WORK/x"
 expect "a global flag given a value is refused" one_line_naming "--quiet is a flag and takes no value"
 check "negative seed" 2 "$GLARECAM" simulate --out "$WORK/x" --seed -1
+check "hot pixels beyond 1 %" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --hot-pixels 31
+expect "hot pixels error is one line" one_line_naming "--hot-pixels must be between 0 and 1 %"
+check "negative hot pixels" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --hot-pixels=-1
+check "fixed pattern beyond 100 DN" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --fixed-pattern 101
+expect "fixed pattern error is one line" one_line_naming "--fixed-pattern must be between 0 and 100 DN"
+check "bad sensor seed" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --sensor-seed x
+expect "bad sensor seed is one line" one_line_naming "--sensor-seed"
+check "simulate-calibration: bad sensor seed" 2 "$GLARECAM" simulate-calibration dark --out "$WORK/x" --sensor-seed -3
+expect "simulate-calibration: bad sensor seed is one line" one_line_naming "--sensor-seed"
 check "trailing comma" 2 "$GLARECAM" simulate --out "$WORK/x" --distortion=0.1,
 check "folding distortion" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --distortion=-5
 check "lobe outside the frame" 2 "$GLARECAM" simulate --out "$WORK/x" --size 64x48 --offset-deg 30,0

@@ -1,7 +1,5 @@
 #include "pipeline/render/datasheet.h"
 
-#include <cairo-pdf.h>
-#include <cairo-svg.h>
 #include <cairo.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -11,10 +9,8 @@
 #include <functional>
 #include <limits>
 #include <string>
-#include <system_error>
 #include <vector>
 
-#include "core/atomic_file.h"
 #include "core/version.h"
 #include "pipeline/facet_model.h"
 #include "pipeline/glare_profile.h"
@@ -25,6 +21,7 @@
 #include "pipeline/render/markers.h"
 #include "pipeline/render/number_format.h"
 #include "pipeline/render/page_geometry.h"
+#include "pipeline/render/page_output.h"
 #include "pipeline/render/plot_axes.h"
 #include "pipeline/render/plot_legend.h"
 #include "pipeline/render/plot_series.h"
@@ -40,9 +37,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---- Page geometry, in PostScript points (1/72 in) ----
 
-constexpr double kPageWidthPt = 842;  // A4 landscape
-constexpr double kPageHeightPt = 595;
-constexpr double kPngPixelsPerPt = 2;  // the raster preview at 144 dpi
+constexpr double kPageWidthPt = kA4Landscape.width_pt;
+constexpr double kPageHeightPt = kA4Landscape.height_pt;
 constexpr double kMarginPt = 28;
 constexpr double kHeaderHeightPt = 40;
 constexpr double kGapPt = 10;         // between blocks
@@ -622,64 +618,6 @@ void drawDatasheet(cairo_t* cr, const DatasheetContent& content) {
   drawWarnings(cr, content.fits->warnings, layout.warnings);
 }
 
-// ---- Output ----
-
-// Draws the page on surface, `scale` device units per point; the drawing's first error.
-cairo_status_t drawOn(cairo_surface_t* surface, const DatasheetContent& content, double scale) {
-  const CairoContext cr(cairo_create(surface));
-  cairo_scale(cr.get(), scale, scale);
-  drawDatasheet(cr.get(), content);
-  return cairo_status(cr.get());
-}
-
-enum class VectorFormat { kPdf, kSvg };
-
-CairoSurface vectorSurface(VectorFormat format, const fs::path& file,
-                           const DatasheetContent& content) {
-  if (format == VectorFormat::kSvg) {
-    CairoSurface surface(cairo_svg_surface_create(file.c_str(), kPageWidthPt, kPageHeightPt));
-    cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PT);
-    return surface;
-  }
-  CairoSurface surface(cairo_pdf_surface_create(file.c_str(), kPageWidthPt, kPageHeightPt));
-  const std::string title = "Glare data sheet " + content.module;
-  const std::string creator = std::string("glarecam ") + kVersion;
-  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, title.c_str());
-  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, creator.c_str());
-  return surface;
-}
-
-cairo_status_t renderVector(VectorFormat format, const fs::path& file,
-                            const DatasheetContent& content) {
-  const CairoSurface surface = vectorSurface(format, file, content);
-  const cairo_status_t drawn = drawOn(surface.get(), content, 1);
-  cairo_surface_finish(surface.get());  // writes the file
-  return drawn != CAIRO_STATUS_SUCCESS ? drawn : cairo_surface_status(surface.get());
-}
-
-cairo_status_t renderPng(const fs::path& file, const DatasheetContent& content) {
-  const CairoSurface surface(cairo_image_surface_create(
-      CAIRO_FORMAT_RGB24, static_cast<int>(kPageWidthPt * kPngPixelsPerPt),
-      static_cast<int>(kPageHeightPt * kPngPixelsPerPt)));
-  const cairo_status_t drawn = drawOn(surface.get(), content, kPngPixelsPerPt);
-  if (drawn != CAIRO_STATUS_SUCCESS) return drawn;
-  return cairo_surface_write_to_png(surface.get(), file.c_str());
-}
-
-// Renders into a temporary sibling of target and renames it into place.
-Status writeAtomically(const fs::path& target,
-                       const std::function<cairo_status_t(const fs::path&)>& render) {
-  fs::path temp;
-  GLARECAM_ASSIGN(temp, createTemporarySibling(target));
-  const cairo_status_t status = render(temp);
-  if (status != CAIRO_STATUS_SUCCESS) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    return ioError(fmt::format("{}: {}", target.string(), cairo_status_to_string(status)));
-  }
-  return commitTemporary(temp, target);
-}
-
 constexpr double kMaxFacetBetaDeg = 45;  // facet_model.h's domain
 
 Status validate(const DatasheetContent& content) {
@@ -698,13 +636,12 @@ Status validate(const DatasheetContent& content) {
 
 Status writeDatasheet(const DatasheetContent& content, const fs::path& directory) {
   GLARECAM_CHECK(validate(content));
-  const auto vector = [&](VectorFormat format) {
-    return [&content, format](const fs::path& file) { return renderVector(format, file, content); };
-  };
-  GLARECAM_CHECK(writeAtomically(directory / kDatasheetPdf, vector(VectorFormat::kPdf)));
-  GLARECAM_CHECK(writeAtomically(directory / kDatasheetSvg, vector(VectorFormat::kSvg)));
-  return writeAtomically(directory / kDatasheetPng,
-                         [&content](const fs::path& file) { return renderPng(file, content); });
+  const PageDrawing draw = [&content](cairo_t* cr) { drawDatasheet(cr, content); };
+  const PdfMetadata metadata{.title = "Glare data sheet " + content.module,
+                             .creator = std::string("glarecam ") + kVersion};
+  GLARECAM_CHECK(writePdfPage(directory / kDatasheetPdf, kA4Landscape, draw, metadata));
+  GLARECAM_CHECK(writeSvgPage(directory / kDatasheetSvg, kA4Landscape, draw));
+  return writePngPage(directory / kDatasheetPng, kA4Landscape, draw);
 }
 
 }  // namespace glarecam::pipeline

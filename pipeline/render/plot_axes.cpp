@@ -31,9 +31,11 @@ void drawYTicks(cairo_t* cr, const Plot& plot) {
                 kFrameStyle);
     if (!major) continue;
     drawSegment(cr, {a.x0, y}, {a.x1, y}, kGridStyle);
-    drawText(cr,
-             {a.x0 - kTickLengthPt - kTickLabelGapPt, y + kBaselineBelowMiddleEm * kTickFont.size},
-             tick.label, {kTickFont, kInk, Align::kRight});
+    const double label_y = plot.pageY(tick.label_at.value_or(tick.value));
+    drawText(
+        cr,
+        {a.x0 - kTickLengthPt - kTickLabelGapPt, label_y + kBaselineBelowMiddleEm * kTickFont.size},
+        tick.label, {kTickFont, kInk, Align::kRight});
   }
 }
 
@@ -46,8 +48,10 @@ void drawXTicks(cairo_t* cr, const Plot& plot) {
     drawSegment(cr, {x, a.y1}, {x, a.y1 + (major ? kTickLengthPt : kMinorTickLengthPt)},
                 kFrameStyle);
     if (!major) continue;
-    drawText(cr, {x, a.y1 + kTickLengthPt + kTickLabelGapPt + kTickFont.size}, tick.label,
-             {kTickFont, kInk, Align::kCentre});
+    drawText(cr,
+             {plot.pageX(tick.label_at.value_or(tick.value)),
+              a.y1 + kTickLengthPt + kTickLabelGapPt + kTickFont.size},
+             tick.label, {kTickFont, kInk, Align::kCentre});
   }
 }
 
@@ -98,6 +102,7 @@ Axis logAxis(const std::vector<double>& values, Range empty) {
 std::vector<Tick> ticks(const Axis& axis) {
   constexpr int kMinorsPerDecade = 9;
   constexpr double kStepTolerance = 1e-6;  // of a step: the top tick despite rounding
+  if (!axis.fixed_ticks.empty()) return axis.fixed_ticks;
   std::vector<Tick> ticks;
   if (axis.scale == Scale::kLinear) {
     const int steps =
@@ -128,13 +133,18 @@ Box plotArea(const Box& frame) {
           frame.y1 - kXAxisGutterPt};
 }
 
-void drawAxes(cairo_t* cr, const Plot& plot, const AxisTitles& titles) {
-  drawYTicks(cr, plot);
-  drawXTicks(cr, plot);
+void drawFrame(cairo_t* cr, const Plot& plot) {
   const Box& a = plot.area;
   applyLineStyle(cr, kFrameStyle);
   cairo_rectangle(cr, a.x0, a.y0, a.width(), a.height());
   cairo_stroke(cr);
+}
+
+void drawAxes(cairo_t* cr, const Plot& plot, const AxisTitles& titles) {
+  drawYTicks(cr, plot);
+  drawXTicks(cr, plot);
+  drawFrame(cr, plot);
+  const Box& a = plot.area;
   const TextStyle title_style{kAxisTitleFont, kInk, Align::kCentre};
   drawText(cr, {(a.x0 + a.x1) / 2, a.y1 + kXAxisGutterPt - kTickLabelGapPt}, titles.x, title_style);
   drawVerticalText(cr, {a.x0 - kYAxisGutterPt + kAxisTitleFont.size, (a.y0 + a.y1) / 2}, titles.y,

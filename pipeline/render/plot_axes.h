@@ -1,12 +1,13 @@
 // The frame of a plot: a data area on the page with a horizontal (x) and a vertical (y) axis,
 // each linear or logarithmic. Maps data values to the page; gives the ticks (labelled ones, and
-// on a log axis unlabelled ones at 2…9 times each decade); draws grid lines at the labelled
-// ticks, the ticks and their labels, the frame and both axis titles. A plot also records what
-// is drawn in its data area (its ink), so that a legend can find the emptiest corner
-// (plot_series.h, plot_legend.h). Page lengths are in points (pt, 1/72 in), the data sheet's
-// user units; data values are in the axis's own units.
+// on a log axis unlabelled ones at 2…9 times each decade; or an axis's own, such as months);
+// draws grid lines at the labelled ticks, the ticks and their labels, the frame and both axis
+// titles. A plot also records what is drawn in its data area (its ink), so that a legend can
+// find the emptiest corner (plot_series.h, plot_legend.h). Page lengths are in points (pt,
+// 1/72 in), the data sheet's user units; data values are in the axis's own units.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,10 +23,19 @@ struct Range {
 
 enum class Scale { kLinear, kLog };
 
+struct Tick {
+  double value = 0;
+  std::string label;  // empty: a minor tick
+  // Where the label is centred when not under its tick: the name of the interval from this tick
+  // to the next (a month on a day axis) goes between them.
+  std::optional<double> label_at{};
+};
+
 struct Axis {
   Range range;  // a log axis's ends are positive
   Scale scale = Scale::kLinear;
-  double step = 0;  // linear axes: between labelled ticks, from range.lo
+  double step = 0;                  // linear axes: between labelled ticks, from range.lo
+  std::vector<Tick> fixed_ticks{};  // when given, the axis's ticks (months, hours of the day)
 
   double fraction(double value) const;  // 0 at range.lo, 1 at range.hi
   bool plottable(double value) const;   // finite, and positive on a log axis
@@ -42,13 +52,9 @@ Axis linearAxisFromZero(const std::vector<double>& values, double headroom, doub
 // `empty` when there is no such value.
 Axis logAxis(const std::vector<double>& values, Range empty);
 
-struct Tick {
-  double value = 0;
-  std::string label;  // empty: a minor tick
-};
-
-// Linear: every step from range.lo, labelled as formatPlain. Log: each decade, labelled as
-// formatPowerOfTen, and unlabelled ticks at 2…9 times each decade but the last.
+// The axis's fixed ticks when it has them. Otherwise linear: every step from range.lo, labelled
+// as formatPlain; log: each decade, labelled as formatPowerOfTen, and unlabelled ticks at 2…9
+// times each decade but the last.
 std::vector<Tick> ticks(const Axis& axis);
 
 // A page point covered by something drawn, weighted by how much hiding it would matter.
@@ -79,5 +85,8 @@ struct AxisTitles {
 
 // Grid, ticks with their labels, the frame, and both axis titles (the y title reading upward).
 void drawAxes(cairo_t* cr, const Plot& plot, const AxisTitles& titles);
+
+// The data area's frame alone: drawn again over what fills the area (an image hides the grid).
+void drawFrame(cairo_t* cr, const Plot& plot);
 
 }  // namespace glarecam::pipeline

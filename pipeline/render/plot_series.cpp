@@ -20,17 +20,25 @@ std::vector<double> sample(const PlotFunction& f, Range x) {
 
 void drawCurve(cairo_t* cr, Plot& plot, const PlotFunction& f, Range x, const LineStyle& style) {
   const std::vector<double> values = sample(f, x);
+  std::vector<DataPoint> points;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    points.push_back({x.lo + (x.hi - x.lo) * i / kCurveSamples, values[i]});
+  drawLine(cr, plot, points, style);
+}
+
+void drawLine(cairo_t* cr, Plot& plot, const std::vector<DataPoint>& points,
+              const LineStyle& style) {
   cairo_save(cr);
   cairo_rectangle(cr, plot.area.x0, plot.area.y0, plot.area.width(), plot.area.height());
   cairo_clip(cr);
   applyLineStyle(cr, style);
   bool drawing = false;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (!plot.y.plottable(values[i])) {
+  for (const DataPoint& point : points) {
+    if (!plot.x.plottable(point.x) || !plot.y.plottable(point.y)) {
       drawing = false;
       continue;
     }
-    const Point p = plot.page(x.lo + (x.hi - x.lo) * i / kCurveSamples, values[i]);
+    const Point p = plot.page(point.x, point.y);
     drawing ? cairo_line_to(cr, p.x, p.y) : cairo_move_to(cr, p.x, p.y);
     drawing = true;
     plot.ink.push_back({p, kCurveInkWeight});

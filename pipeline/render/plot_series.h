@@ -1,7 +1,8 @@
-// What a plot shows in its data area (plot_axes.h): functions sampled into curves, and measured
-// points as markers. Each is clipped to the data area or skipped where it cannot be plotted, and
-// leaves its ink in the plot's record for the legend (plot_legend.h): a curve lightly, a marker
-// heavily, since hiding a measured point is worse than hiding a stretch of curve.
+// What a plot shows in its data area (plot_axes.h): functions sampled into curves, series of
+// values (one a day, say) as lines through their points, and measured points as markers. Each
+// is clipped to the data area or skipped where it cannot be plotted, and leaves its ink in the
+// plot's record for the legend (plot_legend.h): a line lightly, a marker heavily, since hiding a
+// measured point is worse than hiding a stretch of line.
 #pragma once
 
 #include <functional>
@@ -28,6 +29,11 @@ void drawCurve(cairo_t* cr, Plot& plot, const PlotFunction& f, Range x, const Li
 struct DataPoint {
   double x = 0, y = 0;
 };
+
+// The points in their order joined by straight lines, broken at a point that is not plottable;
+// every point is kept (a series is not resampled, so a one-day peak stays).
+void drawLine(cairo_t* cr, Plot& plot, const std::vector<DataPoint>& points,
+              const LineStyle& style);
 
 // A marker at each plottable point.
 void drawMarkers(cairo_t* cr, Plot& plot, const std::vector<DataPoint>& points,

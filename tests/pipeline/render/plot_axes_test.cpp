@@ -87,6 +87,33 @@ TEST(PlotAxes, LogTicksLabelEachDecadeWithMinorsBetween) {
   EXPECT_EQ(small.size(), 2u + 8u);
 }
 
+TEST(PlotAxes, FixedTicksReplaceTheRegularOnes) {
+  const Axis days{.range = {0, 365},
+                  .step = 50,
+                  .fixed_ticks = {{.value = 0, .label = "Jan", .label_at = 15.5},
+                                  {.value = 31, .label = "Feb", .label_at = 45}}};
+  const std::vector<Tick> t = ticks(days);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(labels(t), (std::vector<std::string>{"Jan", "Feb"}));
+  EXPECT_DOUBLE_EQ(*t[0].label_at, 15.5);
+  EXPECT_FALSE(ticks({.range = {0, 10}, .step = 5}).front().label_at);
+}
+
+// A label between its ticks: the month's name is drawn about its middle, not under its tick.
+TEST(PlotAxes, ALabelIsDrawnWhereItSaysNotAtItsTick) {
+  TestCanvas canvas(400, 300);
+  const Plot plot{
+      .area = plotArea({0, 10, 400, 300}),
+      .x = {.range = {0, 100}, .fixed_ticks = {{.value = 0, .label = "MMM", .label_at = 50}}},
+      .y = {.range = {0, 1}, .step = 1}};
+  drawAxes(canvas.cr(), plot, {});
+  const int label_top = static_cast<int>(plot.area.y1) + 4, label_bottom = label_top + 10;
+  const int middle = static_cast<int>(plot.pageX(50));
+  EXPECT_TRUE(canvas.anyInk(middle - 6, label_top, middle + 6, label_bottom));
+  const int start = static_cast<int>(plot.pageX(0));
+  EXPECT_FALSE(canvas.anyInk(start + 2, label_top, start + 12, label_bottom));
+}
+
 TEST(PlotAxes, FractionAndPlottableFollowTheScale) {
   const Axis linear{.range = {0, 10}, .step = 2};
   EXPECT_DOUBLE_EQ(linear.fraction(2.5), 0.25);

@@ -89,5 +89,22 @@ TEST(PlotSeries, MarkersAtPlottablePointsWeighMoreThanCurves) {
             (CanvasPixel{255, 0, 0}));
 }
 
+// A series keeps every point (a one-day peak is not sampled away) and breaks where one is NaN.
+TEST(PlotSeries, LineJoinsEveryPointAndBreaksAtUnplottableOnes) {
+  TestCanvas canvas(200, 200);
+  Plot plot = linearPlot();
+  std::vector<DataPoint> points;
+  for (int x = 0; x <= 100; ++x) points.push_back({x + 0.0, x == 37 ? 80.0 : 10.0});
+  points[70].y = kNaN;
+  drawLine(canvas.cr(), plot, points, kBlackLine);
+  EXPECT_EQ(plot.ink.size(), points.size() - 1);
+  EXPECT_EQ(canvas.at(static_cast<int>(plot.pageX(37)), static_cast<int>(plot.pageY(79))),
+            (CanvasPixel{0, 0, 0}));
+  EXPECT_EQ(canvas.at(static_cast<int>(plot.pageX(20)), static_cast<int>(plot.pageY(10))),
+            (CanvasPixel{0, 0, 0}));
+  EXPECT_EQ(canvas.at(static_cast<int>(plot.pageX(70)), static_cast<int>(plot.pageY(10))),
+            kWhitePixel);
+}
+
 }  // namespace
 }  // namespace glarecam::pipeline

@@ -90,6 +90,28 @@ double refractionDeg(double true_elevation_deg, double pressure_hpa, double temp
          (60.0 * std::tan(radians(e0 + 10.3 / (e0 + 5.11))));
 }
 
+Parallax Parallax::of(const SiteLocation& site) {
+  // The observer at latitude φ and altitude E on the reference ellipsoid (equations 37–39).
+  const double phi = radians(site.latitude_deg);
+  const double u = std::atan(0.99664719 * std::tan(phi));
+  return {.x = std::cos(u) + site.altitude_m / 6378140.0 * std::cos(phi),
+          .y = 0.99664719 * std::sin(u) + site.altitude_m / 6378140.0 * std::sin(phi)};
+}
+
+TopocentricShift Parallax::shift(double hour_angle_deg, double declination_deg,
+                                 double radius_vector_au) const {
+  // Equations 36, 40, 41: the sun's equatorial horizontal parallax ξ, the parallax in right
+  // ascension Δα and the topocentric declination δ′.
+  const double xi = radians(8.794 / (3600.0 * radius_vector_au));
+  const double h = radians(hour_angle_deg);
+  const double delta = radians(declination_deg);
+  const double denominator = std::cos(delta) - x * std::sin(xi) * std::cos(h);
+  const double delta_alpha = std::atan2(-x * std::sin(xi) * std::sin(h), denominator);
+  const double delta_prime =
+      std::atan2((std::sin(delta) - y * std::sin(xi)) * std::cos(delta_alpha), denominator);
+  return {.right_ascension_deg = degrees(delta_alpha), .declination_deg = degrees(delta_prime)};
+}
+
 SpaTerms spaTerms(double julian_day_ut1, double delta_t_s, const SiteLocation& site,
                   bool refraction) {
   SpaTerms t;
@@ -163,21 +185,15 @@ SpaTerms spaTerms(double julian_day_ut1, double delta_t_s, const SiteLocation& s
   t.hour_angle_deg =
       wrap360(t.apparent_sidereal_time_deg + site.longitude_deg - t.right_ascension_deg);
 
-  // 3.12: the topocentric right ascension, declination and hour angle (equations 35–45): the
-  // parallax of an observer at latitude φ and altitude E on the reference ellipsoid.
-  const double xi = radians(8.794 / (3600.0 * t.radius_vector_au));
+  // 3.12: the topocentric right ascension, declination and hour angle (equations 35–45).
+  const Parallax parallax = Parallax::of(site);
+  const TopocentricShift shift =
+      parallax.shift(t.hour_angle_deg, t.declination_deg, t.radius_vector_au);
   const double phi = radians(site.latitude_deg);
-  const double u_term = std::atan(0.99664719 * std::tan(phi));
-  const double x_term = std::cos(u_term) + site.altitude_m / 6378140.0 * std::cos(phi);
-  const double y_term = 0.99664719 * std::sin(u_term) + site.altitude_m / 6378140.0 * std::sin(phi);
-  const double h = radians(t.hour_angle_deg);
-  const double denominator = std::cos(delta) - x_term * std::sin(xi) * std::cos(h);
-  const double delta_alpha = std::atan2(-x_term * std::sin(xi) * std::sin(h), denominator);
-  const double delta_prime =
-      std::atan2((std::sin(delta) - y_term * std::sin(xi)) * std::cos(delta_alpha), denominator);
-  t.topocentric_right_ascension_deg = t.right_ascension_deg + degrees(delta_alpha);
-  t.topocentric_declination_deg = degrees(delta_prime);
-  t.topocentric_hour_angle_deg = t.hour_angle_deg - degrees(delta_alpha);
+  const double delta_prime = radians(shift.declination_deg);
+  t.topocentric_right_ascension_deg = t.right_ascension_deg + shift.right_ascension_deg;
+  t.topocentric_declination_deg = shift.declination_deg;
+  t.topocentric_hour_angle_deg = t.hour_angle_deg - shift.right_ascension_deg;
 
   // 3.14: the topocentric elevation without and with refraction, and the zenith angle
   // (equations 41–44).
@@ -266,23 +282,37 @@ Status validate(const SolarPositionOptions& options) {
   return {};
 }
 
-Result<SolarPosition> solarPosition(std::chrono::sys_time<microseconds> utc,
-                                    const SiteLocation& site, const SolarPositionOptions& options) {
-  GLARECAM_CHECK(validate(site));
-  GLARECAM_CHECK(validate(options));
+Status detail::checkInstant(std::chrono::sys_time<microseconds> utc) {
   const std::chrono::year_month_day date{std::chrono::floor<std::chrono::days>(utc)};
   const int year = static_cast<int>(date.year());
   if (year < kFirstYear || year > kLastYear) {
     return badInput("year " + std::to_string(year) + " is outside SPA's range [" +
                     std::to_string(kFirstYear) + ", " + std::to_string(kLastYear) + "]");
   }
+  return {};
+}
 
-  // Julian day in UT1: the microseconds since 1970 are exact in an int64; the double JD keeps
-  // about 40 µs, i.e. 2·10⁻⁷° of the Earth's rotation.
+double detail::julianDayUt1(std::chrono::sys_time<microseconds> utc,
+                            const SolarPositionOptions& options) {
+  // The microseconds since 1970 are exact in an int64; the double JD keeps about 40 µs, i.e.
+  // 2·10⁻⁷° of the Earth's rotation.
   const double unix_days = static_cast<double>(utc.time_since_epoch().count()) / 86400e6;
-  const double julian_day = kUnixEpochJd + unix_days + options.delta_ut1_s / 86400.0;
-  const double decimal_year = 2000.0 + (julian_day - (kJ2000 - 0.5)) / 365.2425;
-  const double delta_t_s = options.delta_t_s.value_or(deltaTSeconds(decimal_year));
+  return kUnixEpochJd + unix_days + options.delta_ut1_s / 86400.0;
+}
+
+double detail::deltaTFor(double julian_day_ut1, const SolarPositionOptions& options) {
+  const double decimal_year = 2000.0 + (julian_day_ut1 - (kJ2000 - 0.5)) / 365.2425;
+  return options.delta_t_s.value_or(deltaTSeconds(decimal_year));
+}
+
+Result<SolarPosition> solarPosition(std::chrono::sys_time<microseconds> utc,
+                                    const SiteLocation& site, const SolarPositionOptions& options) {
+  GLARECAM_CHECK(validate(site));
+  GLARECAM_CHECK(validate(options));
+  GLARECAM_CHECK(detail::checkInstant(utc));
+
+  const double julian_day = detail::julianDayUt1(utc, options);
+  const double delta_t_s = detail::deltaTFor(julian_day, options);
 
   const detail::SpaTerms t = detail::spaTerms(julian_day, delta_t_s, site, options.refraction);
   SolarPosition position;

@@ -111,6 +111,27 @@ struct SpaTerms {
 SpaTerms spaTerms(double julian_day_ut1, double delta_t_s, const SiteLocation& site,
                   bool refraction);
 
+// The observer's parallax terms x = ρ cos φ′ and y = ρ sin φ′ (SPA equations 37–39), fixed for a
+// site, and the topocentric shift of the sun at an hour angle (equations 36, 40, 41).
+struct TopocentricShift {
+  double right_ascension_deg = 0;  // Δα: α′ = α + Δα, H′ = H − Δα
+  double declination_deg = 0;      // δ′
+};
+struct Parallax {
+  double x = 0, y = 0;
+  static Parallax of(const SiteLocation& site);
+  TopocentricShift shift(double hour_angle_deg, double declination_deg,
+                         double radius_vector_au) const;
+};
+
+// The Julian day in UT1 of a UTC instant (UTC + ΔUT1), and ΔT there (the option's, or
+// deltaTSeconds()).
+double julianDayUt1(std::chrono::sys_time<std::chrono::microseconds> utc,
+                    const SolarPositionOptions& options);
+double deltaTFor(double julian_day_ut1, const SolarPositionOptions& options);
+// kBadInput when the instant's year is outside SPA's −2000..6000.
+Status checkInstant(std::chrono::sys_time<std::chrono::microseconds> utc);
+
 // SPA's refraction correction Δe (equation 42) for a true elevation e0, in degrees: zero when the
 // sun's upper limb is below the horizon, e0 < −(0.26667° + 0.5667°).
 double refractionDeg(double true_elevation_deg, double pressure_hpa, double temperature_c);

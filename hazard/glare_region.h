@@ -1,0 +1,71 @@
+// The glare region of one array at one instant and the exact test of whether an observer sees
+// it (../shared/docs/hazard.md, steps 3–7).
+//
+// Frame: c = s − 2(n·s)n is the direction from the observer toward the sun's mirror image; e_v
+// is the component of n perpendicular to c, normalised (in the plane of incidence: the profile's
+// vertical axis), e_h = c × e_v. At α = 0 that plane is undefined and the array's up-slope
+// direction stands in for n.
+//
+// Region: a direction g maps into the azimuthal-equidistant plane around c as
+// ρ·(g·e_h, g·e_v)/|(g·e_h, g·e_v)| with ρ = angle(g, c), and the normalised distance
+//   f(g) = (x_h / (H/2))² + (x_v / (V/2))²
+// is ≤ 1 inside the region. f has one minimum (0, at c) and grows along every great circle
+// leaving c, so its minimum over a polygon seen from O is 0 when the ray from O along c meets
+// the polygon, and otherwise lies on the polygon's boundary: on one of the great-circle arcs its
+// edges make as seen from O.
+//
+// The test (minNormalisedDistance) finds that minimum q exactly where it matters (q ≤ 1):
+//   - circular regions (H = V): analytically (the angular distance from c to each arc);
+//   - ellipses: only the part of each arc within the larger half-axis of c can reach f ≤ 1 (found
+//     analytically); it is sampled at a spacing δ ≤ (smaller half-axis)/kSamplesPerHalfAxis and the
+//     best sample refined by golden-section search to 1e-12 rad.
+// Error bound: every point of an arc lies within δ/2 of a sample, so a polygon that reaches into
+// the region deeper than δ/2 = 1/64 of the smaller half-axis (an angle on the sphere) is always
+// found, and the refinement then makes q exact wherever f is unimodal between the neighbouring
+// samples (always, in practice). A step is thus mis-decided only when the polygon grazes the
+// region's boundary within 1.6 % of its smaller half-axis; at the sun's 0.25°/min that is under
+// 2 s of a 4°-wide region's passage. glare_region_test checks q and the decision against brute
+// force sampling of the polygon on random geometries.
+#pragma once
+
+#include <vector>
+
+#include "hazard/scene.h"
+#include "hazard/vec3.h"
+
+namespace glarecam::hazard {
+
+inline constexpr int kSamplesPerHalfAxis = 32;
+
+struct RegionFrame {
+  Vec3 c;    // unit, observer → the sun's mirror image in the array
+  Vec3 e_h;  // unit, the horizontal axis H
+  Vec3 e_v;  // unit, the vertical axis V, in the plane of incidence
+};
+
+// Steps 3–4 for a unit normal, a unit sun direction with n·s > 0, and the array's up-slope.
+RegionFrame regionFrame(Vec3 normal, Vec3 sun, Vec3 up_slope);
+
+struct RegionHalfAxes {
+  double vertical_rad = 0, horizontal_rad = 0;  // half of V and H
+};
+RegionHalfAxes halfAxesRad(double vertical_deg, double horizontal_deg);
+
+// f(g) for a unit direction g.
+double normalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes, Vec3 direction);
+
+// The array seen from an observer: constant over the year, computed once per pair.
+struct PolygonView {
+  Vec3 observer_m;
+  bool in_front = false;          // (O − P₀)·n > 0: otherwise it never glares there
+  std::vector<Vec3> directions;   // unit, observer → each vertex
+  Vec3 centre_direction;          // unit, observer → the array's centroid
+  double angular_radius_rad = 0;  // every vertex lies within this of centre_direction
+};
+PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m);
+
+// min over the polygon of f; exact (see above) when it is ≤ 1, otherwise only some value > 1.
+double minNormalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes,
+                             const ArrayPolygon& array, const PolygonView& view);
+
+}  // namespace glarecam::hazard

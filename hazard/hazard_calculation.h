@@ -1,0 +1,90 @@
+// Glare minutes at observers over a year (../shared/docs/hazard.md, "The model, per time step"
+// and "Counting and criteria"): for every step of the year, for every array and observer and
+// every model, whether the observer sees the array's glare region; then minutes per local day
+// (inside the observer's hours), per year, the days with glare, each day's first and last glare,
+// the events, the steps beyond the method and with an unknown spread, and the criteria's verdicts.
+//
+// Steps are step_s long and sampled at their middle, from local standard midnight of 1 January.
+// The sun's directions of each day are computed once (sun/solar_track.h) and shared by every
+// array, observer and model; per array and step the region's frame once, shared by observers.
+// A pure function of its inputs; days run in parallel (options.threads) with identical results.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/error.h"
+#include "hazard/criteria.h"
+#include "hazard/glare_model.h"
+#include "hazard/profile_table.h"
+#include "hazard/scene.h"
+
+namespace glarecam::hazard {
+
+// Models per run: each is one bit of a step's mask.
+inline constexpr std::size_t kMaxModels = 6;
+
+struct HazardOptions {
+  int year = 0;
+  int step_s = 60;  // divides a day; [1, 3600]
+  std::vector<GlareModel> models{{ModelKind::kEllipse}, {ModelKind::kCircle}};
+  std::vector<Criterion> criteria = knownCriteria();
+  unsigned threads = 0;  // 0: one per core
+  // Part of the year only (tests, previews): days [first_day, first_day + day_count) of it,
+  // counted from 0 = 1 January; day_count 0 runs to the year's end.
+  int first_day = 0, day_count = 0;
+
+  Status validate() const;  // kBadInput naming the option
+};
+
+// One step of one observer, as a bit mask: bit m set when model m glares there (union over the
+// arrays); kOutsideHoursBit / kSunDownBit when the step does not count.
+inline constexpr std::uint8_t kOutsideHoursBit = 1u << 6;
+inline constexpr std::uint8_t kSunDownBit = 1u << 7;
+
+struct GlareEvent {
+  std::size_t observer = 0, array = 0, model = 0;
+  std::int64_t first_step = 0, end_step = 0;  // steps from the year's start, [first, end)
+  double alpha_min_deg = 0, alpha_max_deg = 0;
+  std::optional<double> peak_luminance_cd_m2;  // L = Lmax (L_limit / Lmax)^q, brightest step
+};
+
+struct ModelSummary {
+  std::vector<double> minutes_per_day;  // one per local day computed
+  double minutes_per_year = 0, hours_per_year = 0;
+  int days_with_glare = 0;
+  double max_minutes_per_day = 0;
+  // Per day: the first and last glaring step of the day (step indices within the day).
+  std::vector<std::optional<std::pair<int, int>>> first_last_step;
+  std::int64_t steps_beyond_method = 0;  // α > 80° where the 80° region would reach the observer
+  std::int64_t steps_unknown_spread = 0;  // α glares, the profile gives this model no spread
+  std::vector<Verdict> verdicts;          // per options.criteria
+};
+
+struct ObserverHazard {
+  std::vector<ModelSummary> models;  // per options.models
+  std::vector<std::uint8_t> steps;   // days × steps_per_day masks, day-major from first_day
+};
+
+struct HazardResult {
+  int year = 0, steps_per_day = 0, step_s = 0;
+  int first_day = 0, days = 0;  // the days computed: [first_day, first_day + days) of the year
+  std::vector<ObserverHazard> observers;  // per scene.observers
+  std::vector<GlareEvent> events;         // by observer, model, array, then time
+};
+
+using HazardProgress = std::function<void(int days_done, int days)>;
+
+// `profiles[i]` is arrays[i]'s profile. kBadInput for invalid options or a profile count that does
+// not match the arrays.
+Result<HazardResult> computeHazard(const Scene& scene,
+                                   const std::vector<const ProfileTable*>& profiles,
+                                   const HazardOptions& options,
+                                   const HazardProgress& progress = {});
+
+// Days in a year of the proleptic Gregorian calendar.
+int daysInYear(int year);
+
+}  // namespace glarecam::hazard

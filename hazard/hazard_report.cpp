@@ -1,0 +1,315 @@
+#include "hazard/hazard_report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+#include "core/stack_manifest.h"
+#include "core/version.h"
+
+namespace glarecam::hazard {
+namespace {
+
+using nlohmann::json;
+
+std::string offsetText(double utc_offset_h) {
+  const long minutes = std::lround(std::abs(utc_offset_h) * 60);
+  char text[48];
+  std::snprintf(text, sizeof text, "%c%02ld:%02ld", utc_offset_h < 0 ? '-' : '+', minutes / 60,
+                minutes % 60);
+  return text;
+}
+
+std::string timeOfDayText(int seconds_of_day, bool with_seconds) {
+  char text[16];
+  if (with_seconds) {
+    std::snprintf(text, sizeof text, "%02d:%02d:%02d", seconds_of_day / 3600,
+                  seconds_of_day / 60 % 60, seconds_of_day % 60);
+  } else {
+    std::snprintf(text, sizeof text, "%02d:%02d", seconds_of_day / 3600, seconds_of_day / 60 % 60);
+  }
+  return text;
+}
+
+// Code points, for aligning columns of UTF-8 text.
+std::size_t displayWidth(const std::string& text) {
+  return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char c) {
+    return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  }));
+}
+
+std::string formatNumber(const char* format, double value) {
+  char text[48];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+}  // namespace
+
+std::vector<std::string> pictureStems(const Scene& scene) {
+  std::vector<std::string> stems;
+  std::set<std::string> used;
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    std::string slug;
+    for (const char c : scene.observers[o].name) {
+      const bool plain = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
+                         (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
+      slug += plain ? c : '-';
+    }
+    std::string stem = "glare-" + slug;
+    for (int n = 2; used.count(stem) != 0; ++n) stem = "glare-" + slug + "-" + std::to_string(n);
+    used.insert(stem);
+    stems.push_back(stem);
+  }
+  return stems;
+}
+
+std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_offset_h,
+                          bool with_seconds) {
+  const std::chrono::sys_days day = std::chrono::sys_days{std::chrono::year{year} / 1 / 1} +
+                                    std::chrono::days(seconds_of_year / 86400);
+  const std::chrono::year_month_day date{day};
+  char text[24];
+  std::snprintf(text, sizeof text, "%04d-%02u-%02uT", static_cast<int>(date.year()),
+                static_cast<unsigned>(date.month()), static_cast<unsigned>(date.day()));
+  return text + timeOfDayText(static_cast<int>(seconds_of_year % 86400), with_seconds) +
+         offsetText(utc_offset_h);
+}
+
+json hazardJson(const HazardReport& report) {
+  const Scene& scene = *report.scene;
+  const HazardOptions& options = *report.options;
+  const HazardResult& result = *report.result;
+  const bool with_seconds = result.step_s % 60 != 0;
+
+  json profiles = json::array();
+  for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
+    json entry = report.profiles[a]->identity();
+    entry["array"] = scene.arrays[a].name;
+    entry["path"] = report.profiles[a]->path().string();
+    profiles.push_back(entry);
+  }
+  json models = json::array();
+  for (const GlareModel& model : options.models) models.push_back(model.name());
+  json criteria = json::object();
+  for (const Criterion& criterion : options.criteria)
+    criteria[criterion.id] = criterionJson(criterion);
+  const sun::SiteLocation& location = scene.site.location;
+  json arrays = json::array();
+  for (const ArrayPolygon& array : scene.arrays) {
+    arrays.push_back({{"name", array.name},
+                      {"area_m2", array.area_m2},
+                      {"normal", {array.normal.x, array.normal.y, array.normal.z}}});
+  }
+
+  json observers = json::array();
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    const Observer& observer = scene.observers[o];
+    json by_model = json::object();
+    for (std::size_t m = 0; m < options.models.size(); ++m) {
+      const ModelSummary& summary = result.observers[o].models[m];
+      json first_last = json::array();
+      for (const auto& steps : summary.first_last_step) {
+        if (!steps) {
+          first_last.push_back(nullptr);
+          continue;
+        }
+        first_last.push_back({timeOfDayText(steps->first * result.step_s, with_seconds),
+                              timeOfDayText((steps->second + 1) * result.step_s, with_seconds)});
+      }
+      json verdicts = json::object();
+      for (std::size_t c = 0; c < options.criteria.size(); ++c) {
+        const Verdict& verdict = summary.verdicts[c];
+        verdicts[options.criteria[c].id] = {{"verdict", verdict.text},
+                                            {"exceeded", verdict.exceeded},
+                                            {"day_limit_exceeded", verdict.day_exceeded},
+                                            {"year_limit_exceeded", verdict.year_exceeded}};
+      }
+      by_model[options.models[m].name()] = {{"minutes_per_day", summary.minutes_per_day},
+                                            {"minutes_per_year", summary.minutes_per_year},
+                                            {"hours_per_year", summary.hours_per_year},
+                                            {"days_with_glare", summary.days_with_glare},
+                                            {"max_minutes_per_day", summary.max_minutes_per_day},
+                                            {"first_last_per_day", first_last},
+                                            {"steps_beyond_method", summary.steps_beyond_method},
+                                            {"steps_unknown_spread", summary.steps_unknown_spread},
+                                            {"verdicts", verdicts}};
+    }
+    const std::string& stem = report.picture_stems[o];
+    observers.push_back(
+        {{"name", observer.name},
+         {"position_m", {observer.position_m.x, observer.position_m.y, observer.position_m.z}},
+         {"hours", {observer.from_h, observer.to_h}},
+         {"models", by_model},
+         {"picture", {{"png", stem + ".png"}, {"svg", stem + ".svg"}}}});
+  }
+
+  return {{"schema", kHazardSchema},
+          {"generator", {{"name", "glarecam"}, {"version", kVersion}}},
+          {"inputs",
+           {{"scene", scene.path.string()},
+            {"site",
+             {{"latitude_deg", location.latitude_deg},
+              {"longitude_deg", location.longitude_deg},
+              {"elevation_m", location.altitude_m},
+              {"pressure_hpa", location.pressure_hpa},
+              {"temperature_c", location.temperature_c},
+              {"utc_offset_h", scene.site.utc_offset_h}}},
+            {"local_time",
+             "UTC" + offsetText(scene.site.utc_offset_h) + " (standard time, no daylight saving)"},
+            {"arrays", arrays},
+            {"profiles", profiles},
+            {"year", result.year},
+            {"days", result.days},
+            {"step_s", result.step_s},
+            {"models", models},
+            {"criteria", criteria}}},
+          {"warnings", scene.warnings},
+          {"observers", observers},
+          {"events", {{"count", result.events.size()}, {"csv", kEventsCsv}}}};
+}
+
+std::string eventsCsv(const HazardReport& report) {
+  const Scene& scene = *report.scene;
+  const HazardResult& result = *report.result;
+  const bool with_seconds = result.step_s % 60 != 0;
+  std::string csv =
+      "observer,array,model,start_local,end_local,duration_min,alpha_min_deg,alpha_max_deg,"
+      "peak_luminance_cd_m2\n";
+  for (const GlareEvent& event : result.events) {
+    const std::int64_t start_s = event.first_step * result.step_s;
+    const std::int64_t end_s = event.end_step * result.step_s;
+    csv += quoteCsvField(scene.observers[event.observer].name) + "," +
+           quoteCsvField(scene.arrays[event.array].name) + "," +
+           quoteCsvField(report.options->models[event.model].name()) + "," +
+           localTimeText(result.year, start_s, scene.site.utc_offset_h, with_seconds) + "," +
+           localTimeText(result.year, end_s, scene.site.utc_offset_h, with_seconds) + "," +
+           formatNumber("%g", static_cast<double>(end_s - start_s) / 60.0) + "," +
+           formatNumber("%.2f", event.alpha_min_deg) + "," +
+           formatNumber("%.2f", event.alpha_max_deg) + "," +
+           (event.peak_luminance_cd_m2 ? formatNumber("%.4g", *event.peak_luminance_cd_m2) : "") +
+           "\n";
+  }
+  return csv;
+}
+
+pipeline::HazardChartContent chartContent(const HazardReport& report, std::size_t o) {
+  const Scene& scene = *report.scene;
+  const HazardResult& result = *report.result;
+  const HazardOptions& options = *report.options;
+  pipeline::HazardChartContent content;
+  const Observer& observer = scene.observers[o];
+  content.title = "Glare at " + observer.name + ", " + std::to_string(result.year);
+  std::string profiles;
+  std::set<std::string> modules;
+  for (const ProfileTable* profile : report.profiles) modules.insert(profile->module());
+  for (const std::string& module : modules) profiles += (profiles.empty() ? "" : ", ") + module;
+  char site[160];
+  std::snprintf(site, sizeof site, "%.4f°, %.4f°", scene.site.location.latitude_deg,
+                scene.site.location.longitude_deg);
+  content.subtitle = scene.path.filename().string() + " · " + profiles + " · " + site +
+                     " · local standard time UTC" + offsetText(scene.site.utc_offset_h) + " · " +
+                     std::to_string(result.step_s) + "-s steps";
+  content.year = result.year;
+  content.days = result.days;
+  content.steps_per_day = result.steps_per_day;
+  const std::size_t shown = std::min<std::size_t>(options.models.size(), 2);
+  for (std::size_t m = 0; m < shown; ++m) {
+    content.models.push_back(
+        {options.models[m].name(), result.observers[o].models[m].minutes_per_day});
+  }
+  double day_limit = 0;
+  for (const Criterion& criterion : options.criteria)
+    day_limit = day_limit == 0 ? criterion.max_minutes_per_day
+                               : std::min(day_limit, criterion.max_minutes_per_day);
+  content.threshold_minutes_per_day = day_limit > 0 ? day_limit : 30;
+  const std::vector<std::uint8_t>& steps = result.observers[o].steps;
+  content.cells.resize(steps.size());
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const std::uint8_t mask = steps[i];
+    pipeline::HazardCell cell = pipeline::HazardCell::kNone;
+    if (mask & kSunDownBit) {
+      cell = pipeline::HazardCell::kSunDown;
+    } else if (mask & kOutsideHoursBit) {
+      cell = pipeline::HazardCell::kOutsideHours;
+    } else {
+      const bool first = (mask & 1u) != 0, second = shown > 1 && (mask & 2u) != 0;
+      cell = first && second ? pipeline::HazardCell::kBoth
+             : first         ? pipeline::HazardCell::kFirstOnly
+             : second        ? pipeline::HazardCell::kSecondOnly
+                             : pipeline::HazardCell::kNone;
+    }
+    content.cells[i] = cell;
+  }
+  return content;
+}
+
+std::string summaryText(const HazardReport& report) {
+  const Scene& scene = *report.scene;
+  const HazardOptions& options = *report.options;
+  const HazardResult& result = *report.result;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> heading{"observer", "model", "min/year",
+                                   "h/year",   "days",  "max min/day"};
+  for (const Criterion& criterion : options.criteria) heading.push_back(criterion.id);
+  rows.push_back(heading);
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    for (std::size_t m = 0; m < options.models.size(); ++m) {
+      const ModelSummary& summary = result.observers[o].models[m];
+      std::vector<std::string> row{scene.observers[o].name,
+                                   options.models[m].name(),
+                                   formatNumber("%.0f", summary.minutes_per_year),
+                                   formatNumber("%.1f", summary.hours_per_year),
+                                   std::to_string(summary.days_with_glare),
+                                   formatNumber("%g", summary.max_minutes_per_day)};
+      for (const Verdict& verdict : summary.verdicts) row.push_back(verdict.text);
+      rows.push_back(row);
+    }
+  }
+  std::vector<std::size_t> widths(heading.size(), 0);
+  for (const auto& row : rows)
+    for (std::size_t c = 0; c < row.size(); ++c)
+      widths[c] = std::max(widths[c], displayWidth(row[c]));
+  std::string text;
+  for (const auto& row : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const std::string pad(widths[c] - displayWidth(row[c]), ' ');
+      // Names and verdicts left-aligned, numbers right-aligned.
+      const bool left = c < 2 || c >= 6;
+      line += (c ? "  " : "") + (left ? row[c] + pad : pad + row[c]);
+    }
+    line.erase(line.find_last_not_of(' ') + 1);
+    text += line + "\n";
+  }
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    for (std::size_t m = 0; m < options.models.size(); ++m) {
+      const ModelSummary& summary = result.observers[o].models[m];
+      if (summary.steps_unknown_spread > 0 || summary.steps_beyond_method > 0) {
+        text += scene.observers[o].name + ", " + options.models[m].name() + ": " +
+                std::to_string(summary.steps_beyond_method) +
+                " steps beyond the method (α > 80°), " +
+                std::to_string(summary.steps_unknown_spread) + " with an unknown spread\n";
+      }
+    }
+  }
+  return text;
+}
+
+Status writeHazardOutputs(const HazardReport& report, const std::filesystem::path& directory) {
+  GLARECAM_CHECK(ensureDirectory(directory));
+  for (std::size_t o = 0; o < report.scene->observers.size(); ++o) {
+    const std::string& stem = report.picture_stems[o];
+    GLARECAM_CHECK(pipeline::writeHazardChart(chartContent(report, o), directory / (stem + ".png"),
+                                              directory / (stem + ".svg")));
+  }
+  GLARECAM_CHECK(writeFileAtomic(directory / kEventsCsv, eventsCsv(report)));
+  GLARECAM_CHECK(writeFileAtomic(directory / kHazardJson, jsonText(hazardJson(report))));
+  return {};
+}
+
+}  // namespace glarecam::hazard

@@ -1,0 +1,47 @@
+// What `glarecam hazard` writes (docs/hazard.md, "Outputs"): hazard.json (glarecam.hazard/1),
+// events.csv, one picture per observer (PNG and SVG, pipeline/render/hazard_chart.h), and the
+// short table printed on stdout. Times are local standard time, "YYYY-MM-DDTHH:MM+HH:MM".
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "hazard/hazard_calculation.h"
+#include "hazard/profile_table.h"
+#include "hazard/scene.h"
+#include "pipeline/render/hazard_chart.h"
+
+namespace glarecam::hazard {
+
+inline constexpr const char* kHazardSchema = "glarecam.hazard/1";
+inline constexpr const char* kHazardJson = "hazard.json";
+inline constexpr const char* kEventsCsv = "events.csv";
+
+struct HazardReport {
+  const Scene* scene = nullptr;
+  std::vector<const ProfileTable*> profiles;  // per array
+  const HazardOptions* options = nullptr;
+  const HazardResult* result = nullptr;
+  std::vector<std::string> picture_stems;  // per observer: "glare-window-3" (+ .png, .svg)
+};
+
+// "glare-<name>" with every character outside [A-Za-z0-9._-] as '-', unique among observers.
+std::vector<std::string> pictureStems(const Scene& scene);
+
+// The local time at the start of a step of the year: "2027-03-21T18:02+01:00" (seconds shown
+// when steps are not whole minutes).
+std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_offset_h,
+                          bool with_seconds);
+
+nlohmann::json hazardJson(const HazardReport& report);
+std::string eventsCsv(const HazardReport& report);
+pipeline::HazardChartContent chartContent(const HazardReport& report, std::size_t observer);
+// Per observer and model: minutes/year, days, largest day, each criterion's verdict.
+std::string summaryText(const HazardReport& report);
+
+// Writes every output into `directory` (created if missing), each file atomically.
+Status writeHazardOutputs(const HazardReport& report, const std::filesystem::path& directory);
+
+}  // namespace glarecam::hazard

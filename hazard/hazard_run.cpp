@@ -1,0 +1,63 @@
+#include "hazard/hazard_run.h"
+
+#include <map>
+#include <memory>
+
+#include "core/progress.h"
+#include "hazard/hazard_report.h"
+#include "hazard/profile_table.h"
+#include "hazard/scene.h"
+
+namespace glarecam::hazard {
+
+Status HazardRunOptions::validate() const {
+  if (scene.empty()) return badInput("hazard: no scene file given");
+  if (out.empty()) return badInput("--out: no output directory given");
+  if (profile && profile->empty()) return badInput("--profile: empty path");
+  return hazard.validate();
+}
+
+Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
+  GLARECAM_CHECK(options.validate());
+  Scene scene;
+  GLARECAM_ASSIGN(scene, readScene(options.scene));
+  // Each profile file read once, however many arrays name it.
+  std::map<std::filesystem::path, std::unique_ptr<ProfileTable>> tables;
+  std::vector<const ProfileTable*> profiles;
+  for (const ArrayPolygon& array : scene.arrays) {
+    const std::optional<std::filesystem::path>& path =
+        array.profile ? array.profile : options.profile;
+    if (!path) {
+      return badInput(options.scene.string() + ": array \"" + array.name +
+                      "\" has no profile (give --profile or the array's \"profile\")");
+    }
+    auto& table = tables[path->lexically_normal()];
+    if (!table) {
+      ProfileTable read;
+      GLARECAM_ASSIGN(read, ProfileTable::read(*path));
+      table = std::make_unique<ProfileTable>(std::move(read));
+    }
+    profiles.push_back(table.get());
+  }
+
+  HazardResult result;
+  {
+    Progress progress("hazard " + std::to_string(options.hazard.year),
+                      daysInYear(options.hazard.year), options.show_progress);
+    int reported = 0;
+    GLARECAM_ASSIGN(result, computeHazard(scene, profiles, options.hazard, [&](int done, int) {
+                      for (; reported < done; ++reported) progress.advance();
+                    }));
+    progress.finish();
+  }
+  HazardReport report{.scene = &scene,
+                      .profiles = profiles,
+                      .options = &options.hazard,
+                      .result = &result,
+                      .picture_stems = pictureStems(scene)};
+  GLARECAM_CHECK(writeHazardOutputs(report, options.out));
+  return HazardRunSummary{
+      .document = hazardJson(report), .table = summaryText(report), .warnings = scene.warnings};
+}
+
+}  // namespace glarecam::hazard

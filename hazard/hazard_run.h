@@ -1,0 +1,34 @@
+// `glarecam hazard` as one call: read and validate the scene and every profile (nothing is
+// written when any input is wrong), compute the year (hazard_calculation.h) with progress on
+// stderr, and write the outputs (hazard_report.h) into the output directory.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "hazard/hazard_calculation.h"
+
+namespace glarecam::hazard {
+
+struct HazardRunOptions {
+  std::filesystem::path scene;
+  std::optional<std::filesystem::path> profile;  // for arrays without their own
+  std::filesystem::path out;
+  HazardOptions hazard;
+  bool show_progress = true;
+
+  Status validate() const;
+};
+
+struct HazardRunSummary {
+  nlohmann::json document;  // hazard.json as written
+  std::string table;        // the short table for stdout
+  std::vector<std::string> warnings;
+};
+
+Result<HazardRunSummary> runHazard(const HazardRunOptions& options);
+
+}  // namespace glarecam::hazard

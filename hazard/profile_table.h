@@ -1,0 +1,79 @@
+// A module's glare profile (glarecam.glare-profile/1, docs/glare-profile.md) as the hazard
+// calculation reads it: whether the module glares at an α, and the beam spread and luminances
+// there, interpolated between the profile's whole-degree rows (../shared/docs/hazard.md,
+// "Inputs"):
+//   - glare is possible at α iff α lies in one of glare_ranges_deg (ends included) and
+//     α ≤ kProfileAlphaMaxDeg (80°); above it the method defines no limit ("beyond the method");
+//   - an axis (and the circular cone's β) at a fractional α is linear between the two rows around
+//     it; where one of them is null, the other's value; where both are null but α glares, the
+//     spread is unknown (reported, never taken as "no glare");
+//   - Lmax and the glare limit are linear in ln L.
+// Profiles written by earlier versions stay readable: only schema, module, glare_ranges_deg and
+// profile (one row per whole degree 0–80 with alpha_deg and lmax_cd_m2) are required.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "pipeline/glare_profile.h"
+
+namespace glarecam::hazard {
+
+inline constexpr const char* kProfileSchema = "glarecam.glare-profile/1";
+
+enum class SpreadStatus {
+  kNoGlare,       // α outside the glare ranges
+  kGlare,         // glares, with the spread below where the profile gives it
+  kBeyondMethod,  // α > 80°: the method defines no limit
+};
+
+struct SpreadAt {
+  SpreadStatus status = SpreadStatus::kNoGlare;
+  // Full angles in degrees when status is kGlare and the profile's rows around α give them;
+  // absent there, a model that needs them has an unknown spread.
+  std::optional<double> vertical_deg, horizontal_deg, circle_deg;
+  std::optional<double> lmax_cd_m2, limit_cd_m2;
+};
+
+class ProfileTable {
+ public:
+  // Reads and validates a profile file; errors name the file and the field (kBadInput).
+  static Result<ProfileTable> read(const std::filesystem::path& path);
+  static Result<ProfileTable> fromJson(const nlohmann::json& document, const std::string& file);
+
+  SpreadAt at(double alpha_deg) const;
+  // The spread the method's last α gives (80°, or the largest α below it with axes): the region
+  // used to count "beyond the method" steps. nullopt when the profile has no axes at all.
+  const std::optional<SpreadAt>& lastDefined() const { return last_defined_; }
+  // The largest full axis (ellipse or circle) anywhere in the profile, in degrees: bounds every
+  // region this profile makes (a cheap rejection test).
+  double maxFullAxisDeg() const { return max_full_axis_deg_; }
+
+  const std::filesystem::path& path() const { return path_; }
+  const std::string& module() const { return module_; }
+  // Identity for the report: module, date, simulated, calibrations when the file has them.
+  const nlohmann::json& identity() const { return identity_; }
+  const std::vector<pipeline::AlphaRange>& glareRanges() const { return ranges_; }
+
+ private:
+  struct Row {
+    std::optional<double> vertical_deg, horizontal_deg, circle_deg;
+    std::optional<double> lmax_cd_m2, limit_cd_m2;
+  };
+  bool glaresAt(double alpha_deg) const;
+
+  std::filesystem::path path_;
+  std::string module_;
+  nlohmann::json identity_;
+  std::vector<pipeline::AlphaRange> ranges_;
+  std::array<Row, pipeline::kProfileAlphaMaxDeg + 1> rows_{};
+  std::optional<SpreadAt> last_defined_;
+  double max_full_axis_deg_ = 0;
+};
+
+}  // namespace glarecam::hazard

@@ -1,0 +1,296 @@
+#include "hazard/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "core/stack_manifest.h"
+#include "hazard/json_fields.h"
+
+namespace glarecam::hazard {
+namespace {
+
+// Vertices closer than this are one vertex repeated (a micrometre: far below survey precision).
+constexpr double kSameVertexM = 1e-6;
+// Level within this: the up-slope direction falls back to north (hazard.md step 4).
+constexpr double kLevelTolerance = 1e-9;
+
+using Point2 = std::array<double, 2>;
+
+double cross2(Point2 o, Point2 a, Point2 b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+bool onSegment(Point2 p, Point2 a, Point2 b) {
+  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
+         std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
+}
+
+// Whether closed segments ab and cd share a point (touching counts), with a tolerance scaled
+// to the polygon's size for the collinear cases.
+bool segmentsMeet(Point2 a, Point2 b, Point2 c, Point2 d, double epsilon) {
+  const double d1 = cross2(c, d, a), d2 = cross2(c, d, b);
+  const double d3 = cross2(a, b, c), d4 = cross2(a, b, d);
+  if (((d1 > epsilon && d2 < -epsilon) || (d1 < -epsilon && d2 > epsilon)) &&
+      ((d3 > epsilon && d4 < -epsilon) || (d3 < -epsilon && d4 > epsilon)))
+    return true;
+  if (std::abs(d1) <= epsilon && onSegment(a, c, d)) return true;
+  if (std::abs(d2) <= epsilon && onSegment(b, c, d)) return true;
+  if (std::abs(d3) <= epsilon && onSegment(c, a, b)) return true;
+  if (std::abs(d4) <= epsilon && onSegment(d, a, b)) return true;
+  return false;
+}
+
+Result<Vec3> readPoint(const JsonFields& fields, const nlohmann::json& value,
+                       const std::string& field) {
+  GLARECAM_CHECK(fields.array(value, field));
+  if (value.size() != 3) return fields.fail(field, "is not [x, y, z] (3 numbers in metres)");
+  std::array<double, 3> xyz{};
+  for (std::size_t i = 0; i < 3; ++i)
+    GLARECAM_ASSIGN(xyz[i], fields.number(value[i], JsonFields::element(field, i)));
+  return Vec3{xyz[0], xyz[1], xyz[2]};
+}
+
+Status readSite(const JsonFields& fields, const nlohmann::json& document, HazardSite& site) {
+  const nlohmann::json* value = nullptr;
+  GLARECAM_ASSIGN(value, fields.member(document, "", "site"));
+  const nlohmann::json& json = *value;
+  GLARECAM_CHECK(fields.object(json, "site"));
+  sun::SiteLocation& location = site.location;
+  GLARECAM_ASSIGN(value, fields.member(json, "site", "latitude_deg"));
+  GLARECAM_ASSIGN(location.latitude_deg,
+                  fields.numberIn(*value, "site.latitude_deg", -90, 90, "°"));
+  GLARECAM_ASSIGN(value, fields.member(json, "site", "longitude_deg"));
+  GLARECAM_ASSIGN(location.longitude_deg,
+                  fields.numberIn(*value, "site.longitude_deg", -180, 180, "°"));
+  GLARECAM_ASSIGN(value, fields.member(json, "site", "utc_offset_h"));
+  GLARECAM_ASSIGN(site.utc_offset_h, fields.numberIn(*value, "site.utc_offset_h", kMinUtcOffsetH,
+                                                     kMaxUtcOffsetH, " h"));
+  if (const nlohmann::json* elevation = JsonFields::optionalMember(json, "elevation_m")) {
+    GLARECAM_ASSIGN(location.altitude_m,
+                    fields.numberIn(*elevation, "site.elevation_m", -1000, 10000, " m"));
+  }
+  location.pressure_hpa = sun::standardPressureHpa(location.altitude_m);
+  if (const nlohmann::json* pressure = JsonFields::optionalMember(json, "pressure_hpa")) {
+    GLARECAM_ASSIGN(location.pressure_hpa,
+                    fields.numberIn(*pressure, "site.pressure_hpa", 0, 5000, " hPa"));
+  }
+  if (const nlohmann::json* temperature = JsonFields::optionalMember(json, "temperature_c")) {
+    GLARECAM_ASSIGN(location.temperature_c,
+                    fields.numberIn(*temperature, "site.temperature_c", -90, 60, " °C"));
+  }
+  return {};
+}
+
+Result<std::string> readName(const JsonFields& fields, const nlohmann::json& json,
+                             const std::string& where, std::set<std::string>& seen,
+                             const char* kind) {
+  const nlohmann::json* value = nullptr;
+  GLARECAM_ASSIGN(value, fields.member(json, where, "name"));
+  std::string name;
+  GLARECAM_ASSIGN(name, fields.text(*value, JsonFields::child(where, "name")));
+  if (name.empty()) return fields.fail(JsonFields::child(where, "name"), "is empty");
+  if (!seen.insert(name).second)
+    return fields.fail(JsonFields::child(where, "name"),
+                       "repeats the " + std::string(kind) + " name \"" + name + "\"");
+  return name;
+}
+
+Status readArrays(const JsonFields& fields, const nlohmann::json& document,
+                  const std::filesystem::path& base, Scene& scene) {
+  const nlohmann::json* value = nullptr;
+  GLARECAM_ASSIGN(value, fields.member(document, "", "arrays"));
+  GLARECAM_CHECK(fields.array(*value, "arrays"));
+  if (value->empty()) return fields.fail("arrays", "is empty (the scene needs an array)");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < value->size(); ++i) {
+    const std::string where = JsonFields::element("arrays", i);
+    const nlohmann::json& json = (*value)[i];
+    GLARECAM_CHECK(fields.object(json, where));
+    std::string name;
+    GLARECAM_ASSIGN(name, readName(fields, json, where, names, "array"));
+    const nlohmann::json* vertices_json = nullptr;
+    const std::string vertices_field = JsonFields::child(where, "vertices_m");
+    GLARECAM_ASSIGN(vertices_json, fields.member(json, where, "vertices_m"));
+    GLARECAM_CHECK(fields.array(*vertices_json, vertices_field));
+    std::vector<Vec3> vertices;
+    for (std::size_t v = 0; v < vertices_json->size(); ++v) {
+      Vec3 point;
+      GLARECAM_ASSIGN(
+          point, readPoint(fields, (*vertices_json)[v], JsonFields::element(vertices_field, v)));
+      vertices.push_back(point);
+    }
+    ArrayPolygon array;
+    GLARECAM_ASSIGN(array, makeArrayPolygon(std::move(name), std::move(vertices), fields.file(),
+                                            vertices_field));
+    if (const nlohmann::json* profile = JsonFields::optionalMember(json, "profile")) {
+      std::string text;
+      GLARECAM_ASSIGN(text, fields.text(*profile, JsonFields::child(where, "profile")));
+      if (text.empty()) return fields.fail(JsonFields::child(where, "profile"), "is empty");
+      const std::filesystem::path path(text);
+      array.profile = path.is_absolute() ? path : base / path;
+    }
+    if (array.normal.z < 0) {
+      scene.warnings.push_back(fields.file() + ": array \"" + array.name +
+                               "\" faces downward (its vertices may run clockwise seen from "
+                               "its front)");
+    }
+    scene.arrays.push_back(std::move(array));
+  }
+  return {};
+}
+
+Status readObservers(const JsonFields& fields, const nlohmann::json& document, Scene& scene) {
+  const nlohmann::json* value = nullptr;
+  GLARECAM_ASSIGN(value, fields.member(document, "", "observers"));
+  GLARECAM_CHECK(fields.array(*value, "observers"));
+  if (value->empty()) return fields.fail("observers", "is empty (the scene needs an observer)");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < value->size(); ++i) {
+    const std::string where = JsonFields::element("observers", i);
+    const nlohmann::json& json = (*value)[i];
+    GLARECAM_CHECK(fields.object(json, where));
+    Observer observer;
+    GLARECAM_ASSIGN(observer.name, readName(fields, json, where, names, "observer"));
+    const nlohmann::json* position = nullptr;
+    GLARECAM_ASSIGN(position, fields.member(json, where, "position_m"));
+    GLARECAM_ASSIGN(observer.position_m,
+                    readPoint(fields, *position, JsonFields::child(where, "position_m")));
+    if (const nlohmann::json* hours = JsonFields::optionalMember(json, "hours")) {
+      const std::string field = JsonFields::child(where, "hours");
+      GLARECAM_CHECK(fields.array(*hours, field));
+      if (hours->size() != 2) return fields.fail(field, "is not [from, to] in hours");
+      GLARECAM_ASSIGN(observer.from_h,
+                      fields.numberIn((*hours)[0], JsonFields::element(field, 0), 0, 24, " h"));
+      GLARECAM_ASSIGN(observer.to_h,
+                      fields.numberIn((*hours)[1], JsonFields::element(field, 1), 0, 24, " h"));
+      if (observer.from_h >= observer.to_h)
+        return fields.fail(field, "is an empty window (from must be before to)");
+    }
+    scene.observers.push_back(std::move(observer));
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertices_m,
+                                      const std::string& file, const std::string& field) {
+  const JsonFields fields(file);
+  const std::size_t count = vertices_m.size();
+  if (count < 3)
+    return fields.fail(field, "has " + std::to_string(count) + " vertices (a polygon needs 3)");
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t j = i + 1; j < count; ++j) {
+      if (norm(vertices_m[i] - vertices_m[j]) < kSameVertexM) {
+        return fields.fail(
+            field, "repeats a vertex (" + std::to_string(i) + " and " + std::to_string(j) + ")");
+      }
+    }
+  }
+  ArrayPolygon array;
+  array.name = std::move(name);
+  Vec3 newell, sum;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 a = vertices_m[i], b = vertices_m[(i + 1) % count];
+    newell = newell +
+             Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+    sum = sum + a;
+  }
+  array.area_m2 = norm(newell) / 2;
+  if (!(array.area_m2 >= kMinArrayAreaM2))
+    return fields.fail(field, "is degenerate (its vertices enclose no area)");
+  array.normal = normalised(newell);
+  array.centroid_m = (1.0 / static_cast<double>(count)) * sum;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double off_plane_m = std::abs(dot(vertices_m[i] - array.centroid_m, array.normal));
+    if (off_plane_m > kPlanarityToleranceM) {
+      char text[96];
+      std::snprintf(text, sizeof text, "is not planar (vertex %zu lies %.3f m off the plane)", i,
+                    off_plane_m);
+      return fields.fail(field, text);
+    }
+    array.radius_m = std::max(array.radius_m, norm(vertices_m[i] - array.centroid_m));
+  }
+  const Vec3 up{0, 0, 1}, north{0, 1, 0};
+  Vec3 slope = up - dot(up, array.normal) * array.normal;
+  if (norm(slope) < kLevelTolerance) slope = north - dot(north, array.normal) * array.normal;
+  array.up_slope = normalised(slope);
+  array.axis_w = array.up_slope;
+  array.axis_u = normalised(cross(array.axis_w, array.normal));
+  for (const Vec3& vertex : vertices_m) {
+    const Vec3 d = vertex - array.centroid_m;
+    array.outline.push_back({dot(d, array.axis_u), dot(d, array.axis_w)});
+  }
+  // Self-intersection: any two edges that meet other than at their shared vertex, and adjacent
+  // edges that fold back over each other.
+  const double epsilon = 1e-12 * array.radius_m * array.radius_m;
+  const auto& outline = array.outline;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Point2 a = outline[i], b = outline[(i + 1) % count];
+    for (std::size_t j = i + 1; j < count; ++j) {
+      const Point2 c = outline[j], d = outline[(j + 1) % count];
+      const bool adjacent = j == i + 1 || (i == 0 && j == count - 1);
+      bool meet = false;
+      if (!adjacent) {
+        meet = segmentsMeet(a, b, c, d, epsilon);
+      } else {
+        // Shared vertex; they cross elsewhere only when collinear and doubling back.
+        const Point2 shared = j == i + 1 ? b : a;
+        const Point2 p = j == i + 1 ? a : b;
+        const Point2 q = j == i + 1 ? d : c;
+        const double turn = cross2(shared, p, q);
+        const double along =
+            (p[0] - shared[0]) * (q[0] - shared[0]) + (p[1] - shared[1]) * (q[1] - shared[1]);
+        meet = std::abs(turn) <= epsilon && along > 0;
+      }
+      if (meet) {
+        return fields.fail(field, "crosses itself (edges " + std::to_string(i) + " and " +
+                                      std::to_string(j) + " meet)");
+      }
+    }
+  }
+  array.vertices_m = std::move(vertices_m);
+  return array;
+}
+
+bool containsPlanePoint(const ArrayPolygon& array, Vec3 point_m) {
+  const Vec3 d = point_m - array.centroid_m;
+  const double u = dot(d, array.axis_u), w = dot(d, array.axis_w);
+  bool inside = false;
+  const auto& outline = array.outline;
+  for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
+    const double ui = outline[i][0], wi = outline[i][1];
+    const double uj = outline[j][0], wj = outline[j][1];
+    if ((wi > w) != (wj > w) && u < (uj - ui) * (w - wi) / (wj - wi) + ui) inside = !inside;
+  }
+  return inside;
+}
+
+Result<Scene> parseScene(const nlohmann::json& document, const std::string& file,
+                         const std::filesystem::path& base) {
+  const JsonFields fields(file);
+  if (!document.is_object()) return fields.fail("the document", "is not a JSON object");
+  const nlohmann::json* schema = nullptr;
+  GLARECAM_ASSIGN(schema, fields.member(document, "", "schema"));
+  if (!schema->is_string() || schema->get<std::string>() != kSceneSchema) {
+    return fields.fail("schema", schema->dump() + " is not \"" + std::string(kSceneSchema) +
+                                     "\" (not a hazard scene)");
+  }
+  Scene scene;
+  GLARECAM_CHECK(readSite(fields, document, scene.site));
+  GLARECAM_CHECK(readArrays(fields, document, base, scene));
+  GLARECAM_CHECK(readObservers(fields, document, scene));
+  return scene;
+}
+
+Result<Scene> readScene(const std::filesystem::path& path) {
+  nlohmann::json document;
+  GLARECAM_ASSIGN(document, readJsonFile(path.string()));
+  Scene scene;
+  GLARECAM_ASSIGN(scene, parseScene(document, path.string(), path.parent_path()));
+  scene.path = path;
+  return scene;
+}
+
+}  // namespace glarecam::hazard

@@ -1,0 +1,161 @@
+#include "hazard/hazard_report.h"
+
+#include <gtest/gtest.h>
+
+#include "core/csv.h"
+#include "tests/hazard/hazard_fixtures.h"
+#include "tests/support/test_support.h"
+
+namespace glarecam::hazard {
+namespace {
+
+TEST(HazardReport, LocalTimesCarryTheStandardOffset) {
+  EXPECT_EQ(localTimeText(2027, 0, 1.0, false), "2027-01-01T00:00+01:00");
+  EXPECT_EQ(localTimeText(2027, 79 * 86400 + 18 * 3600 + 125, 1.0, true),
+            "2027-03-21T18:02:05+01:00");
+  EXPECT_EQ(localTimeText(2028, 365 * 86400 + 60, -3.5, false), "2028-12-31T00:01-03:30");
+  EXPECT_EQ(localTimeText(2027, 86400 * 2, 5.75, false), "2027-01-03T00:00+05:45");
+}
+
+TEST(HazardReport, PictureNamesAreSafeAndUnique) {
+  Scene scene;
+  for (const char* name : {"window 3/north", "window-3-north", "a"})
+    scene.observers.push_back({.name = name, .position_m = {0, 0, 0}});
+  const std::vector<std::string> stems = pictureStems(scene);
+  EXPECT_EQ(stems[0], "glare-window-3-north");
+  EXPECT_EQ(stems[1], "glare-window-3-north-2");
+  EXPECT_EQ(stems[2], "glare-a");
+}
+
+class HazardReportOutputs : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene_ = testing::sceneOf(
+        testing::zurichSite(), {testing::squareArray("roof", {0, 0, 0}, {0, 0, 1}, 10)},
+        {{.name = "window", .position_m = {0, 30, 12}, .from_h = 6, .to_h = 22}});
+    options_.year = 2027;
+    options_.step_s = 60;
+    options_.threads = 1;
+    options_.models = {{ModelKind::kEllipse}, {ModelKind::kCircle}};
+    // A result built by hand: two events on 21 March, ellipse only on its first minute.
+    result_.year = 2027;
+    result_.days = 365;
+    result_.step_s = 60;
+    result_.steps_per_day = 1440;
+    ObserverHazard observer;
+    observer.steps.assign(365 * 1440, 0);
+    observer.steps[79 * 1440 + 18 * 60] = 1;
+    observer.steps[79 * 1440 + 18 * 60 + 1] = 3;
+    for (int m = 0; m < 2; ++m) {
+      ModelSummary summary;
+      summary.minutes_per_day.assign(365, 0);
+      summary.first_last_step.assign(365, std::nullopt);
+      summary.minutes_per_day[79] = 2 - m;
+      summary.first_last_step[79] = std::pair{18 * 60 + m, 18 * 60 + 1};
+      summary.minutes_per_year = 2 - m;
+      summary.hours_per_year = (2 - m) / 60.0;
+      summary.days_with_glare = 1;
+      summary.max_minutes_per_day = 2 - m;
+      for (const Criterion& criterion : options_.criteria)
+        summary.verdicts.push_back(
+            assess(criterion, summary.max_minutes_per_day, summary.hours_per_year));
+      observer.models.push_back(summary);
+    }
+    result_.observers.push_back(observer);
+    result_.events = {{.observer = 0,
+                       .array = 0,
+                       .model = 0,
+                       .first_step = 79 * 1440 + 1080,
+                       .end_step = 79 * 1440 + 1082,
+                       .alpha_min_deg = 61.2,
+                       .alpha_max_deg = 61.31,
+                       .peak_luminance_cd_m2 = 123456.0},
+                      {.observer = 0,
+                       .array = 0,
+                       .model = 1,
+                       .first_step = 79 * 1440 + 1081,
+                       .end_step = 79 * 1440 + 1082,
+                       .alpha_min_deg = 61.3,
+                       .alpha_max_deg = 61.3,
+                       .peak_luminance_cd_m2 = std::nullopt}};
+    report_ = {.scene = &scene_,
+               .profiles = {&profile_},
+               .options = &options_,
+               .result = &result_,
+               .picture_stems = pictureStems(scene_)};
+  }
+
+  Scene scene_;
+  ProfileTable profile_ = testing::constantProfile(6, 4);
+  HazardOptions options_;
+  HazardResult result_;
+  HazardReport report_;
+};
+
+TEST_F(HazardReportOutputs, HazardJsonHoldsInputsAndEveryObserversNumbers) {
+  const nlohmann::json json = hazardJson(report_);
+  EXPECT_EQ(json["schema"], "glarecam.hazard/1");
+  EXPECT_EQ(json["inputs"]["year"], 2027);
+  EXPECT_EQ(json["inputs"]["step_s"], 60);
+  EXPECT_EQ(json["inputs"]["models"], nlohmann::json({"ellipse", "circle"}));
+  EXPECT_EQ(json["inputs"]["criteria"]["lai"]["max_hours_per_year"], 30);
+  EXPECT_EQ(json["inputs"]["criteria"]["ch"]["max_hours_per_year"], 50);
+  EXPECT_EQ(json["inputs"]["profiles"][0]["module"], "test module");
+  EXPECT_EQ(json["inputs"]["profiles"][0]["array"], "roof");
+  const nlohmann::json& ellipse = json["observers"][0]["models"]["ellipse"];
+  EXPECT_EQ(ellipse["minutes_per_day"].size(), 365u);
+  EXPECT_EQ(ellipse["minutes_per_day"][79], 2);
+  EXPECT_EQ(ellipse["minutes_per_year"], 2);
+  EXPECT_EQ(ellipse["days_with_glare"], 1);
+  EXPECT_EQ(ellipse["first_last_per_day"][79], nlohmann::json({"18:00", "18:02"}));
+  EXPECT_TRUE(ellipse["first_last_per_day"][78].is_null());
+  EXPECT_EQ(ellipse["verdicts"]["lai"]["verdict"], "not significant");
+  EXPECT_EQ(ellipse["verdicts"]["ch"]["exceeded"], false);
+  for (const char* key :
+       {"hours_per_year", "max_minutes_per_day", "steps_beyond_method", "steps_unknown_spread"})
+    EXPECT_TRUE(ellipse.contains(key)) << key;
+  EXPECT_EQ(json["observers"][0]["picture"]["png"], "glare-window.png");
+  EXPECT_EQ(json["observers"][0]["hours"], nlohmann::json({6.0, 22.0}));
+}
+
+TEST_F(HazardReportOutputs, EventsCsvHasOneRowPerEvent) {
+  const std::string csv = eventsCsv(report_);
+  EXPECT_EQ(csv,
+            "observer,array,model,start_local,end_local,duration_min,alpha_min_deg,alpha_max_deg,"
+            "peak_luminance_cd_m2\n"
+            "window,roof,ellipse,2027-03-21T18:00+01:00,2027-03-21T18:02+01:00,2,61.20,61.31,"
+            "1.235e+05\n"
+            "window,roof,circle,2027-03-21T18:01+01:00,2027-03-21T18:02+01:00,1,61.30,61.30,\n");
+}
+
+TEST_F(HazardReportOutputs, ChartCellsShowWhichModelGlares) {
+  const pipeline::HazardChartContent content = chartContent(report_, 0);
+  ASSERT_EQ(content.models.size(), 2u);
+  EXPECT_EQ(content.models[0].label, "ellipse");
+  EXPECT_EQ(content.cells[79 * 1440 + 1080], pipeline::HazardCell::kFirstOnly);
+  EXPECT_EQ(content.cells[79 * 1440 + 1081], pipeline::HazardCell::kBoth);
+  EXPECT_EQ(content.cells[0], pipeline::HazardCell::kNone);
+  EXPECT_EQ(content.threshold_minutes_per_day, 30);
+}
+
+TEST_F(HazardReportOutputs, SummaryTableListsEveryObserverAndModel) {
+  const std::string text = summaryText(report_);
+  EXPECT_NE(text.find("observer"), std::string::npos);
+  // Names left-aligned in a column as wide as "observer".
+  EXPECT_NE(text.find("\nwindow    ellipse "), std::string::npos) << text;
+  EXPECT_NE(text.find("\nwindow    circle "), std::string::npos) << text;
+  EXPECT_NE(text.find("not significant"), std::string::npos) << text;
+}
+
+TEST_F(HazardReportOutputs, WritesEveryFile) {
+  glarecam::testing::TempDir dir;
+  ASSERT_TRUE(writeHazardOutputs(report_, dir / "out"));
+  for (const char* name : {"hazard.json", "events.csv", "glare-window.png", "glare-window.svg"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / name)) << name;
+  const nlohmann::json json =
+      nlohmann::json::parse(glarecam::testing::readText(dir / "out/hazard.json"));
+  EXPECT_EQ(json["schema"], "glarecam.hazard/1");
+}
+
+}  // namespace
+}  // namespace glarecam::hazard

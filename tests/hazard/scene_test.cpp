@@ -1,0 +1,206 @@
+#include "hazard/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "tests/hazard/hazard_fixtures.h"
+#include "tests/support/test_support.h"
+
+namespace glarecam::hazard {
+namespace {
+
+using nlohmann::json;
+
+json goodScene() {
+  return json::parse(R"({
+    "schema": "glarecam.hazard-scene/1",
+    "site": {"latitude_deg": 47.37, "longitude_deg": 8.54, "elevation_m": 410, "utc_offset_h": 1.0},
+    "arrays": [{"name": "roof-north", "vertices_m": [[-6,0,9],[6,0,9],[6,5.2,6],[-6,5.2,6]],
+                "profile": "profiles/glare-profile.json"}],
+    "observers": [{"name": "window-3", "position_m": [0,30,12], "hours": [6, 22]},
+                  {"name": "terrace", "position_m": [10,-20,3]}]
+  })");
+}
+
+// The first line of the error a scene gets, or "" when it is accepted.
+std::string errorOf(const json& scene) {
+  const Result<Scene> read = parseScene(scene, "scene.json", "/base");
+  return read ? "" : read.error().message;
+}
+
+TEST(HazardScene, ReadsTheMethodDocsExample) {
+  const Result<Scene> scene = parseScene(goodScene(), "scene.json", "/base");
+  ASSERT_TRUE(scene) << scene.error().message;
+  EXPECT_DOUBLE_EQ(scene->site.location.latitude_deg, 47.37);
+  EXPECT_DOUBLE_EQ(scene->site.utc_offset_h, 1.0);
+  EXPECT_DOUBLE_EQ(scene->site.location.altitude_m, 410);
+  // No pressure given: the standard atmosphere's at the elevation.
+  EXPECT_NEAR(scene->site.location.pressure_hpa, sun::standardPressureHpa(410), 1e-9);
+  ASSERT_EQ(scene->arrays.size(), 1u);
+  const ArrayPolygon& roof = scene->arrays[0];
+  // The roof rises from y = 5.2 (z 6) to y = 0 (z 9): it faces north and up. Newell's normal of
+  // the counter-clockwise vertices: (0, 3, 5.2)/|.|.
+  const double length = std::hypot(3.0, 5.2);
+  EXPECT_NEAR(roof.normal.x, 0, 1e-12);
+  EXPECT_NEAR(roof.normal.y, 3 / length, 1e-12);
+  EXPECT_NEAR(roof.normal.z, 5.2 / length, 1e-12);
+  EXPECT_NEAR(roof.area_m2, 12 * std::hypot(5.2, 3.0), 1e-9);
+  // Uphill is toward y = 0, z = 9: south.
+  EXPECT_LT(roof.up_slope.y, 0);
+  EXPECT_GT(roof.up_slope.z, 0);
+  EXPECT_NEAR(dot(roof.up_slope, roof.normal), 0, 1e-12);
+  EXPECT_NEAR(dot(cross(roof.axis_u, roof.axis_w), roof.normal), 1, 1e-12);
+  EXPECT_EQ(*roof.profile, std::filesystem::path("/base/profiles/glare-profile.json"));
+  ASSERT_EQ(scene->observers.size(), 2u);
+  EXPECT_EQ(scene->observers[0].from_h, 6);
+  EXPECT_EQ(scene->observers[0].to_h, 22);
+  EXPECT_EQ(scene->observers[1].from_h, 0);  // the whole day by default
+  EXPECT_EQ(scene->observers[1].to_h, 24);
+  EXPECT_TRUE(scene->warnings.empty());
+}
+
+TEST(HazardScene, ALevelArrayFacesUpAndSlopesNorth) {
+  const ArrayPolygon level = testing::squareArray("flat", {0, 0, 5}, {0, 0, 1}, 2);
+  EXPECT_NEAR(level.normal.z, 1, 1e-12);
+  EXPECT_NEAR(level.up_slope.y, 1, 1e-12);  // hazard.md step 4: north for a level array
+}
+
+TEST(HazardScene, WarnsWhenAnArrayFacesDownward) {
+  json scene = goodScene();
+  scene["arrays"][0]["vertices_m"] = {{-6, 5.2, 6}, {6, 5.2, 6}, {6, 0, 9}, {-6, 0, 9}};
+  const Result<Scene> read = parseScene(scene, "scene.json", "/base");
+  ASSERT_TRUE(read);
+  ASSERT_EQ(read->warnings.size(), 1u);
+  EXPECT_NE(read->warnings[0].find("roof-north"), std::string::npos);
+  EXPECT_NE(read->warnings[0].find("downward"), std::string::npos);
+}
+
+TEST(HazardScene, ContainsPlanePointsOfANonConvexPolygon) {
+  // An L shape in the plane z = 0, facing up.
+  const ArrayPolygon l_shape =
+      *makeArrayPolygon("L", {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}},
+                        "scene.json", "arrays[0].vertices_m");
+  EXPECT_TRUE(containsPlanePoint(l_shape, {0.5, 0.5, 0}));
+  EXPECT_TRUE(containsPlanePoint(l_shape, {0.5, 1.5, 0}));
+  EXPECT_TRUE(containsPlanePoint(l_shape, {1.5, 0.5, 0}));
+  EXPECT_FALSE(containsPlanePoint(l_shape, {1.5, 1.5, 0}));  // the notch
+  EXPECT_FALSE(containsPlanePoint(l_shape, {-0.1, 0.5, 0}));
+}
+
+struct BadScene {
+  const char* what;
+  std::function<void(json&)> change;
+  const char* expected;  // in the message
+};
+
+TEST(HazardScene, RefusesEachBadInputNamingTheField) {
+  const std::vector<BadScene> cases{
+      {"wrong schema", [](json& s) { s["schema"] = "glarecam.hazard-scene/2"; }, "schema"},
+      {"no schema", [](json& s) { s.erase("schema"); }, "schema is missing"},
+      {"latitude", [](json& s) { s["site"]["latitude_deg"] = 91; },
+       "site.latitude_deg 91° is outside [-90, 90]"},
+      {"longitude", [](json& s) { s["site"]["longitude_deg"] = -181; }, "site.longitude_deg"},
+      {"text latitude", [](json& s) { s["site"]["latitude_deg"] = "47"; },
+       "site.latitude_deg is not a number"},
+      {"no offset", [](json& s) { s["site"].erase("utc_offset_h"); },
+       "site.utc_offset_h is missing"},
+      {"offset", [](json& s) { s["site"]["utc_offset_h"] = 15; }, "site.utc_offset_h"},
+      {"no arrays", [](json& s) { s["arrays"] = json::array(); }, "arrays is empty"},
+      {"arrays not a list", [](json& s) { s["arrays"] = 3; }, "arrays is not an array"},
+      {"no observers", [](json& s) { s["observers"] = json::array(); }, "observers is empty"},
+      {"two vertices",
+       [](json& s) {
+         s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 0, 0}};
+       },
+       "arrays[0].vertices_m has 2 vertices"},
+      {"text coordinate", [](json& s) { s["arrays"][0]["vertices_m"][2][1] = "5.2"; },
+       "arrays[0].vertices_m[2][1] is not a number"},
+      {"two coordinates",
+       [](json& s) {
+         s["arrays"][0]["vertices_m"][1] = {6, 0};
+       },
+       "arrays[0].vertices_m[1] is not [x, y, z]"},
+      {"not planar",
+       [](json& s) {
+         s["arrays"][0]["vertices_m"][2] = {6, 5.2, 6.05};
+       },
+       "is not planar"},
+      {"self-intersecting",
+       [](json& s) {
+         s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {2, 2, 0}, {2, 0, 0}, {0, 1, 0}};
+       },
+       "crosses itself"},
+      {"symmetric bow tie (no area)",
+       [](json& s) {
+         s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
+       },
+       "is degenerate"},
+      {"collinear",
+       [](json& s) {
+         s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+       },
+       "is degenerate"},
+      {"repeated vertex",
+       [](json& s) {
+         s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 0, 0}};
+       },
+       "repeats a vertex"},
+      {"duplicate array", [](json& s) { s["arrays"].push_back(s["arrays"][0]); },
+       "arrays[1].name repeats"},
+      {"duplicate observer", [](json& s) { s["observers"][1]["name"] = "window-3"; },
+       "observers[1].name repeats the observer name \"window-3\""},
+      {"empty name", [](json& s) { s["observers"][0]["name"] = ""; }, "observers[0].name is empty"},
+      {"hours backwards",
+       [](json& s) {
+         s["observers"][0]["hours"] = {22, 6};
+       },
+       "observers[0].hours is an empty window"},
+      {"hours past midnight",
+       [](json& s) {
+         s["observers"][0]["hours"] = {6, 25};
+       },
+       "observers[0].hours[1]"},
+      {"observer position",
+       [](json& s) {
+         s["observers"][0]["position_m"] = {0, "a", 1};
+       },
+       "observers[0].position_m[1] is not a number"},
+      {"profile not text", [](json& s) { s["arrays"][0]["profile"] = 3; },
+       "arrays[0].profile is not a string"},
+      {"not an object", [](json& s) { s = json::array(); }, "is not a JSON object"},
+  };
+  for (const BadScene& bad : cases) {
+    json scene = goodScene();
+    bad.change(scene);
+    const std::string message = errorOf(scene);
+    EXPECT_NE(message.find(bad.expected), std::string::npos)
+        << bad.what << ": \"" << message << "\" lacks \"" << bad.expected << "\"";
+    EXPECT_TRUE(message.starts_with("scene.json: ")) << bad.what << ": " << message;
+  }
+}
+
+TEST(HazardScene, PlanarWithinOneCentimetre) {
+  json scene = goodScene();
+  scene["arrays"][0]["vertices_m"][2] = {6, 5.2, 6.009};  // 9 mm off: about 4 mm off the plane
+  EXPECT_EQ(errorOf(scene), "");
+}
+
+TEST(HazardScene, ReadsAFileAndNamesAMissingOne) {
+  glarecam::testing::TempDir dir;
+  glarecam::testing::writeText(dir / "scene.json", goodScene().dump());
+  const Result<Scene> scene = readScene(dir / "scene.json");
+  ASSERT_TRUE(scene) << scene.error().message;
+  EXPECT_EQ(*scene->arrays[0].profile, dir.path() / "profiles/glare-profile.json");
+  const Result<Scene> missing = readScene(dir / "missing.json");
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(missing.error().message.find("missing.json"), std::string::npos);
+  glarecam::testing::writeText(dir / "broken.json", "{\"schema\": ");
+  const Result<Scene> broken = readScene(dir / "broken.json");
+  ASSERT_FALSE(broken);
+  EXPECT_NE(broken.error().message.find("broken.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace glarecam::hazard

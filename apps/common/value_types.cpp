@@ -52,6 +52,9 @@ constexpr std::pair<std::string_view, std::string_view> kValueTypes[] = {
     {"pixel-format", "FORMAT"},
     {"led", "STATE"},
     {"log-target", "TARGET"},
+    {"profile", "FILE"},
+    {"models", "MODEL,..."},
+    {"criteria", "ID,..."},
 };
 
 }  // namespace

@@ -74,6 +74,7 @@ int runGlarecam(int argc, char** argv) {
   addGpioCommand(app, action);
   addDoctorCommand(app, action);
   addCalibrateCommand(app, action);
+  addHazardCommand(app, action);
   nameOptionValues(app);
 
   try {

@@ -1,0 +1,86 @@
+// glarecam hazard: glare minutes at a neighbour's window from the measured glare profile, beside
+// what a circular-cone tool would say (docs/hazard.md).
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "apps/glarecam/commands.h"
+#include "hazard/criteria.h"
+#include "hazard/glare_model.h"
+#include "hazard/hazard_run.h"
+
+namespace glarecam::apps {
+namespace {
+
+struct HazardArgs {
+  std::string scene;
+  std::optional<std::string> profile;
+  std::string out;
+  int year = 0;
+  int step_s = 60;
+  std::string models = "ellipse,circle";
+  std::string criteria = "lai,ch";
+  unsigned threads = 0;
+  bool json = false;
+  bool no_progress = false;
+};
+
+Status runHazardCommand(const HazardArgs& args) {
+  hazard::HazardRunOptions options;
+  options.scene = args.scene;
+  if (args.profile) options.profile = *args.profile;
+  options.out = args.out;
+  options.hazard.year = args.year;
+  options.hazard.step_s = args.step_s;
+  options.hazard.threads = args.threads;
+  options.show_progress = !args.no_progress;
+  GLARECAM_ASSIGN(options.hazard.models, hazard::parseModels(args.models, "--models"));
+  GLARECAM_ASSIGN(options.hazard.criteria, hazard::parseCriteria(args.criteria, "--criteria"));
+  hazard::HazardRunSummary summary;
+  GLARECAM_ASSIGN(summary, hazard::runHazard(options));
+  for (const std::string& warning : summary.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  if (args.json) {
+    printJson(summary.document);
+  } else {
+    std::printf("%s", summary.table.c_str());
+  }
+  return {};
+}
+
+}  // namespace
+
+void addHazardCommand(CLI::App& app, Action& action) {
+  auto args = std::make_shared<HazardArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "hazard",
+      "Glare minutes per day and year at observers (windows, terraces) from a module's glare "
+      "profile and a scene of arrays, by the measured elliptical spread beside the circular cone "
+      "(docs/hazard.md)");
+  sub->add_option("SCENE", args->scene, "scene file, glarecam.hazard-scene/1 (docs/hazard.md)")
+      ->required();
+  sub->add_option("--profile", args->profile,
+                  "glare-profile.json (glarecam datasheet) for every array without its own "
+                  "\"profile\" in the scene");
+  sub->add_option("--year", args->year, "the year to compute, in local standard time")->required();
+  sub->add_option("--out", args->out, "output directory: hazard.json, events.csv, pictures")
+      ->required();
+  sub->add_option("--models", args->models,
+                  "glare regions to compare, comma-separated: ellipse (the measured spread), "
+                  "circle (its equal-solid-angle cone), cone:DEG (one constant full angle)")
+      ->capture_default_str();
+  sub->add_option("--step-s", args->step_s,
+                  "time step in seconds (divides a day; sampled at its middle)")
+      ->capture_default_str();
+  sub->add_option("--criteria", args->criteria,
+                  "assessment criteria, comma-separated: lai (Germany, 30 min/day, 30 h/year), ch "
+                  "(Switzerland, 30 min/day, 50 h/year)")
+      ->capture_default_str();
+  sub->add_option("--threads", args->threads, "worker threads (default: one per core)");
+  sub->add_flag("--json", args->json, "print hazard.json on stdout instead of the table");
+  sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
+  sub->callback([args, &action] { action = [args] { return runHazardCommand(*args); }; });
+}
+
+}  // namespace glarecam::apps

@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# glarecam hazard end to end: a profile from the paper's Table III, the docs' example scene, the
+# outputs, --json, an array's own profile, and every bad input: exit 2, one line naming the file
+# and the field, nothing written.
+set -u
+GLARECAM=$1
+SOURCE_DIR=$2
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+source "$(dirname "$0")/cli_test_lib.sh"
+
+SCENE="$SOURCE_DIR/docs/examples/hazard-scene.json"
+check "profile from Table III" 0 "$GLARECAM" datasheet "$SOURCE_DIR/tests/data/standard-module-table3.csv" \
+  --out "$WORK/ds" --module "Standard module" --date 2026-11-26
+PROFILE="$WORK/ds/glare-profile.json"
+
+check "help" 0 "$GLARECAM" hazard --help
+expect "help types --models" grep -qE -- "--models MODEL,\.\.\." "$WORK/out"
+expect "help types --profile" grep -qE -- "--profile FILE" "$WORK/out"
+
+# 10-minute steps keep the year short; the physics is the unit tests'.
+check "a year" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --step-s 600 \
+  --out "$WORK/h" --no-progress
+for f in hazard.json events.csv glare-window-3.png glare-window-3.svg glare-window-west.png; do
+  expect "wrote $f" test -s "$WORK/h/$f"
+done
+expect "table lists window-3 by ellipse" grep -qE "^window-3 +ellipse" "$WORK/out"
+expect "table lists the circle" grep -qE "^window-west +circle" "$WORK/out"
+expect "table gives verdicts" grep -q "significant" "$WORK/out"
+expect "events.csv header" grep -q "^observer,array,model,start_local,end_local,duration_min" "$WORK/h/events.csv"
+expect "hazard.json schema" grep -q '"schema": "glarecam.hazard/1"' "$WORK/h/hazard.json"
+expect "hazard.json names the profile's module" grep -q '"module": "Standard module"' "$WORK/h/hazard.json"
+
+check "json" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --step-s 3600 \
+  --out "$WORK/j" --json --models cone:0.5 --criteria ch --no-progress
+expect "--json prints hazard.json" grep -q '"schema": "glarecam.hazard/1"' "$WORK/out"
+expect "--json has the cone" grep -q '"cone:0.5"' "$WORK/out"
+
+# An array's own profile, relative to the scene file.
+mkdir -p "$WORK/own/profiles"
+cp "$PROFILE" "$WORK/own/profiles/p.json"
+sed 's|"vertices_m"|"profile": "profiles/p.json", "vertices_m"|' "$SCENE" >"$WORK/own/scene.json"
+check "array's own profile" 0 "$GLARECAM" hazard "$WORK/own/scene.json" --year 2027 --step-s 3600 \
+  --out "$WORK/own/out" --no-progress
+
+# Bad inputs: exit 2, one line naming the problem, no output directory.
+bad() {  # bad NAME EXPECTED_TEXT SCENE_FILE [OPTIONS...] (--year 2027 --step-s 3600 unless given)
+  local name=$1 text=$2 scene=$3
+  shift 3
+  local defaults=(--year 2027 --step-s 3600)
+  [[ " $* " == *" --year "* || " $* " == *" --step-s "* ]] && defaults=()
+  rm -rf "$WORK/bad"
+  check "$name" 2 "$GLARECAM" hazard "$scene" "${defaults[@]}" --out "$WORK/bad" --no-progress "$@"
+  expect "$name: one line naming it" one_line_naming "$text"
+  expect "$name: nothing written" test ! -e "$WORK/bad"
+}
+edit() {  # edit NAME SED-EXPRESSION: a copy of the example scene, changed
+  sed "$2" "$SCENE" >"$WORK/$1.json"
+  echo "$WORK/$1.json"
+}
+bad "wrong schema" "schema" "$(edit schema 's/hazard-scene\/1/hazard-scene\/9/')" --profile "$PROFILE"
+bad "latitude" "site.latitude_deg 95° is outside" "$(edit lat 's/"latitude_deg": 47.37/"latitude_deg": 95/')" --profile "$PROFILE"
+bad "text coordinate" "arrays[0].vertices_m[1][0] is not a number" \
+  "$(edit text 's/\[6, 0, 9\]/["6", 0, 9]/')" --profile "$PROFILE"
+bad "two vertices" "has 2 vertices" \
+  "$(edit two 's/\[\[-6, 0, 9\], \[6, 0, 9\], \[6, 5.2, 6\], \[-6, 5.2, 6\]\]/[[-6, 0, 9], [6, 0, 9]]/')" --profile "$PROFILE"
+bad "self-intersecting" "crosses itself" \
+  "$(edit cross 's/\[6, 5.2, 6\], \[-6, 5.2, 6\]/[-6, 5.2, 6], [3, 5.2, 6]/')" --profile "$PROFILE"
+bad "not planar" "is not planar" "$(edit planar 's/\[6, 5.2, 6\]/[6, 5.2, 6.5]/')" --profile "$PROFILE"
+bad "duplicate observer" "repeats the observer name" "$(edit dup 's/window-west/window-3/')" --profile "$PROFILE"
+bad "no observers" "observers is empty" \
+  "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["observers"]=[]; print(json.dumps(d))' "$SCENE" >"$WORK/noobs.json"; echo "$WORK/noobs.json")" --profile "$PROFILE"
+bad "no arrays" "arrays is empty" \
+  "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["arrays"]=[]; print(json.dumps(d))' "$SCENE" >"$WORK/noarr.json"; echo "$WORK/noarr.json")" --profile "$PROFILE"
+bad "missing scene" "nothing.json" "$WORK/nothing.json" --profile "$PROFILE"
+bad "no profile" "has no profile" "$SCENE"
+bad "missing profile" "none.json" "$SCENE" --profile "$WORK/none.json"
+bad "wrong-schema profile" "schema" "$SCENE" --profile "$SCENE"
+bad "unknown model" 'unknown model "elipse" (did you mean ellipse?)' "$SCENE" --profile "$PROFILE" --models elipse
+bad "bad cone" "cone:DEG" "$SCENE" --profile "$PROFILE" --models cone:0
+bad "unknown criterion" 'unknown criterion "de"' "$SCENE" --profile "$PROFILE" --criteria de
+bad "year out of range" "--year 7000" "$SCENE" --profile "$PROFILE" --year 7000 --step-s 3600
+bad "step not dividing a day" "--step-s 7" "$SCENE" --profile "$PROFILE" --year 2027 --step-s 7
+
+finish

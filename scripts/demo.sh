@@ -140,3 +140,22 @@ if [[ $daemon_stacks -ne 16 || ! -s $day/datasheet.pdf ]]; then
 fi
 echo "glarecamd:       $daemon_stacks stacks in $OUT/daemon/stacks/, results in $OUT/daemon/results/,"
 echo "                 the day's sheet $day/datasheet.pdf (sweep.csv, fits.json beside it)"
+
+# What the measurement is for: glare minutes at two neighbours' windows north of a roof in Zürich
+# (docs/examples/hazard-scene.json) from the profile just measured, by the measured elliptical,
+# α-dependent spread and by the equal-solid-angle circular cone that SGHAT-style tools would use.
+echo "demo: glare at the neighbours' windows over a year, ellipse beside circle (glarecam hazard)" >&2
+SCENE="$(dirname "$0")/../docs/examples/hazard-scene.json"
+"$BIN/glarecam" hazard "$SCENE" --profile "$OUT/sweep/glare-profile.json" --year 2027 \
+  --out "$OUT/hazard" >"$OUT/hazard-table.txt"
+echo
+cat "$OUT/hazard-table.txt"
+awk '$2 == "ellipse" { e[$1] = $3; order[++n] = $1 } $2 == "circle" { c[$1] = $3 }
+  END {
+    for (i = 1; i <= n; ++i) {
+      o = order[i]
+      change = (c[o] > 0) ? sprintf(" (%+.0f %%)", 100 * (e[o] / c[o] - 1)) : ""
+      printf "%s: %s min/year by the measured ellipse, %s by the circular cone%s\n", o, e[o], c[o], change
+    }
+  }' "$OUT/hazard-table.txt"
+echo "hazard:          $OUT/hazard/hazard.json, events.csv, glare-*.png (docs/hazard.md)"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 namespace glarecam::hazard {
 namespace {
@@ -12,74 +13,123 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kRadPerDeg = kPi / 180.0;
 // Below this the plane of incidence is undefined (α = 0): use the up-slope direction.
 constexpr double kDegenerateFrame = 1e-12;
-// Golden-section iterations: the bracket (two sample spacings) shrinks by 0.618 each, to well
-// below 1e-12 rad.
-constexpr int kGoldenIterations = 60;
+// Golden-section search: until the bracket is below 1e-5 of the smaller half-axis; near its
+// minimum f changes with the square of the distance, so q is then exact to ~1e-10.
+constexpr double kGoldenTolerance = 1e-5;
 constexpr double kInvPhi = 0.6180339887498949;
 constexpr double kOutside = std::numeric_limits<double>::infinity();
+// Below this sin²ρ, ρ/sin ρ by its series instead of atan2.
+constexpr double kSeriesLimitSine2 = 0.04;
 
 // A unit direction along the great circle from a (φ = 0) through w (φ = π/2).
 Vec3 along(Vec3 a, Vec3 w, double phi) { return std::cos(phi) * a + std::sin(phi) * w; }
 
-// The minimum of f over the arc from a to b (unit directions, less than π apart).
-double arcMinimum(const RegionFrame& frame, const RegionHalfAxes& axes, Vec3 a, Vec3 b) {
-  const double arc = angleBetweenRad(a, b);
-  const Vec3 w = normalised(b - dot(a, b) * a);
+// The best point found on one arc: √f there and where it is, with the arc's frame and the part
+// of it within reach, for refining.
+struct ArcBest {
+  double g = kOutside;  // √f
+  double phi = 0, lo = 0, hi = 0;
+  Vec3 a, w;
+};
+
+// The least √f found on the arc from a to b (unit directions, less than π apart): exact for
+// circles; for ellipses the decision g ≤ 1 to the resolution (see the header), not yet refined.
+ArcBest arcBest(const RegionFrame& frame, const RegionHalfAxes& axes,
+                const PolygonView::Arc& edge) {
+  ArcBest best;
+  const Vec3 a = edge.start, w = edge.tangent;
+  const double arc = edge.angle_rad;
+  best.a = a, best.w = w;
   const double larger = std::max(axes.vertical_rad, axes.horizontal_rad);
   const double smaller = std::min(axes.vertical_rad, axes.horizontal_rad);
   // c·g(φ) = R cos(φ − φ0): the arc's points within `larger` of c are where
   // cos(φ − φ0) ≥ cos(larger)/R.
   const double ca = dot(frame.c, a), cw = dot(frame.c, w);
-  const double r = std::hypot(ca, cw);
-  const double phi0 = std::atan2(cw, ca);
+  const double r = std::sqrt(ca * ca + cw * cw);
   const double threshold = std::cos(std::min(larger, kPi)) / std::max(r, 1e-300);
-  if (threshold > 1) return kOutside;
+  if (threshold > 1) return best;
+  const double phi0 = std::atan2(cw, ca);
   const double half_width = threshold <= -1 ? kPi : std::acos(threshold);
-  double best = kOutside;
+  auto g_at = [&](double phi) {
+    return std::sqrt(normalisedDistance(frame, axes, along(a, w, phi)));
+  };
   for (const double centre : {phi0 - 2 * kPi, phi0, phi0 + 2 * kPi}) {
     const double lo = std::max(0.0, centre - half_width);
     const double hi = std::min(arc, centre + half_width);
     if (lo > hi) continue;
-    auto f = [&](double phi) { return normalisedDistance(frame, axes, along(a, w, phi)); };
+    auto keep = [&](double g, double phi) {
+      if (g < best.g) best.g = g, best.phi = phi, best.lo = lo, best.hi = hi;
+    };
     if (axes.vertical_rad == axes.horizontal_rad) {
       // A circle: f grows with the angle from c, least at the point nearest φ0.
-      best = std::min(best, f(std::clamp(centre, lo, hi)));
+      const double phi = std::clamp(centre, lo, hi);
+      keep(g_at(phi), phi);
       continue;
     }
-    const double spacing = smaller / kSamplesPerHalfAxis;
-    const int intervals = std::max(2, static_cast<int>(std::ceil((hi - lo) / spacing)));
-    const double step = (hi - lo) / intervals;
-    int best_index = 0;
-    double best_sample = kOutside;
-    for (int i = 0; i <= intervals; ++i) {
-      const double value = f(lo + i * step);
-      if (value < best_sample) {
-        best_sample = value;
-        best_index = i;
-      }
+    // Ellipses. g = √f is Lipschitz along the arc: the azimuthal-equidistant plane stretches
+    // an angle by at most ρ/sin ρ ≤ larger/sin(larger) here, and the normalisation by at most
+    // 1/smaller. So an interval between samples g1, g2 of length Δ holds no g below
+    // (g1 + g2)/2 − LΔ/2: the intervals that might reach the region (g ≤ 1) are bisected, the
+    // others dropped, until a sample lands inside or every interval is dropped or shorter than
+    // the resolution.
+    const double lipschitz = (larger < 1e-6 ? 1.0 : larger / std::sin(larger)) / smaller;
+    const double resolution = smaller / kResolutionPerHalfAxis;
+    struct Interval {
+      double from, to, g_from, g_to;
+    };
+    const int coarse = std::max(2, static_cast<int>(std::ceil((hi - lo) / (smaller / 4))));
+    std::vector<Interval> open;
+    double previous_phi = lo, previous_g = g_at(lo);
+    keep(previous_g, lo);
+    for (int i = 1; i <= coarse; ++i) {
+      const double phi = lo + (hi - lo) * i / coarse;
+      const double g = g_at(phi);
+      keep(g, phi);
+      open.push_back({previous_phi, phi, previous_g, g});
+      previous_phi = phi, previous_g = g;
     }
-    double left = lo + std::max(best_index - 1, 0) * step;
-    double right = lo + std::min(best_index + 1, intervals) * step;
-    double x1 = right - kInvPhi * (right - left), x2 = left + kInvPhi * (right - left);
-    double f1 = f(x1), f2 = f(x2);
-    for (int i = 0; i < kGoldenIterations && right - left > 1e-13; ++i) {
-      if (f1 < f2) {
-        right = x2;
-        x2 = x1;
-        f2 = f1;
-        x1 = right - kInvPhi * (right - left);
-        f1 = f(x1);
-      } else {
-        left = x1;
-        x1 = x2;
-        f1 = f2;
-        x2 = left + kInvPhi * (right - left);
-        f2 = f(x2);
-      }
+    while (best.g > 1 && !open.empty()) {
+      const Interval interval = open.back();
+      open.pop_back();
+      const double length = interval.to - interval.from;
+      if ((interval.g_from + interval.g_to) / 2 - lipschitz * length / 2 > 1) continue;
+      if (length < resolution) continue;
+      const double middle = (interval.from + interval.to) / 2;
+      const double g = g_at(middle);
+      keep(g, middle);
+      open.push_back({interval.from, middle, interval.g_from, g});
+      open.push_back({middle, interval.to, g, interval.g_to});
     }
-    best = std::min({best, best_sample, f1, f2});
   }
   return best;
+}
+
+// q on the arc of `best` by golden-section search within a quarter of the smaller half-axis of
+// its best point (the region's scale: f has one minimum there).
+double refine(const RegionFrame& frame, const RegionHalfAxes& axes, const ArcBest& best) {
+  const double smaller = std::min(axes.vertical_rad, axes.horizontal_rad);
+  auto f = [&](double phi) { return normalisedDistance(frame, axes, along(best.a, best.w, phi)); };
+  double left = std::max(best.lo, best.phi - smaller / 4);
+  double right = std::min(best.hi, best.phi + smaller / 4);
+  double x1 = right - kInvPhi * (right - left), x2 = left + kInvPhi * (right - left);
+  double f1 = f(x1), f2 = f(x2);
+  const double tolerance = kGoldenTolerance * smaller;
+  while (right - left > tolerance) {
+    if (f1 < f2) {
+      right = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = right - kInvPhi * (right - left);
+      f1 = f(x1);
+    } else {
+      left = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = left + kInvPhi * (right - left);
+      f2 = f(x2);
+    }
+  }
+  return std::min({best.g * best.g, f1, f2});
 }
 
 }  // namespace
@@ -100,10 +150,22 @@ RegionHalfAxes halfAxesRad(double vertical_deg, double horizontal_deg) {
 
 double normalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes, Vec3 g) {
   const double x_h = dot(g, frame.e_h), x_v = dot(g, frame.e_v);
-  const double sine = std::hypot(x_h, x_v);
-  const double rho = std::atan2(sine, dot(g, frame.c));
-  // ρ / sin ρ → 1 at the centre.
-  const double scale = sine > 1e-300 ? rho / sine : 1.0;
+  const double sine2 = x_h * x_h + x_v * x_v;
+  const double cosine = dot(g, frame.c);
+  double scale = 1.0;  // ρ / sin ρ
+  if (cosine > 0 && sine2 < kSeriesLimitSine2) {
+    // asin(s)/s = Σ (2k)! / (4^k (k!)² (2k + 1)) s^2k to s¹²: within 3e-12 relative for
+    // s < 0.2 (ρ < 11.5°).
+    scale =
+        1 + sine2 * (1.0 / 6 +
+                     sine2 * (3.0 / 40 +
+                              sine2 * (5.0 / 112 +
+                                       sine2 * (35.0 / 1152 +
+                                                sine2 * (63.0 / 2816 + sine2 * (231.0 / 13312))))));
+  } else if (sine2 > 0) {
+    const double sine = std::sqrt(sine2);
+    scale = std::atan2(sine, cosine) / sine;
+  }
   const double u = x_h / axes.horizontal_rad, v = x_v / axes.vertical_rad;
   return scale * scale * (u * u + v * v);
 }
@@ -119,6 +181,10 @@ PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m) {
     view.angular_radius_rad =
         std::max(view.angular_radius_rad, angleBetweenRad(view.centre_direction, direction));
   }
+  for (std::size_t i = 0; i < view.directions.size(); ++i) {
+    const Vec3 a = view.directions[i], b = view.directions[(i + 1) % view.directions.size()];
+    view.arcs.push_back({a, normalised(b - dot(a, b) * a), angleBetweenRad(a, b)});
+  }
   // A cap wider than a hemisphere no longer holds the polygon's hull: no bound then.
   if (view.angular_radius_rad >= kPi / 2) view.angular_radius_rad = kPi;
   return view;
@@ -132,11 +198,14 @@ double minNormalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axe
     const double t = dot(array.centroid_m - view.observer_m, array.normal) / toward;
     if (t > 0 && containsPlanePoint(array, view.observer_m + t * frame.c)) return 0;
   }
+  // Every arc that reaches the region is refined (the least sample of one arc need not lie on
+  // the arc with the least q).
+  const bool circle = axes.vertical_rad == axes.horizontal_rad;
   double best = kOutside;
-  const std::size_t count = view.directions.size();
-  for (std::size_t i = 0; i < count; ++i)
-    best = std::min(best,
-                    arcMinimum(frame, axes, view.directions[i], view.directions[(i + 1) % count]));
+  for (const PolygonView::Arc& edge : view.arcs) {
+    const ArcBest arc = arcBest(frame, axes, edge);
+    best = std::min(best, arc.g > 1 || circle ? arc.g * arc.g : refine(frame, axes, arc));
+  }
   return best;
 }
 

@@ -14,18 +14,24 @@
 // the polygon, and otherwise lies on the polygon's boundary: on one of the great-circle arcs its
 // edges make as seen from O.
 //
-// The test (minNormalisedDistance) finds that minimum q exactly where it matters (q ≤ 1):
+// The test (minNormalisedDistance) decides q ≤ 1 exactly up to a stated resolution, and finds q
+// where it is ≤ 1:
 //   - circular regions (H = V): analytically (the angular distance from c to each arc);
-//   - ellipses: only the part of each arc within the larger half-axis of c can reach f ≤ 1 (found
-//     analytically); it is sampled at a spacing δ ≤ (smaller half-axis)/kSamplesPerHalfAxis and the
-//     best sample refined by golden-section search to 1e-12 rad.
-// Error bound: every point of an arc lies within δ/2 of a sample, so a polygon that reaches into
-// the region deeper than δ/2 = 1/64 of the smaller half-axis (an angle on the sphere) is always
-// found, and the refinement then makes q exact wherever f is unimodal between the neighbouring
-// samples (always, in practice). A step is thus mis-decided only when the polygon grazes the
-// region's boundary within 1.6 % of its smaller half-axis; at the sun's 0.25°/min that is under
-// 2 s of a 4°-wide region's passage. glare_region_test checks q and the decision against brute
-// force sampling of the polygon on random geometries.
+//   - ellipses: only the part of each arc within the larger half-axis of c can reach f ≤ 1
+//     (found analytically). It is sampled every quarter of the smaller half-axis; √f is
+//     Lipschitz along the arc (constant L = (ρ/sin ρ)max / smaller half-axis: the projection's
+//     stretch over the normalisation), so an interval between two samples g1, g2 of length Δ has
+//     no point below (g1 + g2)/2 − LΔ/2. Intervals that might reach the region are bisected, the
+//     others dropped, until a sample lands inside, or every interval is dropped or shorter than
+//     the resolution, 1/kResolutionPerHalfAxis of the smaller half-axis.
+// Error bound: a sample lies within half the resolution of every point of an interval it drops,
+// so a polygon is always found to glare when it holds a point with √f ≤ 1 − L·resolution/2,
+// i.e. when it meets the region shrunk about c by (π/2)/2048 < 0.08 % (for a 4°-wide region,
+// 0.0015°: a third of a second of the sun's motion); one that only grazes the outer 0.08 % may be
+// missed. Where it is found, q is refined by golden-section search (to 1e-5 of the smaller
+// half-axis: q to ~1e-10) within a quarter of that half-axis of the best sample, on every arc
+// that reaches the region. glare_region_test checks the decision and q against brute force
+// sampling of the polygon on random geometries.
 #pragma once
 
 #include <vector>
@@ -35,7 +41,7 @@
 
 namespace glarecam::hazard {
 
-inline constexpr int kSamplesPerHalfAxis = 32;
+inline constexpr int kResolutionPerHalfAxis = 1024;
 
 struct RegionFrame {
   Vec3 c;    // unit, observer → the sun's mirror image in the array
@@ -57,8 +63,15 @@ double normalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes, 
 // The array seen from an observer: constant over the year, computed once per pair.
 struct PolygonView {
   Vec3 observer_m;
-  bool in_front = false;          // (O − P₀)·n > 0: otherwise it never glares there
-  std::vector<Vec3> directions;   // unit, observer → each vertex
+  bool in_front = false;         // (O − P₀)·n > 0: otherwise it never glares there
+  std::vector<Vec3> directions;  // unit, observer → each vertex
+  // Each edge as seen: the great-circle arc from directions[i] toward directions[i + 1], as its
+  // start, the unit tangent there and its angle.
+  struct Arc {
+    Vec3 start, tangent;
+    double angle_rad = 0;
+  };
+  std::vector<Arc> arcs;
   Vec3 centre_direction;          // unit, observer → the array's centroid
   double angular_radius_rad = 0;  // every vertex lies within this of centre_direction
 };

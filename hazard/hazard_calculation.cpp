@@ -34,12 +34,16 @@ struct ModelRegion {
   RegionHalfAxes axes;
 };
 
-// One array in one step: shared by every observer.
+// One array in one step: shared by every observer. What the cheap rejection needs (lit, c) is
+// set for every array; the rest (α, the frame, each model's region) when a pair first needs it.
 struct ArrayStep {
   bool lit = false;  // the sun in front of it
+  Vec3 sun;
+  double cos_alpha = 0;
+  Vec3 c;  // the sun's mirror image
+  bool resolved = false;
   double alpha_deg = 0;
   RegionFrame frame;
-  std::optional<double> lmax_cd_m2, limit_cd_m2;
   std::array<ModelRegion, kMaxModels> regions{};
 };
 
@@ -48,6 +52,10 @@ struct Pair {
   PolygonView view;
   std::array<double, kMaxModels> reject_cos{};  // c·d below this: the region cannot reach it
 };
+
+// Per array and model: whether some glaring α has no spread there (then every lit step must be
+// resolved to count it, not only those the rejection lets through).
+using UnknownSpreads = std::array<bool, kMaxModels>;
 
 struct Tally {
   int glare_steps = 0;
@@ -64,7 +72,8 @@ struct Context {
   const Scene& scene;
   const std::vector<const ProfileTable*>& profiles;
   const HazardOptions& options;
-  std::vector<std::vector<Pair>> pairs;  // [observer][array]
+  std::vector<std::vector<Pair>> pairs;         // [observer][array]
+  std::vector<UnknownSpreads> unknown_spreads;  // [array]
   int steps_per_day = 0;
   int first_day = 0;
   std::chrono::sys_time<std::chrono::microseconds> year_start_utc;
@@ -99,25 +108,42 @@ ModelRegion modelRegion(const GlareModel& model, const SpreadAt& spread,
 ArrayStep arrayStep(const Context& context, std::size_t a, Vec3 sun) {
   ArrayStep step;
   const ArrayPolygon& array = context.scene.arrays[a];
-  const double ns = dot(array.normal, sun);
-  if (ns <= 0) return step;
+  step.cos_alpha = dot(array.normal, sun);
+  if (step.cos_alpha <= 0) return step;
   step.lit = true;
-  step.alpha_deg = std::acos(std::min(ns, 1.0)) * kDegPerRad;
-  step.frame = regionFrame(array.normal, sun, array.up_slope);
+  step.sun = sun;
+  step.c = sun - 2 * step.cos_alpha * array.normal;
+  return step;
+}
+
+void resolve(const Context& context, std::size_t a, ArrayStep& step) {
+  if (step.resolved) return;
+  step.resolved = true;
+  const ArrayPolygon& array = context.scene.arrays[a];
+  step.alpha_deg = std::acos(std::min(step.cos_alpha, 1.0)) * kDegPerRad;
+  step.frame = regionFrame(array.normal, step.sun, array.up_slope);
   const ProfileTable& profile = *context.profiles[a];
   const SpreadAt spread = profile.at(step.alpha_deg);
-  step.lmax_cd_m2 = spread.lmax_cd_m2;
-  step.limit_cd_m2 = spread.limit_cd_m2;
   const std::size_t models = std::min(context.options.models.size(), kMaxModels);
   for (std::size_t m = 0; m < models; ++m)
     step.regions[m] = modelRegion(context.options.models[m], spread, profile);
-  return step;
+}
+
+// Per model: some glaring α (every 0.1°) with no spread for it.
+UnknownSpreads unknownSpreads(const std::vector<GlareModel>& models, const ProfileTable& profile) {
+  UnknownSpreads unknown{};
+  for (int tenth = 0; tenth <= pipeline::kProfileAlphaMaxDeg * 10; ++tenth) {
+    const SpreadAt spread = profile.at(tenth / 10.0);
+    if (spread.status != SpreadStatus::kGlare) continue;
+    for (std::size_t m = 0; m < std::min(models.size(), kMaxModels); ++m)
+      unknown[m] = unknown[m] || !regionAxes(models[m], spread);
+  }
+  return unknown;
 }
 
 // Whether the region reaches the polygon, and q when it does.
 std::optional<double> regionMeets(const ArrayStep& step, const ModelRegion& region,
-                                  const ArrayPolygon& array, const Pair& pair, std::size_t m) {
-  if (dot(step.frame.c, pair.view.centre_direction) < pair.reject_cos[m]) return std::nullopt;
+                                  const ArrayPolygon& array, const Pair& pair) {
   const double q = minNormalisedDistance(step.frame, region.axes, array, pair.view);
   if (q <= 1) return q;
   return std::nullopt;
@@ -182,11 +208,17 @@ Result<DayOutput> computeDay(const Context& context, int index,
       for (std::size_t m = 0; m < models; ++m) {
         bool glare = false, beyond = false, unknown = false;
         for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
-          const ArrayStep& array_step = array_steps[a];
+          ArrayStep& array_step = array_steps[a];
           const Pair& pair = context.pairs[o][a];
-          const ModelRegion& region = array_step.regions[m];
           std::optional<double> q;
-          if (array_step.lit && pair.view.in_front) {
+          // The cheap rejection first: c too far from the array for any region of the profile.
+          const bool reachable =
+              array_step.lit && pair.view.in_front &&
+              (dot(array_step.c, pair.view.centre_direction) >= pair.reject_cos[m] ||
+               context.unknown_spreads[a][m]);
+          if (reachable) {
+            resolve(context, a, array_step);
+            const ModelRegion& region = array_step.regions[m];
             switch (region.state) {
               case RegionState::kNone:
                 break;
@@ -195,10 +227,10 @@ Result<DayOutput> computeDay(const Context& context, int index,
                 break;
               case RegionState::kBeyond:
                 beyond = beyond || !region.has_axes ||
-                         regionMeets(array_step, region, scene.arrays[a], pair, m).has_value();
+                         regionMeets(array_step, region, scene.arrays[a], pair).has_value();
                 break;
               case RegionState::kGlare:
-                q = regionMeets(array_step, region, scene.arrays[a], pair, m);
+                q = regionMeets(array_step, region, scene.arrays[a], pair);
                 break;
             }
           }
@@ -208,9 +240,10 @@ Result<DayOutput> computeDay(const Context& context, int index,
           }
           glare = true;
           std::optional<double> luminance;
-          if (array_step.lmax_cd_m2 && array_step.limit_cd_m2) {
-            luminance = *array_step.lmax_cd_m2 *
-                        std::pow(*array_step.limit_cd_m2 / *array_step.lmax_cd_m2, *q);
+          const LuminancesAt luminances = context.profiles[a]->luminancesAt(array_step.alpha_deg);
+          if (luminances.lmax_cd_m2 && luminances.limit_cd_m2) {
+            luminance = *luminances.lmax_cd_m2 *
+                        std::pow(*luminances.limit_cd_m2 / *luminances.lmax_cd_m2, *q);
           }
           std::optional<GlareEvent>& event = open[o][m][a];
           if (!event) {
@@ -325,10 +358,13 @@ Result<HazardResult> computeHazard(const Scene& scene,
       .profiles = profiles,
       .options = options,
       .pairs = {},
+      .unknown_spreads = {},
       .steps_per_day = result.steps_per_day,
       .first_day = result.first_day,
       .year_start_utc = std::chrono::time_point_cast<std::chrono::microseconds>(local_midnight) -
                         std::chrono::microseconds(std::llround(scene.site.utc_offset_h * 3600e6))};
+  for (std::size_t a = 0; a < scene.arrays.size(); ++a)
+    context.unknown_spreads.push_back(unknownSpreads(options.models, *profiles[a]));
   for (const Observer& observer : scene.observers) {
     std::vector<Pair> row;
     for (std::size_t a = 0; a < scene.arrays.size(); ++a) {

@@ -136,9 +136,7 @@ Result<ProfileTable> ProfileTable::fromJson(const nlohmann::json& document,
       table.last_defined_ = SpreadAt{.status = SpreadStatus::kGlare,
                                      .vertical_deg = row.vertical_deg,
                                      .horizontal_deg = row.horizontal_deg,
-                                     .circle_deg = row.circle_deg,
-                                     .lmax_cd_m2 = row.lmax_cd_m2,
-                                     .limit_cd_m2 = row.limit_cd_m2};
+                                     .circle_deg = row.circle_deg};
       break;
     }
   }
@@ -167,9 +165,18 @@ SpreadAt ProfileTable::at(double alpha_deg) const {
   spread.vertical_deg = lerp(a.vertical_deg, b.vertical_deg, t);
   spread.horizontal_deg = lerp(a.horizontal_deg, b.horizontal_deg, t);
   spread.circle_deg = lerp(a.circle_deg, b.circle_deg, t);
-  spread.lmax_cd_m2 = lerpLog(a.lmax_cd_m2, b.lmax_cd_m2, t);
-  spread.limit_cd_m2 = lerpLog(a.limit_cd_m2, b.limit_cd_m2, t);
   return spread;
+}
+
+LuminancesAt ProfileTable::luminancesAt(double alpha_deg) const {
+  const double alpha = std::clamp(alpha_deg, 0.0, static_cast<double>(kProfileAlphaMaxDeg));
+  const int below = std::min(static_cast<int>(alpha), kProfileAlphaMaxDeg);
+  const int above = std::min(below + 1, kProfileAlphaMaxDeg);
+  const double t = alpha - below;
+  const Row& a = rows_[static_cast<std::size_t>(below)];
+  const Row& b = rows_[static_cast<std::size_t>(above)];
+  return {.lmax_cd_m2 = lerpLog(a.lmax_cd_m2, b.lmax_cd_m2, t),
+          .limit_cd_m2 = lerpLog(a.limit_cd_m2, b.limit_cd_m2, t)};
 }
 
 }  // namespace glarecam::hazard

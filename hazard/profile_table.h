@@ -37,7 +37,10 @@ struct SpreadAt {
   // Full angles in degrees when status is kGlare and the profile's rows around α give them;
   // absent there, a model that needs them has an unknown spread.
   std::optional<double> vertical_deg, horizontal_deg, circle_deg;
-  std::optional<double> lmax_cd_m2, limit_cd_m2;
+};
+
+struct LuminancesAt {
+  std::optional<double> lmax_cd_m2, limit_cd_m2;  // linear in ln L between the rows
 };
 
 class ProfileTable {
@@ -47,6 +50,8 @@ class ProfileTable {
   static Result<ProfileTable> fromJson(const nlohmann::json& document, const std::string& file);
 
   SpreadAt at(double alpha_deg) const;
+  // Lmax and the glare limit at α (0–80°; beyond, the 80° row's), for the luminance seen.
+  LuminancesAt luminancesAt(double alpha_deg) const;
   // The spread the method's last α gives (80°, or the largest α below it with axes): the region
   // used to count "beyond the method" steps. nullopt when the profile has no axes at all.
   const std::optional<SpreadAt>& lastDefined() const { return last_defined_; }

@@ -38,7 +38,7 @@ TEST(HazardProfileTable, ReadsTheProfileGlarecamWritesForThePapersTable) {
     EXPECT_NEAR(*spread.vertical_deg, *row.vertical_deg, 1e-12) << alpha;
     EXPECT_NEAR(*spread.horizontal_deg, *row.horizontal_deg, 1e-12) << alpha;
     EXPECT_NEAR(*spread.circle_deg, row.beam->beta_mrad * 180 / M_PI / 1000, 1e-12) << alpha;
-    EXPECT_NEAR(*spread.lmax_cd_m2 / row.lmax_cd_m2, 1, 1e-12) << alpha;
+    EXPECT_NEAR(*profile->luminancesAt(alpha).lmax_cd_m2 / row.lmax_cd_m2, 1, 1e-12) << alpha;
   }
   EXPECT_EQ(profile->at(80.5).status, SpreadStatus::kBeyondMethod);
 }
@@ -61,8 +61,9 @@ TEST(HazardProfileTable, InterpolatesAxesLinearlyAndLuminanceInLog) {
   EXPECT_NEAR(*spread.vertical_deg, 6.5, 1e-12);
   EXPECT_NEAR(*spread.horizontal_deg, 4.0, 1e-12);
   // ln L linear: a quarter of the way from 10⁶ to 10⁴ is 10^5.5.
-  EXPECT_NEAR(*spread.lmax_cd_m2, std::pow(10, 5.5), 1e-6);
-  EXPECT_NEAR(*spread.limit_cd_m2, 3e4, 1e-9);
+  const LuminancesAt luminances = profile.luminancesAt(40.25);
+  EXPECT_NEAR(*luminances.lmax_cd_m2, std::pow(10, 5.5), 1e-6);
+  EXPECT_NEAR(*luminances.limit_cd_m2, 3e4, 1e-9);
   EXPECT_NEAR(*profile.at(80).vertical_deg, 6, 1e-12);  // the last row: no row above it
 }
 

@@ -20,6 +20,9 @@ inline constexpr const char* kCaptureFakeGvBracket = "capture/fake_gv_bracket";
 inline constexpr const char* kCaptureLinkFloor = "capture/link_floor";
 inline constexpr const char* kSunGlarecamSpa = "sun/glarecam_spa";
 inline constexpr const char* kSunLibnova = "sun/libnova";
+inline constexpr const char* kSunYearSpa = "sun/year_spa";
+inline constexpr const char* kHazardYear = "hazard/year";
+inline constexpr const char* kHazardScene = "hazard/scene";
 
 // Each returns the names it registered.
 std::vector<std::string> registerMergeBenchmarks();     // merge/*
@@ -28,5 +31,6 @@ std::vector<std::string> registerProcessBenchmarks();   // process/end_to_end
 std::vector<std::string> registerSweepBenchmarks();     // sweep/*
 std::vector<std::string> registerCaptureBenchmarks();   // capture/* (with Aravis only)
 std::vector<std::string> registerSunBenchmarks();       // sun/* (with libnova only)
+std::vector<std::string> registerHazardBenchmarks();    // sun/year_spa, hazard/*
 
 }  // namespace glarecam::bench

@@ -9,6 +9,10 @@
 //                                                most 10 % of exposure plus transfer
 //   sun/glarecam_spa ÷ sun/libnova               (no target: the price of SPA's accuracy, 0.0003°
 //                                                against libnova's 0.07°)
+//   hazard/year ÷ sun/year_spa                   target <= 1.5x: a year's glare for one array
+//                                                and observer near the cost of its sun alone
+//   per extra array–observer pair ÷ sun/year_spa target <= 0.1x: (hazard/scene − hazard/year)
+//                                                ÷ (pairs − 1), the sun shared by every pair
 // A ratio is printed only when both of its benchmarks ran (--benchmark_filter may skip some).
 // The console report is always used (it records the times); for machine-readable results add
 // --benchmark_out=FILE --benchmark_out_format=json.
@@ -35,6 +39,9 @@ constexpr double kDebevecTargetRatio = 40.0;
 constexpr double kMemoryFloorTargetRatio = 2.0;
 constexpr double kAnalysisTargetRatio = 3.0;
 constexpr double kCaptureOverheadTargetRatio = 0.1;
+constexpr double kHazardTargetRatio = 1.5;
+constexpr double kHazardPairTargetRatio = 0.1;
+constexpr double kHazardScenePairs = 10 * 20;  // hazard/scene's arrays × observers
 // Room after a name for an aggregate's suffix ("_median", "_stddev") with --benchmark_repetitions.
 constexpr std::size_t kAggregateSuffixWidth = 7;
 
@@ -110,6 +117,20 @@ void printRatio(const RecordingReporter& reporter, const std::string& numerator,
   reporter.GetOutputStream() << line << std::flush;
 }
 
+// What each array–observer pair beyond the first adds to a year, as a fraction of the sun pass.
+void printPairRatio(const RecordingReporter& reporter) {
+  const std::optional<double> scene = reporter.realTimeSeconds(kHazardScene);
+  const std::optional<double> year = reporter.realTimeSeconds(kHazardYear);
+  const std::optional<double> sun = reporter.realTimeSeconds(kSunYearSpa);
+  if (!scene || !year || !sun || !(*sun > 0)) return;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "ratio (%s \u2212 %s) \u00f7 %.0f extra pairs \u00f7 %s = %.3fx (target <= %gx)\n",
+                kHazardScene, kHazardYear, kHazardScenePairs - 1, kSunYearSpa,
+                (*scene - *year) / (kHazardScenePairs - 1) / *sun, kHazardPairTargetRatio);
+  reporter.GetOutputStream() << line << std::flush;
+}
+
 }  // namespace
 }  // namespace glarecam::bench
 
@@ -127,6 +148,7 @@ int main(int argc, char** argv) {
 #if GLARECAM_WITH_LIBNOVA
   for (std::string& name : registerSunBenchmarks()) names.push_back(std::move(name));
 #endif
+  for (std::string& name : registerHazardBenchmarks()) names.push_back(std::move(name));
   std::size_t longest_name = 0;
   for (const std::string& name : names) longest_name = std::max(longest_name, name.size());
 
@@ -148,6 +170,8 @@ int main(int argc, char** argv) {
   printRatio(reporter, kCaptureFakeGvBracket, kCaptureLinkFloor, 3, Target::kAtMost,
              kCaptureOverheadTargetRatio);
   printRatio(reporter, kSunGlarecamSpa, kSunLibnova, 2, Target::kNone, 0);
+  printRatio(reporter, kHazardYear, kSunYearSpa, 2, Target::kAtMost, kHazardTargetRatio);
+  printPairRatio(reporter);
   benchmark::Shutdown();
   return 0;
 }

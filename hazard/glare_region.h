@@ -63,7 +63,7 @@ double normalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes, 
 // The array seen from an observer: constant over the year, computed once per pair.
 struct PolygonView {
   Vec3 observer_m;
-  bool in_front = false;         // (O − P₀)·n > 0: otherwise it never glares there
+  bool in_front = false;  // (O − P₀)·n > 1 cm (the planarity tolerance): else edge-on or behind
   std::vector<Vec3> directions;  // unit, observer → each vertex
   // Each edge as seen: the great-circle arc from directions[i] toward directions[i + 1], as its
   // start, the unit tangent there and its angle.

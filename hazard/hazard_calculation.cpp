@@ -129,12 +129,14 @@ void resolve(const Context& context, std::size_t a, ArrayStep& step) {
     step.regions[m] = modelRegion(context.options.models[m], spread, profile);
 }
 
-// Per model: some glaring α (every 0.1°) with no spread for it.
+// Per model: some glaring α with no spread for it. A spread is the same over [k, k + 1) (it
+// comes from rows k and k + 1), so each whole degree the glare ranges touch is checked once.
 UnknownSpreads unknownSpreads(const std::vector<GlareModel>& models, const ProfileTable& profile) {
   UnknownSpreads unknown{};
-  for (int tenth = 0; tenth <= pipeline::kProfileAlphaMaxDeg * 10; ++tenth) {
-    const SpreadAt spread = profile.at(tenth / 10.0);
-    if (spread.status != SpreadStatus::kGlare) continue;
+  for (int k = 0; k <= pipeline::kProfileAlphaMaxDeg; ++k) {
+    const double to = std::min(k + 1.0, static_cast<double>(pipeline::kProfileAlphaMaxDeg));
+    if (!profile.glaresWithin(k, to)) continue;
+    const SpreadAt spread = profile.spreadAt(std::min(k + 0.5, to));
     for (std::size_t m = 0; m < std::min(models.size(), kMaxModels); ++m)
       unknown[m] = unknown[m] || !regionAxes(models[m], spread);
   }
@@ -325,6 +327,10 @@ Status HazardOptions::validate() const {
     return badInput("--step-s " + std::to_string(step_s) +
                     " is not a whole number of seconds in [1, 3600] that divides a day");
   }
+  if (threads > kMaxThreads) {
+    return badInput("--threads " + std::to_string(threads) + " is more than " +
+                    std::to_string(kMaxThreads));
+  }
   if (models.empty()) return badInput("--models: no model given");
   if (models.size() > kMaxModels)
     return badInput("--models: at most " + std::to_string(kMaxModels) + " models at once");
@@ -388,7 +394,7 @@ Result<HazardResult> computeHazard(const Scene& scene,
   std::vector<DayOutput> days(static_cast<std::size_t>(result.days));
   std::vector<std::optional<Error>> errors(static_cast<std::size_t>(result.days));
   const unsigned threads = options.threads == 0 ? defaultThreadCount() : options.threads;
-  const int chunk = static_cast<int>(threads) * kDaysPerChunkPerThread;
+  const int chunk = static_cast<int>(std::min(threads, kMaxThreads)) * kDaysPerChunkPerThread;
   for (int first = 0; first < result.days; first += chunk) {
     const int count = std::min(chunk, result.days - first);
     parallelRows(count, threads, [&](int begin, int end) {

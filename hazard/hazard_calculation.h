@@ -25,13 +25,14 @@ namespace glarecam::hazard {
 
 // Models per run: each is one bit of a step's mask.
 inline constexpr std::size_t kMaxModels = 6;
+inline constexpr unsigned kMaxThreads = 1024;
 
 struct HazardOptions {
   int year = 0;
   int step_s = 60;  // divides a day; [1, 3600]
   std::vector<GlareModel> models{{ModelKind::kEllipse}, {ModelKind::kCircle}};
   std::vector<Criterion> criteria = knownCriteria();
-  unsigned threads = 0;  // 0: one per core
+  unsigned threads = 0;  // 0: one per core; at most kMaxThreads
   // Part of the year only (tests, previews): days [first_day, first_day + day_count) of it,
   // counted from 0 = 1 January; day_count 0 runs to the year's end.
   int first_day = 0, day_count = 0;

@@ -120,9 +120,9 @@ Result<ProfileTable> ProfileTable::fromJson(const nlohmann::json& document,
                                     pipeline::kMaxFullAxisDeg / kDegPerRad / kRadPerMrad, " mrad"));
       if (beta_mrad) row.circle_deg = *beta_mrad * kRadPerMrad * kDegPerRad;
     }
-    // A zero axis is no region at all: treat it like a missing one.
+    // A zero (or vanishing) axis is no region at all: treat it like a missing one.
     for (std::optional<double>* axis : {&row.vertical_deg, &row.horizontal_deg, &row.circle_deg}) {
-      if (*axis && !(**axis > 0)) axis->reset();
+      if (*axis && !(**axis >= kMinAxisDeg)) axis->reset();
       if (*axis) table.max_full_axis_deg_ = std::max(table.max_full_axis_deg_, **axis);
     }
   }
@@ -143,29 +143,35 @@ Result<ProfileTable> ProfileTable::fromJson(const nlohmann::json& document,
   return table;
 }
 
-bool ProfileTable::glaresAt(double alpha_deg) const {
+bool ProfileTable::glaresWithin(double from_deg, double to_deg) const {
   return std::any_of(ranges_.begin(), ranges_.end(), [&](const pipeline::AlphaRange& range) {
-    return range.from_deg <= alpha_deg && alpha_deg <= range.to_deg;
+    return range.from_deg <= to_deg && from_deg <= range.to_deg;
   });
 }
 
-SpreadAt ProfileTable::at(double alpha_deg) const {
+SpreadAt ProfileTable::spreadAt(double alpha_deg) const {
   SpreadAt spread;
-  if (alpha_deg > kProfileAlphaMaxDeg) {
-    spread.status = SpreadStatus::kBeyondMethod;
-    return spread;
-  }
-  if (!(alpha_deg >= 0) || !glaresAt(alpha_deg)) return spread;
-  const int below = std::min(static_cast<int>(alpha_deg), kProfileAlphaMaxDeg);
+  spread.status = SpreadStatus::kGlare;
+  const double alpha = std::clamp(alpha_deg, 0.0, static_cast<double>(kProfileAlphaMaxDeg));
+  const int below = std::min(static_cast<int>(alpha), kProfileAlphaMaxDeg);
   const int above = std::min(below + 1, kProfileAlphaMaxDeg);
-  const double t = alpha_deg - below;
+  const double t = alpha - below;
   const Row& a = rows_[static_cast<std::size_t>(below)];
   const Row& b = rows_[static_cast<std::size_t>(above)];
-  spread.status = SpreadStatus::kGlare;
   spread.vertical_deg = lerp(a.vertical_deg, b.vertical_deg, t);
   spread.horizontal_deg = lerp(a.horizontal_deg, b.horizontal_deg, t);
   spread.circle_deg = lerp(a.circle_deg, b.circle_deg, t);
   return spread;
+}
+
+SpreadAt ProfileTable::at(double alpha_deg) const {
+  SpreadAt none;
+  if (alpha_deg > kProfileAlphaMaxDeg) {
+    none.status = SpreadStatus::kBeyondMethod;
+    return none;
+  }
+  if (!(alpha_deg >= 0) || !glaresWithin(alpha_deg, alpha_deg)) return none;
+  return spreadAt(alpha_deg);
 }
 
 LuminancesAt ProfileTable::luminancesAt(double alpha_deg) const {

@@ -9,7 +9,9 @@
 //     spread is unknown (reported, never taken as "no glare");
 //   - Lmax and the glare limit are linear in ln L.
 // Profiles written by earlier versions stay readable: only schema, module, glare_ranges_deg and
-// profile (one row per whole degree 0–80 with alpha_deg and lmax_cd_m2) are required.
+// profile (one row per whole degree 0–80 with alpha_deg) are required; a row's lmax_cd_m2,
+// limit_cd_m2, axes and circular_beam may be null or absent. An axis below kMinAxisDeg counts as
+// absent (no region, and no ellipse so thin that the test would crawl along it).
 #pragma once
 
 #include <array>
@@ -25,6 +27,7 @@
 namespace glarecam::hazard {
 
 inline constexpr const char* kProfileSchema = "glarecam.glare-profile/1";
+inline constexpr double kMinAxisDeg = 0.001;
 
 enum class SpreadStatus {
   kNoGlare,       // α outside the glare ranges
@@ -50,6 +53,10 @@ class ProfileTable {
   static Result<ProfileTable> fromJson(const nlohmann::json& document, const std::string& file);
 
   SpreadAt at(double alpha_deg) const;
+  // The spread the rows give at α whether or not the module glares there (status kGlare).
+  SpreadAt spreadAt(double alpha_deg) const;
+  // Whether some α in [from, to] lies in a glare range.
+  bool glaresWithin(double from_deg, double to_deg) const;
   // Lmax and the glare limit at α (0–80°; beyond, the 80° row's), for the luminance seen.
   LuminancesAt luminancesAt(double alpha_deg) const;
   // The spread the method's last α gives (80°, or the largest α below it with axes): the region
@@ -70,7 +77,6 @@ class ProfileTable {
     std::optional<double> vertical_deg, horizontal_deg, circle_deg;
     std::optional<double> lmax_cd_m2, limit_cd_m2;
   };
-  bool glaresAt(double alpha_deg) const;
 
   std::filesystem::path path_;
   std::string module_;

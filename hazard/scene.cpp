@@ -46,8 +46,10 @@ Result<Vec3> readPoint(const JsonFields& fields, const nlohmann::json& value,
   GLARECAM_CHECK(fields.array(value, field));
   if (value.size() != 3) return fields.fail(field, "is not [x, y, z] (3 numbers in metres)");
   std::array<double, 3> xyz{};
-  for (std::size_t i = 0; i < 3; ++i)
-    GLARECAM_ASSIGN(xyz[i], fields.number(value[i], JsonFields::element(field, i)));
+  for (std::size_t i = 0; i < 3; ++i) {
+    GLARECAM_ASSIGN(xyz[i], fields.numberIn(value[i], JsonFields::element(field, i),
+                                            -kMaxCoordinateM, kMaxCoordinateM, " m"));
+  }
   return Vec3{xyz[0], xyz[1], xyz[2]};
 }
 
@@ -198,13 +200,14 @@ Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertic
     sum = sum + a;
   }
   array.area_m2 = norm(newell) / 2;
+  if (!std::isfinite(array.area_m2)) return fields.fail(field, "has coordinates too large to use");
   if (!(array.area_m2 >= kMinArrayAreaM2))
     return fields.fail(field, "is degenerate (its vertices enclose no area)");
   array.normal = normalised(newell);
   array.centroid_m = (1.0 / static_cast<double>(count)) * sum;
   for (std::size_t i = 0; i < count; ++i) {
     const double off_plane_m = std::abs(dot(vertices_m[i] - array.centroid_m, array.normal));
-    if (off_plane_m > kPlanarityToleranceM) {
+    if (!(off_plane_m <= kPlanarityToleranceM)) {
       char text[96];
       std::snprintf(text, sizeof text, "is not planar (vertex %zu lies %.3f m off the plane)", i,
                     off_plane_m);

@@ -25,6 +25,9 @@ inline constexpr const char* kSceneSchema = "glarecam.hazard-scene/1";
 inline constexpr double kPlanarityToleranceM = 0.01;
 // Smallest array area accepted: below a square centimetre a polygon is a typing error.
 inline constexpr double kMinArrayAreaM2 = 1e-4;
+// Coordinates are local: a scene larger than a thousand kilometres is a typing error (and would
+// overflow the geometry's squares long before doubles do).
+inline constexpr double kMaxCoordinateM = 1e6;
 // Local standard time is UTC + utc_offset_h; the offsets in use run from −12 h to +14 h.
 inline constexpr double kMinUtcOffsetH = -12, kMaxUtcOffsetH = 14;
 

@@ -65,15 +65,20 @@ ArrayPolygon arrayReflecting(Vec3 sun, Vec3 normal, double distance_m, double si
   return squareArray("array", distance_m * c, normal, side_m);
 }
 
-HazardOptions oneDay(int day, int step_s, std::vector<GlareModel> models) {
+// Days [first_day, first_day + day_count) of kYear on one thread.
+HazardOptions someDays(int first_day, int day_count, int step_s, std::vector<GlareModel> models) {
   HazardOptions options;
   options.year = kYear;
   options.step_s = step_s;
   options.models = std::move(models);
-  options.first_day = day;
-  options.day_count = 1;
+  options.first_day = first_day;
+  options.day_count = day_count;
   options.threads = 1;
   return options;
+}
+
+HazardOptions oneDay(int day, int step_s, std::vector<GlareModel> models) {
+  return someDays(day, 1, step_s, std::move(models));
 }
 
 const Vec3 kSouthTilted30 = normalised({0, -0.5, std::sqrt(3.0) / 2});
@@ -127,10 +132,12 @@ TEST(HazardCalculation, ConeOfDegreesEqualsAnEllipseWithBothAxesThoseDegrees) {
   const Scene scene =
       sceneOf(site, {arrayReflecting(sunVector(noon.position), kSouthTilted30, 60, 8)},
               {{.name = "window", .position_m = {0, 0, 0}}});
-  const ProfileTable round = constantProfile(3, 3);
-  HazardOptions options = oneDay(
-      kApril20 - 10, 60, {{ModelKind::kEllipse}, {ModelKind::kCone, 3.0}, {ModelKind::kCircle}});
-  options.day_count = 20;
+  // H a part in 10⁹ wider than V: the ellipse takes the sampled branch-and-bound path, the cone
+  // the analytic circle.
+  const ProfileTable round = constantProfile(3, 3 * (1 + 1e-9));
+  const HazardOptions options =
+      someDays(kApril20 - 10, 20, 60,
+               {{ModelKind::kEllipse}, {ModelKind::kCone, 3.0}, {ModelKind::kCircle}});
   const Result<HazardResult> result = computeHazard(scene, {&round}, options);
   ASSERT_TRUE(result) << result.error().message;
   const ObserverHazard& observer = result->observers[0];
@@ -231,8 +238,8 @@ TEST(HazardCalculation, TenSecondStepsAgreeWithSixtyWithinOnePercent) {
   const HazardSite site = zurichSite();
   const Scene scene = symmetricScene(site);
   const ProfileTable profile = constantProfile(6, 3);
-  HazardOptions options = oneDay(kApril20 - 20, 60, {{ModelKind::kEllipse}, {ModelKind::kCircle}});
-  options.day_count = 40;
+  HazardOptions options;
+  options.year = kYear;
   const Result<HazardResult> coarse = computeHazard(scene, {&profile}, options);
   options.step_s = 10;
   const Result<HazardResult> fine = computeHazard(scene, {&profile}, options);
@@ -248,12 +255,15 @@ TEST(HazardCalculation, TenSecondStepsAgreeWithSixtyWithinOnePercent) {
 TEST(HazardCalculation, NothingBehindTheArrayOrWhereNoReflectionCanReach) {
   const HazardSite site = zurichSite();
   const ArrayPolygon array = squareArray("roof", {0, 0, 0}, kSouthTilted30, 10);
-  // Behind: south of and below the array's plane. Unreachable: due north at the array's height,
-  // where the reflection would need a sun below the horizon.
+  // Behind: north of and below the array's plane. Unreachable: in front, due south at the
+  // array's height, looking north at it: the reflection would need the sun 60° high in the
+  // north, which it never is at 47° N.
   const Scene scene = sceneOf(site, {array},
-                              {{.name = "behind", .position_m = {0, -20, -20}},
-                               {.name = "level-north", .position_m = {0, 50, 0}}});
-  const ProfileTable profile = constantProfile(20, 20);
+                              {{.name = "behind", .position_m = {0, 20, -20}},
+                               {.name = "level-south", .position_m = {0, -50, 0}}});
+  ASSERT_FALSE(viewFrom(array, scene.observers[0].position_m).in_front);
+  ASSERT_TRUE(viewFrom(array, scene.observers[1].position_m).in_front);
+  const ProfileTable profile = constantProfile(6, 6);
   HazardOptions options;
   options.year = kYear;
   options.step_s = 300;
@@ -358,14 +368,75 @@ TEST(HazardCalculation, ThreadsGiveIdenticalResults) {
   const HazardSite site = zurichSite();
   const Scene scene = symmetricScene(site);
   const ProfileTable profile = constantProfile(6, 3);
-  HazardOptions options = oneDay(kApril20 - 5, 120, {{ModelKind::kEllipse}, {ModelKind::kCircle}});
-  options.day_count = 10;
+  HazardOptions options =
+      someDays(kApril20 - 5, 10, 120, {{ModelKind::kEllipse}, {ModelKind::kCircle}});
   const Result<HazardResult> one = computeHazard(scene, {&profile}, options);
   options.threads = 3;
   const Result<HazardResult> three = computeHazard(scene, {&profile}, options);
   ASSERT_TRUE(one && three);
   EXPECT_EQ(one->observers[0].steps, three->observers[0].steps);
-  EXPECT_EQ(one->events.size(), three->events.size());
+  for (std::size_t m = 0; m < 2; ++m) {
+    EXPECT_EQ(one->observers[0].models[m].minutes_per_day,
+              three->observers[0].models[m].minutes_per_day);
+    EXPECT_EQ(one->observers[0].models[m].first_last_step,
+              three->observers[0].models[m].first_last_step);
+  }
+  ASSERT_EQ(one->events.size(), three->events.size());
+  for (std::size_t i = 0; i < one->events.size(); ++i) {
+    EXPECT_EQ(one->events[i].first_step, three->events[i].first_step);
+    EXPECT_EQ(one->events[i].end_step, three->events[i].end_step);
+    EXPECT_EQ(one->events[i].peak_luminance_cd_m2, three->events[i].peak_luminance_cd_m2);
+  }
+}
+
+TEST(HazardCalculation, TheUtcOffsetShiftsLocalTimeOnly) {
+  // The same glare seen on clocks one hour ahead and 3½ hours behind: the same minutes, the
+  // window moved by exactly the offsets' difference in steps.
+  HazardSite site = zurichSite();
+  const Scene base = symmetricScene(site);
+  const ProfileTable profile = constantProfile(6, 3);
+  const HazardOptions options = oneDay(kApril20, 60, {{ModelKind::kEllipse}});
+  const Result<HazardResult> plus_one = computeHazard(base, {&profile}, options);
+  Scene shifted = base;
+  shifted.site.utc_offset_h = -3.5;
+  const Result<HazardResult> minus_three_half = computeHazard(shifted, {&profile}, options);
+  ASSERT_TRUE(plus_one && minus_three_half);
+  const auto a = *plus_one->observers[0].models[0].first_last_step[0];
+  const auto b = *minus_three_half->observers[0].models[0].first_last_step[0];
+  EXPECT_EQ(a.first - b.first, 270);  // 4.5 h of 60-s steps
+  EXPECT_EQ(a.second - b.second, 270);
+  EXPECT_EQ(plus_one->observers[0].models[0].minutes_per_day[0],
+            minus_three_half->observers[0].models[0].minutes_per_day[0]);
+}
+
+TEST(HazardCalculation, AnEventAcrossMidnightIsOneEvent) {
+  // The midnight sun at 70° N (UTC+0 at the Greenwich meridian): a north-facing array reflects
+  // it to an observer around local midnight of the June solstice, across the day boundary.
+  HazardSite site;
+  site.location.latitude_deg = 70;
+  site.location.longitude_deg = 0;
+  site.location.pressure_hpa = 1013.25;
+  site.utc_offset_h = 0;
+  const auto midnight = std::chrono::time_point_cast<microseconds>(
+      std::chrono::sys_days{std::chrono::year{kYear} / 6 / 22});
+  const auto sun = sun::solarPosition(midnight, site.location);
+  ASSERT_GT(sun->elevation_deg, 1);
+  const Vec3 north_facing = normalised({0, 0.5, std::sqrt(3.0) / 2});
+  const Scene scene = sceneOf(site, {arrayReflecting(sunVector(*sun), north_facing, 50, 5)},
+                              {{.name = "window", .position_m = {0, 0, 0}}});
+  const ProfileTable profile = constantProfile(8, 8);
+  const Result<HazardResult> result =
+      computeHazard(scene, {&profile}, someDays(171, 2, 60, {{ModelKind::kEllipse}}));
+  ASSERT_TRUE(result) << result.error().message;
+  // Midnights at both ends of the two days glare too; the one between them is one event.
+  const std::int64_t boundary = std::int64_t{172} * result->steps_per_day;
+  int spanning = 0;
+  for (const GlareEvent& event : result->events) {
+    spanning += event.first_step < boundary && event.end_step > boundary;
+    EXPECT_NE(event.end_step, boundary) << "split at midnight";
+    EXPECT_NE(event.first_step, boundary) << "split at midnight";
+  }
+  EXPECT_EQ(spanning, 1);
 }
 
 TEST(HazardCalculation, RefusesBadOptions) {
@@ -380,6 +451,10 @@ TEST(HazardCalculation, RefusesBadOptions) {
   EXPECT_NE(computeHazard(scene, {&profile}, options).error().message.find("--step-s 7"),
             std::string::npos);
   options.step_s = 60;
+  options.threads = 4294967295u;  // would overflow the days handed to each thread
+  EXPECT_NE(computeHazard(scene, {&profile}, options).error().message.find("--threads"),
+            std::string::npos);
+  options.threads = 1;
   EXPECT_EQ(computeHazard(scene, {}, options).error().code, ErrorCode::kBadInput);
   options.models.clear();
   EXPECT_EQ(computeHazard(scene, {&profile}, options).error().code, ErrorCode::kBadInput);

@@ -84,6 +84,16 @@ TEST(HazardProfileTable, ANullAxisTakesTheOtherRowsAndTwoNullsAreUnknown) {
   EXPECT_FALSE(unknown.circle_deg);
 }
 
+TEST(HazardProfileTable, AVanishingAxisCountsAsAbsent) {
+  const json document = profileWithRows([](json& rows) {
+    rows[50]["horizontal_deg"] = 0.0005;  // below kMinAxisDeg: no ellipse that thin
+    rows[51]["horizontal_deg"] = 0.0;
+  });
+  const ProfileTable profile = *ProfileTable::fromJson(document, "p.json");
+  EXPECT_FALSE(profile.at(50.5).horizontal_deg);
+  EXPECT_NEAR(*profile.at(49.5).horizontal_deg, 4, 1e-12);  // row 49's
+}
+
 TEST(HazardProfileTable, GlaresOnlyInsideItsRangesEndsIncluded) {
   const ProfileTable profile = testing::constantProfile(6, 4, {{10, 20.5}, {30, 40}});
   EXPECT_EQ(profile.at(9.99).status, SpreadStatus::kNoGlare);

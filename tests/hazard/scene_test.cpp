@@ -116,6 +116,8 @@ TEST(HazardScene, RefusesEachBadInputNamingTheField) {
        "arrays[0].vertices_m has 2 vertices"},
       {"text coordinate", [](json& s) { s["arrays"][0]["vertices_m"][2][1] = "5.2"; },
        "arrays[0].vertices_m[2][1] is not a number"},
+      {"far coordinate", [](json& s) { s["arrays"][0]["vertices_m"][1][0] = 2e6; },
+       "arrays[0].vertices_m[1][0] 2e+06 m is outside [-1e+06, 1e+06]"},
       {"two coordinates",
        [](json& s) {
          s["arrays"][0]["vertices_m"][1] = {6, 0};

@@ -6,11 +6,12 @@
 #include <numbers>
 #include <vector>
 
+#include "core/angles.h"
+
 namespace glarecam::hazard {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kRadPerDeg = kPi / 180.0;
 // Below this the plane of incidence is undefined (α = 0): use the up-slope direction.
 constexpr double kDegenerateFrame = 1e-12;
 // Golden-section search: until the bracket is below 1e-5 of the smaller half-axis; near its
@@ -145,7 +146,7 @@ RegionFrame regionFrame(Vec3 normal, Vec3 sun, Vec3 up_slope) {
 }
 
 RegionHalfAxes halfAxesRad(double vertical_deg, double horizontal_deg) {
-  return {vertical_deg / 2 * kRadPerDeg, horizontal_deg / 2 * kRadPerDeg};
+  return {radians(vertical_deg / 2), radians(horizontal_deg / 2)};
 }
 
 double normalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes, Vec3 g) {

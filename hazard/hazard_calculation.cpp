@@ -8,6 +8,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/angles.h"
 #include "core/parallel.h"
 #include "hazard/glare_region.h"
 #include "sun/solar_track.h"
@@ -20,8 +21,6 @@ constexpr int kMaxStepS = 3600;
 // SPA's years (sun/solar_position.h), less one at each end so that a local year's UTC instants
 // stay inside it whatever the offset.
 constexpr int kFirstYear = -1999, kLastYear = 5999;
-constexpr double kPi = std::numbers::pi;
-constexpr double kDegPerRad = 180.0 / kPi;
 constexpr double kNeverReject = -2;  // a cosine below every cosine
 // Days handed to the workers between two progress reports.
 constexpr int kDaysPerChunkPerThread = 8;
@@ -120,7 +119,7 @@ void resolve(const Context& context, std::size_t a, ArrayStep& step) {
   if (step.resolved) return;
   step.resolved = true;
   const ArrayPolygon& array = context.scene.arrays[a];
-  step.alpha_deg = std::acos(std::min(step.cos_alpha, 1.0)) * kDegPerRad;
+  step.alpha_deg = degrees(std::acos(std::min(step.cos_alpha, 1.0)));
   step.frame = regionFrame(array.normal, step.sun, array.up_slope);
   const ProfileTable& profile = *context.profiles[a];
   const SpreadAt spread = profile.at(step.alpha_deg);
@@ -377,9 +376,9 @@ Result<HazardResult> computeHazard(const Scene& scene,
       Pair pair;
       pair.view = viewFrom(scene.arrays[a], observer.position_m);
       for (std::size_t m = 0; m < options.models.size(); ++m) {
-        const double reach = maxFullAxisDeg(options.models[m], *profiles[a]) / 2 / kDegPerRad +
+        const double reach = radians(maxFullAxisDeg(options.models[m], *profiles[a]) / 2) +
                              pair.view.angular_radius_rad;
-        pair.reject_cos[m] = reach >= kPi ? kNeverReject : std::cos(reach);
+        pair.reject_cos[m] = reach >= std::numbers::pi ? kNeverReject : std::cos(reach);
       }
       row.push_back(std::move(pair));
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/angles.h"
 #include "core/stack_manifest.h"
 #include "hazard/json_fields.h"
 
@@ -12,7 +13,6 @@ namespace {
 using pipeline::kProfileAlphaMaxDeg;
 
 constexpr double kRadPerMrad = 1e-3;
-constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
 
 std::optional<double> lerp(std::optional<double> a, std::optional<double> b, double t) {
   if (a && b) return *a + (*b - *a) * t;
@@ -115,10 +115,10 @@ Result<ProfileTable> ProfileTable::fromJson(const nlohmann::json& document,
       const std::string beam_where = JsonFields::child(where, "circular_beam");
       GLARECAM_CHECK(fields.object(*beam, beam_where));
       std::optional<double> beta_mrad;
-      GLARECAM_ASSIGN(
-          beta_mrad, optionalNumber(fields, *beam, beam_where, "beta_mrad", 0,
-                                    pipeline::kMaxFullAxisDeg / kDegPerRad / kRadPerMrad, " mrad"));
-      if (beta_mrad) row.circle_deg = *beta_mrad * kRadPerMrad * kDegPerRad;
+      GLARECAM_ASSIGN(beta_mrad,
+                      optionalNumber(fields, *beam, beam_where, "beta_mrad", 0,
+                                     radians(pipeline::kMaxFullAxisDeg) / kRadPerMrad, " mrad"));
+      if (beta_mrad) row.circle_deg = degrees(*beta_mrad * kRadPerMrad);
     }
     // A zero (or vanishing) axis is no region at all: treat it like a missing one.
     for (std::optional<double>* axis : {&row.vertical_deg, &row.horizontal_deg, &row.circle_deg}) {

@@ -5,6 +5,8 @@
 // 30° has normal (tilt 30, azimuth 180). α = acos(n · s); above 90° the source is behind it.
 #pragma once
 
+#include <array>
+
 namespace glarecam::sun {
 
 struct SkyDirection {
@@ -16,6 +18,9 @@ struct ModuleOrientation {
   double tilt_deg = 0.0;     // normal vs vertical: 0 = lying flat, 90 = vertical
   double azimuth_deg = 0.0;  // where the normal points, clockwise from north
 };
+
+// The unit vector (east, north, up) of a direction.
+std::array<double, 3> eastNorthUp(const SkyDirection& direction);
 
 double incidenceAngleDeg(const ModuleOrientation& module, const SkyDirection& source);
 

@@ -24,7 +24,6 @@ constexpr double kBarometricExponent = 5.25588;
 
 using std::chrono::microseconds;
 
-constexpr double kJ2000 = 2451545.0;              // JD of 2000-01-01 12:00 TT
 constexpr double kUnixEpochJd = 2440587.5;        // JD of 1970-01-01 00:00
 constexpr double kSunRadiusDeg = 0.26667;         // SPA's apparent solar radius
 constexpr double kHorizonRefractionDeg = 0.5667;  // SPA's refraction at the horizon
@@ -118,8 +117,8 @@ SpaTerms spaTerms(double julian_day_ut1, double delta_t_s, const SiteLocation& s
   // 3.1: Julian day, ephemeris day, centuries and millennia from J2000.0 (equations 4–8).
   const double jd = julian_day_ut1;
   const double jde = jd + delta_t_s / 86400.0;
-  const double jc = (jd - kJ2000) / 36525.0;
-  const double jce = (jde - kJ2000) / 36525.0;
+  const double jc = (jd - detail::kJ2000) / 36525.0;
+  const double jce = (jde - detail::kJ2000) / 36525.0;
   const double jme = jce / 10.0;
   t.julian_day = jd;
   t.julian_ephemeris_day = jde;
@@ -166,7 +165,7 @@ SpaTerms spaTerms(double julian_day_ut1, double delta_t_s, const SiteLocation& s
   t.apparent_longitude_deg = wrap360(theta_deg + t.nutation_longitude_deg + aberration_deg);
 
   // 3.8: the apparent sidereal time at Greenwich (equations 28–30), from UT1.
-  const double nu0_deg = wrap360(280.46061837 + 360.98564736629 * (jd - kJ2000) +
+  const double nu0_deg = wrap360(280.46061837 + 360.98564736629 * (jd - detail::kJ2000) +
                                  0.000387933 * jc * jc - jc * jc * jc / 38710000.0);
   const double epsilon = radians(t.true_obliquity_deg);
   t.apparent_sidereal_time_deg = wrap360(nu0_deg + t.nutation_longitude_deg * std::cos(epsilon));
@@ -301,7 +300,7 @@ double detail::julianDayUt1(std::chrono::sys_time<microseconds> utc,
 }
 
 double detail::deltaTFor(double julian_day_ut1, const SolarPositionOptions& options) {
-  const double decimal_year = 2000.0 + (julian_day_ut1 - (kJ2000 - 0.5)) / 365.2425;
+  const double decimal_year = 2000.0 + (julian_day_ut1 - (detail::kJ2000 - 0.5)) / 365.2425;
   return options.delta_t_s.value_or(deltaTSeconds(decimal_year));
 }
 

@@ -81,6 +81,8 @@ Status validate(const SolarPositionOptions& options);
 
 namespace detail {
 
+inline constexpr double kJ2000 = 2451545.0;  // JD of 2000-01-01 12:00 TT (SPA, Meeus)
+
 // SPA's intermediate quantities, in the paper's names and units (degrees unless said), for tests
 // against the paper's worked example (its Table A5.1).
 struct SpaTerms {

@@ -2,15 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "core/angles.h"
 
 namespace glarecam::sun {
 namespace {
 
-constexpr double kJ2000 = 2451545.0;                    // JD of 2000-01-01 12:00 TT
 constexpr double kSiderealDegPerDay = 360.98564736629;  // SPA equation 28's rate
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 // The geocentric terms at a node; angles continuous across nodes (unwrapped).
 struct Node {
@@ -34,7 +32,7 @@ Node nodeAt(double julian_day, const SiteLocation& site, const SolarPositionOpti
   node.radius_vector_au = terms.radius_vector_au;
   node.right_ascension_deg = terms.right_ascension_deg;
   node.sidereal_offset_deg =
-      terms.apparent_sidereal_time_deg - kSiderealDegPerDay * (julian_day - kJ2000);
+      terms.apparent_sidereal_time_deg - kSiderealDegPerDay * (julian_day - detail::kJ2000);
   node.sidereal_offset_deg = unwrapNear(node.sidereal_offset_deg, 0.0);
   if (previous != nullptr) {
     node.right_ascension_deg = unwrapNear(node.right_ascension_deg, previous->right_ascension_deg);
@@ -71,7 +69,7 @@ Status solarTrack(std::chrono::sys_time<std::chrono::microseconds> first_utc,
   }
 
   const detail::Parallax parallax = detail::Parallax::of(site);
-  const double phi = site.latitude_deg * kRadPerDeg;
+  const double phi = radians(site.latitude_deg);
   const double sin_phi = std::sin(phi), cos_phi = std::cos(phi);
   for (std::size_t i = 0; i < count; ++i) {
     const double offset_days = static_cast<double>(i) * step_days;
@@ -84,14 +82,14 @@ Status solarTrack(std::chrono::sys_time<std::chrono::microseconds> first_utc,
     auto lerp = [t](double x, double y) { return x + (y - x) * t; };
     const double right_ascension_deg = lerp(a.right_ascension_deg, b.right_ascension_deg);
     const double declination_deg = lerp(a.declination_deg, b.declination_deg);
-    const double sidereal_deg =
-        kSiderealDegPerDay * (jd - kJ2000) + lerp(a.sidereal_offset_deg, b.sidereal_offset_deg);
+    const double sidereal_deg = kSiderealDegPerDay * (jd - detail::kJ2000) +
+                                lerp(a.sidereal_offset_deg, b.sidereal_offset_deg);
     // SPA 3.11–3.12: the hour angle, then the parallax.
     const double hour_angle_deg = sidereal_deg + site.longitude_deg - right_ascension_deg;
     const detail::TopocentricShift shift = parallax.shift(
         hour_angle_deg, declination_deg, lerp(a.radius_vector_au, b.radius_vector_au));
-    const double h = (hour_angle_deg - shift.right_ascension_deg) * kRadPerDeg;
-    const double delta = shift.declination_deg * kRadPerDeg;
+    const double h = radians(hour_angle_deg - shift.right_ascension_deg);
+    const double delta = radians(shift.declination_deg);
     const double sin_delta = std::sin(delta), cos_delta = std::cos(delta);
     const double cos_h = std::cos(h);
     // The direction from the hour angle and declination: the same as SPA's equations 41–46.
@@ -99,11 +97,11 @@ Status solarTrack(std::chrono::sys_time<std::chrono::microseconds> first_utc,
                            .north = cos_phi * sin_delta - sin_phi * cos_delta * cos_h,
                            .up = sin_phi * sin_delta + cos_phi * cos_delta * cos_h};
     if (options.refraction) {
-      const double true_elevation_deg = std::asin(std::clamp(direction.up, -1.0, 1.0)) * kDegPerRad;
+      const double true_elevation_deg = degrees(std::asin(std::clamp(direction.up, -1.0, 1.0)));
       const double refraction_deg =
           detail::refractionDeg(true_elevation_deg, site.pressure_hpa, site.temperature_c);
       if (refraction_deg != 0) {
-        const double elevation = (true_elevation_deg + refraction_deg) * kRadPerDeg;
+        const double elevation = radians(true_elevation_deg + refraction_deg);
         const double horizontal = std::hypot(direction.east, direction.north);
         if (horizontal > 0) {
           const double scale = std::cos(elevation) / horizontal;

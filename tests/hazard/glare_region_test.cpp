@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <random>
 
 #include "tests/hazard/hazard_fixtures.h"
@@ -11,12 +10,7 @@
 namespace glarecam::hazard {
 namespace {
 
-constexpr double kRadPerDeg = std::numbers::pi / 180;
-
-Vec3 unitFromAngles(double elevation_deg, double azimuth_deg) {
-  const double e = elevation_deg * kRadPerDeg, a = azimuth_deg * kRadPerDeg;
-  return {std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};
-}
+using testing::unitToward;
 
 // A direction at angle `angle_rad` from c toward `toward` (a unit vector perpendicular to c).
 Vec3 rotateToward(Vec3 c, Vec3 toward, double angle_rad) {
@@ -25,7 +19,7 @@ Vec3 rotateToward(Vec3 c, Vec3 toward, double angle_rad) {
 
 TEST(HazardGlareRegion, FrameIsTheMirrorImageWithVInThePlaneOfIncidence) {
   const Vec3 n = normalised({0, -0.5, 0.8});
-  const Vec3 s = unitFromAngles(40, 200);
+  const Vec3 s = unitToward(40, 200);
   const RegionFrame frame = regionFrame(n, s, {0, 1, 0});
   // c = s − 2(n·s)n: the reflected ray reversed, so angle(c, −n) = α.
   EXPECT_NEAR(angleBetweenRad(frame.c, -1.0 * n), angleBetweenRad(s, n), 1e-12);
@@ -51,7 +45,7 @@ TEST(HazardGlareRegion, AMeasuredAxisIsExactlyTheAngleItSpans) {
   // The azimuthal-equidistant plane: a direction at V/2 from c along e_v is on the boundary, at
   // any size (here up to 170°, where a gnomonic or orthographic plane would be far off).
   const RegionFrame frame =
-      regionFrame(normalised({0.2, -0.4, 0.9}), unitFromAngles(30, 150), {0, 1, 0});
+      regionFrame(normalised({0.2, -0.4, 0.9}), unitToward(30, 150), {0, 1, 0});
   for (const double vertical_deg : {0.5, 4.0, 30.0, 170.0}) {
     const double horizontal_deg = vertical_deg / 2;
     const RegionHalfAxes axes = halfAxesRad(vertical_deg, horizontal_deg);

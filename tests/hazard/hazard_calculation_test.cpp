@@ -4,8 +4,8 @@
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
+#include "core/angles.h"
 #include "hazard/glare_region.h"
 #include "sun/solar_position.h"
 #include "tests/hazard/hazard_fixtures.h"
@@ -19,14 +19,12 @@ using testing::sceneOf;
 using testing::squareArray;
 using testing::zurichSite;
 
-constexpr double kRadPerDeg = std::numbers::pi / 180;
 constexpr int kYear = 2027;
 constexpr int kMarch21 = 79;  // day of the year, from 0 = 1 January
 constexpr int kApril20 = 109;
 
 Vec3 sunVector(const sun::SolarPosition& position) {
-  const double e = position.elevation_deg * kRadPerDeg, a = position.azimuth_deg * kRadPerDeg;
-  return {std::cos(e) * std::sin(a), std::cos(e) * std::cos(a), std::sin(e)};
+  return testing::unitToward(position.elevation_deg, position.azimuth_deg);
 }
 
 UtcTime localMidnightUtc(const HazardSite& site, int day) {
@@ -89,7 +87,7 @@ TEST(HazardCalculation, PassDurationIsTheChordOverTheSunsAngularSpeed) {
   // across the plane of incidence, so the track crosses the H axis.
   const HazardSite site = zurichSite();
   const SolarNoon noon = solarNoon(site, kMarch21);
-  const double cos_delta = std::cos(noon.position.declination_deg * kRadPerDeg);
+  const double cos_delta = std::cos(radians(noon.position.declination_deg));
   // 0.2 m at 1 km: 0.011°, point-like against a 4° region (adds at most 0.05 min).
   const Scene scene =
       sceneOf(site, {arrayReflecting(sunVector(noon.position), kSouthTilted30, 1000, 0.2)},
@@ -185,7 +183,7 @@ TEST(HazardCalculation, ATinyRegionIsThePointMirror) {
 Scene symmetricScene(const HazardSite& site) {
   // The noon sun of 20 April, due south (azimuth exactly 180°): the array's centre lies on the
   // observer's north–south axis.
-  const double elevation = solarNoon(site, kApril20).position.elevation_deg * kRadPerDeg;
+  const double elevation = radians(solarNoon(site, kApril20).position.elevation_deg);
   const Vec3 noon_sun{0, -std::cos(elevation), std::sin(elevation)};
   return sceneOf(site, {arrayReflecting(noon_sun, kSouthTilted30, 50, 10)},
                  {{.name = "window", .position_m = {0, 0, 0}}});

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "pipeline/glare_profile.h"
+#include "sun/incidence_angle.h"
 
 namespace glarecam::hazard::testing {
 
@@ -69,6 +70,11 @@ Scene sceneOf(HazardSite site, std::vector<ArrayPolygon> arrays, std::vector<Obs
   scene.arrays = std::move(arrays);
   scene.observers = std::move(observers);
   return scene;
+}
+
+Vec3 unitToward(double elevation_deg, double azimuth_deg) {
+  const auto [east, north, up] = sun::eastNorthUp({elevation_deg, azimuth_deg});
+  return {east, north, up};
 }
 
 }  // namespace glarecam::hazard::testing

@@ -24,6 +24,9 @@ ProfileTable constantProfile(double vertical_deg, double horizontal_deg,
 std::vector<Vec3> squareVertices(Vec3 centre_m, Vec3 normal, double side_m);
 ArrayPolygon squareArray(const std::string& name, Vec3 centre_m, Vec3 normal, double side_m);
 
+// The unit vector towards `elevation_deg` above the horizon at `azimuth_deg` (from north).
+Vec3 unitToward(double elevation_deg, double azimuth_deg);
+
 // The Zürich site of hazard.md's example (UTC+1).
 HazardSite zurichSite();
 

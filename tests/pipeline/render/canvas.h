@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 
 #include "pipeline/render/cairo_handles.h"
 #include "pipeline/render/colour.h"
@@ -14,6 +15,14 @@
 namespace glarecam::pipeline {
 
 using CanvasPixel = std::array<std::uint8_t, 3>;
+
+// A missing value in a series: drawn as a gap, skipped by the axes.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The red, green and blue bytes of pixel (x, y).
+inline const std::uint8_t* rgbPixel(const RgbImage& image, int x, int y) {
+  return image.rgb.data() + (static_cast<std::size_t>(y) * image.width + x) * 3;
+}
 
 struct TestCanvas {
   CairoSurface surface;
@@ -31,8 +40,7 @@ struct TestCanvas {
 
   CanvasPixel at(int x, int y) const {
     const RgbImage pixels = image();
-    const std::uint8_t* p =
-        pixels.rgb.data() + (static_cast<std::size_t>(y) * pixels.width + x) * 3;
+    const std::uint8_t* p = rgbPixel(pixels, x, y);
     return {p[0], p[1], p[2]};
   }
 
@@ -42,8 +50,7 @@ struct TestCanvas {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x)
         for (int c = 0; c < 3; ++c)
-          if (pixels.rgb[(static_cast<std::size_t>(y) * pixels.width + x) * 3 + c] < below)
-            return true;
+          if (rgbPixel(pixels, x, y)[c] < below) return true;
     return false;
   }
 };

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "canvas.h"
 #include "support/sim_support.h"
 
 namespace glarecam::pipeline {
@@ -16,10 +17,6 @@ calibration::MergedImage gradient(int width, int height) {
   return merged;
 }
 
-const std::uint8_t* pixel(const RgbImage& image, int x, int y) {
-  return image.rgb.data() + (static_cast<std::size_t>(y) * image.width + x) * 3;
-}
-
 TEST(FalseColour, MapsLowToDarkBlueHighToDarkRedAndAddsAColourBar) {
   calibration::MergedImage merged = gradient(200, 120);
   merged.bound.at(5, 5) = static_cast<std::uint8_t>(calibration::PixelBound::kLowerBound);
@@ -27,11 +24,11 @@ TEST(FalseColour, MapsLowToDarkBlueHighToDarkRedAndAddsAColourBar) {
   ASSERT_TRUE(image) << image.error().message;
   EXPECT_GT(image->width, 200);  // the colour bar panel sits to the right
   EXPECT_GE(image->height, 120);
-  const std::uint8_t* low = pixel(*image, 30, 60);  // 15 % up the scale: Turbo's blue
-  const std::uint8_t* high = pixel(*image, 199, 60);
+  const std::uint8_t* low = rgbPixel(*image, 30, 60);  // 15 % up the scale: Turbo's blue
+  const std::uint8_t* high = rgbPixel(*image, 199, 60);
   EXPECT_GT(low[2], low[0]);
   EXPECT_GT(high[0], high[2]);  // and ends dark red
-  const std::uint8_t* saturated = pixel(*image, 5, 5);
+  const std::uint8_t* saturated = rgbPixel(*image, 5, 5);
   EXPECT_EQ(saturated[0], 255);
   EXPECT_EQ(saturated[1], 255);
   EXPECT_EQ(saturated[2], 255);
@@ -49,14 +46,14 @@ TEST(FalseColour, ABannerCrossesTheTopOfTheImage) {
   const auto magenta = [](const std::uint8_t* p) {
     return p[0] == 255 && p[1] == 0 && p[2] == 255;
   };
-  EXPECT_TRUE(magenta(pixel(*bannered, 1, 1)));
-  EXPECT_TRUE(magenta(pixel(*bannered, 198, 1)));
-  EXPECT_FALSE(magenta(pixel(*plain, 1, 1)));
-  EXPECT_EQ(pixel(*bannered, 100, 100)[0],
-            pixel(*plain, 100, 100)[0]);  // below the band: unchanged
-  int white = 0;                          // the text
+  EXPECT_TRUE(magenta(rgbPixel(*bannered, 1, 1)));
+  EXPECT_TRUE(magenta(rgbPixel(*bannered, 198, 1)));
+  EXPECT_FALSE(magenta(rgbPixel(*plain, 1, 1)));
+  EXPECT_EQ(rgbPixel(*bannered, 100, 100)[0],
+            rgbPixel(*plain, 100, 100)[0]);  // below the band: unchanged
+  int white = 0;                             // the text
   for (int x = 0; x < 200; ++x)
-    for (int y = 0; y < 12; ++y) white += pixel(*bannered, x, y)[1] > 200;
+    for (int y = 0; y < 12; ++y) white += rgbPixel(*bannered, x, y)[1] > 200;
   EXPECT_GT(white, 20);
 }
 
@@ -76,7 +73,7 @@ TEST(FalseColour, TheCaptionIsWrittenUnderTheTitle) {
   const auto barTop = [](const RgbImage& image) {
     const int x = 200 + 11 + 4;  // image width + one em (11 px font) + a few px into the bar
     for (int y = 0; y < image.height; ++y) {
-      const std::uint8_t* p = pixel(image, x, y);
+      const std::uint8_t* p = rgbPixel(image, x, y);
       if (std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) > 60) return y;
     }
     return -1;
@@ -87,7 +84,7 @@ TEST(FalseColour, TheCaptionIsWrittenUnderTheTitle) {
   int white = 0;  // the caption's text between the title and the bar
   for (int y = 16; y < captioned_top - 20; ++y)
     for (int x = 200; x < captioned->width; ++x) {
-      const std::uint8_t* p = pixel(*captioned, x, y);
+      const std::uint8_t* p = rgbPixel(*captioned, x, y);
       white += p[0] > 200 && p[1] > 200 && p[2] > 200;
     }
   EXPECT_GT(white, 100);
@@ -105,10 +102,10 @@ TEST(FalseColour, SmallFramesAreEnlargedPixelByPixel) {
   EXPECT_GE(zoomed->height, 240);
   EXPECT_GT(zoomed->width, 400);
   for (const auto& [x, y] : {std::pair{0, 0}, std::pair{37, 21}, std::pair{99, 59}}) {
-    const std::uint8_t* source = pixel(*plain, x, y);
+    const std::uint8_t* source = rgbPixel(*plain, x, y);
     for (int dy = 0; dy < 4; ++dy) {
       for (int dx = 0; dx < 4; ++dx) {
-        const std::uint8_t* shown = pixel(*zoomed, 4 * x + dx, 4 * y + dy);
+        const std::uint8_t* shown = rgbPixel(*zoomed, 4 * x + dx, 4 * y + dy);
         EXPECT_EQ(shown[0], source[0]) << x << "," << y;
         EXPECT_EQ(shown[1], source[1]) << x << "," << y;
         EXPECT_EQ(shown[2], source[2]) << x << "," << y;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "canvas.h"
 #include "core/angles.h"
 #include "pipeline/glare_analysis.h"
 #include "support/sim_support.h"
@@ -39,10 +40,6 @@ Pictures render(bool with_ellipses = true, std::vector<double> thresholds_cd_m2 
   return p;
 }
 
-const std::uint8_t* pixel(const RgbImage& image, int x, int y) {
-  return image.rgb.data() + (static_cast<std::size_t>(y) * image.width + x) * 3;
-}
-
 // How much brighter (sum of channels) the overlay made the brightest pixel within `radius` of
 // (x, y) than the plain picture: the lines are 1.5 px wide, anti-aliased.
 int lift(const Pictures& p, double x, double y, int radius = 1) {
@@ -51,8 +48,8 @@ int lift(const Pictures& p, double x, double y, int radius = 1) {
     for (int dx = -radius; dx <= radius; ++dx) {
       const int px = static_cast<int>(std::lround(x)) + dx,
                 py = static_cast<int>(std::lround(y)) + dy;
-      const std::uint8_t* a = pixel(p.plain, px, py);
-      const std::uint8_t* b = pixel(p.overlaid, px, py);
+      const std::uint8_t* a = rgbPixel(p.plain, px, py);
+      const std::uint8_t* b = rgbPixel(p.overlaid, px, py);
       best = std::max(best, (b[0] + b[1] + b[2]) - (a[0] + a[1] + a[2]));
     }
   }
@@ -67,8 +64,8 @@ TEST(GlarePicture, DrawsTheContourTheCirclesAndNothingElsewhere) {
   // Every 20th traced contour point is covered by the contour or the fitted ellipse.
   for (std::size_t i = 0; i < limit.contour_px.size(); i += 20) {
     const auto& c = limit.contour_px[i];
-    const std::uint8_t* rgb =
-        pixel(p.overlaid, static_cast<int>(std::lround(c.x)), static_cast<int>(std::lround(c.y)));
+    const std::uint8_t* rgb = rgbPixel(p.overlaid, static_cast<int>(std::lround(c.x)),
+                                       static_cast<int>(std::lround(c.y)));
     // Magenta (contour) or white (dashed fit over it): red and blue both high.
     EXPECT_GT(rgb[0], 150) << i;
     EXPECT_GT(rgb[2], 150) << i;

@@ -10,8 +10,6 @@
 namespace glarecam::pipeline {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 std::vector<std::string> labels(const std::vector<Tick>& ticks) {
   std::vector<std::string> out;
   for (const Tick& t : ticks) out.push_back(t.label);

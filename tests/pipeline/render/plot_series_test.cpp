@@ -9,7 +9,6 @@
 namespace glarecam::pipeline {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr LineStyle kBlackLine{.colour = {0, 0, 0}, .width_pt = 3};
 
 // 0–100 on both axes over a 100 × 100 area at (50, 50) of a 200 × 200 canvas: one unit a pixel.

@@ -7,51 +7,51 @@
 namespace glarecam::pipeline {
 namespace {
 
-constexpr Font kFont{.size = 10};
+constexpr Font kTableFont{.size = 10};
 
 const TextTable kTable{
     .rows = {{"name", "value"}, {"first", "1"}, {"second", "22"}, {"third", "333 333"}}};
 
 TEST(TextTable, ColumnsAreAsWideAsTheirWidestCellPlusPadding) {
   TestCanvas canvas(10, 10);
-  const std::vector<double> widths = columnWidthsPt(canvas.cr(), kTable, kFont);
+  const std::vector<double> widths = columnWidthsPt(canvas.cr(), kTable, kTableFont);
   ASSERT_EQ(widths.size(), 2u);
-  const double padding = widths[0] - textWidth(canvas.cr(), "second", kFont);
+  const double padding = widths[0] - textWidth(canvas.cr(), "second", kTableFont);
   EXPECT_GT(padding, 0);
-  EXPECT_DOUBLE_EQ(widths[1], textWidth(canvas.cr(), "333 333", kFont) + padding);
+  EXPECT_DOUBLE_EQ(widths[1], textWidth(canvas.cr(), "333 333", kTableFont) + padding);
   // Headings count in bold.
   const TextTable bold_header{.rows = {{"WWWW"}, {"WWWW"}}};
-  EXPECT_DOUBLE_EQ(columnWidthsPt(canvas.cr(), bold_header, kFont)[0],
+  EXPECT_DOUBLE_EQ(columnWidthsPt(canvas.cr(), bold_header, kTableFont)[0],
                    textWidth(canvas.cr(), "WWWW", {.size = 10, .bold = true}) + padding);
 }
 
 TEST(TextTable, RaggedRowsGetTheWidestRowsColumns) {
   TestCanvas canvas(10, 10);
   const TextTable ragged{.rows = {{"a"}, {"b", "c", "d"}, {"e", "f"}}};
-  const std::vector<double> widths = columnWidthsPt(canvas.cr(), ragged, kFont);
+  const std::vector<double> widths = columnWidthsPt(canvas.cr(), ragged, kTableFont);
   ASSERT_EQ(widths.size(), 3u);
   EXPECT_GT(widths[2], 0);
 }
 
 TEST(TextTable, HeightIsRowsTimesARowHeightScaledByTheFont) {
-  EXPECT_DOUBLE_EQ(tableHeightPt(kTable, kFont), 4 * 12.0);  // rows 1.2 em apart
+  EXPECT_DOUBLE_EQ(tableHeightPt(kTable, kTableFont), 4 * 12.0);  // rows 1.2 em apart
   EXPECT_DOUBLE_EQ(tableHeightPt(kTable, {.size = 5}), 4 * 6.0);
-  EXPECT_DOUBLE_EQ(tableHeightPt({}, kFont), 0);
+  EXPECT_DOUBLE_EQ(tableHeightPt({}, kTableFont), 0);
 }
 
 TEST(TextTable, DrawnAtNaturalSizeWhenItFitsShrunkWhenNot) {
   TestCanvas canvas(400, 200);
-  EXPECT_DOUBLE_EQ(drawTable(canvas.cr(), kTable, {0, 0, 400, 200}, kFont), 48);
+  EXPECT_DOUBLE_EQ(drawTable(canvas.cr(), kTable, {0, 0, 400, 200}, kTableFont), 48);
   double natural_width = 0;
-  for (const double w : columnWidthsPt(canvas.cr(), kTable, kFont)) natural_width += w;
-  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, natural_width / 2, 200}, kFont), 24, 1e-9);
-  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, 400, 36}, kFont), 36, 1e-9);
-  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, 1, 1}, kFont), 0.3 * 48, 1e-9);
+  for (const double w : columnWidthsPt(canvas.cr(), kTable, kTableFont)) natural_width += w;
+  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, natural_width / 2, 200}, kTableFont), 24, 1e-9);
+  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, 400, 36}, kTableFont), 36, 1e-9);
+  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, 1, 1}, kTableFont), 0.3 * 48, 1e-9);
 }
 
 TEST(TextTable, EveryOtherDataRowIsStripedAndRulesFrameTheData) {
   TestCanvas canvas(400, 200);
-  drawTable(canvas.cr(), kTable, {0, 0, 400, 200}, kFont);
+  drawTable(canvas.cr(), kTable, {0, 0, 400, 200}, kTableFont);
   // Rows are 12 px: heading [0, 12], first [12, 24], second [24, 36], third [36, 48]. Column 0
   // is right-aligned, so its left padding is blank.
   EXPECT_EQ(canvas.at(1, 18), kWhitePixel);
@@ -67,10 +67,10 @@ TEST(TextTable, EveryOtherDataRowIsStripedAndRulesFrameTheData) {
 TEST(TextTable, FirstColumnLeftAlignedOnRequest) {
   TextTable table{.rows = {{"a much wider heading", "y"}, {"a", "1"}}};
   TestCanvas right(300, 40);
-  drawTable(right.cr(), table, {0, 0, 300, 40}, kFont);
+  drawTable(right.cr(), table, {0, 0, 300, 40}, kTableFont);
   table.first_column_left = true;
   TestCanvas left(300, 40);
-  drawTable(left.cr(), table, {0, 0, 300, 40}, kFont);
+  drawTable(left.cr(), table, {0, 0, 300, 40}, kTableFont);
   // The short cell "a" of the data row sits at its column's start, or by default at its end.
   EXPECT_TRUE(left.anyInk(0, 13, 20, 24));
   EXPECT_FALSE(right.anyInk(0, 13, 20, 24));

@@ -33,50 +33,76 @@ void expectBadInput(const Error& error, std::initializer_list<std::string> parts
 
 class CalibrationParts : public ::testing::Test {
  protected:
-  // The targets, written once: dark, linearity, noise, flat, luminance, and a board in 4 poses;
-  // and the dark and linearity parts the others build on.
-  static void SetUpTestSuite() {
-    dir_ = std::make_unique<testing::TempDir>();
-    for (CalibrationTarget target :
-         {CalibrationTarget::kDark, CalibrationTarget::kLinearity, CalibrationTarget::kNoise,
-          CalibrationTarget::kFlat, CalibrationTarget::kLuminance, CalibrationTarget::kBoard}) {
-      capture::CalibrationTargetOptions options;
-      options.target = target;
-      if (target == CalibrationTarget::kBoard) {
-        options.width = 640;
-        options.height = 480;
-        options.board_views = 4;
-      }
-      auto stacks = capture::simulateCalibrationTarget(options);
-      ASSERT_TRUE(stacks) << stacks.error().message;
-      auto written =
-          capture::writeCalibrationTargetStacks(dir_->path() / "targets", target, *stacks);
-      ASSERT_TRUE(written) << written.error().message;
-      for (const fs::path& path : *written) stacks_[target].push_back(path.string());
-      truth_[target] = stacks->front().truth;
-    }
-    auto dark =
-        calibration::calibrateDarkPart({.inputs = inputs(CalibrationTarget::kDark, "dark")});
-    ASSERT_TRUE(dark) << dark.error().message;
-    auto linearity = calibration::calibrateLinearityPart(
-        {.inputs = inputs(CalibrationTarget::kLinearity, "linearity", {"dark"})});
-    ASSERT_TRUE(linearity) << linearity.error().message;
+  // The targets (dark, linearity, noise, flat, luminance, and a board in 4 poses) and the dark
+  // and linearity parts the others build on, each made on first use and kept for the process:
+  // CTest runs every test in a process of its own, and simulating all six targets for each took
+  // most of this suite's time under AddressSanitizer.
+  static void SetUpTestSuite() { dir_ = std::make_unique<testing::TempDir>(); }
+  static void TearDownTestSuite() {
+    dir_.reset();
+    stacks_.clear();
+    truth_.clear();
   }
-  static void TearDownTestSuite() { dir_.reset(); }
 
   static fs::path partFile(const std::string& name) {
     return dir_->path() / "cal" / (name + ".json");
   }
 
+  // The target's stacks on disk, simulated and written on first use.
+  static const std::vector<std::string>& stacks(CalibrationTarget target) {
+    if (stacks_.contains(target)) return stacks_[target];
+    std::vector<std::string>& paths = stacks_[target];
+    capture::CalibrationTargetOptions options;
+    options.target = target;
+    if (target == CalibrationTarget::kBoard) {
+      options.width = 640;
+      options.height = 480;
+      options.board_views = 4;
+    }
+    auto simulated = capture::simulateCalibrationTarget(options);
+    if (!simulated) {
+      ADD_FAILURE() << simulated.error().message;
+      return paths;
+    }
+    auto written =
+        capture::writeCalibrationTargetStacks(dir_->path() / "targets", target, *simulated);
+    if (!written) {
+      ADD_FAILURE() << written.error().message;
+      return paths;
+    }
+    for (const fs::path& path : *written) paths.push_back(path.string());
+    truth_[target] = simulated->front().truth;
+    return paths;
+  }
+
+  // cal/<name>.json; the dark and linearity parts are calibrated on first use.
+  static fs::path part(const std::string& name) {
+    const fs::path file = partFile(name);
+    if (fs::exists(file)) return file;
+    if (name == "dark") {
+      auto dark =
+          calibration::calibrateDarkPart({.inputs = inputs(CalibrationTarget::kDark, "dark")});
+      if (!dark) ADD_FAILURE() << dark.error().message;
+    } else if (name == "linearity") {
+      auto linearity = calibration::calibrateLinearityPart(
+          {.inputs = inputs(CalibrationTarget::kLinearity, "linearity", {"dark"})});
+      if (!linearity) ADD_FAILURE() << linearity.error().message;
+    }
+    return file;
+  }
+
   // The target's stacks, building on the named parts, written to cal/<out>.json.
   static PartInputs inputs(CalibrationTarget target, const std::string& out,
                            std::initializer_list<std::string> priors = {}) {
-    PartInputs inputs{.stacks = stacks_[target], .calibrations = {}, .out = partFile(out)};
-    for (const std::string& prior : priors) inputs.calibrations.push_back(partFile(prior).string());
+    PartInputs inputs{.stacks = stacks(target), .calibrations = {}, .out = partFile(out)};
+    for (const std::string& prior : priors) inputs.calibrations.push_back(part(prior).string());
     return inputs;
   }
 
-  static const json& truth(CalibrationTarget target) { return truth_[target]; }
+  static const json& truth(CalibrationTarget target) {
+    stacks(target);
+    return truth_[target];
+  }
 
   static inline std::unique_ptr<testing::TempDir> dir_;
   static inline std::map<CalibrationTarget, std::vector<std::string>> stacks_;
@@ -105,7 +131,7 @@ TEST_F(CalibrationParts, DarkWritesTheBlackLevelItsImagesAndTheProvenance) {
   EXPECT_EQ(read->camera.serial, "SIM-0001");
   ASSERT_TRUE(read->parts.contains("dark"));
   EXPECT_EQ(read->parts.at("dark").measured_at, kCapturedAt);
-  EXPECT_EQ(read->parts.at("dark").inputs, stacks_[CalibrationTarget::kDark]);
+  EXPECT_EQ(read->parts.at("dark").inputs, stacks(CalibrationTarget::kDark));
   // Its images beside it, named in its values: the hot-pixel map marks exactly the hot pixels.
   EXPECT_EQ(read->values["dark_frame"], "dark-dark.exr");
   EXPECT_TRUE(fs::exists(partFile("rig/dark").parent_path() / "dark-dark.exr"));
@@ -205,10 +231,10 @@ TEST_F(CalibrationParts, IntrinsicsTakesOneViewAStack) {
   const auto part = calibration::calibrateIntrinsicsPart(options);
   ASSERT_TRUE(part) << part.error().message;
   // Each stack's best exposed frame, named by its stack.
-  const std::vector<std::string>& stacks = stacks_[CalibrationTarget::kBoard];
-  ASSERT_EQ(part->measured.views_used.size(), stacks.size());
-  for (std::size_t i = 0; i < stacks.size(); ++i)
-    EXPECT_EQ(part->measured.views_used[i].rfind(stacks[i] + "/", 0), 0u)
+  const std::vector<std::string>& board = stacks(CalibrationTarget::kBoard);
+  ASSERT_EQ(part->measured.views_used.size(), board.size());
+  for (std::size_t i = 0; i < board.size(); ++i)
+    EXPECT_EQ(part->measured.views_used[i].rfind(board[i] + "/", 0), 0u)
         << part->measured.views_used[i];
   // Four poses fix the focal length to about 1 %.
   const double fx = truth(CalibrationTarget::kBoard)["intrinsics"]["fx"].get<double>();
@@ -218,8 +244,8 @@ TEST_F(CalibrationParts, IntrinsicsTakesOneViewAStack) {
 
 TEST_F(CalibrationParts, MergeCombinesThePartsAndCopiesTheirImages) {
   const fs::path out = dir_->path() / "rig1" / "calibration.json";
-  const auto merged = calibration::mergeCalibrationParts(
-      {.files = {partFile("dark"), partFile("linearity")}, .out = out});
+  const auto merged =
+      calibration::mergeCalibrationParts({.files = {part("dark"), part("linearity")}, .out = out});
   ASSERT_TRUE(merged) << merged.error().message;
   EXPECT_EQ(merged->file, out);
   EXPECT_EQ(merged->document.parts.size(), 2u);
@@ -275,11 +301,11 @@ TEST_F(CalibrationParts, BadStacksAndEarlierPartsNameTheFile) {
 
   // The board's frames are 640x480, the noise target's 320x256: both named.
   PartInputs mixed = inputs(CalibrationTarget::kNoise, "x", {"dark"});
-  mixed.stacks.push_back(stacks_[CalibrationTarget::kBoard].front());
+  mixed.stacks.push_back(stacks(CalibrationTarget::kBoard).front());
   const auto sizes = calibration::calibrateNoisePart({.inputs = mixed});
   ASSERT_FALSE(sizes);
-  expectBadInput(sizes.error(), {stacks_[CalibrationTarget::kBoard].front(), "640x480",
-                                 stacks_[CalibrationTarget::kNoise].front(), "320x256"});
+  expectBadInput(sizes.error(), {stacks(CalibrationTarget::kBoard).front(), "640x480",
+                                 stacks(CalibrationTarget::kNoise).front(), "320x256"});
 
   const auto no_black =
       calibration::calibrateFlatPart({.inputs = inputs(CalibrationTarget::kFlat, "x")});
@@ -302,14 +328,14 @@ TEST_F(CalibrationParts, BadStacksAndEarlierPartsNameTheFile) {
 
 TEST_F(CalibrationParts, MergeRefusesTooFewFilesAndAnotherCamera) {
   const auto one = calibration::mergeCalibrationParts(
-      {.files = {partFile("dark")}, .out = dir_->path() / "merged.json"});
+      {.files = {part("dark")}, .out = dir_->path() / "merged.json"});
   ASSERT_FALSE(one);
   expectBadInput(one.error(), {"calibrate merge: give two or more files"});
 
   testing::writeText(partFile("other"),
                      R"({"schema": "glarecam.calibration/1", "camera": {"serial": "OTHER"}})");
   const auto other = calibration::mergeCalibrationParts(
-      {.files = {partFile("dark"), partFile("other")}, .out = dir_->path() / "merged.json"});
+      {.files = {part("dark"), partFile("other")}, .out = dir_->path() / "merged.json"});
   ASSERT_FALSE(other);
   expectBadInput(other.error(), {partFile("other").string(), "camera serial \"OTHER\" differs"});
   EXPECT_FALSE(fs::exists(dir_->path() / "merged.json"));

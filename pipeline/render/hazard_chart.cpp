@@ -59,7 +59,7 @@ constexpr Rgb kNoGlareColour = kWhite;
 
 constexpr std::array<Rgb, 2> kModelColours = {kFirstColour, kSecondColour};
 constexpr double kSeriesWidthPt = 1.0;
-constexpr LineStyle kThresholdStyle{.colour = kInk, .width_pt = 0.9, .dash = Dash::kDashed};
+constexpr LineStyle kCriterionLineStyle{.colour = kInk, .width_pt = 0.9, .dash = Dash::kDashed};
 constexpr double kSwatchPt = 6.5;  // a colour's square in the legend
 
 // ---- Cells ----
@@ -386,7 +386,7 @@ void drawMinutesPanel(cairo_t* cr, const HazardChartContent& c, const Box& frame
 
   const double limit = c.threshold_minutes_per_day;
   drawCurve(
-      cr, plot, [limit](double) { return limit; }, plot.x.range, kThresholdStyle);
+      cr, plot, [limit](double) { return limit; }, plot.x.range, kCriterionLineStyle);
   const std::string limit_label = fmt::format("{} min/day", formatPlain(limit));
   const Point label_end{plot.area.x1 - kThresholdLabelGapPt,
                         plot.pageY(limit) - kThresholdLabelGapPt};

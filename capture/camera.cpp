@@ -16,6 +16,14 @@ Error namingCamera(Error error, const std::string& uri) {
 
 }  // namespace
 
+double bracketFloorS(std::span<const ExposureRequest> requests, double frame_bytes,
+                     double link_bytes_per_s) {
+  double seconds = 0;
+  for (const ExposureRequest& request : requests)
+    seconds += request.exposure_us / 1e6 + frame_bytes / link_bytes_per_s;
+  return seconds;
+}
+
 Status checkRequest(const ExposureRequest& request, const CameraLimits& limits,
                     std::string_view uri) {
   const double exposure_us = request.exposure_us;

@@ -73,6 +73,8 @@ struct CapturedFrame {
   RawFrame image;
   double exposure_us = 0;  // as applied (read back or from the frame's metadata)
   double gain_db = 0;      // as applied
+  // The camera's own clock (GenICam timestamp, V4L2 / libcamera buffer time); the simulator's
+  // runs as a camera's would (sim_camera.h).
   std::uint64_t timestamp_ns = 0;
   int retries = 0;  // incomplete or stale frames discarded before this one
 };
@@ -112,6 +114,15 @@ class Camera {
   virtual Result<std::vector<CapturedFrame>> doCapture(
       std::span<const ExposureRequest> requests) = 0;
 };
+
+// Gigabit Ethernet's 125 MB/s on the wire, of which GigE Vision's stream (GVSP) over 1500-byte
+// packets keeps about 95 %: the rig's camera link.
+inline constexpr double kGigabitPayloadBytesPerS = 125e6 * 0.95;
+
+// The least time any camera takes for `requests`: each exposure, then its frame of `frame_bytes`
+// sent at `link_bytes_per_s` (nothing overlapped). What a bracket's time is measured against.
+double bracketFloorS(std::span<const ExposureRequest> requests, double frame_bytes,
+                     double link_bytes_per_s = kGigabitPayloadBytesPerS);
 
 // Whether `request` is one `limits` allow: both values finite, the exposure positive and within
 // the range (an upper limit of 0: none known), the gain within its range (a camera without

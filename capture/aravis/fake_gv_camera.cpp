@@ -10,9 +10,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -79,8 +81,16 @@ struct FakeGvCamera::State {
     static_cast<State*>(self)->render(buffer, exposure_time_us, gain_raw, pixel_format);
   }
 
+  // The frame, then the rest of its exposure time: the thread sends it on return.
   void render(ArvBuffer* buffer, guint32 exposure_time_us, guint32 gain_raw,
               ArvPixelFormat pixel_format) {
+    const auto triggered = std::chrono::steady_clock::now();
+    renderFrame(buffer, exposure_time_us, gain_raw, pixel_format);
+    std::this_thread::sleep_until(triggered + std::chrono::microseconds(exposure_time_us));
+  }
+
+  void renderFrame(ArvBuffer* buffer, guint32 exposure_time_us, guint32 gain_raw,
+                   ArvPixelFormat pixel_format) {
     const int width = arv_buffer_get_image_width(buffer);
     const int height = arv_buffer_get_image_height(buffer);
     const bool mono16 = pixel_format == ARV_PIXEL_FORMAT_MONO_16;

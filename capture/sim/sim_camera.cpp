@@ -164,7 +164,12 @@ class SimCamera final : public Camera, public SceneTruthSource {
       const FrameSpec spec = simulatedFrameSpec(options_, frame.exposure_us, frame.gain_db);
       frame.image = exposeFrame(scene_.true_luminance_cd_m2, spec, scene_.calibration,
                                 options_.sensor, simulatedFrameSeed(options_.seed, frames_taken_));
-      frame.timestamp_ns = frames_taken_++;
+      frame.timestamp_ns = camera_clock_ns_;
+      const ExposureRequest applied_request{frame.exposure_us, frame.gain_db};
+      camera_clock_ns_ += static_cast<std::uint64_t>(std::llround(
+          1e9 * bracketFloorS({&applied_request, 1}, static_cast<double>(frame.image.pixelCount()) *
+                                                         sizeof(std::uint16_t))));
+      ++frames_taken_;
       frames.push_back(std::move(frame));
     }
     return frames;
@@ -203,6 +208,7 @@ class SimCamera final : public Camera, public SceneTruthSource {
   bool alpha_fixed_ = false;
   CameraInfo info_;
   std::uint64_t frames_taken_ = 0;
+  std::uint64_t camera_clock_ns_ = 0;  // the simulated camera clock (timestamps)
 };
 
 // A calibration target in front of the simulated camera: its lab optics (no ND filter), the

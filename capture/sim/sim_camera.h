@@ -11,6 +11,10 @@
 // stack never records one α and shows another. An α up to
 // kSceneAlphaSlackDeg past the method's 80° (an inclinometer's noise around an 80° target) shows
 // the 80° scene; beyond that a bracket is refused.
+// Its frames' timestamps are a camera's clock, as if behind Gigabit Ethernet: from 0 at open, each
+// frame stamped at the start of its exposure, the clock advancing by the exposure and the frame's
+// transfer (bracketFloorS, camera.h), so a bracket reports the time a camera would take, while
+// the simulator itself takes only its rendering time.
 // The camera knows its calibration (CameraInfo::calibration) and the truth of what it shows
 // (SceneTruthSource), which the bracketer writes beside its stacks as truth.json.
 #pragma once

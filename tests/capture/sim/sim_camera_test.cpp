@@ -70,6 +70,28 @@ TEST(SimCamera, ExposureScalesTheFramesAndIsRoundedLikeACamera) {
   EXPECT_NEAR(signal_6db / signal_40ms, std::pow(10.0, 6.0 / 20.0), 0.04);
 }
 
+// Its timestamps are a camera's over Gigabit Ethernet: each frame starts when the previous one's
+// exposure and transfer ended. 160x128 16-bit frames are 40 960 bytes, 345 µs at 118.75 MB/s;
+// exact to the nanosecond the clock is rounded to.
+TEST(SimCamera, ItsClockTakesEachExposureAndTransfer) {
+  auto camera = openSim("size=160x128");
+  ASSERT_TRUE(camera);
+  const std::vector<ExposureRequest> requests{{1000, 0}, {250000, 0}, {20, 0}};
+  auto frames = camera->capture(requests);
+  ASSERT_TRUE(frames) << frames.error().message;
+  const double transfer_ns = 160 * 128 * 2 / kGigabitPayloadBytesPerS * 1e9;
+  EXPECT_NEAR(transfer_ns, 344926, 1);
+  EXPECT_EQ((*frames)[0].timestamp_ns, 0u);
+  EXPECT_NEAR(static_cast<double>((*frames)[1].timestamp_ns), 1000e3 + transfer_ns, 1);
+  EXPECT_NEAR(static_cast<double>((*frames)[2].timestamp_ns - (*frames)[1].timestamp_ns),
+              250000e3 + transfer_ns, 1);
+  // The next bracket goes on where this one ended: the camera's time for all three.
+  auto next = camera->capture(std::vector<ExposureRequest>{{10, 0}});
+  ASSERT_TRUE(next) << next.error().message;
+  EXPECT_NEAR(static_cast<double>((*next)[0].timestamp_ns),
+              1e9 * bracketFloorS(requests, 160 * 128 * 2), 2);
+}
+
 TEST(SimCamera, RefusesANanExposure) {
   auto camera = openCamera("sim:size=64x48", {});
   ASSERT_TRUE(camera) << camera.error().message;

@@ -7,10 +7,13 @@
 #include <ImfOutputFile.h>
 #include <ImfStdIO.h>
 #include <ImfThreading.h>
+#include <half.h>
 #include <png.h>
 #include <tiffio.h>
 
+#include <cmath>
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -18,6 +21,7 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/parallel.h"
@@ -350,20 +354,68 @@ Status writeTiffGray16(const fs::path& path, const RawFrame& frame) {
   return commitTemporary(temp, path);
 }
 
-Status writeExr(const fs::path& path, std::span<const ExrChannel> channels) {
+namespace {
+
+Imf::Compression exrCompression(ExrCompression compression) {
+  switch (compression) {
+    case ExrCompression::kPiz:
+      return Imf::PIZ_COMPRESSION;
+    case ExrCompression::kPxr24:
+      return Imf::PXR24_COMPRESSION;
+    case ExrCompression::kZip:
+      break;
+  }
+  return Imf::ZIP_COMPRESSION;
+}
+
+// A channel's pixels in the type it is stored as (OpenEXR converts only when reading).
+struct ExrPixels {
+  std::vector<half> halves;
+  std::vector<std::uint32_t> integers;
+
+  Imf::Slice slice(const ExrChannel& channel) {
+    const FloatImage& image = *channel.image;
+    const std::size_t n = image.pixelCount();
+    const auto width = static_cast<std::size_t>(image.width());
+    switch (channel.storage) {
+      case ExrStorage::kHalf:
+        halves.resize(n);
+        for (std::size_t i = 0; i < n; ++i) halves[i] = half(image.data()[i]);
+        return {Imf::HALF, reinterpret_cast<char*>(halves.data()), sizeof(half),
+                sizeof(half) * width};
+      case ExrStorage::kUint:
+        integers.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+          const float value = image.data()[i];
+          integers[i] = value > 0 ? static_cast<std::uint32_t>(std::lround(value)) : 0u;
+        }
+        return {Imf::UINT, reinterpret_cast<char*>(integers.data()), sizeof(std::uint32_t),
+                sizeof(std::uint32_t) * width};
+      case ExrStorage::kFloat:
+        break;
+    }
+    auto* base = const_cast<char*>(reinterpret_cast<const char*>(image.data()));
+    return {Imf::FLOAT, base, sizeof(float), sizeof(float) * width};
+  }
+};
+
+}  // namespace
+
+Status writeExr(const fs::path& path, std::span<const ExrChannel> channels,
+                ExrCompression compression) {
   if (channels.empty() || !channels.front().image)
     return fail(ErrorCode::kInternal, describe(path) + ": no EXR channel");
   configureExrThreads();
   const FloatImage& first = *channels.front().image;
   try {
     Imf::Header header(first.width(), first.height());
-    header.compression() = Imf::ZIP_COMPRESSION;
+    header.compression() = exrCompression(compression);
     Imf::FrameBuffer buffer;
-    for (const auto& channel : channels) {
-      header.channels().insert(channel.name, Imf::Channel(Imf::FLOAT));
-      auto* base = const_cast<char*>(reinterpret_cast<const char*>(channel.image->data()));
-      buffer.insert(channel.name,
-                    Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * first.width()));
+    std::vector<ExrPixels> pixels(channels.size());
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const Imf::Slice slice = pixels[c].slice(channels[c]);
+      header.channels().insert(channels[c].name, Imf::Channel(slice.type));
+      buffer.insert(channels[c].name, slice);
     }
     Imf::StdOSStream stream;
     {
@@ -378,9 +430,10 @@ Status writeExr(const fs::path& path, std::span<const ExrChannel> channels) {
   }
 }
 
-Status writeExr(const fs::path& path, const FloatImage& image, const std::string& channel) {
+Status writeExr(const fs::path& path, const FloatImage& image, const std::string& channel,
+                ExrCompression compression) {
   ExrChannel only{channel, &image};
-  return writeExr(path, std::span(&only, 1));
+  return writeExr(path, std::span(&only, 1), compression);
 }
 
 Result<FloatImage> readExr(const fs::path& path, const std::string& channel) {

@@ -44,14 +44,30 @@ Status writeTiffGray16(const std::filesystem::path& path, const RawFrame& frame)
 Status writePngRgb(const std::filesystem::path& path, int width, int height,
                    std::span<const std::uint8_t> rgb, int zlib_level = 3);
 
-// A float image with named FLOAT channels, ZIP-compressed, written atomically.
+// How a channel is stored in an EXR (every reader converts each to float):
+//   kFloat  32-bit float (lossless but for kPxr24 compression, which keeps 15 mantissa bits);
+//   kHalf   16-bit float: relative precision 2^-11 (4.9e-4), magnitudes up to 65504 (larger
+//           become infinite: never for absolute luminance, whose glare peaks reach 1e9 cd/m²);
+//   kUint   32-bit unsigned integer, for counts and flags (values rounded).
+enum class ExrStorage { kFloat, kHalf, kUint };
+
+// One compression per file (OpenEXR's): kZip (lossless, zlib), kPiz (lossless wavelet: fast,
+// best for HALF and integer channels), kPxr24 (FLOAT channels rounded to 24 bits, i.e. to a
+// relative 2^-16 = 1.5e-5, then zlib: noisy float32 compresses about twice as well as with kZip;
+// HALF and UINT channels stay lossless).
+enum class ExrCompression { kZip, kPiz, kPxr24 };
+
+// An image of named channels, written atomically.
 struct ExrChannel {
   std::string name;
   const FloatImage* image = nullptr;
+  ExrStorage storage = ExrStorage::kFloat;
 };
-Status writeExr(const std::filesystem::path& path, std::span<const ExrChannel> channels);
+Status writeExr(const std::filesystem::path& path, std::span<const ExrChannel> channels,
+                ExrCompression compression = ExrCompression::kZip);
 Status writeExr(const std::filesystem::path& path, const FloatImage& image,
-                const std::string& channel = "Y");
+                const std::string& channel = "Y",
+                ExrCompression compression = ExrCompression::kZip);
 
 // Reads channel `channel` (or, when it is absent, the only channel) of an EXR as float.
 Result<FloatImage> readExr(const std::filesystem::path& path, const std::string& channel = "Y");

@@ -31,17 +31,31 @@ namespace {
 constexpr int kProcessSteps = 7;
 constexpr const char* kResultFileName = "result.json";
 
-Status writeQualityExr(const fs::path& path, const calibration::MergedImage& merged) {
+// luminance.exr and quality.exr at their price (docs/process.md, "Output encodings"; measured on
+// the demo's 1224x1024 stacks): float32 luminance as ZIP was 4.8 MB, noisy float32 barely
+// compresses. HALF cannot hold it (magnitudes above 65504 cd/m², every glare peak, become
+// infinite), so it keeps float32 rounded to 24 bits (PXR24: relative 1.5e-5, far below any
+// calibration's uncertainty): 2.4 MB. The uncertainty, relative and of order 0.001–1, is HALF
+// (relative 4.9e-4 of itself) and the counts and flags UINT, PIZ-compressed: 1.0 MB against 5.0.
+// --float32: everything lossless float32, ZIP, as before.
+Status writeLuminanceExr(const fs::path& path, const calibration::MergedImage& merged,
+                         bool float32) {
+  return writeExr(path, merged.luminance_cd_m2, "Y",
+                  float32 ? ExrCompression::kZip : ExrCompression::kPxr24);
+}
+
+Status writeQualityExr(const fs::path& path, const calibration::MergedImage& merged, bool float32) {
   FloatImage valid(merged.valid_frames.width(), merged.valid_frames.height());
   FloatImage bound(valid.width(), valid.height());
   for (std::size_t i = 0; i < valid.pixelCount(); ++i) {
     valid.data()[i] = merged.valid_frames.data()[i];
     bound.data()[i] = merged.bound.data()[i];
   }
-  const ExrChannel channels[] = {{"relative_uncertainty", &merged.relative_uncertainty},
-                                 {"valid_frames", &valid},
-                                 {"bound", &bound}};
-  return writeExr(path, channels);
+  const ExrChannel channels[] = {{"relative_uncertainty", &merged.relative_uncertainty,
+                                  float32 ? ExrStorage::kFloat : ExrStorage::kHalf},
+                                 {"valid_frames", &valid, ExrStorage::kUint},
+                                 {"bound", &bound, ExrStorage::kUint}};
+  return writeExr(path, channels, float32 ? ExrCompression::kZip : ExrCompression::kPiz);
 }
 
 std::string stackId(const Stack& stack) {
@@ -250,11 +264,11 @@ std::string pictureTitle(const std::optional<double>& alpha_deg) {
 // luminance.exr, quality.exr, luminance.png, then result.json: each atomically, result last.
 Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
                     const ProcessSummary& summary, const FalseColourOptions& picture_options,
-                    Progress& progress) {
+                    bool float32, Progress& progress) {
   GLARECAM_CHECK(prepareOutputDirectory(out));
-  GLARECAM_CHECK(writeExr(out / "luminance.exr", merged.luminance_cd_m2, "Y"));
+  GLARECAM_CHECK(writeLuminanceExr(out / "luminance.exr", merged, float32));
   progress.advance("luminance.exr");
-  GLARECAM_CHECK(writeQualityExr(out / "quality.exr", merged));
+  GLARECAM_CHECK(writeQualityExr(out / "quality.exr", merged, float32));
   progress.advance("quality.exr");
   RgbImage picture;
   GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
@@ -467,8 +481,8 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   picture_options.caption = pictureCaption(summary.result);
   if (summary.result["luminance"]["frames_consistent"] == false)
     picture_options.banner = "SUSPECT: frames disagree with the merge";
-  GLARECAM_CHECK(
-      writeOutputs(summary.output_directory, merged, summary, picture_options, progress));
+  GLARECAM_CHECK(writeOutputs(summary.output_directory, merged, summary, picture_options,
+                              options.float32, progress));
   return summary;
 }
 

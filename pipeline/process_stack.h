@@ -26,8 +26,12 @@ struct ProcessOptions {
   // α for a stack whose manifest records none (another tool's, a rig without an inclinometer),
   // recorded in result.json as given by the user; one that contradicts the manifest's is refused.
   std::optional<double> alpha_deg = std::nullopt;
-  unsigned threads = 0;                  // 0: all cores
+  unsigned threads = 0;  // 0: all cores
   bool show_progress = true;
+  // The images at full float32 precision, losslessly (larger); by default luminance.exr keeps 24
+  // bits a value (relative 1.5e-5) and quality.exr stores the uncertainty as half
+  // (docs/process.md).
+  bool float32 = false;
   // Whose and how old a calibration may be (a serial mismatch refuses, old parts warn).
   calibration::CalibrationUseOptions calibration_use;
   Status validate() const;  // thresholds positive and finite, at most kMaxThresholds

@@ -71,6 +71,7 @@ Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_direct
                          .alpha_deg = given_alpha_deg,
                          .threads = threads_per_job,
                          .show_progress = false,
+                         .float32 = options.float32,
                          .calibration_use = {}};
   // Runs on a worker thread: an exception (out of memory, a bug) must skip this stack, not
   // terminate the process and lose every other stack's work.

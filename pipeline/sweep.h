@@ -23,6 +23,7 @@ struct SweepOptions {
   std::optional<std::filesystem::path> calibration_file;
   std::optional<double> threshold_cd_m2;  // a constant glare limit instead of the α curve
   bool show_progress = true;
+  bool float32 = false;  // each result's images at full float32 precision (ProcessOptions)
   // Rows of different cameras, frame sizes or calibrations in one table (mixedFields()) are
   // refused unless allowed: their fits would describe no one module measurement.
   bool allow_mixed = false;

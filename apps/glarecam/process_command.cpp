@@ -19,7 +19,7 @@ struct ProcessArgs {
   std::string stack;
   // Optional, so that a given but empty value ("--threshold $UNSET") is an error, not a default.
   std::optional<std::string> calibration, out, threshold, thresholds, alpha;
-  bool json = false, no_progress = false, force_calibration = false;
+  bool json = false, no_progress = false, force_calibration = false, float32 = false;
   unsigned threads = 0;
   double max_calibration_age_days = 365;
 };
@@ -41,6 +41,7 @@ Status runProcess(const ProcessArgs& args) {
     options.thresholds_cd_m2 = *thresholds;
   }
   options.show_progress = !args.no_progress;
+  options.float32 = args.float32;
   if (!(args.max_calibration_age_days > 0))
     return badInput("--max-calibration-age-days must be positive");
   options.calibration_use = {.force = args.force_calibration,
@@ -80,6 +81,9 @@ void addProcessCommand(CLI::App& app, Action& action) {
                   "warn about calibration parts older than this (default 365)");
   sub->add_flag("--json", args->json, "print result.json on stdout");
   sub->add_option("--threads", args->threads, "worker threads (default: all cores)");
+  sub->add_flag("--float32", args->float32,
+                "luminance.exr and quality.exr in lossless float32 (larger; default: luminance to "
+                "a relative 1.5e-5, the uncertainty as half)");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runProcess(*args); }; });
 }

@@ -19,7 +19,7 @@ struct SweepArgs {
   std::vector<std::string> inputs;
   std::optional<std::string> out, calibration, threshold, alpha_from;
   unsigned jobs = 0, threads = 0;
-  bool no_progress = false, strict = false, mixed = false;
+  bool no_progress = false, strict = false, mixed = false, float32 = false;
 };
 
 Status runSweep(const SweepArgs& args) {
@@ -33,8 +33,10 @@ Status runSweep(const SweepArgs& args) {
   options.threads = args.threads;
   options.show_progress = !args.no_progress;
   options.allow_mixed = args.mixed;
+  options.float32 = args.float32;
   GLARECAM_CHECK(requireNonEmptyPath(args.alpha_from, "--alpha-from"));
-  if (args.alpha_from) GLARECAM_ASSIGN(options.given_alpha_deg, pipeline::readAlphaTable(*args.alpha_from));
+  if (args.alpha_from)
+    GLARECAM_ASSIGN(options.given_alpha_deg, pipeline::readAlphaTable(*args.alpha_from));
   std::vector<std::filesystem::path> inputs;
   for (const std::string& input : args.inputs) {
     if (input.empty()) return badInput("STACKS: expected a path, got an empty string");
@@ -81,6 +83,8 @@ void addSweepCommand(CLI::App& app, Action& action) {
   sub->add_flag("--mixed", args->mixed,
                 "write one table of stacks of different cameras, frame sizes or calibrations "
                 "(refused otherwise; a '# mixed' note says what differs)");
+  sub->add_flag("--float32", args->float32,
+                "each result's images in lossless float32 (as process --float32)");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSweep(*args); }; });
 }

@@ -6,10 +6,12 @@
 #include "pipeline/process_stack.h"
 
 #include <gtest/gtest.h>
+#include <stdlib.h>  // setenv
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <set>
 #include <string>
@@ -62,6 +64,54 @@ TEST(ProcessStack, WritesEveryOutputAndAResultMatchingTheTruth) {
   auto luminance = readExr(out / "luminance.exr");
   ASSERT_TRUE(luminance) << luminance.error().message;
   EXPECT_TRUE(luminance->sameSize(simulated.frames[0].width(), simulated.frames[0].height()));
+}
+
+// The outputs at their price (docs/process.md, "Output encodings"): by default the luminance is
+// float32 rounded to 24 bits (within a relative 2^-16 of --float32's lossless copy, far inside the
+// 0.1 % the issue allows), the uncertainty half (2^-11 of itself), the counts and flags exact; the
+// two EXRs are smaller than the float32 ones, and other tools read them (OpenCV, as
+// docs/process.md shows).
+TEST(ProcessStack, CompactOutputsKeepTheLuminanceAndOthersReadThem) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s", testing::smallScene(65.0));
+  ProcessOptions compact = quiet();
+  compact.output_directory = dir / "compact";
+  ProcessOptions full = quiet();
+  full.output_directory = dir / "full";
+  full.float32 = true;
+  ASSERT_TRUE(processStack(dir / "s", compact));
+  ASSERT_TRUE(processStack(dir / "s", full));
+
+  const auto compare = [&](const char* file, const char* channel, double tolerance) {
+    const FloatImage a = readExr(dir / "compact" / file, channel).value();
+    const FloatImage b = readExr(dir / "full" / file, channel).value();
+    ASSERT_TRUE(a.sameSize(b.width(), b.height()));
+    double worst = 0;
+    for (std::size_t i = 0; i < a.pixelCount(); ++i) {
+      const float x = a.data()[i], y = b.data()[i];
+      ASSERT_EQ(std::isnan(x), std::isnan(y)) << file << " " << channel << " pixel " << i;
+      if (!std::isnan(y) && y != 0)
+        worst = std::max(worst, std::abs(static_cast<double>(x) / y - 1));
+    }
+    EXPECT_LE(worst, tolerance) << file << " " << channel;
+  };
+  compare("luminance.exr", "Y", std::ldexp(1.0, -16));
+  compare("quality.exr", "relative_uncertainty", std::ldexp(1.0, -11));
+  compare("quality.exr", "valid_frames", 0);
+  compare("quality.exr", "bound", 0);
+  for (const char* file : {"luminance.exr", "quality.exr"})
+    EXPECT_LT(fs::file_size(dir / "compact" / file), fs::file_size(dir / "full" / file)) << file;
+
+  // OpenCV reads EXR once allowed to (off by default since 4.5.2).
+  ::setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 1);
+  const cv::Mat read =
+      cv::imread((dir / "compact" / "luminance.exr").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(read.empty());
+  ASSERT_EQ(read.type(), CV_32FC1);
+  const FloatImage ours = readExr(dir / "compact" / "luminance.exr").value();
+  ASSERT_EQ(read.cols, ours.width());
+  for (int y = 0; y < read.rows; y += 7)
+    for (int x = 0; x < read.cols; x += 7) EXPECT_EQ(read.at<float>(y, x), ours.at(x, y));
 }
 
 // The dark frame against the truth: one simulated sensor (sensor seed 3) with a 6 DN fixed

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <system_error>
 
@@ -13,10 +14,10 @@ namespace {
 
 constexpr const char* kScratchTemplate = "glarecam-bench-XXXXXX";
 
-Result<BenchStack> buildStack() {
+Result<BenchStack> buildStack(int width = kStackWidth, int height = kStackHeight) {
   BenchStack stack;
-  stack.options.width = kStackWidth;
-  stack.options.height = kStackHeight;
+  stack.options.width = width;
+  stack.options.height = height;
   stack.options.alpha_deg = kStackAlphaDeg;
   stack.options.seed = kStackSeed;
   GLARECAM_ASSIGN(stack.simulated, capture::simulateStack(stack.options));
@@ -109,6 +110,22 @@ const Result<std::filesystem::path>& benchStackDirectory() {
     return path;
   }();
   return directory;
+}
+
+const Result<std::filesystem::path>& benchStackDirectory(const SensorSize& size) {
+  if (size.width == kStackWidth && size.height == kStackHeight) return benchStackDirectory();
+  // Benchmarks run one at a time: a plain cache, each size simulated on first use.
+  static std::map<std::string, Result<std::filesystem::path>> directories;
+  if (const auto found = directories.find(size.name); found != directories.end())
+    return found->second;
+  Result<std::filesystem::path> directory = [&]() -> Result<std::filesystem::path> {
+    BenchStack stack;
+    GLARECAM_ASSIGN(stack, buildStack(size.width, size.height));
+    const std::filesystem::path path = scratchDirectory() / (std::string("stack-") + size.name);
+    GLARECAM_CHECK(capture::writeSimulatedStack(path, stack.simulated));
+    return path;
+  }();
+  return directories.emplace(size.name, std::move(directory)).first->second;
 }
 
 }  // namespace glarecam::bench

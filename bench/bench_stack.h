@@ -56,6 +56,18 @@ const Result<calibration::MergedImage>& benchMergedImage();
 // The cached stack written once as a recorded stack directory (PNG frames + stack.json).
 const Result<std::filesystem::path>& benchStackDirectory();
 
+// A sensor the process benchmarks run at: a 1.25 MP, the rig's 5 MP (the cached stack) and a
+// 12 MP machine-vision sensor (Sony IMX253 class).
+struct SensorSize {
+  const char* name;  // in benchmark names: "1MP", "5MP", "12MP"
+  int width, height;
+};
+inline constexpr SensorSize kProcessSensorSizes[] = {
+    {"1MP", 1224, 1024}, {"5MP", kStackWidth, kStackHeight}, {"12MP", 4096, 3000}};
+
+// The same scene at `size`, simulated and written once as a recorded stack directory.
+const Result<std::filesystem::path>& benchStackDirectory(const SensorSize& size);
+
 // A private directory under the system temp directory, created on first use and removed
 // (with everything in it) when the process exits normally.
 const std::filesystem::path& scratchDirectory();

@@ -13,7 +13,8 @@ inline constexpr const char* kMergeMemoryFloor = "merge/memory_floor";
 inline constexpr const char* kMergeOpenCvDebevec = "merge/opencv_debevec";
 inline constexpr const char* kAnalysisGlarecam = "analysis/glarecam";
 inline constexpr const char* kAnalysisOpenCvFitEllipse = "analysis/opencv_fitellipse";
-inline constexpr const char* kProcessEndToEnd = "process/end_to_end";
+inline constexpr const char* kProcessEndToEnd = "process/end_to_end";       // + "/5MP", ...
+inline constexpr const char* kProcessDecodeFloor = "process/decode_floor";  // + "/5MP", ...
 inline constexpr const char* kSweepOneThread = "sweep/20_stacks/1_thread";
 inline constexpr const char* kSweepAllThreads = "sweep/20_stacks/all_threads";
 inline constexpr const char* kCaptureFakeGvBracket = "capture/fake_gv_bracket";
@@ -27,7 +28,7 @@ inline constexpr const char* kHazardScene = "hazard/scene";
 // Each returns the names it registered.
 std::vector<std::string> registerMergeBenchmarks();     // merge/*
 std::vector<std::string> registerAnalysisBenchmarks();  // analysis/*
-std::vector<std::string> registerProcessBenchmarks();   // process/end_to_end
+std::vector<std::string> registerProcessBenchmarks();   // process/* at each SensorSize
 std::vector<std::string> registerSweepBenchmarks();     // sweep/*
 std::vector<std::string> registerCaptureBenchmarks();   // capture/* (with Aravis only)
 std::vector<std::string> registerSunBenchmarks();       // sun/* (with libnova only)

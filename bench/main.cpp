@@ -5,6 +5,8 @@
 //   analysis/glarecam ÷ merge/glarecam           target <= 3x: analysis no bottleneck
 //   analysis/glarecam ÷ analysis/opencv_fitellipse   (no target: the price of sub-pixel
 //                                                      contours, angles and uncertainties)
+//   process/end_to_end/SIZE ÷ process/decode_floor/SIZE  target <= 1.5x at 5 MP: a whole
+//                                                process near the price of decoding its frames
 //   capture/fake_gv_bracket ÷ capture/link_floor target <= 1.1x: the capture's overhead at
 //                                                most 10 % of exposure plus transfer (the fake
 //                                                camera takes its exposures)
@@ -33,6 +35,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench/bench_stack.h"
 #include "bench/benchmarks.h"
 #include "core/build_config.h"
 
@@ -40,6 +43,7 @@ namespace glarecam::bench {
 namespace {
 
 constexpr double kDebevecTargetRatio = 40.0;
+constexpr double kDecodeFloorTargetRatio = 1.5;  // at 5 MP, the rig's sensor
 constexpr double kMemoryFloorTargetRatio = 2.0;
 constexpr double kAnalysisTargetRatio = 3.0;
 constexpr double kCaptureOverheadTargetRatio = 1.1;
@@ -238,6 +242,12 @@ int main(int argc, char** argv) {
              kMemoryFloorTargetRatio);
   printRatio(reporter, kAnalysisGlarecam, kMergeGlarecam, 2, Target::kAtMost, kAnalysisTargetRatio);
   printRatio(reporter, kAnalysisGlarecam, kAnalysisOpenCvFitEllipse, 2, Target::kNone, 0);
+  for (const SensorSize& size : kProcessSensorSizes) {
+    const bool rig = size.width == kStackWidth && size.height == kStackHeight;
+    printRatio(reporter, std::string(kProcessEndToEnd) + "/" + size.name,
+               std::string(kProcessDecodeFloor) + "/" + size.name, 2,
+               rig ? Target::kAtMost : Target::kNone, kDecodeFloorTargetRatio);
+  }
   // The sweep's speed-up from parallel stacks: 1 thread ÷ all threads.
   printRatio(reporter, kSweepOneThread, kSweepAllThreads, 2, Target::kNone, 0);
   printRatio(reporter, kCaptureFakeGvBracket, kCaptureLinkFloor, 3, Target::kAtMost,

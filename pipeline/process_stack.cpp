@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <future>
 
 #include "calibration/frame_consistency.h"
 #include "calibration/hdr_merge.h"
@@ -262,17 +263,44 @@ std::string pictureTitle(const std::optional<double>& alpha_deg) {
 }
 
 // luminance.exr, quality.exr, luminance.png, then result.json: each atomically, result last.
+// The three images are encoded at once unless one thread is asked for: each encoder is mostly
+// one thread of zlib, so one after another they left cores idle for most of the writing.
 Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
                     const ProcessSummary& summary, const FalseColourOptions& picture_options,
-                    bool float32, Progress& progress) {
+                    const ProcessOptions& options, Progress& progress) {
   GLARECAM_CHECK(prepareOutputDirectory(out));
-  GLARECAM_CHECK(writeLuminanceExr(out / "luminance.exr", merged, float32));
+  const auto writePicture = [&]() -> Status {
+    RgbImage picture;
+    GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
+    return writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb);
+  };
+  const auto writeLuminance = [&] {
+    return writeLuminanceExr(out / "luminance.exr", merged, options.float32);
+  };
+  const auto writeQuality = [&] {
+    return writeQualityExr(out / "quality.exr", merged, options.float32);
+  };
+  Status luminance, quality, picture;
+  if (options.threads == 1) {
+    luminance = writeLuminance();
+    quality = luminance ? writeQuality() : Status{};
+    picture = luminance && quality ? writePicture() : Status{};
+  } else {
+    // Each task returns its Status, an exception caught as an Error: both are joined before
+    // anything is reported.
+    std::future<Status> luminance_task =
+        std::async(std::launch::async, [&] { return catchExceptions(writeLuminance); });
+    std::future<Status> quality_task =
+        std::async(std::launch::async, [&] { return catchExceptions(writeQuality); });
+    picture = catchExceptions(writePicture);
+    luminance = luminance_task.get();
+    quality = quality_task.get();
+  }
+  GLARECAM_CHECK(luminance);
   progress.advance("luminance.exr");
-  GLARECAM_CHECK(writeQualityExr(out / "quality.exr", merged, float32));
+  GLARECAM_CHECK(quality);
   progress.advance("quality.exr");
-  RgbImage picture;
-  GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
-  GLARECAM_CHECK(writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb));
+  GLARECAM_CHECK(picture);
   progress.advance("luminance.png");
   GLARECAM_CHECK(writeFileAtomic(out / kResultFileName, jsonText(summary.result)));
   progress.advance("result.json");
@@ -481,8 +509,8 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   picture_options.caption = pictureCaption(summary.result);
   if (summary.result["luminance"]["frames_consistent"] == false)
     picture_options.banner = "SUSPECT: frames disagree with the merge";
-  GLARECAM_CHECK(writeOutputs(summary.output_directory, merged, summary, picture_options,
-                              options.float32, progress));
+  GLARECAM_CHECK(
+      writeOutputs(summary.output_directory, merged, summary, picture_options, options, progress));
   return summary;
 }
 

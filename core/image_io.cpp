@@ -11,12 +11,14 @@
 #include <png.h>
 #include <tiffio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csetjmp>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -386,8 +388,10 @@ struct ExrPixels {
       case ExrStorage::kUint:
         integers.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-          const float value = image.data()[i];
-          integers[i] = value > 0 ? static_cast<std::uint32_t>(std::lround(value)) : 0u;
+          const double value = image.data()[i];  // NaN fails every comparison: 0
+          constexpr double kMax = std::numeric_limits<std::uint32_t>::max();
+          integers[i] =
+              value > 0 ? static_cast<std::uint32_t>(std::round(std::min(value, kMax))) : 0u;
         }
         return {Imf::UINT, reinterpret_cast<char*>(integers.data()), sizeof(std::uint32_t),
                 sizeof(std::uint32_t) * width};

@@ -48,7 +48,8 @@ Status writePngRgb(const std::filesystem::path& path, int width, int height,
 //   kFloat  32-bit float (lossless but for kPxr24 compression, which keeps 15 mantissa bits);
 //   kHalf   16-bit float: relative precision 2^-11 (4.9e-4), magnitudes up to 65504 (larger
 //           become infinite: never for absolute luminance, whose glare peaks reach 1e9 cd/m²);
-//   kUint   32-bit unsigned integer, for counts and flags (values rounded).
+//   kUint   32-bit unsigned integer, for counts and flags (values rounded; NaN and negatives
+//           stored as 0, values beyond 2^32 − 1 as 2^32 − 1).
 enum class ExrStorage { kFloat, kHalf, kUint };
 
 // One compression per file (OpenEXR's): kZip (lossless, zlib), kPiz (lossless wavelet: fast,

@@ -119,6 +119,20 @@ TEST(ImageIo, ExrStoragesAndCompressionsKeepTheirPrecision) {
   }
   EXPECT_LE(worst_half, std::ldexp(1.0, -11));
   EXPECT_GT(worst_half, 0);
+
+  // Integers: NaN and negatives as 0, beyond 2^32 − 1 clamped, the rest rounded.
+  FloatImage odd(4, 1);
+  odd.data()[0] = std::numeric_limits<float>::quiet_NaN();
+  odd.data()[1] = -3;
+  odd.data()[2] = 5e9f;
+  odd.data()[3] = 6.6f;
+  const ExrChannel odd_channel[] = {{"n", &odd, ExrStorage::kUint}};
+  ASSERT_TRUE(writeExr(dir / "odd.exr", odd_channel, ExrCompression::kPiz));
+  const FloatImage read = readExr(dir / "odd.exr", "n").value();
+  EXPECT_EQ(read.data()[0], 0);
+  EXPECT_EQ(read.data()[1], 0);
+  EXPECT_EQ(read.data()[2], 4294967295.0f);
+  EXPECT_EQ(read.data()[3], 7);
 }
 
 TEST(ImageIo, ColourPngIsRefusedWithItsName) {

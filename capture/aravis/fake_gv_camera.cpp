@@ -31,6 +31,10 @@ constexpr int kMono16Shift = 4;
 constexpr int kMono8Shift = 4;
 constexpr int kMono8Max = 255;
 constexpr std::size_t kMaxReusedFrames = 64;  // distinct exposures kept with reuse_frames
+// The longest exposure the fake camera takes in full. Aravis's fake answers no control packets
+// while its one thread waits, and its client gives up on the control channel after a few seconds
+// (GVCP timeouts, the heartbeat): a longer exposure is sent after this long.
+constexpr std::chrono::microseconds kMaxTakenExposure{2'000'000};
 
 Calibration scaledCalibration(Calibration base, double dn_scale) {
   base.black_level_dn *= dn_scale;
@@ -81,12 +85,15 @@ struct FakeGvCamera::State {
     static_cast<State*>(self)->render(buffer, exposure_time_us, gain_raw, pixel_format);
   }
 
-  // The frame, then the rest of its exposure time: the thread sends it on return.
+  // The frame, then the rest of its exposure time (at most kMaxTakenExposure): the thread sends
+  // it on return.
   void render(ArvBuffer* buffer, guint32 exposure_time_us, guint32 gain_raw,
               ArvPixelFormat pixel_format) {
     const auto triggered = std::chrono::steady_clock::now();
     renderFrame(buffer, exposure_time_us, gain_raw, pixel_format);
-    std::this_thread::sleep_until(triggered + std::chrono::microseconds(exposure_time_us));
+    std::this_thread::sleep_until(
+        triggered + std::min<std::chrono::microseconds>(std::chrono::microseconds(exposure_time_us),
+                                                        kMaxTakenExposure));
   }
 
   void renderFrame(ArvBuffer* buffer, guint32 exposure_time_us, guint32 gain_raw,

@@ -6,8 +6,8 @@
 // Like a camera, and unlike Aravis's own fake, it takes each frame's exposure time between the
 // trigger and sending the frame (rendering counts towards it), so a bracket lasts at least the sum
 // of its exposures. Aravis's fake camera answers control packets on the thread that sends frames,
-// so none are answered during an exposure: the client's GVCP retries (500 ms each) cover a few
-// seconds, and glarecam's brackets stay below that.
+// so none are answered during an exposure, and the client gives up on the control channel after a
+// few seconds: an exposure longer than 2 s is sent after 2 s.
 // Pixel formats: Mono16 carries the simulated 12-bit sensor's values shifted up by 4 bits (as
 // cameras MSB-align Mono12 in Mono16), Mono8 its top 8 bits; the GainRaw register is read as dB.
 #pragma once

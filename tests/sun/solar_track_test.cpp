@@ -4,14 +4,14 @@
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
+
+#include "core/angles.h"
+#include "sun/incidence_angle.h"
 
 namespace glarecam::sun {
 namespace {
 
 using std::chrono::microseconds;
-
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 UtcTime yearStart(int year) {
   return std::chrono::time_point_cast<microseconds>(
@@ -19,11 +19,10 @@ UtcTime yearStart(int year) {
 }
 
 double angleDeg(const SunDirection& d, const SolarPosition& p) {
-  const double e = p.elevation_deg / kDegPerRad, a = p.azimuth_deg / kDegPerRad;
-  const double x = std::cos(e) * std::sin(a), y = std::cos(e) * std::cos(a), z = std::sin(e);
+  const auto [x, y, z] = eastNorthUp({p.elevation_deg, p.azimuth_deg});
   const double cross =
       std::hypot(d.north * z - d.up * y, d.up * x - d.east * z, d.east * y - d.north * x);
-  return std::atan2(cross, d.east * x + d.north * y + d.up * z) * kDegPerRad;
+  return degrees(std::atan2(cross, d.east * x + d.north * y + d.up * z));
 }
 
 // The largest angle between the track and full SPA over a year of minutes, every 7th minute (and
@@ -79,8 +78,8 @@ TEST(SolarTrack, RefractionLiftsTheSunAsSpaDoes) {
   for (std::size_t i = 0; i < 120; ++i) {
     const auto spa =
         solarPosition(sunrise + microseconds(10'000'000 * static_cast<std::int64_t>(i)), site);
-    EXPECT_NEAR(std::asin((*with)[i].up) * kDegPerRad, spa->elevation_deg, kSolarTrackToleranceDeg);
-    EXPECT_NEAR(std::asin((*without)[i].up) * kDegPerRad, spa->true_elevation_deg,
+    EXPECT_NEAR(degrees(std::asin((*with)[i].up)), spa->elevation_deg, kSolarTrackToleranceDeg);
+    EXPECT_NEAR(degrees(std::asin((*without)[i].up)), spa->true_elevation_deg,
                 kSolarTrackToleranceDeg);
   }
 }

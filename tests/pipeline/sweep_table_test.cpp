@@ -46,9 +46,11 @@ TEST(SweepTable, ColumnsInAnyOrderCommentsEmptyAxesAndQuotes) {
 
 TEST(SweepTable, SpreadsheetExportsWithAByteOrderMarkAndCrlfRead) {
   TempDir dir;
-  auto table =
-      readText(dir, "\xEF\xBB\xBF" + std::string(kHeader).insert(std::strlen(kHeader) - 1, "\r") +
-                        "5,30000,594000,5.0,5.7\r\n");
+  // The header's line ending made CRLF (kHeader ends in '\n'); built by appending, as GCC 12 at
+  // -O3 warns about a string::insert here (-Wstringop-overflow, a false positive).
+  std::string header(kHeader, std::strlen(kHeader) - 1);
+  header += "\r\n";
+  auto table = readText(dir, "\xEF\xBB\xBF" + header + "5,30000,594000,5.0,5.7\r\n");
   ASSERT_TRUE(table) << table.error().message;
   EXPECT_EQ(table->rows.at(0).horizontal_deg, 5.7);
 }

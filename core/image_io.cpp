@@ -12,6 +12,7 @@
 #include <tiffio.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <csetjmp>
 #include <cstdint>
@@ -120,7 +121,8 @@ Result<DecodedFrame> readPng(const fs::path& path, std::FILE* file, std::uint64_
   if (header.interlace != PNG_INTERLACE_NONE) png_set_interlace_handling(png);
   png_read_update_info(png, info);
   decoded.bit_depth = header.bit_depth;
-  decoded.pixels = RawFrame(static_cast<int>(header.width), static_cast<int>(header.height));
+  decoded.pixels =
+      RawFrame::uninitialized(static_cast<int>(header.width), static_cast<int>(header.height));
   if (header.bit_depth == 8) bytes8.resize(static_cast<std::size_t>(header.width) * header.height);
   rows.resize(header.height);
   for (png_uint_32 y = 0; y < header.height; ++y) {
@@ -160,7 +162,7 @@ Result<std::vector<std::byte>> encodePng(int width, int height, int bit_depth, i
   }
   png_set_write_fn(png, &out, pngWriteToVector, pngFlush);
   png_set_compression_level(png, zlib_level);
-  png_set_filter(png, 0, PNG_FILTER_SUB);
+  png_set_filter(png, 0, PNG_FILTER_NONE);  // kPngZlibLevel: measured
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height),
                bit_depth, color_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
@@ -226,7 +228,8 @@ Result<DecodedFrame> readTiff(const fs::path& path, std::uint64_t file_bytes) {
     return badInput(describe(path) + ": " + *size);
   if (TIFFIsTiled(tiff.get()))
     return badInput(describe(path) + ": tiled TIFF is not supported; write strips");
-  DecodedFrame decoded{RawFrame(static_cast<int>(width), static_cast<int>(height)), bits};
+  DecodedFrame decoded{RawFrame::uninitialized(static_cast<int>(width), static_cast<int>(height)),
+                       bits};
   std::vector<std::uint8_t> line(static_cast<std::size_t>(TIFFScanlineSize(tiff.get())));
   if (line.size() < static_cast<std::size_t>(width) * (bits / 8))
     return tiffFailure("inconsistent scanline size");
@@ -362,18 +365,28 @@ Imf::Compression exrCompression(ExrCompression compression) {
   switch (compression) {
     case ExrCompression::kPiz:
       return Imf::PIZ_COMPRESSION;
-    case ExrCompression::kPxr24:
-      return Imf::PXR24_COMPRESSION;
     case ExrCompression::kZip:
       break;
   }
   return Imf::ZIP_COMPRESSION;
 }
 
+// value rounded to nearest with its low 8 mantissa bits zero (ExrStorage::kFloat24). A carry into
+// the exponent is the correct rounding up to the next power of two.
+float roundTo24Bits(float value) {
+  constexpr std::uint32_t kExponentMask = 0x7f800000u;
+  constexpr std::uint32_t kDroppedBits = 0xffu, kHalfDropped = 0x80u;
+  auto bits = std::bit_cast<std::uint32_t>(value);
+  if ((bits & kExponentMask) == kExponentMask) return value;  // NaN and infinities as they are
+  bits = (bits + kHalfDropped) & ~kDroppedBits;
+  return std::bit_cast<float>(bits);
+}
+
 // A channel's pixels in the type it is stored as (OpenEXR converts only when reading).
 struct ExrPixels {
   std::vector<half> halves;
   std::vector<std::uint32_t> integers;
+  std::vector<float> rounded;
 
   Imf::Slice slice(const ExrChannel& channel) {
     const FloatImage& image = *channel.image;
@@ -395,6 +408,11 @@ struct ExrPixels {
         }
         return {Imf::UINT, reinterpret_cast<char*>(integers.data()), sizeof(std::uint32_t),
                 sizeof(std::uint32_t) * width};
+      case ExrStorage::kFloat24:
+        rounded.resize(n);
+        for (std::size_t i = 0; i < n; ++i) rounded[i] = roundTo24Bits(image.data()[i]);
+        return {Imf::FLOAT, reinterpret_cast<char*>(rounded.data()), sizeof(float),
+                sizeof(float) * width};
       case ExrStorage::kFloat:
         break;
     }

@@ -32,9 +32,16 @@ inline constexpr std::uint64_t kMaxCompressionRatio = 4096;
 
 Result<DecodedFrame> readRawFrame(const std::filesystem::path& path);
 
+// How glarecam writes PNGs, frames and pictures alike: zlib level 1, no row filter. Measured on
+// a simulated 5 MP stack (docs/process.md, "Output encodings"): a 16-bit frame takes 128 ms for
+// 4.81 MB, against 209 ms for 4.87 MB with level 3 and the Sub filter, and decodes in 45 ms
+// against 56; the false-colour picture 132 ms for 4.51 MB against 259 ms for 5.21 MB. Filters
+// predict smooth images; raw frames and their false colour are noisy at the pixel scale.
+inline constexpr int kPngZlibLevel = 1;
+
 // Encodes a raw frame as a single-channel 16-bit PNG (for bit_depth 16) or 8-bit PNG.
 Result<std::vector<std::byte>> encodePngGray(const RawFrame& frame, int bit_depth = 16,
-                                             int zlib_level = 3);
+                                             int zlib_level = kPngZlibLevel);
 Status writePngGray(const std::filesystem::path& path, const RawFrame& frame, int bit_depth = 16);
 
 // 16-bit single-channel TIFF (for tests and tools that produce TIFF stacks).
@@ -42,21 +49,24 @@ Status writeTiffGray16(const std::filesystem::path& path, const RawFrame& frame)
 
 // rgb holds width*height*3 bytes, row-major.
 Status writePngRgb(const std::filesystem::path& path, int width, int height,
-                   std::span<const std::uint8_t> rgb, int zlib_level = 3);
+                   std::span<const std::uint8_t> rgb, int zlib_level = kPngZlibLevel);
 
 // How a channel is stored in an EXR (every reader converts each to float):
-//   kFloat  32-bit float (lossless but for kPxr24 compression, which keeps 15 mantissa bits);
+//   kFloat    32-bit float, exact;
+//   kFloat24  32-bit float rounded to 16 significant bits (the low 8 of the mantissa zero): within
+//             a relative 2^-16 = 1.5e-5, NaN and infinities kept. Noisy float32 barely compresses
+//             because its low bits are noise; without them PIZ halves it (PXR24's rounding, but
+//             PIZ is 6 times faster than PXR24's zlib; docs/process.md, "Output encodings");
 //   kHalf   16-bit float: relative precision 2^-11 (4.9e-4), magnitudes up to 65504 (larger
 //           become infinite: never for absolute luminance, whose glare peaks reach 1e9 cd/m²);
 //   kUint   32-bit unsigned integer, for counts and flags (values rounded; NaN and negatives
 //           stored as 0, values beyond 2^32 − 1 as 2^32 − 1).
-enum class ExrStorage { kFloat, kHalf, kUint };
+enum class ExrStorage { kFloat, kFloat24, kHalf, kUint };
 
-// One compression per file (OpenEXR's): kZip (lossless, zlib), kPiz (lossless wavelet: fast,
-// best for HALF and integer channels), kPxr24 (FLOAT channels rounded to 24 bits, i.e. to a
-// relative 2^-16 = 1.5e-5, then zlib: noisy float32 compresses about twice as well as with kZip;
-// HALF and UINT channels stay lossless).
-enum class ExrCompression { kZip, kPiz, kPxr24 };
+// One compression per file (OpenEXR's), both lossless: kZip (zlib) and kPiz (wavelet and
+// Huffman: fast and small for HALF, UINT and kFloat24 channels, slow on unrounded noisy float32;
+// measured in docs/process.md, "Output encodings").
+enum class ExrCompression { kZip, kPiz };
 
 // An image of named channels, written atomically.
 struct ExrChannel {

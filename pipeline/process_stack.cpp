@@ -33,16 +33,19 @@ constexpr int kProcessSteps = 7;
 constexpr const char* kResultFileName = "result.json";
 
 // luminance.exr and quality.exr at their price (docs/process.md, "Output encodings"; measured on
-// the demo's 1224x1024 stacks): float32 luminance as ZIP was 4.8 MB, noisy float32 barely
-// compresses. HALF cannot hold it (magnitudes above 65504 cd/m², every glare peak, become
-// infinite), so it keeps float32 rounded to 24 bits (PXR24: relative 1.5e-5, far below any
-// calibration's uncertainty): 2.4 MB. The uncertainty, relative and of order 0.001–1, is HALF
-// (relative 4.9e-4 of itself) and the counts and flags UINT, PIZ-compressed: 1.2 MB against 5.0.
-// --float32: every channel lossless float32, ZIP, as before.
+// simulated 1.25 and 5 MP stacks). HALF cannot hold luminance (magnitudes above 65504 cd/m², every
+// glare peak, become infinite), and noisy float32 barely compresses: 17.0 MB at 5 MP with PIZ,
+// 20.2 raw. Rounded to 24 bits (relative 1.5e-5, far below any calibration's uncertainty) it
+// halves: PXR24 did that in 814 ms for 9.68 MB, the same rounding with PIZ takes 127 ms for
+// 9.62 MB. The uncertainty, relative and of order 0.001–1, is HALF (relative 4.9e-4 of itself) and
+// the counts and flags UINT: 1.2 MB against 5.0 at 1.25 MP. --float32: every channel lossless
+// float32 with ZIP (PIZ takes 1.2 s for unrounded float32 at 5 MP).
 Status writeLuminanceExr(const fs::path& path, const calibration::MergedImage& merged,
                          bool float32) {
-  return writeExr(path, merged.luminance_cd_m2, "Y",
-                  float32 ? ExrCompression::kZip : ExrCompression::kPxr24);
+  const ExrChannel luminance{"Y", &merged.luminance_cd_m2,
+                             float32 ? ExrStorage::kFloat : ExrStorage::kFloat24};
+  return writeExr(path, std::span(&luminance, 1),
+                  float32 ? ExrCompression::kZip : ExrCompression::kPiz);
 }
 
 Status writeQualityExr(const fs::path& path, const calibration::MergedImage& merged, bool float32) {

@@ -61,9 +61,9 @@ TEST(ImageIo, ExrRoundTripsFloats) {
 }
 
 // Each storage and compression keeps what it promises (core/image_io.h), across 1e-3 … 1e9 (a
-// glare peak's range) and NaN: FLOAT with PXR24 within a relative 2^-16 (15 mantissa bits kept,
-// rounded), HALF within 2^-11 and infinite above 65504, UINT exact for integers; lossless ZIP and
-// PIZ exact for FLOAT.
+// glare peak's range) and NaN: FLOAT exact with both compressions (both lossless), FLOAT24 within
+// a relative 2^-16 (15 mantissa bits kept, rounded), HALF within 2^-11 and infinite above 65504,
+// UINT exact for integers.
 TEST(ImageIo, ExrStoragesAndCompressionsKeepTheirPrecision) {
   testing::TempDir dir;
   FloatImage values(64, 9);
@@ -101,10 +101,10 @@ TEST(ImageIo, ExrStoragesAndCompressionsKeepTheirPrecision) {
   };
   for (const ExrCompression lossless : {ExrCompression::kZip, ExrCompression::kPiz})
     EXPECT_EQ(worstRelative(roundTrip(ExrStorage::kFloat, lossless, values), INFINITY), 0);
-  const double pxr24 =
-      worstRelative(roundTrip(ExrStorage::kFloat, ExrCompression::kPxr24, values), INFINITY);
-  EXPECT_GT(pxr24, 0);  // lossy indeed
-  EXPECT_LE(pxr24, std::ldexp(1.0, -16));
+  const double rounded =
+      worstRelative(roundTrip(ExrStorage::kFloat24, ExrCompression::kPiz, values), INFINITY);
+  EXPECT_GT(rounded, 0);  // lossy indeed
+  EXPECT_LE(rounded, std::ldexp(1.0, -16));
   const FloatImage halves = roundTrip(ExrStorage::kHalf, ExrCompression::kPiz, values);
   // Above half's smallest normal (6.1e-5) its 11 significant bits: 2^-11 relative.
   double worst_half = 0;

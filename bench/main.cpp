@@ -38,6 +38,7 @@
 #include "bench/bench_stack.h"
 #include "bench/benchmarks.h"
 #include "core/build_config.h"
+#include "core/memory.h"
 
 namespace glarecam::bench {
 namespace {
@@ -212,6 +213,7 @@ int main(int argc, char** argv) {
   using namespace glarecam::bench;
   const std::optional<ReportFormats> formats = reportFormats(argc, argv);
   if (!formats) return 2;
+  glarecam::reuseLargeAllocations();  // as glarecam and glarecamd run
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
   std::vector<std::string> names = registerMergeBenchmarks();

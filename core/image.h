@@ -6,10 +6,33 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace glarecam {
+
+// std::allocator, except that an element made without a value is default-initialised: for pixel
+// types, left as it is. Image::uninitialized() uses it for pixels a decoder writes at once, which
+// spares a pass over memory as large as the image.
+template <typename T>
+struct DefaultInitAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  using std::allocator<T>::allocator;
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    std::construct_at(p, std::forward<Args>(args)...);
+  }
+};
 
 template <typename T>
 class Image {
@@ -17,6 +40,16 @@ class Image {
   Image() = default;
   Image(int width, int height, T fill = T{})
       : width_(width), height_(height), pixels_(static_cast<std::size_t>(width) * height, fill) {}
+
+  // An image whose pixels hold whatever the memory held: for a caller that writes every pixel
+  // before reading any (a decoder).
+  static Image uninitialized(int width, int height) {
+    Image image;
+    image.width_ = width;
+    image.height_ = height;
+    image.pixels_.resize(static_cast<std::size_t>(width) * height);
+    return image;
+  }
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -40,7 +73,7 @@ class Image {
 
   int width_ = 0;
   int height_ = 0;
-  std::vector<T> pixels_;
+  std::vector<T, DefaultInitAllocator<T>> pixels_;
 };
 
 using RawFrame = Image<std::uint16_t>;

@@ -404,7 +404,7 @@ Status mergeInto(const MergeInput& input, const MergeOptions& options, MergedIma
   ensureSize(output.valid_frames, width, height);
   ensureSize(output.bound, width, height);
   const MergeKernel kernel(input, output);
-  parallelRows(height, options.threads ? options.threads : defaultThreadCount(),
+  parallelRows(height, options.threads ? options.threads : availableThreads(),
                [&](int begin, int end) { kernel.runRows(begin, end); });
   if (input.masked_pixels) fillMaskedPixels(*input.masked_pixels, output);
   return {};

@@ -249,9 +249,15 @@ Result<DecodedFrame> readTiff(const fs::path& path, std::uint64_t file_bytes) {
 
 // ---------------------------------------------------------------- EXR
 
-void configureExrThreads() {
+// The threads an EXR file may use (core/parallel.h): OpenEXR's pool, made once with a thread per
+// core, takes as many line-buffer tasks as the file's thread count; 0 keeps all the work on the
+// calling thread and starts no pool at all.
+int exrThreads() {
+  const unsigned threads = availableThreads();
+  if (threads <= 1) return 0;
   static std::once_flag once;
   std::call_once(once, [] { Imf::setGlobalThreadCount(static_cast<int>(defaultThreadCount())); });
+  return static_cast<int>(threads);
 }
 
 std::vector<std::uint8_t> readMagic(std::FILE* file) {
@@ -427,7 +433,6 @@ Status writeExr(const fs::path& path, std::span<const ExrChannel> channels,
                 ExrCompression compression) {
   if (channels.empty() || !channels.front().image)
     return fail(ErrorCode::kInternal, describe(path) + ": no EXR channel");
-  configureExrThreads();
   const FloatImage& first = *channels.front().image;
   try {
     Imf::Header header(first.width(), first.height());
@@ -441,7 +446,7 @@ Status writeExr(const fs::path& path, std::span<const ExrChannel> channels,
     }
     Imf::StdOSStream stream;
     {
-      Imf::OutputFile file(stream, header);
+      Imf::OutputFile file(stream, header, exrThreads());
       file.setFrameBuffer(buffer);
       file.writePixels(first.height());
     }  // the OutputFile destructor writes the line-offset table: copy the bytes only after it
@@ -461,9 +466,8 @@ Status writeExr(const fs::path& path, const FloatImage& image, const std::string
 Result<FloatImage> readExr(const fs::path& path, const std::string& channel) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return badInput(describe(path) + ": EXR file is missing");
-  configureExrThreads();
   try {
-    Imf::InputFile file(path.c_str());
+    Imf::InputFile file(path.c_str(), exrThreads());
     const auto& channels = file.header().channels();
     std::string name = channel;
     if (!channels.findChannel(name)) {

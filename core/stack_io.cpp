@@ -246,7 +246,7 @@ Result<Stack> readStackOnce(const fs::path& directory, const StackReadOptions& o
   }
   if (!options.decode_frames) return stack;
   GLARECAM_CHECK(
-      decodeFrames(stack, paths, options.threads ? options.threads : defaultThreadCount()));
+      decodeFrames(stack, paths, options.threads ? options.threads : availableThreads()));
   GLARECAM_CHECK(checkIntrinsicsSize(stack, resolved.where));
   const CalibrationImages images{stack, resolved.base_directory, where};
   GLARECAM_CHECK(loadFlatField(stack, images));
@@ -347,7 +347,7 @@ Status checkWriteRequest(const fs::path& directory, const StackWriteRequest& req
 Status writeFrames(const fs::path& staging, const StackWriteRequest& request) {
   const auto& specs = request.manifest.frames;
   std::vector<Status> written(specs.size());
-  parallelRows(static_cast<int>(specs.size()), defaultThreadCount(), [&](int begin, int end) {
+  parallelRows(static_cast<int>(specs.size()), availableThreads(), [&](int begin, int end) {
     for (int i = begin; i < end; ++i) {
       const auto index = static_cast<std::size_t>(i);
       const fs::path target = staging / specs[index].file;

@@ -392,7 +392,7 @@ Result<HazardResult> computeHazard(const Scene& scene,
   }
   std::vector<DayOutput> days(static_cast<std::size_t>(result.days));
   std::vector<std::optional<Error>> errors(static_cast<std::size_t>(result.days));
-  const unsigned threads = options.threads == 0 ? defaultThreadCount() : options.threads;
+  const unsigned threads = options.threads == 0 ? availableThreads() : options.threads;
   const int chunk = static_cast<int>(std::min(threads, kMaxThreads)) * kDaysPerChunkPerThread;
   for (int first = 0; first < result.days; first += chunk) {
     const int count = std::min(chunk, result.days - first);

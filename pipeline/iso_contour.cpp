@@ -309,7 +309,7 @@ int countRegions(const FloatImage& luminance, double level, std::size_t min_pixe
   // Rows holding any pixel at or above the level, found on all cores: on a glare image they
   // are few, and only they are labelled.
   std::vector<std::uint8_t> bright_row(static_cast<std::size_t>(luminance.height()), 0);
-  parallelRows(luminance.height(), defaultThreadCount(), [&](int begin, int end) {
+  parallelRows(luminance.height(), availableThreads(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
       const auto row = luminance.row(y);
       bright_row[static_cast<std::size_t>(y)] =

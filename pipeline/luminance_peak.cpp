@@ -67,7 +67,7 @@ std::vector<Located> rowBests(const calibration::MergedImage& merged, bool every
   const FloatImage& image = merged.luminance_cd_m2;
   const auto width = static_cast<std::size_t>(image.width());
   std::vector<Located> bests(static_cast<std::size_t>(image.height()));
-  parallelRows(image.height(), defaultThreadCount(), [&](int begin, int end) {
+  parallelRows(image.height(), availableThreads(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
       const std::size_t first = static_cast<std::size_t>(y) * width;
       Located best{first, 0};
@@ -109,7 +109,7 @@ Located locatePeak(const calibration::MergedImage& merged) {
   const int width = image.width(), height = image.height();
   Located best = bestOf(rowBests(merged, false));
   std::vector<std::vector<std::size_t>> bright(static_cast<std::size_t>(height));
-  parallelRows(height, defaultThreadCount(), [&](int begin, int end) {
+  parallelRows(height, availableThreads(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
       const auto row = image.row(y);
       for (std::size_t x = 0; x < row.size(); ++x)

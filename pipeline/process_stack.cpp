@@ -12,6 +12,7 @@
 #include "calibration/hdr_merge.h"
 #include "core/atomic_file.h"
 #include "core/image_io.h"
+#include "core/parallel.h"
 #include "core/progress.h"
 #include "core/sha256.h"
 #include "core/stack_io.h"
@@ -267,8 +268,10 @@ std::string pictureTitle(const std::optional<double>& alpha_deg) {
 }
 
 // luminance.exr, quality.exr, luminance.png, then result.json: each atomically, result last.
-// The three images are encoded at once unless one thread is asked for: each encoder is mostly
-// one thread of zlib, so one after another they left cores idle for most of the writing.
+// The three images are encoded at once as far as the thread budget allows: each encoder is
+// mostly one thread, so one after another they left cores idle for most of the writing. With two
+// threads the picture (the longest: rendering and PNG) runs beside the two EXRs; with one, all
+// three run here in turn.
 Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
                     const ProcessSummary& summary, const FalseColourOptions& picture_options,
                     const ProcessOptions& options, Progress& progress) {
@@ -285,20 +288,29 @@ Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
     return writeQualityExr(out / "quality.exr", merged, options.float32);
   };
   Status luminance, quality, picture;
-  if (options.threads == 1) {
+  const unsigned threads = availableThreads();
+  if (threads == 1) {
     luminance = writeLuminance();
     quality = luminance ? writeQuality() : Status{};
     picture = luminance && quality ? writePicture() : Status{};
   } else {
-    // Each task returns its Status, an exception caught as an Error: both are joined before
-    // anything is reported.
-    std::future<Status> luminance_task =
-        std::async(std::launch::async, [&] { return catchExceptions(writeLuminance); });
-    std::future<Status> quality_task =
-        std::async(std::launch::async, [&] { return catchExceptions(writeQuality); });
-    picture = catchExceptions(writePicture);
-    luminance = luminance_task.get();
-    quality = quality_task.get();
+    // Each task returns its Status, an exception caught as an Error: every task is joined before
+    // anything is reported. Two threads: the EXRs one after the other on one, the picture here;
+    // more: each EXR on its own thread, the picture here with the rest.
+    const bool apart = threads >= 3;
+    std::future<Status> luminance_task = runTask(1, [&] {
+      Status written = catchExceptions(writeLuminance);
+      if (!apart) quality = catchExceptions(writeQuality);
+      return written;
+    });
+    std::future<Status> quality_task;
+    if (apart) quality_task = runTask(1, [&] { return catchExceptions(writeQuality); });
+    {
+      const ThreadBudget rest(apart ? threads - 2 : 1);
+      picture = catchExceptions(writePicture);
+    }
+    luminance = luminance_task.get();  // after it, `quality` is written when not apart
+    if (apart) quality = quality_task.get();
   }
   GLARECAM_CHECK(luminance);
   progress.advance("luminance.exr");
@@ -459,6 +471,7 @@ Status ProcessOptions::validate() const {
 Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                     const ProcessOptions& options) {
   GLARECAM_CHECK(options.validate());
+  const ThreadBudget budget(options.threads);  // every step below keeps to --threads
   Progress progress("process " + stack_directory.filename().string(), kProcessSteps,
                     options.show_progress);
   Stack stack;

@@ -187,7 +187,7 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
     if (summary.skipped.empty()) return badInput("no stacks to sweep");
     return std::unexpected(noStackError(summary.skipped));
   }
-  const unsigned threads = options.threads ? options.threads : defaultThreadCount();
+  const unsigned threads = options.threads ? options.threads : availableThreads();
   const auto most_jobs = static_cast<unsigned>(std::min<std::size_t>(stacks.size(), threads));
   const unsigned jobs = std::clamp(options.jobs ? options.jobs : threads, 1u, most_jobs);
   const unsigned threads_per_job = std::max(1u, threads / jobs);

@@ -80,7 +80,8 @@ void addProcessCommand(CLI::App& app, Action& action) {
   sub->add_option("--max-calibration-age-days", args->max_calibration_age_days,
                   "warn about calibration parts older than this (default 365)");
   sub->add_flag("--json", args->json, "print result.json on stdout");
-  sub->add_option("--threads", args->threads, "worker threads (default: all cores)");
+  sub->add_option("--threads", args->threads,
+                  "threads in all, every step keeping to them; 1 starts none (default: all cores)");
   sub->add_flag("--float32", args->float32,
                 "luminance.exr and quality.exr in lossless float32 (larger; default: luminance to "
                 "a relative 1.5e-5, the uncertainty as half)");

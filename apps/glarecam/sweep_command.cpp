@@ -67,8 +67,8 @@ void addSweepCommand(CLI::App& app, Action& action) {
                   "stacks processed at once (default: one per thread of --threads)")
       ->check(CLI::Range(1u, 1024u));
   sub->add_option("--threads", args->threads,
-                  "threads in all, shared by the jobs (default: all cores; decoding and the "
-                  "merge keep to it, some picture and peak-search steps use every core)")
+                  "threads in all, shared by the jobs, every step keeping to its share "
+                  "(default: all cores)")
       ->check(CLI::Range(1u, 1024u));
   sub->add_option("--calibration", args->calibration,
                   "calibration JSON file for every stack; overrides the stacks' own");

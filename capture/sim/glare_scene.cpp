@@ -90,7 +90,7 @@ SceneTruth GlareScene::truth(double limit_cd_m2) const {
 
 FloatImage GlareScene::render(const calibration::CameraModel& camera, int width, int height) const {
   FloatImage image(width, height);
-  parallelRows(height, defaultThreadCount(), [&](int begin, int end) {
+  parallelRows(height, availableThreads(), [&](int begin, int end) {
     std::vector<calibration::PixelPoint> pixels(static_cast<std::size_t>(width));
     for (int y = begin; y < end; ++y) {
       for (int x = 0; x < width; ++x)

@@ -34,7 +34,7 @@ RawFrame exposeFrame(const FloatImage& luminance_cd_m2, const FrameSpec& frame,
   RawFrame raw(luminance_cd_m2.width(), luminance_cd_m2.height());
   const std::uint64_t frame_seed =
       mix(seed ^ mix(static_cast<std::uint64_t>(frame.exposure_us * 1000.0)));
-  parallelRows(raw.height(), defaultThreadCount(), [&](int begin, int end) {
+  parallelRows(raw.height(), availableThreads(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
       std::mt19937_64 rng(mix(frame_seed + static_cast<std::uint64_t>(y)));
       std::normal_distribution<double> unit_normal(0.0, 1.0);

@@ -80,7 +80,7 @@ void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged
   unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   const FloatImage& luminance = merged.luminance_cd_m2;
-  parallelRows(luminance.height(), defaultThreadCount(), [&](int begin, int end) {
+  parallelRows(luminance.height(), availableThreads(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
       auto* out =
           reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * zoom * stride);

@@ -26,5 +26,31 @@ TEST(ParallelRows, RethrowsAWorkersExceptionInTheCaller) {
                std::runtime_error);
 }
 
+// A budget holds on its thread while it lives, a band of parallelRows runs with one thread (no
+// nested fan-out), and runTask's thread has the budget it was given; each start is counted.
+TEST(ThreadBudget, BoundsTheThreadsBelowItAndCountsEveryStart) {
+  const unsigned hardware = defaultThreadCount();
+  EXPECT_EQ(availableThreads(), hardware);
+  {
+    const ThreadBudget three(3);
+    EXPECT_EQ(availableThreads(), 3u);
+    {
+      const ThreadBudget unchanged(0);
+      EXPECT_EQ(availableThreads(), 3u);
+    }
+    std::vector<std::atomic<unsigned>> inside(4);
+    const std::uint64_t before = threadsStarted();
+    parallelRows(4, 4, [&](int begin, int end) {
+      for (int i = begin; i < end; ++i) inside[static_cast<std::size_t>(i)] = availableThreads();
+    });
+    EXPECT_EQ(threadsStarted() - before, 3u);  // the caller runs the first band
+    for (const auto& threads : inside) EXPECT_EQ(threads.load(), 1u);
+    EXPECT_EQ(runTask(2, [] { return availableThreads(); }).get(), 2u);
+    EXPECT_EQ(threadsStarted() - before, 4u);
+    EXPECT_EQ(availableThreads(), 3u);
+  }
+  EXPECT_EQ(availableThreads(), hardware);
+}
+
 }  // namespace
 }  // namespace glarecam

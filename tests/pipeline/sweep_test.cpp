@@ -3,9 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/parallel.h"
+#include "pipeline/process_stack.h"
 #include "support/sim_support.h"
 
 namespace glarecam::pipeline {
@@ -30,6 +34,44 @@ SweepOptions quiet(const fs::path& out, unsigned jobs) {
   options.jobs = jobs;
   options.show_progress = false;
   return options;
+}
+
+// The threads this process runs now, its own included (Linux: one entry each in /proc/self/task).
+long runningThreads() {
+  long count = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator("/proc/self/task")) ++count;
+  return count;
+}
+
+// --threads 1 means one thread in every stage of process and sweep: none of ours started
+// (threadsStarted()), and none of a library's left running (OpenEXR's pool would stay). In a
+// fresh process ("threadsafe" death tests re-run the test binary), whose every step is under the
+// budget, so that nothing has made a pool before. Threads that run from the start (LTTng's, which
+// a linked library brings) are counted before and after.
+TEST(SweepDeathTest, OneThreadMeansOneInProcessAndSweep) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        const ThreadBudget one(1);
+        TempDir dir;
+        writeStackAt(dir / "stacks/a", 30);
+        writeStackAt(dir / "stacks/b", 50);
+        const std::uint64_t before = threadsStarted();
+        const long running_before = runningThreads();
+        ProcessOptions process;
+        process.show_progress = false;
+        process.threads = 1;
+        process.output_directory = dir / "one";
+        const bool processed = processStack(dir / "stacks/a", process).has_value();
+        SweepOptions sweep = quiet(dir / "out", 0);
+        sweep.threads = 1;
+        const bool swept = runSweep(findStacks({dir / "stacks"}), sweep).has_value();
+        std::fprintf(stderr, "processed %d swept %d threads started %llu, more running %ld\n",
+                     processed, swept, static_cast<unsigned long long>(threadsStarted() - before),
+                     runningThreads() - running_before);
+        std::exit(0);
+      },
+      ::testing::ExitedWithCode(0), "processed 1 swept 1 threads started 0, more running 0");
 }
 
 TEST(FindStacks, StacksDirectoriesOfStacksAndWhatIsNeither) {

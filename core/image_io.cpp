@@ -292,6 +292,42 @@ Result<DecodedFrame> readRawFrame(const fs::path& path) {
   return badInput(describe(path) + ": not a PNG or TIFF image");
 }
 
+Result<FrameSize> readFrameSize(const fs::path& path) {
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  if (!file) return badInput(describe(path) + ": cannot open frame: " + std::strerror(errno));
+  // PNG: the signature, then the IHDR chunk (length, type, width and height big-endian).
+  constexpr std::size_t kPngHeaderBytes = 24;
+  std::uint8_t head[kPngHeaderBytes] = {};
+  const std::size_t got = std::fread(head, 1, sizeof head, file.get());
+  const auto bigEndian = [&](std::size_t at) {
+    return std::uint32_t{head[at]} << 24 | std::uint32_t{head[at + 1]} << 16 |
+           std::uint32_t{head[at + 2]} << 8 | std::uint32_t{head[at + 3]};
+  };
+  std::uint32_t width = 0, height = 0;
+  const std::span<const std::uint8_t> bytes(head, got);
+  const auto startsWithBytes = [&](std::span<const std::uint8_t> prefix) {
+    return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
+  };
+  if (startsWithBytes(kPngSignature)) {
+    if (got < kPngHeaderBytes || std::memcmp(head + 12, "IHDR", 4) != 0)
+      return badInput(describe(path) + ": corrupt PNG header");
+    width = bigEndian(16);
+    height = bigEndian(20);
+  } else if (startsWithBytes(kTiffLittle) || startsWithBytes(kTiffBig)) {
+    installTiffHandlers();
+    TiffPtr tiff(TIFFOpen(path.c_str(), "r"));
+    if (!tiff) return badInput(describe(path) + ": not a readable TIFF");
+    TIFFGetField(tiff.get(), TIFFTAG_IMAGEWIDTH, &width);
+    TIFFGetField(tiff.get(), TIFFTAG_IMAGELENGTH, &height);
+  } else {
+    return badInput(describe(path) + ": not a PNG or TIFF image");
+  }
+  if (width == 0 || height == 0 || std::uint64_t{width} * height > kMaxFramePixels)
+    return badInput(describe(path) + ": implausible frame size " + std::to_string(width) + "x" +
+                    std::to_string(height));
+  return FrameSize{static_cast<int>(width), static_cast<int>(height)};
+}
+
 Result<std::vector<std::byte>> encodePngGray(const RawFrame& frame, int bit_depth, int zlib_level) {
   std::vector<std::uint8_t> bytes8;
   std::vector<const std::uint8_t*> rows(static_cast<std::size_t>(frame.height()));
@@ -330,8 +366,22 @@ Status writePngRgb(const fs::path& path, int width, int height, std::span<const 
 
 namespace {
 
-bool writeTiffStrips(TIFF* tiff, const RawFrame& frame) {
+bool writeTiffStrips(TIFF* tiff, const RawFrame& frame, TiffCompression compression) {
   constexpr std::uint32_t kRowsPerStrip = 64;
+  constexpr int kFastestLevel = 1;  // measured in docs/process.md, "Output encodings"
+  switch (compression) {
+    case TiffCompression::kDeflate:
+      TIFFSetField(tiff, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
+      TIFFSetField(tiff, TIFFTAG_ZIPQUALITY, kFastestLevel);
+      break;
+    case TiffCompression::kZstd:
+      TIFFSetField(tiff, TIFFTAG_COMPRESSION, COMPRESSION_ZSTD);
+      TIFFSetField(tiff, TIFFTAG_ZSTD_LEVEL, kFastestLevel);
+      break;
+    case TiffCompression::kNone:
+      TIFFSetField(tiff, TIFFTAG_COMPRESSION, COMPRESSION_NONE);
+      break;
+  }
   TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(frame.width()));
   TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(frame.height()));
   TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 1);
@@ -348,14 +398,14 @@ bool writeTiffStrips(TIFF* tiff, const RawFrame& frame) {
 
 }  // namespace
 
-Status writeTiffGray16(const fs::path& path, const RawFrame& frame) {
+Status writeTiffGray16(const fs::path& path, const RawFrame& frame, TiffCompression compression) {
   installTiffHandlers();
   fs::path temp;
   GLARECAM_ASSIGN(temp, createTemporarySibling(path));
   bool written = false;
   {
     TiffPtr tiff(TIFFOpen(temp.c_str(), "w"));
-    written = tiff && writeTiffStrips(tiff.get(), frame);
+    written = tiff && writeTiffStrips(tiff.get(), frame, compression);
   }
   if (!written) {
     std::error_code ignored;

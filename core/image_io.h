@@ -32,6 +32,13 @@ inline constexpr std::uint64_t kMaxCompressionRatio = 4096;
 
 Result<DecodedFrame> readRawFrame(const std::filesystem::path& path);
 
+// A frame's size from its header alone (PNG's IHDR, TIFF's first directory), without decoding:
+// for planning memory before reading whole stacks.
+struct FrameSize {
+  int width = 0, height = 0;
+};
+Result<FrameSize> readFrameSize(const std::filesystem::path& path);
+
 // How glarecam writes PNGs, frames and pictures alike: zlib level 1, no row filter. Measured on
 // a simulated 5 MP stack (docs/process.md, "Output encodings"): a 16-bit frame takes 128 ms for
 // 4.81 MB, against 209 ms for 4.87 MB with level 3 and the Sub filter, and decodes in 45 ms
@@ -44,8 +51,11 @@ Result<std::vector<std::byte>> encodePngGray(const RawFrame& frame, int bit_dept
                                              int zlib_level = kPngZlibLevel);
 Status writePngGray(const std::filesystem::path& path, const RawFrame& frame, int bit_depth = 16);
 
-// 16-bit single-channel TIFF (for tests and tools that produce TIFF stacks).
-Status writeTiffGray16(const std::filesystem::path& path, const RawFrame& frame);
+// 16-bit single-channel TIFF in strips (for tests and tools that produce TIFF stacks), with
+// libtiff's Deflate (libdeflate in Debian) or zstd at their fastest levels, or uncompressed.
+enum class TiffCompression { kNone, kDeflate, kZstd };
+Status writeTiffGray16(const std::filesystem::path& path, const RawFrame& frame,
+                       TiffCompression compression = TiffCompression::kNone);
 
 // rgb holds width*height*3 bytes, row-major.
 Status writePngRgb(const std::filesystem::path& path, int width, int height,

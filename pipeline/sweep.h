@@ -5,6 +5,7 @@
 // atomically once every stack is done.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -20,6 +21,9 @@ struct SweepOptions {
   std::filesystem::path output_directory = "sweep";
   unsigned jobs = 0;     // stacks processed at once; 0: one per core (at most `threads`)
   unsigned threads = 0;  // threads in all, shared by the jobs; 0: all cores
+  // Memory the jobs may hold at once: no more jobs run than fit, by processMemoryBytes() of the
+  // largest stack (at least one job always runs). 0: half the physical memory.
+  std::uint64_t memory_budget_bytes = 0;
   std::optional<std::filesystem::path> calibration_file;
   std::optional<double> threshold_cd_m2;  // a constant glare limit instead of the α curve
   bool show_progress = true;
@@ -44,6 +48,8 @@ struct SkippedStack {
 };
 
 struct SweepSummary {
+  unsigned jobs = 0;                     // stacks processed at once
+  std::uint64_t stack_memory_bytes = 0;  // the largest stack's processMemoryBytes() (0: unknown)
   SweepTable table;
   std::vector<SkippedStack> skipped;
   std::filesystem::path sweep_csv;
@@ -61,6 +67,11 @@ struct StackSearch {
 // the directories directly inside it that hold a stack.json (sorted by name; a broken one is
 // found here and reported when processing it fails).
 StackSearch findStacks(const std::vector<std::filesystem::path>& inputs);
+
+// About the most memory `process` of this stack holds at once, from its manifest (the frames) and
+// its first frame's header (their size); nothing when either cannot be read (processing it will
+// say why).
+std::optional<std::uint64_t> processMemoryBytes(const std::filesystem::path& stack);
 
 // Processes the stacks and writes the table, listing every skipped input and stack. Fails only
 // when no stack could be processed (with the first error) or the table cannot be written.

@@ -1,6 +1,7 @@
 // glarecam sweep: stacks over α -> sweep.csv and each stack's result (docs/sweep.md).
 #include <spdlog/spdlog.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -18,7 +19,7 @@ namespace {
 struct SweepArgs {
   std::vector<std::string> inputs;
   std::optional<std::string> out, calibration, threshold, alpha_from;
-  unsigned jobs = 0, threads = 0;
+  unsigned jobs = 0, threads = 0, memory_mib = 0;
   bool no_progress = false, strict = false, mixed = false, float32 = false;
 };
 
@@ -31,6 +32,7 @@ Status runSweep(const SweepArgs& args) {
   GLARECAM_ASSIGN(options.threshold_cd_m2, parseOptionalLuminance(args.threshold, "--threshold"));
   options.jobs = args.jobs;
   options.threads = args.threads;
+  options.memory_budget_bytes = std::uint64_t{args.memory_mib} << 20;
   options.show_progress = !args.no_progress;
   options.allow_mixed = args.mixed;
   options.float32 = args.float32;
@@ -70,6 +72,10 @@ void addSweepCommand(CLI::App& app, Action& action) {
                   "threads in all, shared by the jobs, every step keeping to its share "
                   "(default: all cores)")
       ->check(CLI::Range(1u, 1024u));
+  sub->add_option("--memory", args->memory_mib,
+                  "MiB the jobs may hold at once: fewer jobs run when they would not fit (default: "
+                  "half the physical memory)")
+      ->check(CLI::Range(1u, 1u << 24));
   sub->add_option("--calibration", args->calibration,
                   "calibration JSON file for every stack; overrides the stacks' own");
   sub->add_option("--threshold", args->threshold,

@@ -193,6 +193,10 @@ expect "datasheet warns about the suspect row" grep -q "suspect: α 40°" "$WORK
 check "sweep of nothing usable" 2 "$GLARECAM" sweep "$WORK/sweep-in/broken" "$WORK/nowhere" --out "$WORK/sw3"
 expect "nothing usable: no table" test ! -e "$WORK/sw3/sweep.csv"
 check "sweep --jobs 0" 2 "$GLARECAM" sweep "$WORK/sweep-in" --jobs 0
+check "sweep --memory 0" 2 "$GLARECAM" sweep "$WORK/sweep-in" --memory 0
+check "sweep --memory 1 runs one job" 0 "$GLARECAM" -v sweep "$WORK/sweep-in" --out "$WORK/sw4" \
+  --memory 1 --threads 2 --no-progress
+expect "the log says one at a time" grep -q "sweep: 5 stacks, 1 at once with 2 threads each" "$WORK/err"
 check "sweep --threshold bad" 2 "$GLARECAM" sweep "$WORK/sweep-in" --threshold -5
 
 check "fit the sweep" 0 "$GLARECAM" fit "$WORK/sw/sweep.csv"

@@ -48,6 +48,42 @@ TEST(ImageIo, Tiff16KeepsRawValuesUnchanged) {
                   [](auto path, auto& f) { return writeTiffGray16(path, f); });
 }
 
+// The compressions libtiff brings (Debian's: libdeflate and zstd) read back exactly, and the
+// header alone gives the size.
+TEST(ImageIo, CompressedTiffsKeepRawValuesUnchanged) {
+  for (const TiffCompression compression : {TiffCompression::kDeflate, TiffCompression::kZstd}) {
+    expectRoundTrip("f.tif", ramp(40, 130, 4095), 16,
+                    [&](auto path, auto& f) { return writeTiffGray16(path, f, compression); });
+  }
+}
+
+TEST(ImageIo, FrameSizeComesFromTheHeaderAloneOrAClearError) {
+  testing::TempDir dir;
+  const RawFrame frame = ramp(37, 21, 4095);
+  ASSERT_TRUE(writePngGray(dir / "f.png", frame));
+  ASSERT_TRUE(writeTiffGray16(dir / "f.tif", frame, TiffCompression::kZstd));
+  ASSERT_TRUE(writeTiffGray16(dir / "plain.tif", frame));
+  EXPECT_LT(fs::file_size(dir / "f.tif"), fs::file_size(dir / "plain.tif"));  // compressed indeed
+  for (const char* name : {"f.png", "f.tif"}) {
+    auto size = readFrameSize(dir / name);
+    ASSERT_TRUE(size) << size.error().message;
+    EXPECT_EQ(size->width, 37) << name;
+    EXPECT_EQ(size->height, 21) << name;
+  }
+  const std::string png = testing::readText(dir / "f.png");
+  testing::writeText(dir / "short.png", png.substr(0, 20));
+  std::string zero = png;
+  std::fill(zero.begin() + 16, zero.begin() + 24, '\0');
+  testing::writeText(dir / "zero.png", zero);
+  testing::writeText(dir / "text.png", "hello");
+  for (const char* name : {"short.png", "zero.png", "text.png", "missing.png"}) {
+    auto size = readFrameSize(dir / name);
+    ASSERT_FALSE(size) << name;
+    EXPECT_EQ(size.error().code, ErrorCode::kBadInput) << name;
+    EXPECT_NE(size.error().message.find(name), std::string::npos) << size.error().message;
+  }
+}
+
 TEST(ImageIo, ExrRoundTripsFloats) {
   testing::TempDir dir;
   FloatImage image(19, 7);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/image_io.h"
 #include "core/parallel.h"
 #include "pipeline/process_stack.h"
 #include "support/sim_support.h"
@@ -72,6 +73,39 @@ TEST(SweepDeathTest, OneThreadMeansOneInProcessAndSweep) {
         std::exit(0);
       },
       ::testing::ExitedWithCode(0), "processed 1 swept 1 threads started 0, more running 0");
+}
+
+// No more jobs run than fit in the memory budget: the estimate follows the stack's frames (size
+// from the header, count from the manifest), and a budget below two stacks runs one at a time.
+TEST(RunSweep, RunsNoMoreJobsThanFitInTheMemoryBudget) {
+  TempDir dir;
+  writeStackAt(dir / "stacks/a", 30);
+  writeStackAt(dir / "stacks/b", 50);
+  const auto manifest = nlohmann::json::parse(testing::readText(dir / "stacks/a/stack.json"));
+  const std::uint64_t frames = manifest["frames"].size();
+  const RawFrame first =
+      readRawFrame(dir / "stacks/a" / manifest["frames"][0]["file"].get<std::string>())->pixels;
+  const std::optional<std::uint64_t> bytes = processMemoryBytes(dir / "stacks/a");
+  ASSERT_TRUE(bytes);
+  EXPECT_EQ(*bytes, first.pixelCount() * (40 + 2 * frames));  // sweep.cpp's per-pixel figures
+  EXPECT_FALSE(processMemoryBytes(dir / "missing"));
+
+  SweepOptions options = quiet(dir / "out", 2);
+  options.threads = 2;
+  options.memory_budget_bytes = 2 * *bytes;
+  auto both = runSweep(findStacks({dir / "stacks"}), options);
+  ASSERT_TRUE(both) << both.error().message;
+  EXPECT_EQ(both->jobs, 2u);
+  EXPECT_EQ(both->stack_memory_bytes, *bytes);
+  options.memory_budget_bytes = 2 * *bytes - 1;
+  auto one = runSweep(findStacks({dir / "stacks"}), options);
+  ASSERT_TRUE(one) << one.error().message;
+  EXPECT_EQ(one->jobs, 1u);
+  EXPECT_EQ(one->table.rows.size(), 2u);
+  options.memory_budget_bytes = 1;  // even then one job runs
+  auto tiny = runSweep(findStacks({dir / "stacks"}), options);
+  ASSERT_TRUE(tiny) << tiny.error().message;
+  EXPECT_EQ(tiny->jobs, 1u);
 }
 
 TEST(FindStacks, StacksDirectoriesOfStacksAndWhatIsNeither) {

@@ -290,9 +290,10 @@ class MergeKernel {
   KernelConstants constants_{};
 };
 
+// The kernel writes every pixel of every output row, so new outputs need no fill.
 template <typename T>
 void ensureSize(Image<T>& image, int width, int height) {
-  if (!image.sameSize(width, height)) image = Image<T>(width, height);
+  if (!image.sameSize(width, height)) image = Image<T>::uninitialized(width, height);
 }
 
 // Masked pixels take the median of their unmasked 8-neighbours (hot pixels are isolated: a

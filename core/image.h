@@ -12,18 +12,28 @@
 #include <utility>
 #include <vector>
 
+#include "core/memory.h"
+
 namespace glarecam {
 
-// std::allocator, except that an element made without a value is default-initialised: for pixel
-// types, left as it is. Image::uninitialized() uses it for pixels a decoder writes at once, which
-// spares a pass over memory as large as the image.
+// std::allocator, except that
+// - an element made without a value is default-initialised: for pixel types, left as it is.
+//   Image::uninitialized() uses it for pixels a decoder writes at once, which spares a pass over
+//   memory as large as the image;
+// - a large block asks for transparent huge pages (core/memory.h), so that an image faults in a
+//   2 MiB page at a time.
 template <typename T>
-struct DefaultInitAllocator : std::allocator<T> {
+struct PixelAllocator : std::allocator<T> {
   template <typename U>
   struct rebind {
-    using other = DefaultInitAllocator<U>;
+    using other = PixelAllocator<U>;
   };
   using std::allocator<T>::allocator;
+  T* allocate(std::size_t n) {
+    T* block = std::allocator<T>::allocate(n);
+    adviseHugePages(block, n * sizeof(T));
+    return block;
+  }
   template <typename U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
     ::new (static_cast<void*>(p)) U;
@@ -73,7 +83,7 @@ class Image {
 
   int width_ = 0;
   int height_ = 0;
-  std::vector<T, DefaultInitAllocator<T>> pixels_;
+  std::vector<T, PixelAllocator<T>> pixels_;
 };
 
 using RawFrame = Image<std::uint16_t>;

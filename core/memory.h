@@ -17,4 +17,15 @@ inline constexpr std::size_t kRetainedFreeHeapBytes = 256u << 20;    // about on
 // Sets those thresholds (mallopt); false when the C library refuses them (not glibc's malloc).
 bool reuseLargeAllocations();
 
+// Blocks at least this large are backed by transparent huge pages where the kernel offers them
+// on request (/sys/kernel/mm/transparent_hugepage/enabled "madvise", Debian's default): a 2 MiB
+// page faults in once instead of 512 times. Measured on a 5 MP `process`: 49 000 -> 17 000
+// minor faults, system time about halved.
+inline constexpr std::size_t kHugePageAdviceMinBytes = 4u << 20;
+inline constexpr std::size_t kHugePageBytes = 2u << 20;  // x86-64 and arm64 with 4 KiB pages
+
+// Asks for huge pages over the whole 2 MiB pages inside [block, block + bytes) when bytes is at
+// least kHugePageAdviceMinBytes (madvise MADV_HUGEPAGE); a refusal changes nothing but speed.
+void adviseHugePages(void* block, std::size_t bytes);
+
 }  // namespace glarecam

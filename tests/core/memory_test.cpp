@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <string>
+
+#include "core/image.h"
 
 namespace glarecam {
 namespace {
@@ -39,6 +44,34 @@ TEST(Memory, LargeBlocksAreReusedWithoutFaultingAgain) {
   const long faults = minorFaults() - before;
   std::free(again);
   EXPECT_LT(faults, kPages / 10) << "a fresh mapping faults once per page: " << kPages;
+}
+
+// Where the kernel gives transparent huge pages on request, a large image faults in 2 MiB at a
+// time: a fresh 16 MiB image (4096 pages of 4 KiB) faults far fewer than 4096 times as it is
+// filled. The block need not start on a 2 MiB boundary: its ragged ends, together up to 2 MiB,
+// fault page by page (512), the 7 or 8 whole huge pages once each; the bound is 4096 / 4. In a
+// fresh process (a "threadsafe" death test re-runs the binary), whose allocator has no freed memory
+// to hand back.
+TEST(MemoryDeathTest, LargeImagesFaultInHugePages) {
+#ifdef __SANITIZE_ADDRESS__
+  GTEST_SKIP() << "under AddressSanitizer its shadow memory faults page by page besides";
+#endif
+  std::ifstream enabled("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  std::getline(enabled, modes);
+  if (modes.find("[never]") != std::string::npos || modes.empty())
+    GTEST_SKIP() << "transparent huge pages are off here: " << modes;
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        const long before = minorFaults();
+        const FloatImage image(2048, 2048, 1.0f);
+        const long faults = minorFaults() - before;
+        std::fprintf(stderr, "%s faults\n",
+                     faults < 4096 / 4 ? "few" : std::to_string(faults).c_str());
+        std::exit(image.at(5, 5) == 1.0f ? 0 : 1);
+      },
+      ::testing::ExitedWithCode(0), "few faults");
 }
 
 }  // namespace

@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <atomic>
 #include <charconv>
+#include <future>
 #include <mutex>
 #include <set>
-#include <thread>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
@@ -244,9 +244,12 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
     }
   };
   {
-    std::vector<std::jthread> workers;
-    for (unsigned j = 1; j < jobs; ++j) workers.emplace_back(worker);
+    // Each job's thread gets its share of the threads (processStack sets it again from
+    // threads_per_job); the caller is the first job.
+    std::vector<std::future<void>> others;
+    for (unsigned j = 1; j < jobs; ++j) others.push_back(runTask(threads_per_job, worker));
     worker();
+    for (std::future<void>& job : others) job.get();
   }
   progress.finish();
 

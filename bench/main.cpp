@@ -38,6 +38,7 @@
 #include "bench/bench_stack.h"
 #include "bench/benchmarks.h"
 #include "core/build_config.h"
+#include "core/logging.h"
 #include "core/memory.h"
 
 namespace glarecam::bench {
@@ -213,7 +214,8 @@ int main(int argc, char** argv) {
   using namespace glarecam::bench;
   const std::optional<ReportFormats> formats = reportFormats(argc, argv);
   if (!formats) return 2;
-  glarecam::reuseLargeAllocations();  // as glarecam and glarecamd run
+  glarecam::reuseLargeAllocations();                    // as glarecam and glarecamd run
+  glarecam::initLogging(glarecam::Verbosity::kNormal);  // as glarecam: warnings and errors only
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
   std::vector<std::string> names = registerMergeBenchmarks();

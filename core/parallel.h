@@ -8,7 +8,12 @@
 //   exception thrown in any band (out of memory, say) is rethrown in the caller once every band
 //   has finished, instead of terminating the process from a worker thread. A band runs with a
 //   budget of one thread: parallel steps inside it do not multiply the threads.
-// - threadsStarted(): how many threads parallelRows() and runTask() have started in this
+// - parallelTasks: runs body(i) for every i in [0, count) on up to `threads` threads (the caller
+//   is one), each thread taking the next index when it is free: tasks of unequal length, listed
+//   longest first, pack onto the threads with little idle time. Exceptions as parallelRows; each
+//   task runs with a budget of one thread.
+// - threadsStarted(): how many threads parallelRows(), parallelTasks() and runTask() have started
+// in this
 //   process, so that a test sees --threads 1 start none.
 #pragma once
 
@@ -59,6 +64,35 @@ auto runTask(unsigned threads, Task&& task) {
     const ThreadBudget budget(threads);
     return task();
   });
+}
+
+template <typename Body>
+void parallelTasks(int count, unsigned threads, Body&& body) {
+  threads = std::clamp(threads, 1u, static_cast<unsigned>(std::max(count, 1)));
+  std::atomic<int> next{0};
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(std::max(count, 0)));
+  auto run = [&] {
+    const ThreadBudget one(1);
+    for (int i = next++; i < count; i = next++) {
+      try {
+        body(i);
+      } catch (...) {
+        errors[static_cast<std::size_t>(i)] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> workers;
+    workers.reserve(threads - 1);
+    for (unsigned i = 1; i < threads; ++i) {
+      ++detail::threads_started;
+      workers.emplace_back(run);
+    }
+    run();
+  }  // joins every worker
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
 }
 
 template <typename Body>

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace glarecam {
@@ -23,6 +25,42 @@ TEST(ParallelRows, RethrowsAWorkersExceptionInTheCaller) {
                             [](int begin, int) {
                               if (begin >= 300) throw std::runtime_error("band failed");
                             }),
+               std::runtime_error);
+}
+
+// Every task runs once; the threads take the next task when free, so one long task does not hold
+// up the rest: with two threads, the short tasks all run beside the long first one.
+TEST(ParallelTasks, RunsEveryTaskOnceOnTheThreadsGiven) {
+  constexpr int kTasks = 9;
+  std::vector<std::atomic<int>> runs(kTasks);
+  std::atomic<bool> long_task_running{true};
+  std::atomic<int> beside_long{0};
+  const std::uint64_t before = threadsStarted();
+  parallelTasks(kTasks, 2, [&](int i) {
+    EXPECT_EQ(availableThreads(), 1u);
+    ++runs[static_cast<std::size_t>(i)];
+    if (i == 0) {
+      // Waits (bounded) until the other thread has taken every short task.
+      for (int spin = 0; spin < 10000 && beside_long < kTasks - 1; ++spin)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      long_task_running = false;
+    } else if (long_task_running) {
+      ++beside_long;
+    }
+  });
+  EXPECT_EQ(threadsStarted() - before, 1u);
+  for (const auto& count : runs) EXPECT_EQ(count.load(), 1);
+  EXPECT_EQ(beside_long.load(), kTasks - 1);
+
+  const std::uint64_t serial = threadsStarted();
+  int order = 0;
+  parallelTasks(3, 1, [&](int i) { EXPECT_EQ(i, order++); });  // one thread: in order, here
+  EXPECT_EQ(threadsStarted(), serial);
+  EXPECT_EQ(order, 3);
+  EXPECT_THROW(parallelTasks(4, 2,
+                             [](int i) {
+                               if (i == 3) throw std::runtime_error("task failed");
+                             }),
                std::runtime_error);
 }
 

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/error.h"
@@ -39,16 +40,16 @@ struct FrameSize {
 };
 Result<FrameSize> readFrameSize(const std::filesystem::path& path);
 
-// How glarecam writes PNGs, frames and pictures alike: zlib level 1, no row filter. Measured on
-// a simulated 5 MP stack (docs/process.md, "Output encodings"): a 16-bit frame takes 128 ms for
-// 4.81 MB, against 209 ms for 4.87 MB with level 3 and the Sub filter, and decodes in 45 ms
-// against 56; the false-colour picture 132 ms for 4.51 MB against 259 ms for 5.21 MB. Filters
-// predict smooth images; raw frames and their false colour are noisy at the pixel scale.
-inline constexpr int kPngZlibLevel = 1;
+// How glarecam writes PNGs, frames and pictures alike: no row filter, one IDAT chunk deflated by
+// libdeflate at level 1. Measured on a simulated 5 MP stack (docs/process.md, "Output
+// encodings"): the false-colour picture takes 48 ms for 3.85 MB, against 119 ms for 4.47 MB with
+// zlib at level 1 (libpng's encoder) and 60 ms for 5.22 MB with the Sub filter. Filters predict
+// smooth images; raw frames and their false colour are noisy at the pixel scale.
+inline constexpr int kPngDeflateLevel = 1;
 
 // Encodes a raw frame as a single-channel 16-bit PNG (for bit_depth 16) or 8-bit PNG.
 Result<std::vector<std::byte>> encodePngGray(const RawFrame& frame, int bit_depth = 16,
-                                             int zlib_level = kPngZlibLevel);
+                                             int deflate_level = kPngDeflateLevel);
 Status writePngGray(const std::filesystem::path& path, const RawFrame& frame, int bit_depth = 16);
 
 // 16-bit single-channel TIFF in strips (for tests and tools that produce TIFF stacks), with
@@ -59,7 +60,7 @@ Status writeTiffGray16(const std::filesystem::path& path, const RawFrame& frame,
 
 // rgb holds width*height*3 bytes, row-major.
 Status writePngRgb(const std::filesystem::path& path, int width, int height,
-                   std::span<const std::uint8_t> rgb, int zlib_level = kPngZlibLevel);
+                   std::span<const std::uint8_t> rgb, int deflate_level = kPngDeflateLevel);
 
 // How a channel is stored in an EXR (every reader converts each to float):
 //   kFloat    32-bit float, exact;
@@ -78,10 +79,11 @@ enum class ExrStorage { kFloat, kFloat24, kHalf, kUint };
 // measured in docs/process.md, "Output encodings").
 enum class ExrCompression { kZip, kPiz };
 
-// An image of named channels, written atomically.
+// An image of named channels, written atomically. A channel's pixels are float, or bytes (counts
+// and flags, stored without a float copy).
 struct ExrChannel {
   std::string name;
-  const FloatImage* image = nullptr;
+  std::variant<const FloatImage*, const ByteImage*> image;
   ExrStorage storage = ExrStorage::kFloat;
 };
 Status writeExr(const std::filesystem::path& path, std::span<const ExrChannel> channels,

@@ -10,7 +10,7 @@ PACKAGES=(
   # scripts/check-layering
   python3
   # core: images, data formats, logging, CLI
-  libpng-dev libtiff-dev libopenexr-dev nlohmann-json3-dev libtomlplusplus-dev
+  libpng-dev libdeflate-dev libtiff-dev libopenexr-dev nlohmann-json3-dev libtomlplusplus-dev
   libspdlog-dev libfmt-dev libcli11-dev
   # vision and maths (libopencv-dev carries OpenCV's CMake package config)
   libopencv-dev libeigen3-dev libceres-dev

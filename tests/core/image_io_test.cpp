@@ -1,6 +1,7 @@
 #include "core/image_io.h"
 
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <cmath>
 #include <limits>
@@ -169,6 +170,61 @@ TEST(ImageIo, ExrStoragesAndCompressionsKeepTheirPrecision) {
   EXPECT_EQ(read.data()[1], 0);
   EXPECT_EQ(read.data()[2], 4294967295.0f);
   EXPECT_EQ(read.data()[3], 7);
+}
+
+// glarecam writes PNGs itself (libdeflate, one IDAT chunk): libpng, which checks every chunk's
+// CRC and the zlib stream's Adler-32, reads them back pixel for pixel, at widths whose rows end
+// mid-word.
+TEST(ImageIo, PngsWrittenAreReadByLibpngExactly) {
+  testing::TempDir dir;
+  for (const int width : {1, 7, 33}) {
+    const int height = 5;
+    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
+    for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<std::uint8_t>(i * 29 + 3);
+    ASSERT_TRUE(writePngRgb(dir / "colour.png", width, height, rgb));
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    ASSERT_TRUE(png_image_begin_read_from_file(&image, (dir / "colour.png").c_str()))
+        << image.message;
+    EXPECT_EQ(image.width, static_cast<png_uint_32>(width));
+    EXPECT_EQ(image.height, static_cast<png_uint_32>(height));
+    EXPECT_EQ(image.format, static_cast<png_uint_32>(PNG_FORMAT_RGB));
+    std::vector<std::uint8_t> read(PNG_IMAGE_SIZE(image));
+    ASSERT_TRUE(png_image_finish_read(&image, nullptr, read.data(), 0, nullptr)) << image.message;
+    EXPECT_EQ(read, rgb) << width;
+  }
+  // One flipped bit in the compressed data: the reader refuses the file (CRC), never accepts
+  // other pixels.
+  ASSERT_TRUE(writePngGray(dir / "f.png", ramp(33, 17, 65535)));
+  std::string bytes = testing::readText(dir / "f.png");
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
+  testing::writeText(dir / "flipped.png", bytes);
+  EXPECT_FALSE(readRawFrame(dir / "flipped.png"));
+}
+
+// Byte images (the merge's counts and flags) go into an EXR without a float copy, exactly in
+// every storage.
+TEST(ImageIo, ByteChannelsAreStoredExactly) {
+  testing::TempDir dir;
+  ByteImage counts(37, 6);
+  for (std::size_t i = 0; i < counts.pixelCount(); ++i)
+    counts.data()[i] = static_cast<std::uint8_t>(i * 11);
+  for (const ExrStorage storage : {ExrStorage::kUint, ExrStorage::kFloat, ExrStorage::kHalf}) {
+    for (const ExrCompression compression : {ExrCompression::kZip, ExrCompression::kPiz}) {
+      const ExrChannel channels[] = {{"n", &counts, storage}};
+      ASSERT_TRUE(writeExr(dir / "n.exr", channels, compression));
+      const FloatImage read = readExr(dir / "n.exr", "n").value();
+      ASSERT_TRUE(read.sameSize(counts.width(), counts.height()));
+      for (std::size_t i = 0; i < counts.pixelCount(); ++i)
+        ASSERT_EQ(read.data()[i], counts.data()[i]) << i;
+    }
+  }
+  const FloatImage other_size(4, 4);
+  const ExrChannel mismatched[] = {{"n", &counts, ExrStorage::kUint},
+                                   {"v", &other_size, ExrStorage::kFloat}};
+  const Status refused = writeExr(dir / "m.exr", mismatched);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("differ in size"), std::string::npos);
 }
 
 TEST(ImageIo, ColourPngIsRefusedWithItsName) {

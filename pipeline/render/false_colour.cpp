@@ -52,7 +52,10 @@ ColourScale chooseScale(const calibration::MergedImage& merged, const FalseColou
   for (std::size_t i = 0; i < luminance.pixelCount(); ++i) {
     const float v = luminance.data()[i];
     if (std::isfinite(v)) max_value = std::max(max_value, v);
-    if (i % step == 0 && std::isfinite(v) && v > 0) sample.push_back(v);
+  }
+  for (std::size_t i = 0; i < luminance.pixelCount(); i += step) {  // no division per pixel
+    const float v = luminance.data()[i];
+    if (std::isfinite(v) && v > 0) sample.push_back(v);
   }
   double top = options.max_cd_m2.value_or(max_value > 0 ? max_value : 1.0);
   double bottom = top / std::pow(10.0, kMaxDecades);

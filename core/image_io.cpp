@@ -28,6 +28,8 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/deflate_compressor.h"
+#include "core/exr_zip.h"
 #include "core/parallel.h"
 
 namespace glarecam {
@@ -146,12 +148,6 @@ constexpr std::size_t kPngChunkOverhead = 12;  // length, type, CRC
 constexpr std::size_t kPngIhdrBytes = 13;
 constexpr std::uint8_t kPngFilterNone = 0;
 
-struct DeflateCompressorFree {
-  void operator()(libdeflate_compressor* compressor) const {
-    libdeflate_free_compressor(compressor);
-  }
-};
-
 void putBigEndian32(std::uint8_t* out, std::uint32_t value) {
   out[0] = static_cast<std::uint8_t>(value >> 24);
   out[1] = static_cast<std::uint8_t>(value >> 16);
@@ -191,8 +187,7 @@ Result<std::vector<std::byte>> encodePng(int width, int height, int bit_depth,
       std::memcpy(line + 1, row, row_bytes);
     }
   }
-  const std::unique_ptr<libdeflate_compressor, DeflateCompressorFree> compressor(
-      libdeflate_alloc_compressor(deflate_level));
+  const DeflateCompressor compressor = makeDeflateCompressor(deflate_level);
   if (!compressor) return fail(ErrorCode::kInternal, "out of memory encoding PNG");
   const std::size_t bound = libdeflate_zlib_compress_bound(compressor.get(), filtered.size());
   const std::size_t ihdr = sizeof kPngSignature;
@@ -462,6 +457,10 @@ Status writeTiffGray16(const fs::path& path, const RawFrame& frame, TiffCompress
 
 namespace {
 
+static_assert(static_cast<int>(ExrPixelType::kUint) == Imf::UINT &&
+              static_cast<int>(ExrPixelType::kHalf) == Imf::HALF &&
+              static_cast<int>(ExrPixelType::kFloat) == Imf::FLOAT);
+
 Imf::Compression exrCompression(ExrCompression compression) {
   switch (compression) {
     case ExrCompression::kPiz:
@@ -483,55 +482,96 @@ float roundTo24Bits(float value) {
   return std::bit_cast<float>(bits);
 }
 
-// A channel's pixels in the type it is stored as (OpenEXR converts only when reading).
+ExrPixelType exrPixelType(ExrStorage storage) {
+  switch (storage) {
+    case ExrStorage::kHalf:
+      return ExrPixelType::kHalf;
+    case ExrStorage::kUint:
+      return ExrPixelType::kUint;
+    case ExrStorage::kFloat24:
+    case ExrStorage::kFloat:
+      break;
+  }
+  return ExrPixelType::kFloat;
+}
+
+std::uint32_t exrUint(std::uint8_t value) { return value; }
+std::uint32_t exrUint(float pixel) {
+  const double value = pixel;  // NaN fails every comparison: 0
+  constexpr double kMax = std::numeric_limits<std::uint32_t>::max();
+  return value > 0 ? static_cast<std::uint32_t>(std::round(std::min(value, kMax))) : 0u;
+}
+
+// n pixels in the type they are stored as (OpenEXR converts only when reading), to `out`.
+template <typename T>
+void convertExrPixels(const T* pixels, std::size_t n, ExrStorage storage, std::byte* out) {
+  switch (storage) {
+    case ExrStorage::kHalf: {
+      auto* halves = reinterpret_cast<half*>(out);
+      for (std::size_t i = 0; i < n; ++i) halves[i] = half(static_cast<float>(pixels[i]));
+      return;
+    }
+    case ExrStorage::kUint: {
+      auto* integers = reinterpret_cast<std::uint32_t*>(out);
+      for (std::size_t i = 0; i < n; ++i) integers[i] = exrUint(pixels[i]);
+      return;
+    }
+    case ExrStorage::kFloat24:
+    case ExrStorage::kFloat:
+      break;
+  }
+  auto* floats = reinterpret_cast<float*>(out);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto value = static_cast<float>(pixels[i]);
+    floats[i] = storage == ExrStorage::kFloat24 ? roundTo24Bits(value) : value;
+  }
+}
+
+// A float channel stored as kFloat needs no copy.
+template <typename T>
+bool storedAsIs(ExrStorage storage) {
+  return std::is_same_v<T, float> && storage == ExrStorage::kFloat;
+}
+
+// A channel's pixels in the type it is stored as, whole, for OpenEXR's encoders.
 struct ExrPixels {
-  std::vector<half> halves;
-  std::vector<std::uint32_t> integers;
-  std::vector<float> floats;
+  std::unique_ptr<std::byte[]> converted;  // uninitialised: every byte is written
 
   template <typename T>
   Imf::Slice slice(const Image<T>& image, ExrStorage storage) {
     const std::size_t n = image.pixelCount();
-    const auto width = static_cast<std::size_t>(image.width());
-    const T* pixels = image.data();
-    switch (storage) {
-      case ExrStorage::kHalf:
-        halves.resize(n);
-        for (std::size_t i = 0; i < n; ++i) halves[i] = half(static_cast<float>(pixels[i]));
-        return {Imf::HALF, reinterpret_cast<char*>(halves.data()), sizeof(half),
-                sizeof(half) * width};
-      case ExrStorage::kUint:
-        integers.resize(n);
-        for (std::size_t i = 0; i < n; ++i) integers[i] = toUint(pixels[i]);
-        return {Imf::UINT, reinterpret_cast<char*>(integers.data()), sizeof(std::uint32_t),
-                sizeof(std::uint32_t) * width};
-      case ExrStorage::kFloat24:
-      case ExrStorage::kFloat:
-        break;
+    const auto type = exrPixelType(storage);
+    const std::size_t bytes = static_cast<std::size_t>(exrPixelBytes(type));
+    const auto row_bytes = bytes * static_cast<std::size_t>(image.width());
+    const auto imf_type = static_cast<Imf::PixelType>(type);
+    if (storedAsIs<T>(storage)) {
+      auto* base = const_cast<char*>(reinterpret_cast<const char*>(image.data()));
+      return {imf_type, base, bytes, row_bytes};
     }
-    if constexpr (std::is_same_v<T, float>) {
-      if (storage == ExrStorage::kFloat) {
-        auto* base = const_cast<char*>(reinterpret_cast<const char*>(pixels));
-        return {Imf::FLOAT, base, sizeof(float), sizeof(float) * width};
-      }
-    }
-    floats.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto value = static_cast<float>(pixels[i]);
-      floats[i] = storage == ExrStorage::kFloat24 ? roundTo24Bits(value) : value;
-    }
-    return {Imf::FLOAT, reinterpret_cast<char*>(floats.data()), sizeof(float),
-            sizeof(float) * width};
-  }
-
- private:
-  static std::uint32_t toUint(std::uint8_t value) { return value; }
-  static std::uint32_t toUint(float pixel) {
-    const double value = pixel;  // NaN fails every comparison: 0
-    constexpr double kMax = std::numeric_limits<std::uint32_t>::max();
-    return value > 0 ? static_cast<std::uint32_t>(std::round(std::min(value, kMax))) : 0u;
+    converted.reset(new std::byte[n * bytes]);
+    convertExrPixels(image.data(), n, storage, converted.get());
+    return {imf_type, reinterpret_cast<char*>(converted.get()), bytes, row_bytes};
   }
 };
+
+// A channel for core/exr_zip.h: each row converted as the encoder asks for it, no whole copy.
+ExrZipChannel zipChannel(const ExrChannel& channel) {
+  return std::visit(
+      [&](const auto* image) {
+        using T = std::remove_cvref_t<decltype(*image->data())>;
+        const ExrStorage storage = channel.storage;
+        return ExrZipChannel{channel.name, exrPixelType(storage),
+                             [image, storage](int y, std::byte* out) {
+                               const auto row = image->row(y);
+                               if (storedAsIs<T>(storage)) {
+                                 std::memcpy(out, row.data(), row.size_bytes());
+                               } else {
+                                 convertExrPixels(row.data(), row.size(), storage, out);
+                               }
+                             }};
+      },
+      channel.image);
+}
 
 // A channel's width and height, whichever its pixel type.
 std::pair<int, int> channelSize(const ExrChannel& channel) {
@@ -555,6 +595,13 @@ Status writeExr(const fs::path& path, std::span<const ExrChannel> channels,
       return fail(ErrorCode::kInternal, describe(path) + ": EXR channels differ in size");
   }
   try {
+    if (compression == ExrCompression::kZip) {  // through libdeflate (core/exr_zip.h)
+      std::vector<ExrZipChannel> zip_channels;
+      for (const ExrChannel& channel : channels) zip_channels.push_back(zipChannel(channel));
+      auto bytes = encodeExrZip(width, height, zip_channels);
+      if (!bytes) return std::unexpected(withContext(bytes.error(), describe(path)));
+      return writeFileAtomic(path, *bytes);
+    }
     Imf::Header header(width, height);
     header.compression() = exrCompression(compression);
     Imf::FrameBuffer buffer;

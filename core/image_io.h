@@ -74,9 +74,9 @@ Status writePngRgb(const std::filesystem::path& path, int width, int height,
 //           stored as 0, values beyond 2^32 − 1 as 2^32 − 1).
 enum class ExrStorage { kFloat, kFloat24, kHalf, kUint };
 
-// One compression per file (OpenEXR's), both lossless: kZip (zlib) and kPiz (wavelet and
-// Huffman: fast and small for HALF, UINT and kFloat24 channels, slow on unrounded noisy float32;
-// measured in docs/process.md, "Output encodings").
+// One compression per file, both lossless: kZip (deflate, encoded through libdeflate by
+// core/exr_zip.h) and kPiz (OpenEXR's wavelet and Huffman: small for HALF and kFloat24 channels,
+// slow on unrounded noisy float32; measured in docs/process.md, "Output encodings").
 enum class ExrCompression { kZip, kPiz };
 
 // An image of named channels, written atomically. A channel's pixels are float, or bytes (counts

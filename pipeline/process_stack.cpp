@@ -39,10 +39,11 @@ constexpr const char* kResultFileName = "result.json";
 // glare peak, become infinite), and noisy float32 barely compresses: 17.0 MB at 5 MP with PIZ,
 // 20.2 raw. Rounded to 24 bits (relative 1.5e-5, far below any calibration's uncertainty) it
 // halves: PXR24 did that in 814 ms for 9.68 MB, the same rounding with PIZ takes 127 ms for
-// 9.62 MB. The uncertainty, relative and of order 0.001–1, is HALF (relative 4.9e-4 of itself) and
-// the counts and flags UINT, straight from their bytes: 1.2 MB against 5.0 at 1.25 MP (ZIP at
-// level 1: 5 % smaller at 5 MP, 20 % slower). --float32: every channel lossless float32 with ZIP
-// (PIZ takes 1.2 s for unrounded float32 at 5 MP).
+// 9.62 MB (ZIP through libdeflate: as fast or slower, 12.5 MB). The uncertainty, relative and of
+// order 0.001–1, is HALF (relative 4.9e-4 of itself) and the counts and flags UINT, straight from
+// their bytes, ZIP through libdeflate: 4.02 MB in 160 ms at 5 MP against PIZ's 4.53 MB in 300 ms.
+// --float32: every channel lossless float32 with ZIP (PIZ takes 1.2 s for unrounded float32 at
+// 5 MP).
 Status writeLuminanceExr(const fs::path& path, const calibration::MergedImage& merged,
                          bool float32) {
   const ExrChannel luminance{"Y", &merged.luminance_cd_m2,
@@ -57,7 +58,7 @@ Status writeQualityExr(const fs::path& path, const calibration::MergedImage& mer
                                   float32 ? ExrStorage::kFloat : ExrStorage::kHalf},
                                  {"valid_frames", &merged.valid_frames, integers},
                                  {"bound", &merged.bound, integers}};
-  return writeExr(path, channels, float32 ? ExrCompression::kZip : ExrCompression::kPiz);
+  return writeExr(path, channels, ExrCompression::kZip);
 }
 
 std::string stackId(const Stack& stack) {
@@ -265,18 +266,17 @@ std::string pictureTitle(const std::optional<double>& alpha_deg) {
 
 // luminance.exr, quality.exr, luminance.png, then result.json: each atomically, result last.
 // The three images are encoded at once as far as the thread budget allows, each encoder on one
-// thread and each thread taking the next when it is free, longest first (5 MP, 2 threads: the
-// quality EXR about 200 ms, the luminance EXR 130, the picture 150: 280 ms against 330 for
-// the two EXRs on one thread beside the picture). After a failure (a full disk) the images not
-// yet started are skipped.
+// thread and each thread taking the next when it is free, longest first (5 MP, one thread each:
+// the quality EXR about 160 ms, the luminance EXR 180, the picture 150). After a failure (a full
+// disk) the images not yet started are skipped.
 Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
                     const ProcessSummary& summary, const FalseColourOptions& picture_options,
                     const ProcessOptions& options, Progress& progress) {
   GLARECAM_CHECK(prepareOutputDirectory(out));
-  enum Output { kQuality, kLuminance, kPicture, kOutputCount };  // longest first
+  enum Output { kLuminance, kQuality, kPicture, kOutputCount };  // longest first
   const std::function<Status()> writers[kOutputCount] = {
-      [&] { return writeQualityExr(out / "quality.exr", merged, options.float32); },
       [&] { return writeLuminanceExr(out / "luminance.exr", merged, options.float32); },
+      [&] { return writeQualityExr(out / "quality.exr", merged, options.float32); },
       [&]() -> Status {
         RgbImage picture;
         GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));

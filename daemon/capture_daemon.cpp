@@ -93,6 +93,7 @@ Status CaptureDaemon::start() {
   spdlog::info("glarecamd: {} with camera {}, output {}", schedule_.describe(), *config_.rig.camera,
                output_.root().string());
   catchUp();
+  applyRetention(std::nullopt);
   publishStatus();
   return {};
 }
@@ -183,6 +184,8 @@ void CaptureDaemon::handle(const DaemonEvent& event) {
 void CaptureDaemon::handleWorker(const WorkerEvent& event) {
   ScopedLogFields fields(LogFields{{"GLARECAM_STACK", event.stack_id}});
   recordWorkerEvent(state_, event, worker_->hasParked());
+  // A stack done is a stack that retention may now take, and one more for the budget.
+  if (event.last && !event.error) applyRetention(std::nullopt);
   if (event.last && event.captured && options_.max_stacks &&
       ++stacks_done_ >= *options_.max_stacks && !stopping_) {
     spdlog::info("glarecamd: {} stacks done: stopping", stacks_done_);
@@ -510,7 +513,11 @@ void CaptureDaemon::checkWallClock() {
 
 void CaptureDaemon::checkDisk() {
   const OutputConfig& output = config_.daemon.output;
-  const HealthMonitor::DiskCheck disk = health_.checkDisk(output.root, output.reserve_bytes);
+  HealthMonitor::DiskCheck disk = health_.checkDisk(output.root, output.reserve_bytes);
+  // Below the reserve with a space budget set: retention frees what it may, then a second look.
+  if (!disk.pause_reason.empty() && disk.state && !disk.state->read_only &&
+      output.retention.max_use_bytes && applyRetention(disk.state) > 0)
+    disk = health_.checkDisk(output.root, output.reserve_bytes);
   std::string reason = disk.pause_reason;
   const bool kept = worker_ && worker_->hasParked();
   if (kept && reason.empty()) {
@@ -528,6 +535,28 @@ void CaptureDaemon::checkDisk() {
   else
     spdlog::error("glarecamd: disk: {}; capture pauses", reason);
   state_.disk_fault = std::move(reason);
+}
+
+std::size_t CaptureDaemon::applyRetention(const std::optional<DiskState>& disk) {
+  const OutputConfig& output = config_.daemon.output;
+  if (!output.retention.enabled()) return 0;
+  ScopedLogFields fields(LogFields{{"GLARECAM_EVENT", "retention"}});
+  const RetentionSummary summary = daemon::applyRetention(
+      output_, output.retention,
+      {.now = clock_.utcNow(),
+       .longitude_deg =
+           config_.rig.site ? std::optional(config_.rig.site->longitude_deg) : std::nullopt,
+       .disk = disk,
+       .reserve_bytes = output.reserve_bytes});
+  for (const RetentionDeletion& deleted : summary.deleted) {
+    ScopedLogFields deletion(LogFields{{"GLARECAM_DELETED", deleted.name},
+                                       {"GLARECAM_DELETED_KIND", deleted.kind},
+                                       {"GLARECAM_DELETED_BYTES", std::to_string(deleted.bytes)}});
+    spdlog::info("glarecamd: retention deleted {} {} ({}): {}", deleted.kind, deleted.name,
+                 formatBytes(deleted.bytes), deleted.reason);
+  }
+  recordRetention(state_, summary);
+  return summary.deleted.size();
 }
 
 void CaptureDaemon::checkClock() {

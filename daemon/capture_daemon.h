@@ -131,6 +131,8 @@ class CaptureDaemon {
   void planNext(bool slot_taken);
   void checkWallClock();
   void checkDisk();
+  // [output] retention (retention.h), `disk` for its reserve rule; how many entries it deleted.
+  std::size_t applyRetention(const std::optional<DiskState>& disk);
   void checkClock();
   void feedWatchdog();
   void publishStatus();

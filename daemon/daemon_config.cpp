@@ -19,6 +19,9 @@ constexpr double kMaxGainDb = 100.0;               // beyond any sensor's analog
 constexpr std::int64_t kMaxFrameRetries = 1000;    // beyond this a link is broken, not lossy
 constexpr std::int64_t kMaxIntervalS = 7 * 86400;  // a week
 constexpr std::int64_t kMaxReserveMb = std::int64_t{1} << 30;  // a petabyte
+constexpr double kBytesPerGib = 1024.0 * 1024.0 * 1024.0;
+constexpr double kMinMaxUseGib = 1.0 / 1024;  // 1 MiB: the smallest budget (tests, a tmpfs)
+constexpr double kMaxMaxUseGib = 1 << 20;     // a pebibyte
 constexpr std::int64_t kMaxThreads = 256;
 constexpr std::int64_t kMaxCameraFailures = 1000;
 constexpr std::int64_t kMaxBackoffS = 86400;
@@ -111,6 +114,17 @@ Result<OutputConfig> readOutput(const std::filesystem::path& file, const toml::t
   if (module) output.module = *module;
   GLARECAM_ASSIGN(threads, reader.integer("processing_threads", 1, kMaxThreads));
   if (threads) output.processing_threads = static_cast<unsigned>(*threads);
+  std::optional<std::int64_t> keep_stacks, keep_results;
+  GLARECAM_ASSIGN(keep_stacks, reader.integer("keep_stacks_days", 1, kMaxKeepDays));
+  GLARECAM_ASSIGN(keep_results, reader.integer("keep_results_days", 1, kMaxKeepDays));
+  if (keep_stacks) output.retention.keep_stacks_days = static_cast<int>(*keep_stacks);
+  if (keep_results) output.retention.keep_results_days = static_cast<int>(*keep_results);
+  std::optional<double> max_use_gib;
+  GLARECAM_ASSIGN(max_use_gib, reader.number("max_use_gib", kMinMaxUseGib, kMaxMaxUseGib));
+  if (max_use_gib)
+    output.retention.max_use_bytes = static_cast<std::uint64_t>(*max_use_gib * kBytesPerGib);
+  if (const Status valid = output.retention.validate(); !valid)
+    return reader.tableError(valid.error().message);
   GLARECAM_CHECK(reader.checkNoUnknownKeys());
   return output;
 }

@@ -17,6 +17,7 @@
 
 #include "capture/capture_config.h"
 #include "core/error.h"
+#include "daemon/retention.h"
 #include "pipeline/limit_curve.h"
 #include "rig/rig_config.h"
 
@@ -54,6 +55,7 @@ struct OutputConfig {
   std::uint64_t reserve_bytes = 1024ull << 20;       // capture pauses below this much free space
   std::string module = std::string(kUnnamedModule);  // the data sheets' and stacks' module name
   unsigned processing_threads = 1;  // the worker's: the camera keeps the other cores
+  RetentionPolicy retention;        // keep_stacks_days, keep_results_days, max_use_gib
 };
 
 enum class InclinometerFaultPolicy {

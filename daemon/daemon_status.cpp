@@ -42,6 +42,21 @@ void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_r
   state.worker_fault.clear();
 }
 
+void recordRetention(DaemonState& state, const RetentionSummary& summary) {
+  for (const RetentionDeletion& deleted : summary.deleted) {
+    if (deleted.kind == "stack") ++state.stacks_deleted;
+    if (deleted.kind == "result") ++state.results_deleted;
+    if (deleted.kind == "day") ++state.days_deleted;
+  }
+  for (const std::string& error : summary.errors) spdlog::warn("glarecamd: retention: {}", error);
+  if (summary.shortfall == state.retention_shortfall) return;
+  if (summary.shortfall.empty())
+    spdlog::info("glarecamd: retention: within its limits again");
+  else
+    spdlog::warn("glarecamd: retention: {}", summary.shortfall);
+  state.retention_shortfall = summary.shortfall;
+}
+
 namespace {
 
 std::string seconds(UtcTime time) {
@@ -84,6 +99,12 @@ std::string statusLine(const DaemonState& state, const std::string& schedule) {
   add("config: ", state.config_warning);
   add("worker: ", state.worker_fault);
   add("skipped: ", state.skip_reason);
+  if (!state.retention_shortfall.empty()) {
+    add("retention: ", state.retention_shortfall);
+  } else if (state.stacks_deleted + state.results_deleted + state.days_deleted > 0) {
+    parts.push_back(fmt::format("retention deleted {} stacks, {} results, {} days",
+                                state.stacks_deleted, state.results_deleted, state.days_deleted));
+  }
   std::string line;
   for (const std::string& part : parts) line += (line.empty() ? "" : "; ") + part;
   return line;

@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "daemon/retention.h"
 #include "daemon/stack_worker.h"
 #include "rig/gpio/status_led.h"
 #include "sun/utc_time.h"
@@ -38,6 +39,10 @@ struct DaemonState {
   bool inclinometer_pauses = false;  // capture waits for the inclinometer ([faults])
   std::uint64_t stacks_captured = 0, stacks_written = 0, stacks_processed = 0, stacks_failed = 0;
   std::uint64_t captures_skipped = 0, watchdog_pings = 0, reloads = 0;
+  // Retention (retention.h): entries deleted so far, and why it could not free enough (empty
+  // when it could, or had nothing to do).
+  std::uint64_t stacks_deleted = 0, results_deleted = 0, days_deleted = 0;
+  std::string retention_shortfall;
 };
 
 // How a disk fault from a failed write begins: it ends only when the kept stacks are written.
@@ -47,6 +52,10 @@ inline constexpr std::string_view kWriteFailed = "writing a stack failed: ";
 // disk fault while a stack whose write failed is kept (`kept_remaining`: stacks still kept after
 // this report), the worker's last fault, the day's products.
 void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_remaining);
+
+// What one retention pass changes in `state`: the counts, the shortfall (logged when it changes;
+// each failed deletion logged as a warning).
+void recordRetention(DaemonState& state, const RetentionSummary& summary);
 
 // The STATUS= line: what the daemon does, its last and next stack and every fault, e.g.
 // "capturing every 600 s; last 20260621T101503Z-a42.30 (α 42.30°) at 10:15:03Z; next at

@@ -71,9 +71,13 @@ std::optional<std::string> stackDay(std::string_view stack_id,
                                     std::optional<double> longitude_deg) {
   const auto utc = idTime(stack_id);
   if (!utc) return std::nullopt;
+  return solarDay(*utc, longitude_deg);
+}
+
+std::string solarDay(UtcTime utc, std::optional<double> longitude_deg) {
   const auto offset =
       std::chrono::seconds(std::lround(longitude_deg.value_or(0.0) / kDegreesPerHour * 3600.0));
-  const std::chrono::year_month_day date{std::chrono::floor<std::chrono::days>(*utc + offset)};
+  const std::chrono::year_month_day date{std::chrono::floor<std::chrono::days>(utc + offset)};
   return fmt::format("{:04}-{:02}-{:02}", int(date.year()), unsigned(date.month()),
                      unsigned(date.day()));
 }

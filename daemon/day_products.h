@@ -18,6 +18,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "core/time.h"
 
 namespace glarecam::daemon {
 
@@ -28,6 +29,8 @@ inline constexpr const char* kFitsFileName = "fits.json";
 
 // "2026-06-21", or nullopt when the id does not start with a UTC time stamp YYYYMMDDTHHMMSSZ.
 std::optional<std::string> stackDay(std::string_view stack_id, std::optional<double> longitude_deg);
+// The day of an instant, as stackDay names the day of a stack taken then.
+std::string solarDay(UtcTime utc, std::optional<double> longitude_deg);
 
 struct DayProductsOptions {
   std::filesystem::path root;

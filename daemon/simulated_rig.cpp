@@ -50,10 +50,12 @@ button = 22
 root = "."
 reserve_mb = 64
 module = "simulated standard module"
+max_use_gib = {budget_gib}   # a small budget, so that a second simulated day shows retention
 )",
       fmt::arg("camera", options.camera), fmt::arg("calibration", kSimulatedCalibrationFileName),
       fmt::arg("latitude", kSimulatedLatitudeDeg), fmt::arg("longitude", kSimulatedLongitudeDeg),
-      fmt::arg("tilt", kSimulatedTiltDeg), fmt::arg("schedule", schedule));
+      fmt::arg("tilt", kSimulatedTiltDeg), fmt::arg("schedule", schedule),
+      fmt::arg("budget_gib", kSimulatedMaxUseGib));
   // The simulated sensor is mounted without error: its zero offset is zero, known exactly.
   const rig::InclinometerZeroOffset zero{.offset = {0.0, 0.0},
                                          .uncertainty_deg = 0.0,

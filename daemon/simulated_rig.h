@@ -23,6 +23,9 @@ inline constexpr double kSimulatedLatitudeDeg = 48.0;
 inline constexpr double kSimulatedLongitudeDeg = 7.85;
 inline constexpr double kSimulatedTiltDeg = 24.5;
 inline constexpr double kDefaultTimeLapse = 120.0;  // 2 minutes of sun a second
+// [output] max_use_gib of the simulated rig: a morning's 16 stacks and results (about 175 MB)
+// fit, a second morning's make retention delete the first's oldest stacks (docs/operator.md).
+inline constexpr double kSimulatedMaxUseGib = 0.2;
 inline constexpr const char* kSimulatedRigFileName = "glarecamd-simulated.toml";
 inline constexpr const char* kSimulatedCalibrationFileName = "glarecamd-simulated-calibration.json";
 

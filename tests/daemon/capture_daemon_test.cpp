@@ -551,5 +551,87 @@ TEST_F(DaemonTest, AStuckWorkerStopsTheHeartbeat) {
   EXPECT_LE(gap_end, 1h + 5s);
 }
 
+// [output] retention over three days of 6-hourly stacks: stacks older than a day go, results and
+// day sheets older than two after their stacks, every deletion counted, and capture goes on.
+TEST_F(DaemonTest, RetentionDeletesWhatIsOlderThanItsDaysAndCaptureGoesOn) {
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 21600",
+               .output = "keep_stacks_days = 1\nkeep_results_days = 2"});
+  auto daemon = makeDaemon();
+  terminateAt(72h + 1s, *daemon);  // from 2026-06-21 08:00 to 2026-06-24 08:00 UTC
+  ASSERT_TRUE(daemon->run());
+  const DaemonState& state = daemon->state();
+  EXPECT_EQ(state.stacks_written, 13u);
+  // Left: the 24th's stacks (02:00, 08:00); the 23rd's and 24th's results and days.
+  std::vector<std::string> left;
+  for (const fs::path& stack : stacks()) left.push_back(stack.filename().string().substr(0, 16));
+  EXPECT_EQ(left, (std::vector<std::string>{"20260624T020000Z", "20260624T080000Z"}));
+  EXPECT_EQ(results().size(), 4u + 2u);
+  EXPECT_EQ(entries(out() / kDaysDirectory).size(), 2u);
+  EXPECT_EQ(state.stacks_deleted, 11u);
+  EXPECT_EQ(state.results_deleted, 7u);
+  EXPECT_EQ(state.days_deleted, 2u);
+  EXPECT_TRUE(statusMentioned("retention deleted 11 stacks, 7 results, 2 days"));
+}
+
+// A disk whose free space is what the output tree leaves of a fixed capacity: deleting frees it.
+class TreeSizedDisk final : public DiskProbe {
+ public:
+  TreeSizedDisk(fs::path root, std::uint64_t capacity)
+      : root_(std::move(root)), capacity_(capacity) {}
+  Result<DiskState> probe(const fs::path&) override {
+    const std::uint64_t used = bytesUnder(root_);
+    return DiskState{.free_bytes = capacity_ > used ? capacity_ - used : 0,
+                     .total_bytes = capacity_};
+  }
+  static std::uint64_t bytesUnder(const fs::path& root) {
+    std::uint64_t bytes = 0;
+    std::error_code error;
+    for (fs::recursive_directory_iterator it(root, error), end; !error && it != end;
+         it.increment(error))
+      if (it->is_regular_file(error)) bytes += it->file_size(error);
+    return bytes;
+  }
+
+ private:
+  fs::path root_;
+  std::uint64_t capacity_;
+};
+
+// Below the reserve with a space budget set, retention frees the oldest stacks that may go; when
+// only today's are left the pause stays and says why, and lifts by itself once a new day makes
+// yesterday's stacks deletable. Nothing captured is lost: every stack written is on disk or was
+// deleted after its result was complete.
+TEST_F(DaemonTest, BelowTheReserveRetentionFreesSpaceOrThePauseSaysWhy) {
+  clock_.setUtcStart(utc("2026-06-21T20:00:00Z"));  // a new day after the first stack
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 21600",
+               .output = "max_use_gib = 100\nkeep_results_days = 1"});
+  {  // one stack first, to size the disk by it
+    auto first = makeDaemon({.max_stacks = 1});
+    ASSERT_TRUE(first->run());
+  }
+  const std::uint64_t one_stack = TreeSizedDisk::bytesUnder(out());
+  ASSERT_GT(one_stack, 0u);
+  fs::remove_all(out());
+  // The 100 MiB reserve and room for two and a half stacks with their results.
+  TreeSizedDisk disk(out(), (100ull << 20) + one_stack * 5 / 2);
+  auto daemon = makeDaemon({}, [&disk](DaemonServices& services) { services.disk = &disk; });
+  // Stacks at 20:00 on the 21st; 02:00, 08:00 (below the reserve: the 21st's stack goes), 14:00
+  // (below again, only today's left: paused) on the 22nd; 02:00 on the 23rd (the 22nd's went).
+  terminateAt(31h, *daemon);
+  ASSERT_TRUE(daemon->run());
+  const DaemonState& state = daemon->state();
+  EXPECT_GT(state.stacks_deleted, 0u);
+  EXPECT_EQ(state.stacks_written, stacks().size() + state.stacks_deleted) << "a stack was lost";
+  for (const fs::path& stack : stacks())
+    EXPECT_TRUE(fs::exists(out() / kResultsDirectory / stack.filename() / "result.json")) << stack;
+  EXPECT_TRUE(statusMentioned("paused"));
+  EXPECT_TRUE(statusMentioned("nothing more may go (stacks kept: "));
+  EXPECT_TRUE(statusMentioned("of today)"));
+  // Capture resumed on the last day.
+  EXPECT_TRUE(std::ranges::any_of(stacks(), [](const fs::path& stack) {
+    return stack.filename().string().starts_with("20260623T");
+  }));
+}
+
 }  // namespace
 }  // namespace glarecam::daemon

@@ -59,6 +59,9 @@ root = "data"
 reserve_mb = 2048
 module = "ACME 400"
 processing_threads = 2
+keep_stacks_days = 30
+keep_results_days = 365
+max_use_gib = 1.5
 [faults]
 inclinometer = "pause"
 min_tilt_deg = 5
@@ -83,6 +86,9 @@ camera_backoff_max_s = 60
   EXPECT_EQ(d.output.reserve_bytes, 2048ull << 20);
   EXPECT_EQ(d.output.module, "ACME 400");
   EXPECT_EQ(d.output.processing_threads, 2u);
+  EXPECT_EQ(d.output.retention.keep_stacks_days, 30);
+  EXPECT_EQ(d.output.retention.keep_results_days, 365);
+  EXPECT_EQ(d.output.retention.max_use_bytes, 3ull << 29);
   EXPECT_EQ(d.faults.inclinometer, InclinometerFaultPolicy::kPause);
   EXPECT_EQ(d.faults.max_tilt_deg, 60);
   EXPECT_EQ(d.faults.camera_max_failures, 3);
@@ -112,6 +118,11 @@ TEST_F(DaemonTest, ConfigErrorsNameTheFileAndLine) {
               ":2: capture.exposures must be \"auto\" or an array");
   expectError("[capture]\nexposures = []\n", "must have 1 to 64 elements");
   expectError("[output]\nreserve_mb = -1\n", ":2: output.reserve_mb = -1 is outside");
+  expectError("[output]\nkeep_stacks_days = 0\n", ":2: output.keep_stacks_days = 0 is outside");
+  expectError("[output]\nkeep_stacks_days = 1.5\n", "output.keep_stacks_days");
+  expectError("[output]\nmax_use_gib = 0\n", ":2: output.max_use_gib = 0 is outside");
+  expectError("[output]\nkeep_stacks_days = 30\nkeep_results_days = 7\n",
+              file + ":1: [output] keep_results_days: must be at least keep_stacks_days");
   expectError("[faults]\nmin_tilt_deg = 50\nmax_tilt_deg = 40\n", "min_tilt_deg 50 must be below");
   expectError("[faults]\ninclinometer = \"ignore\"\n",
               "faults.inclinometer = \"ignore\" is not one of");

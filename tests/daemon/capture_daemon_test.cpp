@@ -5,10 +5,13 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/mount.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <condition_variable>
+#include <cstring>
 #include <mutex>
 #include <thread>
 
@@ -628,6 +631,73 @@ TEST_F(DaemonTest, BelowTheReserveRetentionFreesSpaceOrThePauseSaysWhy) {
   EXPECT_TRUE(statusMentioned("nothing more may go (stacks kept: "));
   EXPECT_TRUE(statusMentioned("of today)"));
   // Capture resumed on the last day.
+  EXPECT_TRUE(std::ranges::any_of(stacks(), [](const fs::path& stack) {
+    return stack.filename().string().starts_with("20260623T");
+  }));
+}
+
+// A tmpfs mounted for one test (root only: skips with the reason elsewhere), resized at will.
+class TmpfsMount {
+ public:
+  explicit TmpfsMount(fs::path at) : at_(std::move(at)) {
+    fs::create_directories(at_);
+    if (::mount("tmpfs", at_.c_str(), "tmpfs", 0, "size=64m") != 0)
+      reason_ = std::string("cannot mount a tmpfs: ") + std::strerror(errno);
+  }
+  ~TmpfsMount() {
+    if (reason_.empty()) ::umount2(at_.c_str(), MNT_DETACH);
+  }
+  TmpfsMount(const TmpfsMount&) = delete;
+  TmpfsMount& operator=(const TmpfsMount&) = delete;
+  const std::string& unavailable() const { return reason_; }
+  bool resize(std::uint64_t bytes) {
+    const std::string options = "size=" + std::to_string(bytes);
+    return ::mount(nullptr, at_.c_str(), nullptr, MS_REMOUNT, options.c_str()) == 0;
+  }
+
+ private:
+  fs::path at_;
+  std::string reason_;
+};
+
+// The real thing on a real filesystem (statvfs, ENOSPC): a tmpfs sized for the 1 MiB reserve and
+// two and a half stacks with their results fills as stacks land; retention deletes yesterday's
+// oldest (max_use_gib set), pauses saying why when only today's are left, and capture resumes the
+// next day. Nothing is lost and nothing half-written is left.
+TEST_F(DaemonTest, RealFilesystemTmpfsFillsRetentionFreesItAndCaptureResumes) {
+  TmpfsMount tmpfs(out());
+  if (!tmpfs.unavailable().empty()) GTEST_SKIP() << tmpfs.unavailable();
+  clock_.setUtcStart(utc("2026-06-21T20:00:00Z"));
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 21600",
+               .output = "max_use_gib = 100",
+               .reserve_mb = 1});
+  const auto disk = makeStatvfsDiskProbe();
+  const auto used = [&] {
+    const DiskState state = disk->probe(out()).value();
+    return state.total_bytes - state.free_bytes;
+  };
+  const std::uint64_t empty = used();
+  {  // one stack first, to size the tmpfs by it
+    auto first = makeDaemon({.max_stacks = 1});
+    ASSERT_TRUE(first->run());
+  }
+  const std::uint64_t one_stack = used() - empty;
+  ASSERT_GT(one_stack, 0u);
+  for (const fs::path& entry : entries(out())) fs::remove_all(entry);
+  ASSERT_TRUE(tmpfs.resize(empty + (1ull << 20) + one_stack * 5 / 2));
+  auto daemon = makeDaemon({}, [&disk](DaemonServices& services) { services.disk = disk.get(); });
+  terminateAt(31h, *daemon);
+  ASSERT_TRUE(daemon->run());
+  const DaemonState& state = daemon->state();
+  EXPECT_GT(state.stacks_deleted, 0u);
+  EXPECT_EQ(state.stacks_written, stacks().size() + state.stacks_deleted) << "a stack was lost";
+  for (const fs::path& stack : stacks()) {
+    EXPECT_FALSE(stack.filename().string().starts_with(".tmp-")) << stack;
+    EXPECT_TRUE(readStack(stack)) << stack;
+    EXPECT_TRUE(fs::exists(out() / kResultsDirectory / stack.filename() / "result.json")) << stack;
+  }
+  EXPECT_TRUE(statusMentioned("paused"));
+  EXPECT_TRUE(statusMentioned("of today)"));
   EXPECT_TRUE(std::ranges::any_of(stacks(), [](const fs::path& stack) {
     return stack.filename().string().starts_with("20260623T");
   }));

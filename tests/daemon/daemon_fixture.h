@@ -34,7 +34,8 @@ struct RigSpec {
   std::string faults = "camera_backoff_s = 2\ncamera_backoff_max_s = 16\ncamera_max_failures = 5";
   bool site = false;     // [site] at 48° N instead of the lab lamp (α from the sun)
   std::string output{};  // more [output] keys
-  std::string extra{};   // more sections
+  int reserve_mb = 100;
+  std::string extra{};  // more sections
 };
 
 inline std::string rigToml(const RigSpec& spec) {
@@ -44,7 +45,8 @@ inline std::string rigToml(const RigSpec& spec) {
   text += "[module]\nazimuth_deg = 180\n";
   text += "[inclinometer]\nuri = \"" + spec.inclinometer + "\"\nsamples = 4\n";
   text += "[gpio]\nchip = \"sim\"\nled = 27\n";
-  text += "[output]\nroot = \"out\"\nreserve_mb = 100\n" + spec.output + "\n";
+  text += "[output]\nroot = \"out\"\nreserve_mb = " + std::to_string(spec.reserve_mb) + "\n" +
+          spec.output + "\n";
   text += "[schedule]\n" + spec.schedule + "\n";
   text += "[faults]\n" + spec.faults + "\n";
   return text + spec.extra;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace glarecam::daemon {
@@ -49,10 +50,15 @@ void recordRetention(DaemonState& state, const RetentionSummary& summary) {
     if (deleted.kind == "day") ++state.days_deleted;
   }
   for (const std::string& error : summary.errors) spdlog::warn("glarecamd: retention: {}", error);
-  if (summary.shortfall == state.retention_shortfall) return;
-  if (summary.shortfall.empty())
+  // Logged when it starts, ends or what is kept changes, not for every byte the disk moves by.
+  const auto kept = [](const std::string& shortfall) {
+    return shortfall.substr(std::min(shortfall.find(';'), shortfall.size()));
+  };
+  const bool changed = summary.shortfall.empty() != state.retention_shortfall.empty() ||
+                       kept(summary.shortfall) != kept(state.retention_shortfall);
+  if (changed && summary.shortfall.empty())
     spdlog::info("glarecamd: retention: within its limits again");
-  else
+  else if (changed)
     spdlog::warn("glarecamd: retention: {}", summary.shortfall);
   state.retention_shortfall = summary.shortfall;
 }

@@ -139,6 +139,10 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
   if (!policy.enabled()) return summary;
   const std::optional<std::chrono::sys_days> today =
       parseDay(solarDay(context.now, context.longitude_deg));
+  if (!today) {  // a clock beyond the year 9999: no age can be told, nothing goes
+    summary.errors.push_back("the clock's day cannot be told; nothing deleted");
+    return summary;
+  }
   const auto ageDays = [&](std::chrono::sys_days day) { return (*today - day).count(); };
   const auto remove = [&](const std::string& kind, const std::string& name, const fs::path& path,
                           const std::string& reason) {

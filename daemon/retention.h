@@ -50,13 +50,13 @@ struct RetentionDeletion {
 };
 
 struct RetentionSummary {
-  std::vector<RetentionDeletion> deleted;
+  std::vector<RetentionDeletion> deleted{};
   std::uint64_t freed_bytes = 0;
   std::uint64_t used_bytes = 0;  // by the output tree after the deletions (with a budget only)
   // Why the space asked for could not be freed ("3.1 GiB used, over the 2.0 GiB budget: nothing
   // more may go (4 stacks unprocessed, 12 of today)"), or empty.
-  std::string shortfall;
-  std::vector<std::string> errors;  // deletions that failed (the entry is left as it was)
+  std::string shortfall{};
+  std::vector<std::string> errors{};  // deletions that failed (the entry is left as it was)
 };
 
 struct RetentionContext {

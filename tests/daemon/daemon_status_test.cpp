@@ -35,5 +35,35 @@ TEST(DaemonStatus, OneLineWithEveryFaultAndTheLedShowsTheWorst) {
   EXPECT_EQ(statusLine(state, "x").find("next at"), std::string::npos);
 }
 
+// Retention in the status line: its deletions counted, or why it cannot free enough.
+TEST(DaemonStatus, RetentionCountsItsDeletionsOrSaysWhyItCannotFreeEnough) {
+  DaemonState state;
+  state.ready = true;
+  EXPECT_EQ(statusLine(state, "x").find("retention"), std::string::npos);
+  RetentionSummary summary;
+  summary.deleted = {{"stack", "a", 10, "older than 2 days"},
+                     {"stack", "b", 10, "older than 2 days"},
+                     {"result", "a", 5, "older than 9 days"},
+                     {"day", "2026-06-01", 5, "older than 9 days"}};
+  recordRetention(state, summary);
+  EXPECT_EQ(state.stacks_deleted, 2u);
+  EXPECT_EQ(state.results_deleted, 1u);
+  EXPECT_EQ(state.days_deleted, 1u);
+  EXPECT_NE(statusLine(state, "x").find("retention deleted 2 stacks, 1 results, 1 days"),
+            std::string::npos);
+  const RetentionSummary short_of_space{
+      .shortfall =
+          "3.0 GiB used, over the 2.0 GiB budget; nothing more may go (stacks kept: 4 "
+          "of today)"};
+  recordRetention(state, short_of_space);
+  const std::string line = statusLine(state, "x");
+  EXPECT_NE(line.find("retention: 3.0 GiB used, over the 2.0 GiB budget"), std::string::npos)
+      << line;
+  EXPECT_EQ(line.find("retention deleted"), std::string::npos) << line;
+  recordRetention(state, {});
+  EXPECT_TRUE(state.retention_shortfall.empty());
+  EXPECT_EQ(state.stacks_deleted, 2u);
+}
+
 }  // namespace
 }  // namespace glarecam::daemon

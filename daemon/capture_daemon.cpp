@@ -540,6 +540,8 @@ void CaptureDaemon::checkDisk() {
 std::size_t CaptureDaemon::applyRetention(const std::optional<DiskState>& disk) {
   const OutputConfig& output = config_.daemon.output;
   if (!output.retention.enabled()) return 0;
+  // Ages are told by the clock: an unsynchronised one that ran ahead would delete a season.
+  if (!clock_.clockStatus().synchronised) return 0;
   ScopedLogFields fields(LogFields{{"GLARECAM_EVENT", "retention"}});
   const RetentionSummary summary = daemon::applyRetention(
       output_, output.retention,
@@ -555,7 +557,7 @@ std::size_t CaptureDaemon::applyRetention(const std::optional<DiskState>& disk) 
     spdlog::info("glarecamd: retention deleted {} {} ({}): {}", deleted.kind, deleted.name,
                  formatBytes(deleted.bytes), deleted.reason);
   }
-  recordRetention(state_, summary);
+  recordRetention(state_, summary, disk.has_value());
   return summary.deleted.size();
 }
 

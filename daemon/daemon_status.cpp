@@ -43,19 +43,20 @@ void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_r
   state.worker_fault.clear();
 }
 
-void recordRetention(DaemonState& state, const RetentionSummary& summary) {
+void recordRetention(DaemonState& state, const RetentionSummary& summary, bool disk_checked) {
   for (const RetentionDeletion& deleted : summary.deleted) {
     if (deleted.kind == "stack") ++state.stacks_deleted;
     if (deleted.kind == "result") ++state.results_deleted;
     if (deleted.kind == "day") ++state.days_deleted;
   }
   for (const std::string& error : summary.errors) spdlog::warn("glarecamd: retention: {}", error);
-  // Logged when it starts, ends or what is kept changes, not for every byte the disk moves by.
-  const auto kept = [](const std::string& shortfall) {
-    return shortfall.substr(std::min(shortfall.find(';'), shortfall.size()));
+  const auto reserve = [](const std::string& shortfall) {
+    return shortfall.find("reserve") != std::string::npos;
   };
+  if (!disk_checked && summary.shortfall.empty() && reserve(state.retention_shortfall)) return;
+  // Logged when it starts, ends or changes kind, not for every stack or byte.
   const bool changed = summary.shortfall.empty() != state.retention_shortfall.empty() ||
-                       kept(summary.shortfall) != kept(state.retention_shortfall);
+                       reserve(summary.shortfall) != reserve(state.retention_shortfall);
   if (changed && summary.shortfall.empty())
     spdlog::info("glarecamd: retention: within its limits again");
   else if (changed)

@@ -53,9 +53,10 @@ inline constexpr std::string_view kWriteFailed = "writing a stack failed: ";
 // this report), the worker's last fault, the day's products.
 void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_remaining);
 
-// What one retention pass changes in `state`: the counts, the shortfall (logged when it changes;
-// each failed deletion logged as a warning).
-void recordRetention(DaemonState& state, const RetentionSummary& summary);
+// What one retention pass changes in `state`: the counts, the shortfall (logged when it starts,
+// ends or changes kind; each failed deletion logged as a warning). A pass that did not look at
+// the disk (`disk_checked` false) leaves a reserve shortfall as it is.
+void recordRetention(DaemonState& state, const RetentionSummary& summary, bool disk_checked = true);
 
 // The STATUS= line: what the daemon does, its last and next stack and every fault, e.g.
 // "capturing every 600 s; last 20260621T101503Z-a42.30 (α 42.30°) at 10:15:03Z; next at

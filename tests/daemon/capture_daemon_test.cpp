@@ -576,6 +576,19 @@ TEST_F(DaemonTest, RetentionDeletesWhatIsOlderThanItsDaysAndCaptureGoesOn) {
   EXPECT_TRUE(statusMentioned("retention deleted 11 stacks, 7 results, 2 days"));
 }
 
+// Ages are told by the clock: while it is not synchronised (it may have run ahead) nothing goes.
+TEST_F(DaemonTest, RetentionDeletesNothingWhileTheClockIsUnsynchronised) {
+  clock_.setClockStatus({.synchronised = false, .detail = "no NTP"});
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 21600",
+               .output = "keep_stacks_days = 1\nkeep_results_days = 2"});
+  auto daemon = makeDaemon();
+  terminateAt(72h + 1s, *daemon);
+  ASSERT_TRUE(daemon->run());
+  EXPECT_EQ(daemon->state().stacks_written, 13u);
+  EXPECT_EQ(stacks().size(), 13u);
+  EXPECT_EQ(daemon->state().stacks_deleted, 0u);
+}
+
 // A disk whose free space is what the output tree leaves of a fixed capacity: deleting frees it.
 class TreeSizedDisk final : public DiskProbe {
  public:

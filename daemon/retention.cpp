@@ -35,6 +35,13 @@ std::optional<std::chrono::sys_days> parseDay(const std::string& text) {
   return std::chrono::sys_days(date);
 }
 
+// The solar day of the stack (or its result) named `id`, or nullopt when its name tells none.
+std::optional<std::chrono::sys_days> idDay(const std::string& id,
+                                           std::optional<double> longitude_deg) {
+  const std::optional<std::string> day = stackDay(id, longitude_deg);
+  return day ? parseDay(*day) : std::nullopt;
+}
+
 bool isRealDirectory(const fs::path& path) {
   std::error_code error;
   return fs::is_directory(fs::symlink_status(path, error));
@@ -164,8 +171,7 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
   for (const fs::path& entry : sortedEntries(tree.stacks())) {
     const std::string id = entry.filename().string();
     if (id.starts_with(kTemporaryPrefix) || !isStackDirectory(entry)) continue;
-    const std::optional<std::string> day_name = stackDay(id, context.longitude_deg);
-    const std::optional<std::chrono::sys_days> day = day_name ? parseDay(*day_name) : std::nullopt;
+    const std::optional<std::chrono::sys_days> day = idDay(id, context.longitude_deg);
     if (!day) {
       ++withheld.undated;
     } else if (*day >= *today) {
@@ -191,9 +197,7 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
     const std::string reason = fmt::format("older than {} days", keep);
     for (const fs::path& entry : sortedEntries(tree.results())) {
       const std::string id = entry.filename().string();
-      const std::optional<std::string> day_name = stackDay(id, context.longitude_deg);
-      const std::optional<std::chrono::sys_days> day =
-          day_name ? parseDay(*day_name) : std::nullopt;
+      const std::optional<std::chrono::sys_days> day = idDay(id, context.longitude_deg);
       std::error_code missing;
       if (!day || ageDays(*day) < keep || !isResultDirectory(entry) ||
           fs::exists(fs::symlink_status(tree.stacks() / id, missing)))

@@ -5,7 +5,7 @@ JOBS           ?= $(shell nproc)
 DEMO_DIR       ?= demo-out
 CMAKE_FLAGS    ?=
 
-.PHONY: deps configure build test test-asan demo bench install clean format
+.PHONY: deps configure build test test-asan fuzz demo bench install clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -25,12 +25,25 @@ TEST_TIMEOUT_S ?= 300
 test: build test-asan
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS) --timeout $(TEST_TIMEOUT_S)
 
-test-asan: deps
-	cmake -S . -B $(ASAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DGLARECAM_SANITIZE=ON \
+# The sanitizer build is Clang's (clang-19: libFuzzer, and std::expected with libstdc++ 12), and
+# holds the fuzz targets; its ctest runs each for a short budget (tests/fuzz/CMakeLists.txt).
+ASAN_CONFIGURE = CC=clang-19 CXX=clang++-19 cmake -S . -B $(ASAN_BUILD_DIR) -G Ninja \
+	  -DCMAKE_BUILD_TYPE=Debug -DGLARECAM_SANITIZE=ON -DGLARECAM_FUZZ=ON \
 	  -DGLARECAM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
+
+test-asan: deps
+	$(ASAN_CONFIGURE)
 	cmake --build $(ASAN_BUILD_DIR) -j $(JOBS) --target sanitized_tests
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ctest --test-dir $(ASAN_BUILD_DIR) \
 	  --output-on-failure -j $(JOBS) --timeout $(TEST_TIMEOUT_S)
+
+# Every fuzz target for FUZZ_SECONDS each (docs/fuzzing.md): what they learn stays in
+# $(ASAN_BUILD_DIR)/fuzz/corpus, what they find in $(ASAN_BUILD_DIR)/fuzz/findings.
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	$(ASAN_CONFIGURE)
+	cmake --build $(ASAN_BUILD_DIR) -j $(JOBS) --target fuzz_targets
+	python3 scripts/fuzz --seconds $(FUZZ_SECONDS) $(ASAN_BUILD_DIR)/bin
 
 # Builds only what the demo runs: the tests and the benchmark are most of the objects, and the
 # demo runs neither (`make build` builds everything).

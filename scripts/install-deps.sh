@@ -23,6 +23,8 @@ PACKAGES=(
   systemd
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the sanitizer build and its fuzz targets (libFuzzer: libclang-rt-19-dev)
+  clang-19 libclang-rt-19-dev
 )
 
 if [[ $(id -u) -ne 0 ]]; then

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/build_config.h"
 #include "core/image.h"
 
 namespace glarecam {
@@ -53,7 +54,7 @@ TEST(Memory, LargeBlocksAreReusedWithoutFaultingAgain) {
 // fresh process (a "threadsafe" death test re-runs the binary), whose allocator has no freed memory
 // to hand back.
 TEST(MemoryDeathTest, LargeImagesFaultInHugePages) {
-#ifdef __SANITIZE_ADDRESS__
+#if GLARECAM_SANITIZE
   GTEST_SKIP() << "under AddressSanitizer its shadow memory faults page by page besides";
 #endif
   std::ifstream enabled("/sys/kernel/mm/transparent_hugepage/enabled");

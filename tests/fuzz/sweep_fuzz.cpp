@@ -1,0 +1,29 @@
+// libFuzzer target: a sweep table (sweep.csv, docs/datasheet.md), read as `glarecam fit` and
+// `glarecam datasheet` read it, and fitted when it parses: the fits meet whatever numbers the
+// reader lets through (tiny, huge, repeated α). Tables are capped at kMaxFittedRows rows for the
+// fit so that one input costs milliseconds, not the fuzzer's whole budget.
+#include <cstddef>
+#include <cstdint>
+
+#include "pipeline/glare_fits.h"
+#include "pipeline/sweep_table.h"
+#include "tests/fuzz/fuzz_support.h"
+
+namespace {
+constexpr std::size_t kMaxFittedRows = 40;  // a whole-degree sweep 0–80° has 81; seeds have ≤ 40
+}
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  glarecam::fuzz::silenceLogging();
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const auto path = glarecam::fuzz::writeScratchFile("sweep.csv", data, size);
+  auto table = glarecam::pipeline::readSweepTable(path);
+  if (!table || table->rows.size() > kMaxFittedRows) return 0;
+  glarecam::pipeline::sortByAlpha(*table);
+  const auto fits = glarecam::pipeline::fitSweep(*table);
+  if (fits) (void)glarecam::pipeline::fitsJson(*fits).dump();
+  return 0;
+}

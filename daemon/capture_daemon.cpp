@@ -526,7 +526,7 @@ void CaptureDaemon::checkDisk() {
     if (output_.writable()) worker_->retryParked();
     return;
   }
-  if (reason.empty() && state_.disk_fault.starts_with(kWriteFailed)) return;  // being retried
+  if (reason.empty() && isKeptStackFault(state_.disk_fault)) return;  // being retried
   if (reason.empty() && !state_.disk_fault.empty() && !output_.writable())
     reason = state_.disk_fault;
   if (reason == state_.disk_fault) return;

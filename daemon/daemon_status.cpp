@@ -9,12 +9,26 @@
 namespace glarecam::daemon {
 
 void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_remaining) {
-  if (event.error && event.stage == WorkerEvent::Stage::kWritten && !event.last) {
+  const bool written = event.stage == WorkerEvent::Stage::kWritten;
+  if (event.error && !event.last && event.stage != WorkerEvent::Stage::kPublished) {
     // Kept by the worker: capture pauses until the disk takes a write again.
-    state.disk_fault =
-        fmt::format("{}{}; it is kept until the disk takes it", kWriteFailed, event.error->message);
+    state.disk_fault = written ? fmt::format("{}{}; it is kept until the disk takes it",
+                                             kWriteFailed, event.error->message)
+                               : fmt::format("{}{}; it is processed again once the disk takes it",
+                                             kProcessingFailed, event.error->message);
     spdlog::error("glarecamd: {}: {}", event.stack_id, state.disk_fault);
     return;
+  }
+  // The last kept stack written or processed, or its processing given up (it is on disk, safe,
+  // for the next start): the pause for them ends. A write given up keeps the pause: the disk
+  // takes no stacks.
+  const bool kept_done = event.stage != WorkerEvent::Stage::kPublished && !(event.error && written);
+  if (kept_done && isKeptStackFault(state.disk_fault) && !kept_remaining) {
+    spdlog::info("glarecamd: disk: the kept stacks are {}; capture resumes",
+                 event.error ? "left for the next start"
+                 : written   ? "written"
+                             : "processed");
+    state.disk_fault.clear();
   }
   if (event.error) {
     ++state.stacks_failed;
@@ -25,10 +39,6 @@ void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_r
   switch (event.stage) {
     case WorkerEvent::Stage::kWritten:
       ++state.stacks_written;
-      if (state.disk_fault.starts_with(kWriteFailed) && !kept_remaining) {
-        spdlog::info("glarecamd: disk: the kept stacks are written; capture resumes");
-        state.disk_fault.clear();
-      }
       spdlog::info("glarecamd: wrote {}", event.path.string());
       return;
     case WorkerEvent::Stage::kProcessed:

@@ -47,6 +47,13 @@ struct DaemonState {
 
 // How a disk fault from a failed write begins: it ends only when the kept stacks are written.
 inline constexpr std::string_view kWriteFailed = "writing a stack failed: ";
+// How a disk fault from a refused processing begins (its result could not be written): it ends
+// when the kept stacks are processed, or given up and left for the next start.
+inline constexpr std::string_view kProcessingFailed = "processing a stack failed: ";
+// A disk fault of the worker's kept stacks (either of the above): retried, not probed.
+inline bool isKeptStackFault(std::string_view disk_fault) {
+  return disk_fault.starts_with(kWriteFailed) || disk_fault.starts_with(kProcessingFailed);
+}
 
 // What a report of the stack worker (stack_worker.h) changes in `state`, logged: the counters, a
 // disk fault while a stack whose write failed is kept (`kept_remaining`: stacks still kept after

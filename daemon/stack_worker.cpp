@@ -5,6 +5,10 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <iterator>
+#include <string>
+
 #include "core/atomic_file.h"
 #include "pipeline/process_stack.h"
 
@@ -41,12 +45,13 @@ bool StackWorker::full() const {
 
 std::size_t StackWorker::pending() const {
   const std::lock_guard lock(mutex_);
-  return writes_.size() + processing_.size() + parked_.size() + (running_job_ ? 1 : 0);
+  return writes_.size() + processing_.size() + parked_.size() + parked_processing_.size() +
+         (running_job_ ? 1 : 0);
 }
 
 bool StackWorker::hasParked() const {
   const std::lock_guard lock(mutex_);
-  return !parked_.empty();
+  return !parked_.empty() || !parked_processing_.empty();
 }
 
 std::optional<SteadyTime> StackWorker::busySince() const {
@@ -82,9 +87,11 @@ void StackWorker::retryParked() {
   {
     const std::lock_guard lock(mutex_);
     parked.swap(parked_);
+    std::ranges::move(parked_processing_, std::back_inserter(parked));
+    parked_processing_.clear();
     if (mode_ == Mode::kThread)
       for (auto job = parked.rbegin(); job != parked.rend(); ++job)
-        writes_.push_front(std::move(*job));
+        (job->stack ? writes_ : processing_).push_front(std::move(*job));
   }
   if (mode_ == Mode::kThread) {
     wake_.notify_one();
@@ -100,6 +107,7 @@ void StackWorker::stop() {
     if (stopping_ && !thread_.joinable() && parked_.empty()) return;
     stopping_ = true;  // from here on every write is the last try
     parked.swap(parked_);
+    parked_processing_.clear();  // on disk already: the next start processes them
     if (mode_ == Mode::kThread)
       for (auto job = parked.rbegin(); job != parked.rend(); ++job)
         writes_.push_front(std::move(*job));
@@ -233,13 +241,26 @@ Result<pipeline::ProcessSummary> StackWorker::processInto(const fs::path& stack,
   return summary;
 }
 
-void StackWorker::process(const Job& job, const WorkerOptions& options) {
+// Parks a stack whose processing the system refused, for retryParked(). Empty when parked, else
+// why it may not be tried again (kMaxWriteAttempts tries, or glarecamd is stopping).
+std::string StackWorker::parkProcessing(Job& job) {
+  const std::lock_guard lock(mutex_);
+  if (stopping_) return "glarecamd is stopping";
+  if (++job.process_attempts >= kMaxWriteAttempts)
+    return fmt::format("{} tries", job.process_attempts);
+  parked_processing_.push_back(job);
+  return {};
+}
+
+void StackWorker::process(Job& job, const WorkerOptions& options) {
   const fs::path& stack = job.path;
   const std::string id = stack.filename().string();
   const fs::path results = options.day.root / kResultsDirectory;
   const auto processed = processInto(stack, results / id, options);
   WorkerEvent event{
       .stage = WorkerEvent::Stage::kProcessed, .stack_id = id, .captured = job.captured};
+  const auto day = stackDay(id, options.day.longitude_deg);
+  event.last = !processed || !day;
   if (processed) {
     event.path = results / id;
     event.detail = processed->briefReport();
@@ -248,12 +269,19 @@ void StackWorker::process(const Job& job, const WorkerOptions& options) {
     // Bad data stays bad: noted, so that no later start processes it again.
     if (processed.error().code == ErrorCode::kBadInput)
       (void)writeFileAtomic(results / (id + kFailedSuffix), processed.error().message + "\n");
+    // A refused write (a full disk) passes: kept, and processed again once the disk takes writes.
+    if (processed.error().code == ErrorCode::kIo) {
+      const std::string not_parked = parkProcessing(job);
+      if (not_parked.empty())
+        event.last = false;
+      else
+        event.error->message +=
+            fmt::format("; the stack is left for the next start ({})", not_parked);
+    }
   }
-  const auto day = stackDay(id, options.day.longitude_deg);
-  const bool last = !processed || !day;
-  event.last = last;
+  const bool publish = processed && day;
   events_.post(std::move(event));
-  if (last) return;
+  if (!publish) return;
   auto published = updateDayProducts(options.day, *day);
   WorkerEvent report{.stage = WorkerEvent::Stage::kPublished,
                      .stack_id = id,

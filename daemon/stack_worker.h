@@ -9,6 +9,9 @@
 // The loop bounds what is held in memory (full(), checked before a bracket); a stack whose write
 // fails (a full or read-only disk) is kept, not dropped: the loop pauses capture and calls
 // retryParked() once the disk takes writes again; after kMaxWriteAttempts it is given up, loudly.
+// A stack whose processing the system refused (kIo: its result could not be written) is parked
+// the same way and processed again by retryParked(); after kMaxWriteAttempts it is left on disk,
+// without a result, for the next start.
 // stop() writes every stack still queued or kept, so that none is lost on shutdown unless the
 // disk refuses it then too (reported), and processes none; the next start processes every stack
 // without a result (submitWritten()). A stack that cannot be processed at all (bad data) gets a
@@ -83,6 +86,7 @@ class StackWorker {
     std::filesystem::path path{};
     bool captured = false;  // a stack of this run (WorkerEvent::captured)
     int attempts = 0;       // writes tried
+    int process_attempts = 0;
   };
 
   void enqueue(Job job);
@@ -92,7 +96,8 @@ class StackWorker {
   std::optional<Job> nextJob(bool stopping);
   // The written stack's path; on failure the job is parked (or, when stopping, the stack lost).
   std::optional<std::filesystem::path> write(Job& job, const WorkerOptions& options, bool stopping);
-  void process(const Job& job, const WorkerOptions& options);
+  void process(Job& job, const WorkerOptions& options);
+  std::string parkProcessing(Job& job);
   Result<pipeline::ProcessSummary> processInto(const std::filesystem::path& stack,
                                                const std::filesystem::path& target,
                                                const WorkerOptions& options);
@@ -106,9 +111,10 @@ class StackWorker {
   mutable std::mutex mutex_;
   std::condition_variable_any wake_;
   WorkerOptions options_;
-  std::deque<Job> writes_;      // captured stacks to write, oldest first
-  std::deque<Job> processing_;  // stacks on disk to process
-  std::deque<Job> parked_;      // captured stacks whose write failed, oldest first
+  std::deque<Job> writes_;             // captured stacks to write, oldest first
+  std::deque<Job> processing_;         // stacks on disk to process
+  std::deque<Job> parked_;             // captured stacks whose write failed, oldest first
+  std::deque<Job> parked_processing_;  // stacks on disk whose processing the system refused
   std::optional<SteadyTime> busy_since_;
   bool running_job_ = false;
   bool running_write_ = false;

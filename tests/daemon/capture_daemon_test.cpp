@@ -376,6 +376,29 @@ TEST_F(DaemonTest, AStackThatCannotBeWrittenIsKeptUntilTheDiskTakesIt) {
   EXPECT_TRUE(daemon->state().disk_fault.empty());
 }
 
+// A result the disk refuses (here: results/ turns into a file) is no reason to drop the stack: it
+// stays, capture pauses saying why, and once the disk takes writes it is processed again.
+TEST_F(DaemonTest, AStackWhoseResultCannotBeWrittenIsKeptAndProcessedAgain) {
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 60"});
+  auto daemon = makeDaemon();
+  refuseResultsBetween(100s, 170s);
+  std::string status_while_refused;
+  clock_.at(150s, [&] { status_while_refused = daemon->state().status; });
+  terminateAt(301s, *daemon);
+  ASSERT_TRUE(daemon->run());
+  const DaemonState& state = daemon->state();
+  EXPECT_TRUE(statusMentioned("disk: processing a stack failed: "));
+  EXPECT_TRUE(statusMentioned("it is processed again once the disk takes it"));
+  EXPECT_NE(status_while_refused.find("paused"), std::string::npos) << status_while_refused;
+  EXPECT_EQ(state.stacks_failed, 0u);
+  EXPECT_TRUE(state.disk_fault.empty()) << state.disk_fault;
+  // 0, 60 and 120 s (refused, then processed again at 170–180 s), 180 … 300 s after the pause.
+  EXPECT_EQ(stacks().size(), 6u);
+  EXPECT_EQ(state.stacks_processed, stacks().size());
+  for (const fs::path& stack : stacks())
+    EXPECT_TRUE(fs::exists(out() / kResultsDirectory / stack.filename() / "result.json")) << stack;
+}
+
 // On a worker thread the write runs in real time while the manual clock races on, so these two
 // check only the outcomes (the kept-and-retried sequence itself is checked inline above).
 TEST_F(DaemonTest, OnAWorkerThreadAStackTheDiskRefusedIsWrittenOnceItTakesIt) {
@@ -714,6 +737,52 @@ TEST_F(DaemonTest, RealFilesystemTmpfsFillsRetentionFreesItAndCaptureResumes) {
   EXPECT_TRUE(std::ranges::any_of(stacks(), [](const fs::path& stack) {
     return stack.filename().string().starts_with("20260623T");
   }));
+}
+
+// ENOSPC in the middle of writing a result, on a real filesystem: a tmpfs with room for the
+// first stack and half its result, and no reserve (the daemon's free-space check cannot see this
+// coming: a reserve set too small, or another program filling the disk). The stack stays, its
+// processing fails "disk full" and is parked, capture pauses saying why; once the tmpfs grows (an
+// operator freed space) the stack is processed again and capture resumes. No stack is lost or
+// marked failed, and no half-written result is left.
+TEST_F(DaemonTest, RealFilesystemResultWriteHitsEnospcStackKeptProcessingRetried) {
+  TmpfsMount tmpfs(out());
+  if (!tmpfs.unavailable().empty()) GTEST_SKIP() << tmpfs.unavailable();
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 60", .reserve_mb = 0});
+  const auto disk = makeStatvfsDiskProbe();
+  const auto used = [&] {
+    const DiskState state = disk->probe(out()).value();
+    return state.total_bytes - state.free_bytes;
+  };
+  const std::uint64_t empty = used();
+  {  // one stack first, to size the tmpfs by it
+    auto first = makeDaemon({.max_stacks = 1});
+    ASSERT_TRUE(first->run());
+  }
+  const std::uint64_t one_stack = used() - empty;  // with its result and day products
+  const std::uint64_t result = TreeSizedDisk::bytesUnder(out() / kResultsDirectory);
+  // Half the result must be well beyond the page rounding of its ~10 files (4 KiB each).
+  ASSERT_GT(result, 128u << 10);
+  for (const fs::path& entry : entries(out())) fs::remove_all(entry);
+  ASSERT_TRUE(tmpfs.resize(empty + one_stack - result / 2));
+  std::string status_while_full;
+  auto daemon = makeDaemon({}, [&disk](DaemonServices& services) { services.disk = disk.get(); });
+  clock_.at(30s, [&] { status_while_full = daemon->state().status; });
+  clock_.at(35s, [&] { ASSERT_TRUE(tmpfs.resize(256ull << 20)); });
+  terminateAt(301s, *daemon);
+  ASSERT_TRUE(daemon->run());
+  const DaemonState& state = daemon->state();
+  EXPECT_TRUE(statusMentioned("disk: processing a stack failed: "));
+  EXPECT_TRUE(statusMentioned("(disk full)"));
+  EXPECT_NE(status_while_full.find("paused"), std::string::npos) << status_while_full;
+  EXPECT_EQ(state.stacks_failed, 0u);
+  EXPECT_TRUE(state.disk_fault.empty()) << state.disk_fault;
+  EXPECT_EQ(stacks().size(), 6u);  // 0 s (processed again at 40 s), 60 … 300 s
+  EXPECT_EQ(state.stacks_processed, stacks().size());
+  for (const fs::path& stack : stacks())
+    EXPECT_TRUE(fs::exists(out() / kResultsDirectory / stack.filename() / "result.json")) << stack;
+  for (const fs::path& entry : entries(out() / kResultsDirectory))
+    EXPECT_FALSE(entry.filename().string().starts_with(".tmp-")) << entry;
 }
 
 }  // namespace

@@ -109,6 +109,21 @@ class DaemonTest : public ::testing::Test {
     });
   }
 
+  // From `from` to `to`, results/ is a file (the directory set aside): processing cannot write a
+  // result (kIo) and the output tree is not writable; stacks written before stay.
+  void refuseResultsBetween(std::chrono::nanoseconds from, std::chrono::nanoseconds to) {
+    const std::filesystem::path results = out() / kResultsDirectory;
+    const std::filesystem::path aside = out() / "results-aside";
+    clock_.at(from, [results, aside] {
+      std::filesystem::rename(results, aside);
+      testing::writeText(results, "not a directory");
+    });
+    clock_.at(to, [results, aside] {
+      std::filesystem::remove(results);
+      std::filesystem::rename(aside, results);
+    });
+  }
+
   std::vector<std::filesystem::path> stacks() const { return entries(out() / kStacksDirectory); }
   std::vector<std::filesystem::path> results() const { return entries(out() / kResultsDirectory); }
   static std::vector<std::filesystem::path> entries(const std::filesystem::path& directory) {

@@ -16,6 +16,17 @@ namespace glarecam::daemon {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The staging directories an earlier, refused try of stack `id` left in `directory`. Only the
+// worker writes them, one job at a time, so none of them belongs to a writer still running.
+void removeLeftoversOf(const fs::path& directory, std::string_view id) {
+  const std::string_view names[] = {id};
+  removeStaleTemporaries(directory, std::chrono::seconds(0), names);
+}
+
+}  // namespace
+
 StackWorker::StackWorker(WorkerOptions options, EventQueue& events, DaemonClock& clock, Mode mode,
                          std::function<void()> job_hook)
     : events_(events),
@@ -188,8 +199,11 @@ void StackWorker::runJob(Job& job, bool stopping) {
 
 std::optional<fs::path> StackWorker::write(Job& job, const WorkerOptions& options, bool stopping) {
   const std::string id = job.stack->manifest.id.value_or("stack");
+  const fs::path stacks = options.day.root / kStacksDirectory;
+  // What a refused try left (a read-only remount stops the staging directory's removal too).
+  if (job.attempts > 0) removeLeftoversOf(stacks, id);
   ++job.attempts;
-  auto written = capture::writeCapturedStack(options.day.root / kStacksDirectory, *job.stack);
+  auto written = capture::writeCapturedStack(stacks, *job.stack);
   WorkerEvent event{.stage = WorkerEvent::Stage::kWritten,
                     .stack_id = id,
                     .last = stopping,
@@ -256,6 +270,7 @@ void StackWorker::process(Job& job, const WorkerOptions& options) {
   const fs::path& stack = job.path;
   const std::string id = stack.filename().string();
   const fs::path results = options.day.root / kResultsDirectory;
+  if (job.process_attempts > 0) removeLeftoversOf(results, id);
   const auto processed = processInto(stack, results / id, options);
   WorkerEvent event{
       .stage = WorkerEvent::Stage::kProcessed, .stack_id = id, .captured = job.captured};

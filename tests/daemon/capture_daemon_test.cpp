@@ -4,7 +4,9 @@
 #include "daemon/capture_daemon.h"
 
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <signal.h>
+#include <sys/inotify.h>
 #include <sys/mount.h>
 
 #include <algorithm>
@@ -690,6 +692,11 @@ class TmpfsMount {
     const std::string options = "size=" + std::to_string(bytes);
     return ::mount(nullptr, at_.c_str(), nullptr, MS_REMOUNT, options.c_str()) == 0;
   }
+  // Remounts read-only (false with EBUSY while a file is open for writing) or read-write.
+  bool setReadOnly(bool read_only) {
+    return ::mount(nullptr, at_.c_str(), nullptr, MS_REMOUNT | (read_only ? MS_RDONLY : 0),
+                   nullptr) == 0;
+  }
 
  private:
   fs::path at_;
@@ -782,6 +789,109 @@ TEST_F(DaemonTest, RealFilesystemResultWriteHitsEnospcStackKeptProcessingRetried
   for (const fs::path& stack : stacks())
     EXPECT_TRUE(fs::exists(out() / kResultsDirectory / stack.filename() / "result.json")) << stack;
   for (const fs::path& entry : entries(out() / kResultsDirectory))
+    EXPECT_FALSE(entry.filename().string().starts_with(".tmp-")) << entry;
+}
+
+// Remounts `tmpfs` read-only in the middle of the first stack's write: once the first frame file
+// of a staging directory under `stacks` is closed, while the others are still being encoded.
+// A remount is refused (EBUSY) while a file is open for writing, so it is tried until it takes.
+class ReadOnlyMidWrite {
+ public:
+  ReadOnlyMidWrite(TmpfsMount& tmpfs, fs::path stacks)
+      : tmpfs_(tmpfs), stacks_(std::move(stacks)), thread_([this] { watch(); }) {}
+  ~ReadOnlyMidWrite() {
+    stop_ = true;
+    thread_.join();
+  }
+  // The frames the staging directory held when the remount took; nullopt if it never did.
+  std::optional<std::size_t> framesAtRemount() const {
+    thread_done_.wait(false);
+    return frames_at_remount_;
+  }
+
+ private:
+  void watch() {
+    const int fd = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+    inotify_add_watch(fd, stacks_.c_str(), IN_CREATE);
+    alignas(inotify_event) char buffer[4096];
+    while (!stop_ && !frames_at_remount_) {
+      pollfd p{.fd = fd, .events = POLLIN, .revents = 0};
+      if (::poll(&p, 1, 10) <= 0) continue;
+      const ssize_t n = ::read(fd, buffer, sizeof buffer);
+      for (ssize_t at = 0; at < n;) {
+        const auto* event = reinterpret_cast<const inotify_event*>(buffer + at);
+        at += static_cast<ssize_t>(sizeof(inotify_event) + event->len);
+        const std::string name = event->len ? event->name : "";
+        if ((event->mask & IN_CREATE) && (event->mask & IN_ISDIR) && name.starts_with(".tmp-")) {
+          staging_ = stacks_ / name;
+          inotify_add_watch(fd, staging_.c_str(), IN_CLOSE_WRITE);
+        } else if ((event->mask & IN_CLOSE_WRITE) && name.ends_with(".png")) {
+          remount();
+        }
+      }
+    }
+    ::close(fd);
+    thread_done_ = true;
+    thread_done_.notify_all();
+  }
+  void remount() {
+    const auto deadline = std::chrono::steady_clock::now() + 2s;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (tmpfs_.setReadOnly(true)) {
+        std::size_t frames = 0;
+        std::error_code error;
+        for (const auto& entry : fs::directory_iterator(staging_, error))
+          frames += entry.path().extension() == ".png";
+        frames_at_remount_ = frames;
+        return;
+      }
+      std::this_thread::sleep_for(50us);
+    }
+  }
+
+  TmpfsMount& tmpfs_;
+  fs::path stacks_;
+  fs::path staging_;
+  std::atomic<bool> stop_ = false;
+  std::atomic<bool> thread_done_ = false;
+  std::optional<std::size_t> frames_at_remount_;
+  std::thread thread_;
+};
+
+// A read-only remount (an SD card after I/O errors) in the middle of a stack's write, on a real
+// filesystem: the write fails, the stack is kept in memory, capture pauses saying "read-only";
+// once the filesystem is read-write again the kept stack is written whole and capture resumes.
+// Frames of 1024×768 so that writing a stack's six takes long enough to remount between them.
+TEST_F(DaemonTest, RealFilesystemReadOnlyRemountMidStackWriteKeepsTheStack) {
+  TmpfsMount tmpfs(out());
+  if (!tmpfs.unavailable().empty()) GTEST_SKIP() << tmpfs.unavailable();
+  ASSERT_TRUE(tmpfs.resize(512ull << 20));
+  writeConfig({.camera = "sim:size=1024x768,fov=30",
+               .schedule = "mode = \"interval\"\ninterval_s = 60",
+               .reserve_mb = 1});
+  fs::create_directories(out() / kStacksDirectory);
+  const auto disk = makeStatvfsDiskProbe();
+  std::optional<ReadOnlyMidWrite> remount(std::in_place, tmpfs, out() / kStacksDirectory);
+  auto daemon = makeDaemon({}, [&disk](DaemonServices& services) { services.disk = disk.get(); });
+  std::string status_while_read_only;
+  clock_.at(50s, [&] { status_while_read_only = daemon->state().status; });
+  clock_.at(100s, [&] { ASSERT_TRUE(tmpfs.setReadOnly(false)); });
+  terminateAt(181s, *daemon);
+  ASSERT_TRUE(daemon->run());
+  const auto frames = remount->framesAtRemount();
+  ASSERT_TRUE(frames.has_value()) << "the remount never took";
+  EXPECT_LT(*frames, 6u) << "remounted after the frames were all written";
+  const DaemonState& state = daemon->state();
+  EXPECT_NE(status_while_read_only.find("paused"), std::string::npos) << status_while_read_only;
+  EXPECT_NE(status_while_read_only.find("read-only"), std::string::npos) << status_while_read_only;
+  EXPECT_EQ(state.stacks_failed, 0u);
+  EXPECT_TRUE(state.disk_fault.empty()) << state.disk_fault;
+  const auto written = stacks();
+  ASSERT_GE(written.size(), 2u);  // the one at 0 s, late, and those after the pause
+  EXPECT_EQ(manifest(written[0])["captured_at"], "2026-06-21T08:00:00Z");
+  EXPECT_EQ(state.stacks_written, written.size());
+  for (const fs::path& stack : written) EXPECT_TRUE(readStack(stack)) << stack;
+  for (const fs::path& entry : entries(out() / kStacksDirectory))
     EXPECT_FALSE(entry.filename().string().starts_with(".tmp-")) << entry;
 }
 

@@ -17,6 +17,7 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <optional>
 #include <random>
@@ -468,6 +469,137 @@ camera_max_failures = 6
   EXPECT_EQ(process.wait(180s), 1) << log();
   EXPECT_NE(log().find("failed 6 times in a row"), std::string::npos) << log();
   EXPECT_TRUE(entries(stacks, true).empty());
+}
+
+// Brackets that take seconds (issue 21): the fake GigE Vision camera takes each exposure, and the
+// rig asks for six of 0.6 … 1.5 s, a bracket of about 6 s.
+constexpr const char* kLongBracket =
+    "[capture]\nexposures = [600000, 700000, 800000, 1000000, 1200000, 1500000]\n";
+constexpr auto kLongBracketS = 5.8s;
+
+class GlarecamdLongBracket : public GlarecamdProcess {
+ protected:
+  void SetUp() override {
+    fake_ = startFake();
+    ASSERT_TRUE(
+        eventually([&] { return fs::exists(dir_ / "cal" / "fake-camera-mono16.json"); }, 30s));
+    testing::writeText(dir_ / "rig.toml", "calibration = \"cal/fake-camera-mono16.json\"\n" +
+                                              labRig("aravis:127.0.0.1") + kLongBracket +
+                                              R"([schedule]
+interval_s = 1
+[output]
+root = "out"
+reserve_mb = 1
+[faults]
+camera_backoff_s = 1
+camera_backoff_max_s = 2
+camera_max_failures = 20
+)");
+  }
+  std::unique_ptr<Process> startFake() {
+    return std::make_unique<Process>(
+        std::vector<std::string>{GLARECAM_PATH, "fake-camera", "--size", "320x256",
+                                 "--calibration-out", (dir_ / "cal").string()},
+        std::vector<std::string>{}, dir_ / "fake.log");
+  }
+  // Reads notify messages until `condition` holds (true) or `timeout` passes.
+  static bool pumpUntil(NotifySocket& notify, const std::function<bool()>& condition,
+                        std::chrono::seconds timeout) {
+    const auto deadline = Clock::now() + timeout;
+    while (Clock::now() < deadline) {
+      if (condition()) return true;
+      notify.receive(100ms);
+    }
+    return condition();
+  }
+  // The longest time between two WATCHDOG=1 after `from`.
+  static Clock::duration longestWatchdogGap(const NotifySocket& notify, Clock::time_point from) {
+    std::optional<Clock::time_point> last;
+    Clock::duration longest{};
+    for (const auto& m : notify.received()) {
+      if (m.message != "WATCHDOG=1" || m.at < from) continue;
+      if (last) longest = std::max(longest, m.at - *last);
+      last = m.at;
+    }
+    return longest;
+  }
+  static bool lastStatusIs(const NotifySocket& notify, std::string_view prefix) {
+    for (auto m = notify.received().rbegin(); m != notify.received().rend(); ++m)
+      if (m->message.starts_with("STATUS=")) return m->message.starts_with(prefix);
+    return false;
+  }
+  fs::path stacks() const { return dir_ / "out" / "stacks"; }
+  std::unique_ptr<Process> fake_;
+};
+
+// WatchdogSec 16 s (WATCHDOG_USEC), so glarecamd pings every 8 s: across 6 s brackets one after
+// the other, a ping comes at least every WatchdogSec/2 (checked over three brackets; 1 s of
+// slack for a loaded machine's scheduling). SIGTERM 2 s into a bracket: glarecamd exits 0 well
+// within the unit's TimeoutStopSec (300 s, systemd/glarecamd.service), the bracket finished and
+// written whole or not at all, nothing half-written left.
+TEST_F(GlarecamdLongBracket, WatchdogKeepsItsCadenceAndSigtermStopsCleanly) {
+  NotifySocket notify(dir_ / "notify.sock");
+  Process process(daemon({"--config", (dir_ / "rig.toml").string()}),
+                  {"NOTIFY_SOCKET=" + notify.path().string(), "WATCHDOG_USEC=16000000"},
+                  dir_ / "glarecamd.log");
+  ASSERT_TRUE(notify.waitFor("READY=1", kStartTimeout)) << log();
+  const auto watch_start = Clock::now();
+  ASSERT_TRUE(pumpUntil(
+      notify, [&] { return entries(stacks(), false).size() >= 3; }, 120s))
+      << log();
+  EXPECT_GE(Clock::now() - watch_start, 2 * kLongBracketS) << "the brackets took no time";
+  EXPECT_LE(longestWatchdogGap(notify, watch_start), 8s + 1s) << log();
+  // SIGTERM mid-bracket.
+  ASSERT_TRUE(pumpUntil(
+      notify, [&] { return lastStatusIs(notify, "STATUS=capturing"); }, 60s));
+  std::this_thread::sleep_for(2s);
+  const auto before = entries(stacks(), false).size();
+  const auto signalled = Clock::now();
+  process.signal(SIGTERM);
+  EXPECT_EQ(process.wait(300s), 0) << log();
+  EXPECT_LT(Clock::now() - signalled, 60s) << "far from TimeoutStopSec=300, but no quick stop";
+  EXPECT_TRUE(entries(stacks(), true).empty()) << "a half-written stack was left";
+  const auto after = entries(stacks(), false);
+  EXPECT_LE(after.size(), before + 1);
+  for (const fs::path& stack : after) EXPECT_TRUE(readStack(stack)) << stack;
+}
+
+// The camera killed 2 s into a 6 s bracket: that bracket leaves no stack, the status says the
+// camera is being waited for, the reopening backs off 1, 2, 2 s (capped at camera_backoff_max_s),
+// and once the camera is back the next stack lands.
+TEST_F(GlarecamdLongBracket, CameraKilledMidBracketLeavesNoStackAndIsReopened) {
+  NotifySocket notify(dir_ / "notify.sock");
+  Process process(daemon({"--config", (dir_ / "rig.toml").string()}),
+                  {"NOTIFY_SOCKET=" + notify.path().string(), "WATCHDOG_USEC=16000000"},
+                  dir_ / "glarecamd.log");
+  ASSERT_TRUE(notify.waitFor("READY=1", kStartTimeout)) << log();
+  ASSERT_TRUE(pumpUntil(
+      notify, [&] { return !entries(stacks(), false).empty(); }, 120s))
+      << log();
+  ASSERT_TRUE(pumpUntil(
+      notify, [&] { return lastStatusIs(notify, "STATUS=capturing"); }, 60s));
+  std::this_thread::sleep_for(2s);
+  const auto before = entries(stacks(), false).size();
+  fake_.reset();  // SIGKILL, mid-bracket
+  ASSERT_TRUE(pumpUntil(
+      notify, [&] { return lastStatusIs(notify, "STATUS=waiting for the camera"); }, 90s))
+      << log();
+  EXPECT_EQ(entries(stacks(), false).size(), before) << "the interrupted bracket left a stack";
+  EXPECT_TRUE(entries(stacks(), true).empty());
+  // Let it back off a few times, then bring the camera back.
+  ASSERT_TRUE(pumpUntil(
+      notify, [&] { return log().find("(failure 3 of 20)") != std::string::npos; }, 60s))
+      << log();
+  EXPECT_NE(log().find("reopening in 1 s (failure 1 of 20)"), std::string::npos) << log();
+  EXPECT_NE(log().find("reopening in 2 s (failure 2 of 20)"), std::string::npos) << log();
+  EXPECT_NE(log().find("reopening in 2 s (failure 3 of 20)"), std::string::npos) << log();
+  fake_ = startFake();
+  ASSERT_TRUE(pumpUntil(
+      notify, [&] { return entries(stacks(), false).size() > before; }, 120s))
+      << log();
+  for (const fs::path& stack : entries(stacks(), false)) EXPECT_TRUE(readStack(stack)) << stack;
+  process.signal(SIGTERM);
+  EXPECT_EQ(process.wait(120s), 0) << log();
 }
 #endif
 

@@ -5,7 +5,7 @@ JOBS           ?= $(shell nproc)
 DEMO_DIR       ?= demo-out
 CMAKE_FLAGS    ?=
 
-.PHONY: deps configure build test test-asan fuzz demo bench install clean format
+.PHONY: deps configure build test test-asan fuzz soak demo bench install clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -52,6 +52,15 @@ demo: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target $(DEMO_TARGETS)
 	bash scripts/demo.sh $(BUILD_DIR)/bin $(DEMO_DIR)
 
+# glarecamd on the simulated rig for SOAK_STACKS stacks (weeks of simulated days in a time
+# lapse), failing on growing memory or descriptors, a lost stack or a missing result
+# (docs/operator.md, "Soak test"). Not part of `make test`: about 5 minutes.
+SOAK_STACKS ?= 1000
+SOAK_DIR    ?= soak-out
+soak: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecamd
+	python3 scripts/soak --stacks $(SOAK_STACKS) --out $(SOAK_DIR) $(BUILD_DIR)/bin
+
 bench: build
 	$(BUILD_DIR)/bin/glarecam-bench --benchmark_counters_tabular=true
 
@@ -68,4 +77,4 @@ format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_BUILD_DIR) $(DEMO_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_BUILD_DIR) $(DEMO_DIR) $(SOAK_DIR)

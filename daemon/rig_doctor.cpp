@@ -79,11 +79,12 @@ DoctorCheck checkCamera(const Config& config, const CameraOpener& open,
   for (int y = 0; y < frame.height(); ++y)
     for (int x = 0; x < frame.width(); ++x) maximum = std::max<int>(maximum, frame.at(x, y));
   const capture::CameraInfo& info = (*camera)->info();
-  return ok("camera",
-            fmt::format("{} ({} {}, serial {}): a {}x{} {} frame at {:g} µs, max {} DN", info.uri,
-                        info.vendor, info.model, info.serial.empty() ? "-" : info.serial,
-                        frame.width(), frame.height(), (*camera)->format().pixel_format,
-                        frames->front().exposure_us, maximum));
+  return ok(
+      "camera",
+      fmt::format("{} ({} {}, serial {}{}): a {}x{} {} frame at {:g} µs, max {} DN", info.uri,
+                  info.vendor, info.model, info.serial.empty() ? "-" : info.serial,
+                  info.detail.empty() ? "" : "; " + info.detail, frame.width(), frame.height(),
+                  (*camera)->format().pixel_format, frames->front().exposure_us, maximum));
 }
 
 // Where the user running this cannot read or write what glarecamd needs.

@@ -8,10 +8,13 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 #include "capture/aravis/glib_ownership.h"
+#include "capture/network_interfaces.h"
 
 namespace glarecam::capture {
 namespace {
@@ -28,9 +31,34 @@ constexpr guint64 kPopSliceUs = 50'000;  // how often a wait checks for control-
 constexpr int kFreeRunningSettleFrames = 2;
 constexpr double kMicrosecondsPerSecond = 1e6;
 constexpr std::string_view kFakeDevicePrefix = "Fake_";  // Aravis's in-process fake: "Fake_1"
+constexpr std::string_view kGigEVisionProtocol = "GigEVision";  // arv_get_device_protocol()
+
+// An address of a GigE device (transfer none), as text.
+std::string addressText(GSocketAddress* address) {
+  if (address == nullptr || !G_IS_INET_SOCKET_ADDRESS(address)) return "?";
+  gchar* text =
+      g_inet_address_to_string(g_inet_socket_address_get_address(G_INET_SOCKET_ADDRESS(address)));
+  std::string copy = text != nullptr ? text : "?";
+  g_free(text);
+  return copy;
+}
+
+// "GigE Vision 192.168.1.20, streams to eth1 (192.168.1.2)": where this opened camera's stream
+// comes to, as `glarecam doctor` reports it.
+std::string gigeDetail(ArvGvDevice* device) {
+  const std::string interface_address = addressText(arv_gv_device_get_interface_address(device));
+  std::string interface_name = "?";
+  const auto parsed = parseIpv4(interface_address);
+  for (const NetworkInterface& interface : hostInterfaces())
+    if (parsed && interface.address == *parsed) interface_name = interface.name;
+  return fmt::format("GigE Vision {}, streams to {} ({})",
+                     addressText(arv_gv_device_get_device_address(device)), interface_name,
+                     interface_address);
+}
 
 std::string deviceDetail(ArvCamera* camera) {
-  if (arv_camera_is_gv_device(camera)) return "GigE Vision";
+  if (arv_camera_is_gv_device(camera))
+    return gigeDetail(ARV_GV_DEVICE(arv_camera_get_device(camera)));
   if (arv_camera_is_uv_device(camera)) return "USB3 Vision";
   return "Aravis fake camera";
 }
@@ -478,18 +506,67 @@ class AravisBackend final : public CameraBackend {
 
   Result<std::vector<CameraInfo>> list() override {
     arv_update_device_list();
+    const std::vector<NetworkInterface> interfaces = hostInterfaces();
     std::vector<CameraInfo> cameras;
     for (unsigned i = 0; i < arv_get_n_devices(); ++i) {
+      std::string detail = fmt::format("{} {}", orEmpty(arv_get_device_protocol(i)),
+                                       orEmpty(arv_get_device_address(i)));
+      if (const auto stream = streamInterfaceOf(i, interfaces))
+        detail += ", streams to " + describeInterface(*stream);
       cameras.push_back({.uri = "aravis:" + orEmpty(arv_get_device_id(i)),
                          .backend = "aravis",
                          .vendor = orEmpty(arv_get_device_vendor(i)),
                          .model = orEmpty(arv_get_device_model(i)),
                          .serial = orEmpty(arv_get_device_serial_nbr(i)),
-                         .detail = fmt::format("{} {}", orEmpty(arv_get_device_protocol(i)),
-                                               orEmpty(arv_get_device_address(i))),
+                         .detail = std::move(detail),
                          .optics = {}});
     }
     return cameras;
+  }
+
+ private:
+  struct GigeTarget {
+    std::uint32_t device_address = 0;
+    NetworkInterface interface;
+  };
+
+  // The interface device `index` of Aravis's list streams to, when it is a GigE Vision camera
+  // whose address a local subnet holds.
+  static std::optional<NetworkInterface> streamInterfaceOf(
+      unsigned index, const std::vector<NetworkInterface>& interfaces) {
+    if (orEmpty(arv_get_device_protocol(index)) != kGigEVisionProtocol) return std::nullopt;
+    const auto address = parseIpv4(orEmpty(arv_get_device_address(index)));
+    return address ? streamInterfaceFor(*address, interfaces) : std::nullopt;
+  }
+
+  // What `name` (an address, or an id as `glarecam cameras` lists it: device id, physical id or
+  // address; empty: the first camera) names, when it is a GigE Vision camera on a local subnet.
+  // The list Aravis already has is asked first, a discovery only when it does not know the name.
+  static std::optional<GigeTarget> gigeTarget(const std::string& name) {
+    const std::vector<NetworkInterface> interfaces = hostInterfaces();
+    if (const auto address = parseIpv4(name)) {
+      const auto interface = streamInterfaceFor(*address, interfaces);
+      if (!interface) return std::nullopt;
+      return GigeTarget{.device_address = *address, .interface = *interface};
+    }
+    const auto find = [&]() -> std::optional<unsigned> {
+      for (unsigned i = 0; i < arv_get_n_devices(); ++i)
+        if (name.empty() || name == orEmpty(arv_get_device_id(i)) ||
+            name == orEmpty(arv_get_device_physical_id(i)) ||
+            name == orEmpty(arv_get_device_address(i)))
+          return i;
+      return std::nullopt;
+    };
+    std::optional<unsigned> index = find();
+    if (!index) {
+      arv_update_device_list();
+      index = find();
+    }
+    if (!index) return std::nullopt;
+    const auto address = parseIpv4(orEmpty(arv_get_device_address(*index)));
+    const auto interface = streamInterfaceOf(*index, interfaces);
+    if (!address || !interface) return std::nullopt;
+    return GigeTarget{.device_address = *address, .interface = *interface};
   }
 
   Result<std::unique_ptr<Camera>> open(std::string_view id, const CameraOptions& options) override {
@@ -497,8 +574,20 @@ class AravisBackend final : public CameraBackend {
     // Aravis's in-process fake camera is a test double: enabled only when asked for by name.
     if (name.starts_with(kFakeDevicePrefix)) enableAravisFakeInterface();
     OwnedError error;
-    GObjectPtr<ArvCamera> camera(
-        arv_camera_new(name.empty() ? nullptr : name.c_str(), error.out()));
+    GObjectPtr<ArvCamera> camera;
+    // A GigE Vision camera streams to the interface whose subnet holds its address
+    // (network_interfaces.h); anything else, and a routed camera, as Aravis opens it.
+    if (const auto target = gigeTarget(name)) {
+      GObjectPtr<GInetAddress> interface_address(
+          g_inet_address_new_from_string(formatIpv4(target->interface.address).c_str()));
+      GObjectPtr<GInetAddress> device_address(
+          g_inet_address_new_from_string(formatIpv4(target->device_address).c_str()));
+      GObjectPtr<ArvDevice> device(
+          arv_gv_device_new(interface_address.get(), device_address.get(), error.out()));
+      if (device && !error) camera.reset(arv_camera_new_with_device(device.get(), error.out()));
+    } else {
+      camera.reset(arv_camera_new(name.empty() ? nullptr : name.c_str(), error.out()));
+    }
     if (error || !camera) {
       return hardwareError(
           fmt::format("aravis:{}: no such camera ({}); `glarecam cameras` lists "

@@ -27,7 +27,7 @@ using libcam::BracketMatcher;
 using libcam::FrameMeta;
 using libcam::RawLayout;
 
-constexpr std::string_view kScheme = "libcamera";
+constexpr std::string_view kLibcameraScheme = "libcamera";
 // libcamera logs INFO and WARN lines (the version banner, "No IPA found") to stderr from the
 // first CameraManager on; glarecam keeps only its errors unless the user chose levels.
 constexpr const char* kLogLevelsVariable = "LIBCAMERA_LOG_LEVELS";
@@ -38,7 +38,7 @@ constexpr const char* kQuietLogLevels = "*:ERROR";
 constexpr double kExposureControlUnitUs = 1.0;  // ExposureTime is an integer number of µs
 constexpr double kMaxExposureRoundingUs = 100.0;
 
-std::string uriFor(std::string_view id) { return fmt::format("{}:{}", kScheme, id); }
+std::string uriFor(std::string_view id) { return fmt::format("{}:{}", kLibcameraScheme, id); }
 std::string errnoText(int ret) { return std::strerror(-ret); }
 
 std::string versionText() {
@@ -233,7 +233,7 @@ lc::Size largestSize(const lc::StreamFormats& formats, const lc::PixelFormat& fo
 CameraInfo describe(const lc::Camera& camera) {
   CameraInfo info;
   info.uri = uriFor(camera.id());
-  info.backend = std::string(kScheme);
+  info.backend = std::string(kLibcameraScheme);
   info.model = camera.properties().get(lc::properties::Model).value_or("");
   info.detail = camera.id();
   return info;
@@ -551,7 +551,7 @@ void LibcameraCamera::onDisconnected() {
 
 class LibcameraBackend final : public CameraBackend {
  public:
-  std::string_view scheme() const override { return kScheme; }
+  std::string_view scheme() const override { return kLibcameraScheme; }
   Result<std::vector<CameraInfo>> list() override {
     return catchExceptions([&] { return listCameras(); });
   }

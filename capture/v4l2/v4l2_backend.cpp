@@ -15,7 +15,7 @@
 namespace glarecam::capture {
 namespace {
 
-constexpr std::string_view kScheme = "v4l2";
+constexpr std::string_view kV4l2Scheme = "v4l2";
 
 // The mono formats we read, deepest first. Y10 and Y12 are 16-bit little-endian containers.
 struct MonoFormat {
@@ -313,8 +313,8 @@ std::vector<std::string> videoNodes(const std::string& directory) {
 
 CameraInfo cameraInfo(const std::string& path, const V4l2Capabilities& caps) {
   CameraInfo info;
-  info.uri = fmt::format("{}:{}", kScheme, path);
-  info.backend = kScheme;
+  info.uri = fmt::format("{}:{}", kV4l2Scheme, path);
+  info.backend = kV4l2Scheme;
   info.model = caps.card;  // V4L2 names neither vendor nor serial
   info.detail = fmt::format("{} (driver {})", caps.bus_info, caps.driver);
   return info;
@@ -370,7 +370,7 @@ class V4l2Backend final : public CameraBackend {
   V4l2Backend(V4l2DeviceOpener opener, V4l2Options options)
       : opener_(std::move(opener)), options_(std::move(options)) {}
 
-  std::string_view scheme() const override { return kScheme; }
+  std::string_view scheme() const override { return kV4l2Scheme; }
 
   Result<std::vector<CameraInfo>> list() override {
     std::vector<CameraInfo> cameras;
@@ -378,7 +378,7 @@ class V4l2Backend final : public CameraBackend {
       if (auto info = probe(path)) {
         cameras.push_back(std::move(*info));
       } else {
-        spdlog::debug("{}:{}: skipped: {}", kScheme, path, info.error().message);
+        spdlog::debug("{}:{}: skipped: {}", kV4l2Scheme, path, info.error().message);
       }
     }
     return cameras;
@@ -387,7 +387,7 @@ class V4l2Backend final : public CameraBackend {
   Result<std::unique_ptr<Camera>> open(std::string_view id, const CameraOptions& options) override {
     std::string path;
     GLARECAM_ASSIGN(path, resolve(id));
-    const auto uri = fmt::format("{}:{}", kScheme, path);
+    const auto uri = fmt::format("{}:{}", kV4l2Scheme, path);
     auto camera = openPath(path, options);
     if (!camera) return std::unexpected(withContext(camera.error(), uri));
     return camera;
@@ -408,10 +408,10 @@ class V4l2Backend final : public CameraBackend {
     std::vector<CameraInfo> cameras;
     GLARECAM_ASSIGN(cameras, list());
     if (cameras.empty()) {
-      return hardwareError(fmt::format("{}: no V4L2 capture device found in {}", kScheme,
+      return hardwareError(fmt::format("{}: no V4L2 capture device found in {}", kV4l2Scheme,
                                        options_.device_directory));
     }
-    return cameras.front().uri.substr(kScheme.size() + 1);
+    return cameras.front().uri.substr(kV4l2Scheme.size() + 1);
   }
 
   Result<std::unique_ptr<Camera>> openPath(const std::string& path, const CameraOptions& options) {

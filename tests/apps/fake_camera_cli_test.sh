@@ -41,6 +41,14 @@ check "a second fake camera on the same port" 1 "$GLARECAM" fake-camera --durati
 expect "the port conflict is named" one_line_naming "UDP port 3956"
 check "cameras sees it" 0 "$GLARECAM" cameras
 expect "cameras lists the fake GigE Vision camera" grep -q "^aravis:.*GV01" "$WORK/out"
+expect "cameras names the interface it streams to" grep -q "GV01.*streams to lo (127.0.0.1)" "$WORK/out"
+# Every URI cameras lists captures (issue 21: on a host with a second interface the listed
+# aravis:Aravis-Fake-GV01 streamed to that interface and timed out; multihomed_cli_test.sh makes
+# sure of a second interface).
+for listed in $(grep -o "^aravis:[^ ]*" "$WORK/out") aravis:; do
+  check "capture from the listed $listed" 0 timeout 60 "$GLARECAM" capture --camera "$listed" \
+    --exposures 1000,2000 --out "$WORK/listed" --no-progress
+done
 
 check "capture over GigE Vision" 0 "$GLARECAM" capture --camera "$uri" --alpha 40 \
   --calibration "$WORK/cal/fake-camera-mono16.json" --out "$WORK/stacks" --no-progress

@@ -173,6 +173,17 @@ samples = 4
 )";
 }
 
+// The rig of the fake GigE Vision camera's tests: its Mono16 calibration (in cal/), the lab rig on
+// aravis:127.0.0.1, `sections`, a stack every `interval_s`, reopening after 1, 2, 2 … s and giving
+// up after `max_failures`.
+std::string fakeCameraRig(const std::string& sections, int interval_s, int max_failures) {
+  return "calibration = \"cal/fake-camera-mono16.json\"\n" + labRig("aravis:127.0.0.1") + sections +
+         "[schedule]\ninterval_s = " + std::to_string(interval_s) +
+         "\n[output]\nroot = \"out\"\nreserve_mb = 1\n[faults]\ncamera_backoff_s = 1\n"
+         "camera_backoff_max_s = 2\ncamera_max_failures = " +
+         std::to_string(max_failures) + "\n";
+}
+
 class GlarecamdProcess : public ::testing::Test {
  protected:
   std::vector<std::string> daemon(std::vector<std::string> args) {
@@ -440,17 +451,7 @@ TEST_F(GlarecamdProcess, FakeGigECameraKilledAndRestarted) {
   };
   auto fake = startFake();
   ASSERT_TRUE(eventually([&] { return fs::exists(cal / "fake-camera-mono16.json"); }, 30s));
-  testing::writeText(dir_ / "rig.toml", "calibration = \"cal/fake-camera-mono16.json\"\n" +
-                                            labRig("aravis:127.0.0.1") + R"([schedule]
-interval_s = 2
-[output]
-root = "out"
-reserve_mb = 1
-[faults]
-camera_backoff_s = 1
-camera_backoff_max_s = 2
-camera_max_failures = 6
-)");
+  testing::writeText(dir_ / "rig.toml", fakeCameraRig("", 2, 6));
   NotifySocket notify(dir_ / "notify.sock");
   Process process(daemon({"--config", (dir_ / "rig.toml").string()}),
                   {"NOTIFY_SOCKET=" + notify.path().string()}, dir_ / "glarecamd.log");
@@ -483,18 +484,7 @@ class GlarecamdLongBracket : public GlarecamdProcess {
     fake_ = startFake();
     ASSERT_TRUE(
         eventually([&] { return fs::exists(dir_ / "cal" / "fake-camera-mono16.json"); }, 30s));
-    testing::writeText(dir_ / "rig.toml", "calibration = \"cal/fake-camera-mono16.json\"\n" +
-                                              labRig("aravis:127.0.0.1") + kLongBracket +
-                                              R"([schedule]
-interval_s = 1
-[output]
-root = "out"
-reserve_mb = 1
-[faults]
-camera_backoff_s = 1
-camera_backoff_max_s = 2
-camera_max_failures = 20
-)");
+    testing::writeText(dir_ / "rig.toml", fakeCameraRig(kLongBracket, 1, 20));
   }
   std::unique_ptr<Process> startFake() {
     return std::make_unique<Process>(

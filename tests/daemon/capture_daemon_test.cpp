@@ -703,32 +703,59 @@ class TmpfsMount {
   std::string reason_;
 };
 
+// The daemon on a real filesystem: a tmpfs mounted over the output root for each test (root only:
+// the test skips with mount(2)'s reason elsewhere), its free space from the real statvfs probe.
+// Selected with `ctest -R RealFilesystem`.
+class RealFilesystemTest : public DaemonTest {
+ protected:
+  void SetUp() override {
+    DaemonTest::SetUp();
+    tmpfs_.emplace(out());
+    if (!tmpfs_->unavailable().empty()) GTEST_SKIP() << tmpfs_->unavailable();
+  }
+  TmpfsMount& tmpfs() { return *tmpfs_; }
+  // The daemon with the statvfs probe instead of the scripted disk.
+  std::unique_ptr<CaptureDaemon> makeRealDiskDaemon() {
+    return makeDaemon({}, [this](DaemonServices& services) { services.disk = disk_.get(); });
+  }
+  std::uint64_t usedBytes() const {
+    const DiskState state = disk_->probe(out()).value();
+    return state.total_bytes - state.free_bytes;
+  }
+  // What the tmpfs holds empty, and what one stack of the written config takes on it with its
+  // result and day products (and its result alone, by file sizes): a first daemon takes one
+  // stack, then the output root is emptied again.
+  struct OneStack {
+    std::uint64_t empty_bytes = 0, stack_bytes = 0, result_bytes = 0;
+  };
+  OneStack sizeOneStack() {
+    OneStack sizes{.empty_bytes = usedBytes()};
+    auto first = makeDaemon({.max_stacks = 1});
+    EXPECT_TRUE(first->run());
+    sizes.stack_bytes = usedBytes() - sizes.empty_bytes;
+    sizes.result_bytes = TreeSizedDisk::bytesUnder(out() / kResultsDirectory);
+    for (const fs::path& entry : entries(out())) fs::remove_all(entry);
+    return sizes;
+  }
+
+ private:
+  std::optional<TmpfsMount> tmpfs_;
+  std::unique_ptr<DiskProbe> disk_ = makeStatvfsDiskProbe();
+};
+
 // The real thing on a real filesystem (statvfs, ENOSPC): a tmpfs sized for the 1 MiB reserve and
 // two and a half stacks with their results fills as stacks land; retention deletes yesterday's
 // oldest (max_use_gib set), pauses saying why when only today's are left, and capture resumes the
 // next day. Nothing is lost and nothing half-written is left.
-TEST_F(DaemonTest, RealFilesystemTmpfsFillsRetentionFreesItAndCaptureResumes) {
-  TmpfsMount tmpfs(out());
-  if (!tmpfs.unavailable().empty()) GTEST_SKIP() << tmpfs.unavailable();
+TEST_F(RealFilesystemTest, TmpfsFillsRetentionFreesItAndCaptureResumes) {
   clock_.setUtcStart(utc("2026-06-21T20:00:00Z"));
   writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 21600",
                .output = "max_use_gib = 100",
                .reserve_mb = 1});
-  const auto disk = makeStatvfsDiskProbe();
-  const auto used = [&] {
-    const DiskState state = disk->probe(out()).value();
-    return state.total_bytes - state.free_bytes;
-  };
-  const std::uint64_t empty = used();
-  {  // one stack first, to size the tmpfs by it
-    auto first = makeDaemon({.max_stacks = 1});
-    ASSERT_TRUE(first->run());
-  }
-  const std::uint64_t one_stack = used() - empty;
-  ASSERT_GT(one_stack, 0u);
-  for (const fs::path& entry : entries(out())) fs::remove_all(entry);
-  ASSERT_TRUE(tmpfs.resize(empty + (1ull << 20) + one_stack * 5 / 2));
-  auto daemon = makeDaemon({}, [&disk](DaemonServices& services) { services.disk = disk.get(); });
+  const OneStack one = sizeOneStack();
+  ASSERT_GT(one.stack_bytes, 0u);
+  ASSERT_TRUE(tmpfs().resize(one.empty_bytes + (1ull << 20) + one.stack_bytes * 5 / 2));
+  auto daemon = makeRealDiskDaemon();
   terminateAt(31h, *daemon);
   ASSERT_TRUE(daemon->run());
   const DaemonState& state = daemon->state();
@@ -752,30 +779,16 @@ TEST_F(DaemonTest, RealFilesystemTmpfsFillsRetentionFreesItAndCaptureResumes) {
 // processing fails "disk full" and is parked, capture pauses saying why; once the tmpfs grows (an
 // operator freed space) the stack is processed again and capture resumes. No stack is lost or
 // marked failed, and no half-written result is left.
-TEST_F(DaemonTest, RealFilesystemResultWriteHitsEnospcStackKeptProcessingRetried) {
-  TmpfsMount tmpfs(out());
-  if (!tmpfs.unavailable().empty()) GTEST_SKIP() << tmpfs.unavailable();
+TEST_F(RealFilesystemTest, ResultWriteHitsEnospcStackKeptProcessingRetried) {
   writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 60", .reserve_mb = 0});
-  const auto disk = makeStatvfsDiskProbe();
-  const auto used = [&] {
-    const DiskState state = disk->probe(out()).value();
-    return state.total_bytes - state.free_bytes;
-  };
-  const std::uint64_t empty = used();
-  {  // one stack first, to size the tmpfs by it
-    auto first = makeDaemon({.max_stacks = 1});
-    ASSERT_TRUE(first->run());
-  }
-  const std::uint64_t one_stack = used() - empty;  // with its result and day products
-  const std::uint64_t result = TreeSizedDisk::bytesUnder(out() / kResultsDirectory);
+  const OneStack one = sizeOneStack();
   // Half the result must be well beyond the page rounding of its ~10 files (4 KiB each).
-  ASSERT_GT(result, 128u << 10);
-  for (const fs::path& entry : entries(out())) fs::remove_all(entry);
-  ASSERT_TRUE(tmpfs.resize(empty + one_stack - result / 2));
+  ASSERT_GT(one.result_bytes, 128u << 10);
+  ASSERT_TRUE(tmpfs().resize(one.empty_bytes + one.stack_bytes - one.result_bytes / 2));
+  auto daemon = makeRealDiskDaemon();
   std::string status_while_full;
-  auto daemon = makeDaemon({}, [&disk](DaemonServices& services) { services.disk = disk.get(); });
   clock_.at(30s, [&] { status_while_full = daemon->state().status; });
-  clock_.at(35s, [&] { ASSERT_TRUE(tmpfs.resize(256ull << 20)); });
+  clock_.at(35s, [&] { ASSERT_TRUE(tmpfs().resize(256ull << 20)); });
   terminateAt(301s, *daemon);
   ASSERT_TRUE(daemon->run());
   const DaemonState& state = daemon->state();
@@ -862,20 +875,17 @@ class ReadOnlyMidWrite {
 // filesystem: the write fails, the stack is kept in memory, capture pauses saying "read-only";
 // once the filesystem is read-write again the kept stack is written whole and capture resumes.
 // Frames of 1024×768 so that writing a stack's six takes long enough to remount between them.
-TEST_F(DaemonTest, RealFilesystemReadOnlyRemountMidStackWriteKeepsTheStack) {
-  TmpfsMount tmpfs(out());
-  if (!tmpfs.unavailable().empty()) GTEST_SKIP() << tmpfs.unavailable();
-  ASSERT_TRUE(tmpfs.resize(512ull << 20));
+TEST_F(RealFilesystemTest, ReadOnlyRemountMidStackWriteKeepsTheStack) {
+  ASSERT_TRUE(tmpfs().resize(512ull << 20));
   writeConfig({.camera = "sim:size=1024x768,fov=30",
                .schedule = "mode = \"interval\"\ninterval_s = 60",
                .reserve_mb = 1});
   fs::create_directories(out() / kStacksDirectory);
-  const auto disk = makeStatvfsDiskProbe();
-  std::optional<ReadOnlyMidWrite> remount(std::in_place, tmpfs, out() / kStacksDirectory);
-  auto daemon = makeDaemon({}, [&disk](DaemonServices& services) { services.disk = disk.get(); });
+  std::optional<ReadOnlyMidWrite> remount(std::in_place, tmpfs(), out() / kStacksDirectory);
+  auto daemon = makeRealDiskDaemon();
   std::string status_while_read_only;
   clock_.at(50s, [&] { status_while_read_only = daemon->state().status; });
-  clock_.at(100s, [&] { ASSERT_TRUE(tmpfs.setReadOnly(false)); });
+  clock_.at(100s, [&] { ASSERT_TRUE(tmpfs().setReadOnly(false)); });
   terminateAt(181s, *daemon);
   ASSERT_TRUE(daemon->run());
   const auto frames = remount->framesAtRemount();

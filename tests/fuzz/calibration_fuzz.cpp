@@ -6,6 +6,7 @@
 
 #include "calibration/calibration_file.h"
 #include "core/stack_io.h"
+#include "core/stack_manifest.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -16,7 +17,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = glarecam::fuzz::writeScratchFile("calibration.json", data, size);
   const auto document = glarecam::calibration::readCalibrationDocument(path);
-  if (document) (void)glarecam::calibration::toJson(*document).dump();
+  if (document) (void)glarecam::jsonText(glarecam::calibration::toJson(*document));
   (void)glarecam::readCalibrationFile(path);
   return 0;
 }

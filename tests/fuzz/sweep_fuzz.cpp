@@ -1,10 +1,12 @@
 // libFuzzer target: a sweep table (sweep.csv, docs/datasheet.md), read as `glarecam fit` and
 // `glarecam datasheet` read it, and fitted when it parses: the fits meet whatever numbers the
-// reader lets through (tiny, huge, repeated α). Tables are capped at kMaxFittedRows rows for the
-// fit so that one input costs milliseconds, not the fuzzer's whole budget.
+// reader lets through (tiny, huge, repeated α), and the fits' JSON written as glarecam writes it.
+// Tables are capped at kMaxFittedRows rows for the fit so that one input costs milliseconds, not
+// the fuzzer's whole budget.
 #include <cstddef>
 #include <cstdint>
 
+#include "core/stack_manifest.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/sweep_table.h"
 #include "tests/fuzz/fuzz_support.h"
@@ -24,6 +26,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!table || table->rows.size() > kMaxFittedRows) return 0;
   glarecam::pipeline::sortByAlpha(*table);
   const auto fits = glarecam::pipeline::fitSweep(*table);
-  if (fits) (void)glarecam::pipeline::fitsJson(*fits).dump();
+  // As `glarecam fit --json` and the day sheets write it: a CSV cell's invalid UTF-8 (a suspect
+  // note, a stack name) reaches the warnings, and jsonText() replaces it (plain dump() throws).
+  if (fits) (void)glarecam::jsonText(glarecam::pipeline::fitsJson(*fits));
   return 0;
 }

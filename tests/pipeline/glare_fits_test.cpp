@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/stack_manifest.h"
 #include "support/test_support.h"
 
 namespace glarecam::pipeline {
@@ -262,8 +263,8 @@ TEST(GlareFits, SuspectRowsAreLeftOutUnlessAsked) {
   ASSERT_TRUE(fits && reference);
   EXPECT_EQ(fits->biquadratic.quality.points, 8);
   EXPECT_EQ(fits->vertical.rows_with_ellipse, 8);
-  const std::string listed = fmt::format("suspect: \u03b1 {:g}\u00b0 a40: frames disagree",
-                                         table.rows[4].alpha_deg);
+  const std::string listed =
+      fmt::format("suspect: \u03b1 {:g}\u00b0 a40: frames disagree", table.rows[4].alpha_deg);
   int summary = 0, lines = 0;
   for (const auto& w : fits->warnings) {
     summary += w.find("1 suspect row(s)") == 0;
@@ -279,6 +280,20 @@ TEST(GlareFits, SuspectRowsAreLeftOutUnlessAsked) {
   EXPECT_NEAR(fits->biquadratic.curve(table.rows[4].alpha_deg) /
                   reference->biquadratic.curve(table.rows[4].alpha_deg),
               1.0, 0.1);
+}
+
+// Found by fuzz_sweep (tests/fuzz/regressions/sweep/): a CSV cell's bytes reach the warnings
+// as they are; the JSON glarecam writes (jsonText) replaces invalid UTF-8 instead of throwing.
+TEST(GlareFits, InvalidUtf8InASuspectNoteIsReplacedInTheJson) {
+  SweepTable table = tableIII();
+  table.rows[4].suspect = "frames disagree \xb0\xff";
+  table.rows[4].stack_id = "a40\x99";
+  auto fits = fitSweep(table);
+  ASSERT_TRUE(fits);
+  std::string text;
+  ASSERT_NO_THROW(text = jsonText(fitsJson(*fits)));
+  EXPECT_NE(text.find("a40\ufffd: frames disagree \ufffd\ufffd"), std::string::npos) << text;
+  EXPECT_TRUE(nlohmann::json::accept(text));
 }
 
 TEST(GlareFits, ExactlyAsManyPointsAsParametersIsUnderDetermined) {

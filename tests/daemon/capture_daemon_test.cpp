@@ -817,7 +817,10 @@ class ReadOnlyMidWrite {
     thread_.join();
   }
   // The frames the staging directory held when the remount took; nullopt if it never did.
-  std::optional<std::size_t> framesAtRemount() const {
+  // Stops the watcher first: asked once the daemon has run, so that a remount that never took is
+  // a failed assertion, not a test waiting forever.
+  std::optional<std::size_t> framesAtRemount() {
+    stop_ = true;
     thread_done_.wait(false);
     return frames_at_remount_;
   }

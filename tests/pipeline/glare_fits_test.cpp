@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -294,6 +295,30 @@ TEST(GlareFits, InvalidUtf8InASuspectNoteIsReplacedInTheJson) {
   ASSERT_NO_THROW(text = jsonText(fitsJson(*fits)));
   EXPECT_NE(text.find("a40\ufffd: frames disagree \ufffd\ufffd"), std::string::npos) << text;
   EXPECT_TRUE(nlohmann::json::accept(text));
+}
+
+// Found by fuzz_sweep after ten minutes (tests/fuzz/regressions/sweep/): a table of hostile
+// numbers (Lmax from 1e-300 cd/m², axes from 1e-300°) on which most starts drift along a valley
+// to the iteration limit; under AddressSanitizer that fit took over 10 s before the grid's
+// linear solve was made closed-form. It must end in finite curves, flagged where they are
+// meaningless, with every start tried and none better than the result.
+TEST(GlareFits, HostileNumbersEndInFlaggedFitsFromEveryStart) {
+  auto table = readSweepTable(testing::testDataDir() / ".." / "fuzz" / "regressions" / "sweep" /
+                              "hostile-numbers-starts-run-to-the-iteration-limit.csv");
+  ASSERT_TRUE(table) << table.error().message;
+  sortByAlpha(*table);
+  auto fits = fitSweep(*table);
+  ASSERT_TRUE(fits) << fits.error().message;
+  for (const FitQuality* q : {&fits->cosine.quality, &fits->vertical.logistic->quality,
+                              &fits->horizontal.logistic->quality}) {
+    EXPECT_EQ(q->start_r2.size(), 8u);
+    for (double p : q->parameters) EXPECT_TRUE(std::isfinite(p));
+    for (double r2 : q->start_r2) EXPECT_FALSE(r2 > q->r2) << r2 << " beats " << q->r2;
+  }
+  EXPECT_TRUE(fits->horizontal.logistic->quality.ill_conditioned);
+  EXPECT_TRUE(std::ranges::any_of(fits->warnings, [](const std::string& w) {
+    return w.starts_with("horizontal: ill-conditioned");
+  }));
 }
 
 TEST(GlareFits, ExactlyAsManyPointsAsParametersIsUnderDetermined) {

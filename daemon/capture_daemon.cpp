@@ -39,6 +39,7 @@ Config effectiveConfig(Config config, const DaemonOptions& options) {
     config.daemon.schedule.mode = ScheduleMode::kInterval;
     config.daemon.schedule.interval = *options.interval;
   }
+  if (options.status_listen) config.daemon.status.listen = options.status_listen;
   return config;
 }
 
@@ -279,6 +280,8 @@ void CaptureDaemon::reload() {
     spdlog::error("glarecamd: {}", state_.config_warning);
     return;
   }
+  if (config->daemon.status.listen != config_.daemon.status.listen)
+    spdlog::warn("glarecamd: [status] listen changed; the status page moves at the next start");
   config_ = std::move(*config);
   state_.config_warning.clear();
   ++state_.reloads;
@@ -518,6 +521,7 @@ void CaptureDaemon::checkDisk() {
   if (!disk.pause_reason.empty() && disk.state && !disk.state->read_only &&
       output.retention.max_use_bytes && applyRetention(disk.state) > 0)
     disk = health_.checkDisk(output.root, output.reserve_bytes);
+  if (disk.state) state_.disk = disk.state;
   std::string reason = disk.pause_reason;
   const bool kept = worker_ && worker_->hasParked();
   if (kept && reason.empty()) {
@@ -558,6 +562,7 @@ std::size_t CaptureDaemon::applyRetention(const std::optional<DiskState>& disk) 
                  formatBytes(deleted.bytes), deleted.reason);
   }
   recordRetention(state_, summary, disk.has_value());
+  if (!summary.deleted.empty()) state_.retention_last_time = clock_.utcNow();
   return summary.deleted.size();
 }
 
@@ -574,13 +579,45 @@ void CaptureDaemon::feedWatchdog() {
 }
 
 void CaptureDaemon::publishStatus() {
+  const SteadyTime now = clock_.now();
+  if (last_publish_ && capturePaused(state_))
+    state_.paused_seconds += std::chrono::duration<double>(now - *last_publish_).count();
+  last_publish_ = now;
   state_.led = ledState(state_, state_.capturing);
   if (rig_) rig_->show(state_.led);
   std::string line = statusLine(state_, schedule_.describe());
-  if (line == state_.status) return;
-  state_.status = std::move(line);
-  services_.notifier->notify("STATUS=" + state_.status);
-  spdlog::debug("glarecamd: status: {}", state_.status);
+  if (line != state_.status) {
+    state_.status = std::move(line);
+    services_.notifier->notify("STATUS=" + state_.status);
+    spdlog::debug("glarecamd: status: {}", state_.status);
+  }
+  if (services_.status_board) services_.status_board->publish(snapshot());
+}
+
+StatusSnapshot CaptureDaemon::snapshot() const {
+  const OutputConfig& output = config_.daemon.output;
+  const RetentionPolicy& retention = output.retention;
+  std::string policy;
+  const auto add = [&policy](const std::string& part) {
+    policy += (policy.empty() ? "" : ", ") + part;
+  };
+  if (retention.keep_stacks_days) add(fmt::format("stacks {} days", *retention.keep_stacks_days));
+  if (retention.keep_results_days)
+    add(fmt::format("results {} days", *retention.keep_results_days));
+  if (retention.max_use_bytes) add("within " + formatBytes(*retention.max_use_bytes));
+  const UtcTime now = clock_.utcNow();
+  return {.state = state_,
+          .schedule = schedule_.describe(),
+          .camera_uri = config_.rig.camera.value_or(""),
+          .camera_open = camera_.camera() != nullptr,
+          .inclinometer_uri = config_.rig.inclinometer ? config_.rig.inclinometer->uri : "",
+          .clock_synchronised = clock_.clockStatus().synchronised,
+          .output_root = output.root,
+          .reserve_bytes = output.reserve_bytes,
+          .retention_policy = policy.empty() ? "off (nothing is deleted)" : policy,
+          .now = now,
+          .today = solarDay(now, config_.rig.site ? std::optional(config_.rig.site->longitude_deg)
+                                                  : std::nullopt)};
 }
 
 }  // namespace glarecam::daemon

@@ -46,6 +46,7 @@
 #include "daemon/rig_session.h"
 #include "daemon/service_notifier.h"
 #include "daemon/stack_worker.h"
+#include "daemon/status_board.h"
 
 namespace glarecam::daemon {
 
@@ -58,6 +59,7 @@ struct DaemonServices {
   StackWorker::Mode worker_mode = StackWorker::Mode::kThread;
   bool watch_button = true;  // a thread polls the button (tests post ButtonEvents instead)
   std::function<void()> worker_job_hook{};  // tests: runs at the start of every worker job
+  StatusBoard* status_board = nullptr;      // the status page's: a snapshot every step
 };
 
 struct DaemonOptions {
@@ -65,6 +67,7 @@ struct DaemonOptions {
   std::optional<std::filesystem::path> output_root{};  // overrides [output] root
   std::optional<std::chrono::seconds> interval{};      // overrides [schedule]: a fixed interval
   std::optional<std::uint64_t> max_stacks{};  // stop once this many stacks are done (tests, demos)
+  std::optional<ListenAddress> status_listen{};  // overrides [status] listen
 };
 
 // The config with the command line's overrides applied: the one place they are.
@@ -136,6 +139,7 @@ class CaptureDaemon {
   void checkClock();
   void feedWatchdog();
   void publishStatus();
+  StatusSnapshot snapshot() const;
 
   DaemonOptions options_;
   DaemonServices services_;
@@ -156,6 +160,7 @@ class CaptureDaemon {
   std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;
+  std::optional<SteadyTime> last_publish_;  // for the time paused
 };
 
 }  // namespace glarecam::daemon

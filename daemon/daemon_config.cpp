@@ -168,6 +168,21 @@ Result<FaultConfig> readFaults(const std::filesystem::path& file, const toml::ta
   return faults;
 }
 
+Result<StatusConfig> readStatus(const std::filesystem::path& file, const toml::table* table) {
+  StatusConfig status;
+  if (!table) return status;
+  rig::TableReader reader(file, *table, "status");
+  const toml::node* listen = reader.node("listen");
+  GLARECAM_CHECK(reader.checkNoUnknownKeys());
+  if (!listen) return status;
+  if (!listen->is_string())
+    return reader.error(*listen, "status.listen must be a string such as \"127.0.0.1:8080\"");
+  auto address = parseListenAddress(*listen->value<std::string>());
+  if (!address) return reader.error(*listen, "status.listen: " + address.error().message);
+  status.listen = std::move(*address);
+  return status;
+}
+
 }  // namespace
 
 Result<std::string> readGenicamPreset(const std::filesystem::path& path) {
@@ -214,6 +229,7 @@ Result<Config> readConfig(const std::filesystem::path& path) {
                   readSchedule(path, root["schedule"].as_table(), config.rig.site.has_value()));
   GLARECAM_ASSIGN(daemon.output, readOutput(path, root["output"].as_table()));
   GLARECAM_ASSIGN(daemon.faults, readFaults(path, root["faults"].as_table()));
+  GLARECAM_ASSIGN(daemon.status, readStatus(path, root["status"].as_table()));
   return config;
 }
 

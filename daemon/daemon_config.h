@@ -1,6 +1,7 @@
 // What glarecamd reads from the rig's config beyond the rig itself (rig/rig_config.h): how to
 // capture ([capture]), when ([schedule]), where to write and how much disk to leave free
-// ([output]) and what to do when something fails ([faults]). Every key has a default, so a rig
+// ([output]), what to do when something fails ([faults]) and where the status page listens
+// ([status]). Every key has a default, so a rig
 // config without these sections runs the daemon with them; every key is documented in
 // firmware-config/glarecam.toml and docs/operator.md. readConfig() reads the whole file, the rig's
 // sections and these, with "FILE:LINE: problem" errors.
@@ -17,6 +18,7 @@
 
 #include "capture/capture_config.h"
 #include "core/error.h"
+#include "daemon/listen_address.h"
 #include "daemon/retention.h"
 #include "pipeline/limit_curve.h"
 #include "rig/rig_config.h"
@@ -77,6 +79,11 @@ struct FaultConfig {
   std::chrono::seconds camera_backoff_max{120};
 };
 
+// [status]: the operator's status page (status_server.h), off unless `listen` is set.
+struct StatusConfig {
+  std::optional<ListenAddress> listen{};
+};
+
 // The paper's sweep: 5° to 80° in steps of 5°.
 std::vector<double> defaultAlphaTargetsDeg();
 
@@ -86,11 +93,12 @@ struct DaemonConfig {
   ScheduleConfig schedule{.alpha_targets_deg = defaultAlphaTargetsDeg()};
   OutputConfig output;
   FaultConfig faults;
+  StatusConfig status;
 };
 
 // The sections of a config file the daemon's reader reads.
-inline constexpr std::array<std::string_view, 4> kDaemonSections{"capture", "faults", "output",
-                                                                 "schedule"};
+inline constexpr std::array<std::string_view, 5> kDaemonSections{"capture", "faults", "output",
+                                                                 "schedule", "status"};
 
 // A whole glarecam.toml: the rig (rig/rig_config.h) and what glarecamd does with it.
 struct Config {

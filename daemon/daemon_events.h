@@ -25,6 +25,15 @@ struct ButtonEvent {
   std::optional<Error> error{};  // the button could not be read (a press otherwise)
 };
 
+// What the status page says of a processed stack, from its result.json (glarecam.result/1).
+struct ResultBrief {
+  std::optional<double> alpha_deg{};
+  double lmax_cd_m2 = 0;
+  std::string lmax_bound{};  // "lower", "upper" or empty: Lmax is a bound of a saturated frame
+  std::optional<double> limit_cd_m2{};
+  std::optional<bool> glare{};  // the verdict: Lmax above the limit (none without a limit)
+};
+
 // The worker's progress with one stack: written (or not), processed (or not), its day's sweep
 // table and data sheet updated (or not).
 struct WorkerEvent {
@@ -36,6 +45,9 @@ struct WorkerEvent {
   std::string detail{};   // the result's brief report, the day's state
   bool last = false;      // the job's last event: the stack is done, one way or the other
   bool captured = false;  // a stack captured by this run (not one found on disk at start)
+  std::optional<ResultBrief> result{};  // kProcessed without an error
+  std::size_t day_stacks = 0;           // kPublished: the day's sweep table's rows
+  bool day_datasheet = false;           // kPublished: the day's data sheet was (re)written
 };
 
 using DaemonEvent = std::variant<SignalEvent, ButtonEvent, WorkerEvent>;

@@ -4,7 +4,9 @@
 
 #include <memory>
 
+#include "daemon/log_ring.h"
 #include "daemon/signal_forwarder.h"
+#include "daemon/status_server.h"
 
 namespace glarecam::daemon {
 
@@ -14,6 +16,7 @@ Result<DaemonRig> prepareDaemonRig(const DaemonRunOptions& run) {
   rig.options.output_root = run.output_root;
   rig.options.interval = run.interval;
   rig.options.max_stacks = run.max_stacks;
+  rig.options.status_listen = run.status_listen;
   if (!run.simulate) {
     if (run.config_path) rig.options.config_path = *run.config_path;
     rig.clock = std::make_unique<SystemDaemonClock>();
@@ -29,6 +32,27 @@ Result<DaemonRig> prepareDaemonRig(const DaemonRunOptions& run) {
                rig.options.config_path.string(), sun::formatIsoTime(start), run.time_lapse);
   return rig;
 }
+
+namespace {
+
+// The status page, when the config asks for one. One that cannot listen is an error in the log
+// and on no page, not a reason to stop measuring.
+std::unique_ptr<StatusServer> startStatusPage(const Config& config, const StatusBoard& board) {
+  const auto& listen = config.daemon.status.listen;
+  if (!listen) return nullptr;
+  // The page's log: a sink beside the journal's, added while this is the only thread.
+  auto log = std::make_shared<LogRing>();
+  spdlog::default_logger()->sinks().push_back(log);
+  auto server = StatusServer::start(*listen, board, std::move(log));
+  if (!server) {
+    spdlog::error("glarecamd: {}; glarecamd runs without it", server.error().message);
+    return nullptr;
+  }
+  spdlog::info("glarecamd: status page at {}", (*server)->url());
+  return std::move(*server);
+}
+
+}  // namespace
 
 Status DaemonRunOptions::validate() const {
   if (simulate && config_path)
@@ -48,10 +72,13 @@ Status DaemonRunOptions::validate() const {
 Status runDaemon(const DaemonRig& rig) {
   const auto notifier = makeSystemdNotifier();
   const auto disk = makeStatvfsDiskProbe();
+  StatusBoard board;
   std::unique_ptr<CaptureDaemon> daemon;
   GLARECAM_ASSIGN(daemon, CaptureDaemon::create(rig.options, {.clock = rig.clock.get(),
                                                               .notifier = notifier.get(),
-                                                              .disk = disk.get()}));
+                                                              .disk = disk.get(),
+                                                              .status_board = &board}));
+  const std::unique_ptr<StatusServer> page = startStatusPage(daemon->config(), board);
   const SignalForwarder signals(daemon->events());
   return daemon->run();
 }

@@ -1,8 +1,9 @@
 // glarecamd in two calls: prepareDaemonRig() turns the command line into the daemon's options
 // and clock (with `simulate`, the simulated rig (simulated_rig.h) written under --output, on a
 // time-lapse clock); runDaemon() runs the daemon (capture_daemon.h) on it with systemd's notifier
-// and the statvfs disk probe, signals forwarded into its loop (signal_forwarder.h), until SIGTERM,
-// the stack count or a failure. Two calls because their bad inputs differ for systemd: the
+// and the statvfs disk probe, signals forwarded into its loop (signal_forwarder.h), and the status
+// page when [status] listen (or --status) asks for it (status_server.h), until SIGTERM, the stack
+// count or a failure. Two calls because their bad inputs differ for systemd: the
 // command line's exits 2, the config's 78 (which systemd does not restart on).
 #pragma once
 
@@ -30,6 +31,7 @@ struct DaemonRunOptions {
   std::optional<std::filesystem::path> output_root;  // overrides [output] root
   std::optional<std::chrono::seconds> interval;      // overrides [schedule]: a fixed interval
   std::optional<std::uint64_t> max_stacks;           // stop after this many stacks
+  std::optional<ListenAddress> status_listen;        // overrides [status] listen
   // The simulated rig instead of a config: its camera, its clock's start and speed.
   bool simulate = false;
   std::optional<std::string> simulated_camera;

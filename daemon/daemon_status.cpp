@@ -43,9 +43,16 @@ void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_r
       return;
     case WorkerEvent::Stage::kProcessed:
       ++state.stacks_processed;
+      if (event.result)
+        state.last_result = {
+            .stack_id = event.stack_id, .directory = event.path, .brief = *event.result};
       spdlog::info("glarecamd: processed {}", event.detail);
       break;
     case WorkerEvent::Stage::kPublished:
+      state.last_day = {.day = event.path.filename().string(),
+                        .directory = event.path,
+                        .stacks = event.day_stacks,
+                        .datasheet = event.day_datasheet};
       state.day = fmt::format("{}: {}", event.path.filename().string(), event.detail);
       spdlog::info("glarecamd: day {}", state.day);
       break;
@@ -58,6 +65,15 @@ void recordRetention(DaemonState& state, const RetentionSummary& summary, bool d
     if (deleted.kind == "stack") ++state.stacks_deleted;
     if (deleted.kind == "result") ++state.results_deleted;
     if (deleted.kind == "day") ++state.days_deleted;
+  }
+  if (!summary.deleted.empty()) {
+    const RetentionDeletion& last = summary.deleted.back();
+    state.retention_last = fmt::format("deleted {} {} ({}): {}", last.kind, last.name,
+                                       formatBytes(last.bytes), last.reason);
+    if (summary.deleted.size() > 1)
+      state.retention_last +=
+          fmt::format(", with {} more ({} freed in all)", summary.deleted.size() - 1,
+                      formatBytes(summary.freed_bytes));
   }
   for (const std::string& error : summary.errors) spdlog::warn("glarecamd: retention: {}", error);
   const auto reserve = [](const std::string& shortfall) {
@@ -80,17 +96,56 @@ std::string seconds(UtcTime time) {
   return sun::formatIsoTime(std::chrono::floor<std::chrono::seconds>(time));
 }
 
+std::string joined(const std::vector<std::string>& parts) {
+  std::string line;
+  for (const std::string& part : parts) line += (line.empty() ? "" : "; ") + part;
+  return line;
+}
+
 const char* phase(const DaemonState& state) {
   if (state.stopping) return "stopping";
   if (!state.ready) return "starting";
   if (state.capturing) return "capturing";
-  if (!state.disk_fault.empty() || (state.inclinometer_pauses && !state.inclinometer_fault.empty()))
-    return "paused";
+  if (capturePaused(state)) return "paused";
   if (!state.camera_fault.empty()) return "waiting for the camera";
   return "ready";
 }
 
 }  // namespace
+
+bool capturePaused(const DaemonState& state) {
+  return !state.disk_fault.empty() ||
+         (state.inclinometer_pauses && !state.inclinometer_fault.empty());
+}
+
+std::vector<std::string> statusFaults(const DaemonState& state) {
+  std::vector<std::string> faults;
+  const auto add = [&faults](const std::string& prefix, const std::string& text) {
+    if (!text.empty()) faults.push_back(prefix + text);
+  };
+  add("camera: ", state.camera_fault);
+  add("disk: ", state.disk_fault);
+  add("inclinometer: ", state.inclinometer_fault);
+  add("clock: ", state.clock_warning);
+  add("GPIO: ", state.gpio_fault);
+  add("config: ", state.config_warning);
+  add("worker: ", state.worker_fault);
+  add("retention: ", state.retention_shortfall);
+  return faults;
+}
+
+RigActivity rigActivity(const DaemonState& state) {
+  const std::string reason = joined(statusFaults(state));
+  if (state.stopping) return {"stopping", reason};
+  if (!state.camera_fault.empty()) return {"fault", reason};
+  if (capturePaused(state)) return {"paused", reason};
+  // A clock not synchronised or a budget retention cannot keep are warnings: stacks go on.
+  const bool fault = !state.inclinometer_fault.empty() || !state.gpio_fault.empty() ||
+                     !state.config_warning.empty() || !state.worker_fault.empty();
+  if (fault) return {"fault", reason};
+  if (!state.ready) return {"starting", reason};
+  return {"capturing", reason};
+}
 
 std::string statusLine(const DaemonState& state, const std::string& schedule) {
   std::vector<std::string> parts{fmt::format("{}, {}", phase(state), schedule)};
@@ -105,26 +160,20 @@ std::string statusLine(const DaemonState& state, const std::string& schedule) {
     if (state.next_target_deg) next += fmt::format(" (α {:g}°)", *state.next_target_deg);
     parts.push_back(std::move(next));
   }
-  const auto add = [&parts](const std::string& prefix, const std::string& text) {
-    if (!text.empty()) parts.push_back(prefix + text);
-  };
-  add("camera: ", state.camera_fault);
-  add("disk: ", state.disk_fault);
-  add("inclinometer: ", state.inclinometer_fault);
-  add("clock: ", state.clock_warning);
-  add("GPIO: ", state.gpio_fault);
-  add("config: ", state.config_warning);
-  add("worker: ", state.worker_fault);
-  add("skipped: ", state.skip_reason);
+  std::vector<std::string> faults = statusFaults(state);
+  // The retention shortfall goes last, after why a stack was skipped.
+  std::optional<std::string> retention;
   if (!state.retention_shortfall.empty()) {
-    add("retention: ", state.retention_shortfall);
+    retention = std::move(faults.back());
+    faults.pop_back();
   } else if (state.stacks_deleted + state.results_deleted + state.days_deleted > 0) {
-    parts.push_back(fmt::format("retention deleted {} stacks, {} results, {} days",
-                                state.stacks_deleted, state.results_deleted, state.days_deleted));
+    retention = fmt::format("retention deleted {} stacks, {} results, {} days",
+                            state.stacks_deleted, state.results_deleted, state.days_deleted);
   }
-  std::string line;
-  for (const std::string& part : parts) line += (line.empty() ? "" : "; ") + part;
-  return line;
+  parts.insert(parts.end(), faults.begin(), faults.end());
+  if (!state.skip_reason.empty()) parts.push_back("skipped: " + state.skip_reason);
+  if (retention) parts.push_back(std::move(*retention));
+  return joined(parts);
 }
 
 rig::RigState ledState(const DaemonState& state, bool capturing) {

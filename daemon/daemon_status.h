@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "daemon/retention.h"
 #include "daemon/stack_worker.h"
@@ -15,7 +16,23 @@
 
 namespace glarecam::daemon {
 
-// What the daemon is doing, for STATUS=, `glarecam doctor` and tests.
+// The last stack processed: its result directory (luminance.png is its Figure-9 picture) and
+// what the status page says of it.
+struct LastResult {
+  std::string stack_id;
+  std::filesystem::path directory;
+  ResultBrief brief;
+};
+
+// The last day whose products were rebuilt.
+struct LastDay {
+  std::string day;                  // "2026-06-21"
+  std::filesystem::path directory;  // days/<day>/ (datasheet.png)
+  std::size_t stacks = 0;
+  bool datasheet = false;
+};
+
+// What the daemon is doing, for STATUS=, `glarecam doctor`, the status page and tests.
 struct DaemonState {
   bool ready = false;      // READY=1 sent
   bool capturing = false;  // a bracket is running
@@ -43,7 +60,33 @@ struct DaemonState {
   // when it could, or had nothing to do).
   std::uint64_t stacks_deleted = 0, results_deleted = 0, days_deleted = 0;
   std::string retention_shortfall;
+  std::string retention_last;  // the last pass that deleted: "deleted stack … (12.0 MiB): …"
+  std::optional<UtcTime> retention_last_time;
+  // For the status page: the last stack processed, the last day rebuilt, the disk at its last
+  // look, and how long capture has been paused in all (disk, inclinometer).
+  std::optional<LastResult> last_result;
+  std::optional<LastDay> last_day;
+  std::optional<DiskState> disk;
+  double paused_seconds = 0;
 };
+
+// Capture waits: for the disk, or for the inclinometer ([faults] inclinometer = "pause").
+bool capturePaused(const DaemonState& state);
+
+// The faults in the words of the status line ("camera: …", "disk: …", "inclinometer: …",
+// "clock: …", "GPIO: …", "config: …", "worker: …", "retention: …"), most urgent first.
+std::vector<std::string> statusFaults(const DaemonState& state);
+
+// The status page's one word for what the rig does, and why: "stopping"; "fault" while the
+// camera is lost; "paused" while capture waits; "fault" while the inclinometer, the GPIO, a
+// reload or the worker's last job failed (capture goes on); "starting" until the camera first
+// opens; else "capturing" (with a clock or retention warning, if any, as its reason). `reason`:
+// statusFaults(), "; "-joined.
+struct RigActivity {
+  std::string state;
+  std::string reason;
+};
+RigActivity rigActivity(const DaemonState& state);
 
 // How a disk fault from a failed write begins: it ends only when the kept stacks are written.
 inline constexpr std::string_view kWriteFailed = "writing a stack failed: ";

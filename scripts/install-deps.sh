@@ -19,6 +19,8 @@ PACKAGES=(
   # rig hardware: cameras, GPIO, I2C, sun position, systemd
   libaravis-dev libusb-1.0-0-dev aravis-tools aravis-tools-cli libcamera-dev libgpiod-dev
   libi2c-dev libnova-dev libsystemd-dev
+  # glarecamd's status page
+  libcpp-httplib-dev
   # systemd-analyze (the units' tests)
   systemd
   # tests and benchmarks

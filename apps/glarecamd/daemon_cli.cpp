@@ -23,7 +23,7 @@ namespace glarecam::apps {
 namespace {
 
 struct DaemonArgs {
-  std::optional<std::string> config, output, camera, start;
+  std::optional<std::string> config, output, camera, start, status;
   std::optional<std::int64_t> interval_s;
   std::optional<std::uint64_t> count;
   bool simulate = false;
@@ -40,6 +40,11 @@ void addOptions(CLI::App& app, DaemonArgs& args) {
   app.add_option("--interval", args.interval_s,
                  "capture every S seconds: overrides the config's [schedule]");
   app.add_option("--count", args.count, "stop after N stacks are done (for demos and tests)");
+  app.add_option("--status", args.status,
+                 "serve the read-only status page on ADDRESS:PORT (e.g. 127.0.0.1:8080, "
+                 "[::1]:8080; port 0 takes a free one, logged): overrides the config's [status] "
+                 "listen; docs/operator.md")
+      ->type_name("ADDR:PORT");
   app.add_flag("--simulate", args.simulate,
                "run against the simulated rig (sim: camera, inclinometer and GPIO; a time-lapse "
                "sun sweeping α); needs --output");
@@ -71,6 +76,11 @@ Result<daemon::DaemonRunOptions> runOptions(const DaemonArgs& args) {
     run.interval = std::chrono::seconds(*args.interval_s);
   }
   run.max_stacks = args.count;
+  if (args.status) {
+    auto listen = daemon::parseListenAddress(*args.status);
+    if (!listen) return badInput("--status: " + listen.error().message);
+    run.status_listen = std::move(*listen);
+  }
   run.simulate = args.simulate;
   run.simulated_camera = args.camera;
   if (args.start) {

@@ -31,6 +31,7 @@ TEST_F(DaemonTest, ConfigWithoutDaemonSectionsRunsOnDefaults) {
   EXPECT_EQ(daemon.output.reserve_bytes, 1024ull << 20);
   EXPECT_FALSE(daemon.capture.exposures_us);  // auto
   EXPECT_EQ(daemon.faults.inclinometer, InclinometerFaultPolicy::kContinue);
+  EXPECT_FALSE(daemon.status.listen);  // the status page is off unless asked for
 }
 
 TEST_F(DaemonTest, ConfigReadsEveryDaemonKey) {
@@ -69,6 +70,8 @@ max_tilt_deg = 60
 camera_max_failures = 3
 camera_backoff_s = 5
 camera_backoff_max_s = 60
+[status]
+listen = "127.0.0.1:8080"
 )");
   const auto config = readConfig(config_path());
   ASSERT_TRUE(config) << config.error().message;
@@ -94,6 +97,7 @@ camera_backoff_max_s = 60
   EXPECT_EQ(d.faults.camera_max_failures, 3);
   EXPECT_EQ(d.faults.camera_backoff, 5s);
   EXPECT_EQ(d.faults.camera_backoff_max, 60s);
+  EXPECT_EQ(d.status.listen, (ListenAddress{.host = "127.0.0.1", .port = 8080}));
 }
 
 TEST_F(DaemonTest, ConfigErrorsNameTheFileAndLine) {
@@ -129,6 +133,10 @@ TEST_F(DaemonTest, ConfigErrorsNameTheFileAndLine) {
   expectError("[faults]\ncamera_backoff_s = 100\ncamera_backoff_max_s = 10\n",
               "is below camera_backoff_s");
   expectError("[daemon]\n", "unknown section [daemon]");
+  expectError("[status]\nlisten = 8080\n", ":2: status.listen must be a string");
+  expectError("[status]\n\nlisten = \"rig.local:8080\"\n",
+              file + ":3: status.listen: expected ADDRESS:PORT");
+  expectError("[status]\nport = 8080\n", ":2: unknown key status.port");
 }
 
 TEST(RigConfig, TheShippedExampleIsValid) {
@@ -161,6 +169,7 @@ TEST_F(DaemonTest, TheShippedExampleStatesTheDefaults) {
   EXPECT_EQ(a.faults.camera_backoff, b.faults.camera_backoff);
   EXPECT_EQ(a.faults.camera_backoff_max, b.faults.camera_backoff_max);
   EXPECT_EQ(a.faults.max_tilt_deg, b.faults.max_tilt_deg);
+  EXPECT_EQ(a.status.listen, b.status.listen);
 }
 
 TEST_F(DaemonTest, GenicamPresetsAreReadIntoOneFeatureString) {

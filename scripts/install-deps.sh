@@ -25,6 +25,8 @@ PACKAGES=(
   systemd
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the status page in a browser (glarecamd_tests: headless Chromium takes a screenshot)
+  chromium
   # the sanitizer build and its fuzz targets (libFuzzer: libclang-rt-19-dev)
   clang-19 libclang-rt-19-dev
 )

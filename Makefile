@@ -5,7 +5,7 @@ JOBS           ?= $(shell nproc)
 DEMO_DIR       ?= demo-out
 CMAKE_FLAGS    ?=
 
-.PHONY: deps configure build test test-asan fuzz soak demo bench install clean format
+.PHONY: deps configure build test test-asan fuzz soak demo bench install package clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -72,6 +72,12 @@ install: build
 	cmake -S . -B $(BUILD_DIR) -DCMAKE_INSTALL_PREFIX=$(PREFIX)
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 	cmake --install $(BUILD_DIR)
+
+# A Debian package of this build (docs/operator.md, "The Debian package"):
+# $(BUILD_DIR)/glarecam_VERSION_ARCH.deb, which lintian must pass without an error or a warning.
+package: build
+	cmake --build $(BUILD_DIR) --target package
+	lintian --fail-on error,warning $(BUILD_DIR)/glarecam_*_*.deb
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

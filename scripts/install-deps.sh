@@ -21,6 +21,8 @@ PACKAGES=(
   libi2c-dev libnova-dev libsystemd-dev
   # glarecamd's status page
   libcpp-httplib-dev
+  # make package: CPack DEB (dpkg-shlibdeps), lintian
+  dpkg-dev lintian
   # systemd-analyze (the units' tests)
   systemd
   # tests and benchmarks

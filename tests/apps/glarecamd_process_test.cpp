@@ -37,12 +37,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
-using testing::entries;
-using testing::eventually;
-using testing::kStartTimeout;
-using testing::labRig;
-using testing::NotifySocket;
-using testing::Process;
+// The harness (apps/glarecamd_harness.h): NotifySocket, Process, eventually, entries, labRig.
+using namespace testing;
 
 // The rig of the fake GigE Vision camera's tests: its Mono16 calibration (in cal/), the lab rig on
 // aravis:127.0.0.1, `sections`, a stack every `interval_s`, reopening after 1, 2, 2 … s and giving

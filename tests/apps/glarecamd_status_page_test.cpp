@@ -9,6 +9,7 @@
 #include <png.h>
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
@@ -23,12 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
-using testing::entries;
-using testing::eventually;
-using testing::kStartTimeout;
-using testing::labRig;
-using testing::NotifySocket;
-using testing::Process;
+// The harness (apps/glarecamd_harness.h): NotifySocket, Process, eventually, entries, labRig.
+using namespace testing;
 
 constexpr const char* kChromium = "/usr/bin/chromium";
 
@@ -74,21 +71,20 @@ class GlarecamdStatusPage : public ::testing::Test {
         timeout);
     return last;
   }
+  // glarecamd on the lab rig with the simulated camera, `sections` and the page on a free port;
+  // the port it took.
+  int startLabRig(std::optional<Process>& process, const std::string& sections) {
+    testing::writeText(dir_ / "rig.toml", labRig("sim:size=320x256") + sections +
+                                              "[status]\nlisten = \"127.0.0.1:0\"\n");
+    process.emplace(
+        std::vector<std::string>{GLARECAMD_PATH, "--config", (dir_ / "rig.toml").string()},
+        std::vector<std::string>{}, dir_ / "glarecamd.log");
+    return port();
+  }
   testing::TempDir dir_;
 };
 
 bool isPng(const std::string& bytes) { return bytes.starts_with("\x89PNG\r\n\x1a\n"); }
-
-// A TCP connection to the page that the test then leaves alone.
-UniqueFd connectTo(int port) {
-  UniqueFd fd(socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  EXPECT_EQ(connect(fd.get(), reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-  return fd;
-}
 
 // The simulated rig with --status: the page while it captures, its pictures, and clients that
 // never send or never read, while stacks land and the watchdog is fed every second
@@ -142,9 +138,9 @@ TEST_F(GlarecamdStatusPage, TheSimulatedRigsPageWhileItCaptures) {
   // Clients that connect and never send, and clients that ask for the picture and never read:
   // the daemon's loop neither knows nor waits.
   std::vector<UniqueFd> silent, unread;
-  for (int i = 0; i < 6; ++i) silent.push_back(connectTo(port));
+  for (int i = 0; i < 6; ++i) silent.push_back(testing::connectLoopback(port));
   for (int i = 0; i < 3; ++i) {
-    unread.push_back(connectTo(port));
+    unread.push_back(testing::connectLoopback(port));
     const std::string request = "GET /datasheet.png HTTP/1.1\r\nHost: rig\r\n\r\n";
     send(unread.back().get(), request.data(), request.size(), MSG_NOSIGNAL);
   }
@@ -168,13 +164,9 @@ TEST_F(GlarecamdStatusPage, TheSimulatedRigsPageWhileItCaptures) {
 
 // A disk below its reserve: the page says paused, and why, in the status line's words.
 TEST_F(GlarecamdStatusPage, APausedDiskIsShown) {
-  testing::writeText(dir_ / "rig.toml", labRig("sim:size=320x256") +
-                                            "[schedule]\ninterval_s = 5\n[output]\nroot = "
-                                            "\"out\"\nreserve_mb = 1073741824\n"
-                                            "[status]\nlisten = \"127.0.0.1:0\"\n");
-  Process process({GLARECAMD_PATH, "--config", (dir_ / "rig.toml").string()}, {},
-                  dir_ / "glarecamd.log");
-  const int port = this->port();
+  std::optional<Process> process;
+  const int port = startLabRig(
+      process, "[schedule]\ninterval_s = 5\n[output]\nroot = \"out\"\nreserve_mb = 1073741824\n");
   ASSERT_GT(port, 0) << log();
   const auto status = apiUntil(
       port, [](const nlohmann::json& j) { return j["state"] == "paused"; }, 60s);
@@ -194,20 +186,17 @@ TEST_F(GlarecamdStatusPage, APausedDiskIsShown) {
   auto metrics = client.Get("/metrics");
   ASSERT_TRUE(metrics);
   EXPECT_NE(metrics->body.find("glarecam_state{state=\"paused\"} 1"), std::string::npos);
-  process.signal(SIGTERM);
-  EXPECT_EQ(process.wait(60s), 0) << log();
+  process->signal(SIGTERM);
+  EXPECT_EQ(process->wait(60s), 0) << log();
 }
 
 // An implausible tilt (the lab rig's module stands at 50°, beyond max_tilt_deg 10): a fault, and
 // stacks go on with α unknown, as [faults] inclinometer = "continue" says.
 TEST_F(GlarecamdStatusPage, AFaultIsShown) {
-  testing::writeText(dir_ / "rig.toml", labRig("sim:size=320x256") +
-                                            "[schedule]\ninterval_s = 2\n[output]\nroot = "
-                                            "\"out\"\nreserve_mb = 1\n[faults]\nmax_tilt_deg = 10\n"
-                                            "[status]\nlisten = \"127.0.0.1:0\"\n");
-  Process process({GLARECAMD_PATH, "--config", (dir_ / "rig.toml").string()}, {},
-                  dir_ / "glarecamd.log");
-  const int port = this->port();
+  std::optional<Process> process;
+  const int port = startLabRig(process,
+                               "[schedule]\ninterval_s = 2\n[output]\nroot = \"out\"\nreserve_mb = "
+                               "1\n[faults]\nmax_tilt_deg = 10\n");
   ASSERT_GT(port, 0) << log();
   const auto status = apiUntil(
       port,
@@ -224,8 +213,8 @@ TEST_F(GlarecamdStatusPage, AFaultIsShown) {
   ASSERT_TRUE(page);
   EXPECT_NE(page->body.find("<span class=\"state fault\">fault</span>"), std::string::npos);
   EXPECT_NE(page->body.find("inclinometer fault"), std::string::npos);
-  process.signal(SIGTERM);
-  EXPECT_EQ(process.wait(60s), 0) << log();
+  process->signal(SIGTERM);
+  EXPECT_EQ(process->wait(60s), 0) << log();
 }
 
 // The fraction of a screenshot's pixels that differ from its most common colour.

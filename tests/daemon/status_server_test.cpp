@@ -27,20 +27,9 @@ namespace {
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-// A TCP connection to 127.0.0.1:port that the test drives byte by byte.
-UniqueFd connectTo(int port) {
-  UniqueFd fd(socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  EXPECT_EQ(connect(fd.get(), reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-  return fd;
-}
-
 // Sends `request` as it is and returns the whole response (until the server closes, or 10 s).
 std::string rawRequest(int port, const std::string& request) {
-  const UniqueFd fd = connectTo(port);
+  const UniqueFd fd = testing::connectLoopback(port);
   EXPECT_EQ(send(fd.get(), request.data(), request.size(), MSG_NOSIGNAL),
             static_cast<ssize_t>(request.size()));
   std::string response;
@@ -190,7 +179,7 @@ TEST_F(StatusServerTest, SilentClientsAreBoundedAndDropped) {
   const std::size_t before = openDescriptors();
   std::vector<UniqueFd> silent;
   for (std::size_t i = 0; i < kSilent; ++i) {
-    silent.push_back(connectTo(port_));
+    silent.push_back(testing::connectLoopback(port_));
     std::this_thread::sleep_for(5ms);  // time to accept each, if the server would
   }
   std::this_thread::sleep_for(300ms);
@@ -215,7 +204,7 @@ TEST_F(StatusServerTest, AClientThatNeverReadsDoesNotStallTheOthers) {
   testing::writeText(dir_ / "results" / "s1" / "luminance.png", std::string(8 << 20, 'p'));
   std::vector<UniqueFd> stuck;
   for (int i = 0; i < 2; ++i) {
-    stuck.push_back(connectTo(port_));
+    stuck.push_back(testing::connectLoopback(port_));
     const std::string request =
         "GET /last-stack.png HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
     send(stuck.back().get(), request.data(), request.size(), MSG_NOSIGNAL);

@@ -1,9 +1,14 @@
 #include "support/test_support.h"
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <stdlib.h>
+#include <sys/socket.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -25,6 +30,17 @@ TempDir::~TempDir() {
 }
 
 fs::path testDataDir() { return GLARECAM_TEST_DATA_DIR; }
+
+UniqueFd connectLoopback(int port) {
+  UniqueFd fd(socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  EXPECT_EQ(connect(fd.get(), reinterpret_cast<sockaddr*>(&address), sizeof address), 0)
+      << "127.0.0.1:" << port << ": " << std::strerror(errno);
+  return fd;
+}
 
 std::string readText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

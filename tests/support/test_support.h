@@ -9,6 +9,7 @@
 
 #include "core/image.h"
 #include "core/stack_manifest.h"
+#include "core/unique_fd.h"
 
 namespace glarecam::testing {
 
@@ -32,6 +33,8 @@ std::filesystem::path testDataDir();
 inline constexpr double kExactDeg = 1e-9;
 
 std::string readText(const std::filesystem::path& path);
+// A TCP connection to 127.0.0.1:`port`, for tests that drive a server byte by byte.
+UniqueFd connectLoopback(int port);
 void writeText(const std::filesystem::path& path, const std::string& text);
 
 // What writeTestStack() wrote: the manifest and the frames, to compare a read against.

@@ -246,12 +246,15 @@ std::optional<EllipseFit> fitEllipse(std::span<const Point2> points,
     sum_squares += residuals.back().distance * residuals.back().distance;
   }
   fit.rms_residual = std::sqrt(sum_squares / static_cast<double>(points.size()));
-  // d theta / d point_i = -(J^T J)^+ J_i^T n_i^T; keep the rows of the two semi-axes.
+  // d theta / d point_i = -(J^T J)^+ J_i^T n_i^T; keep the rows of the semi-axes and the angle
+  // (p is the normalised ellipse's: a the semi-major axis, the angle the major axis's).
   const Matrix5 inverse = pseudoInverse(normal);
   for (const PointResidual& r : residuals) {
     const double da = -inverse.row(kA).dot(r.gradient), db = -inverse.row(kB).dot(r.gradient);
+    const double dangle = -inverse.row(kAngle).dot(r.gradient);
     fit.axis_sensitivity.push_back(
         {da * r.normal.x(), da * r.normal.y(), db * r.normal.x(), db * r.normal.y()});
+    fit.angle_sensitivity.push_back({dangle * r.normal.x(), dangle * r.normal.y()});
   }
   return fit;
 }

@@ -32,6 +32,8 @@ struct EllipseFit {
   double rms_residual = 0;
   // For each point, d(semi_major, semi_minor) / d(point x, point y) as a row-major 2x2 matrix.
   std::vector<std::array<double, 4>> axis_sensitivity;
+  // For each point, d(angle_rad) / d(point x, point y).
+  std::vector<std::array<double, 2>> angle_sensitivity;
 };
 
 // The conic fit alone. It is ellipse-specific: points on a hyperbola or a parabola still get

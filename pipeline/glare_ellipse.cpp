@@ -31,6 +31,9 @@ constexpr double kDerivativeStepPx = 1e-3;
 // invertible there (a distortion polynomial that folds over).
 constexpr double kMaxRoundTripPx = 0.01;
 constexpr int kSolidAngleSteps = 720;
+// The solid angle's derivatives by central differences of this fraction of the semi-minor axis:
+// the function is smooth (a sum of cosines), so the error is of its square, ~1e-12.
+constexpr double kSolidAngleStepFraction = 1e-6;
 // An ellipse whose semi-major axis reaches a quarter turn covers a hemisphere: the angular plane
 // (and the method) mean nothing there.
 constexpr double kMaxSemiAxisDeg = 90.0;
@@ -162,8 +165,13 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
     return static_cast<double>(merged.relative_uncertainty.data()[pixel]) *
            merged.luminance_cd_m2.data()[pixel];
   };
-  std::vector<std::tuple<std::size_t, double, double>> per_pixel;  // pixel, da/dL, db/dL
-  double level_a = 0, level_b = 0, expected_variance = 0;
+  struct PixelTerm {  // one contour point's dependence on one pixel's luminance
+    std::size_t pixel;
+    double da, db, dangle;  // d semi-axis (°) / dL, d angle (rad) / dL
+    bool operator<(const PixelTerm& other) const { return pixel < other.pixel; }
+  };
+  std::vector<PixelTerm> per_pixel;
+  double level_a = 0, level_b = 0, level_angle = 0, expected_variance = 0;
   for (std::size_t i = 0; i < contour.points.size(); ++i) {
     const ContourPoint& point = *contour.points[i];
     const Point2 stepped = toPoint(fitted.plane.toPlane(contour.stepped_rays[i]));
@@ -171,14 +179,18 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
                     (stepped.y - fitted.points[i].y) / kDerivativeStepPx};
     const auto& s = fitted.fit.axis_sensitivity[i];
     const double ga = s[0] * dq.x + s[1] * dq.y, gb = s[2] * dq.x + s[3] * dq.y;
+    const auto& r = fitted.fit.angle_sensitivity[i];
+    const double gangle = r[0] * dq.x + r[1] * dq.y;
     double t_variance = 0;
     for (std::size_t k = 0; k < point.pixels.size(); ++k) {
       if (point.dt_dvalue[k] == 0) continue;
-      per_pixel.emplace_back(point.pixels[k], ga * point.dt_dvalue[k], gb * point.dt_dvalue[k]);
-      t_variance += std::pow(point.dt_dvalue[k] * sigma(point.pixels[k]), 2);
+      const double t = point.dt_dvalue[k];
+      per_pixel.push_back({point.pixels[k], ga * t, gb * t, gangle * t});
+      t_variance += std::pow(t * sigma(point.pixels[k]), 2);
     }
     level_a += ga * point.dt_dlevel;
     level_b += gb * point.dt_dlevel;
+    level_angle += gangle * point.dt_dlevel;
     const double along_normal = fitted.fit.normals[i].x * dq.x + fitted.fit.normals[i].y * dq.y;
     if (std::isfinite(t_variance)) {
       expected_variance += along_normal * along_normal * t_variance;
@@ -187,24 +199,40 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
     }
   }
   std::sort(per_pixel.begin(), per_pixel.end());
+  // The solid angle moves with both semi-axes at once: its own sum, not the axes' variances.
+  const Ellipse& e = fitted.fit.ellipse;
+  const double step = kSolidAngleStepFraction * e.semi_minor;
+  const double domega_da = (ellipseSolidAngleSr(e.semi_major + step, e.semi_minor) -
+                            ellipseSolidAngleSr(e.semi_major - step, e.semi_minor)) /
+                           (2 * step);
+  const double domega_db = (ellipseSolidAngleSr(e.semi_major, e.semi_minor + step) -
+                            ellipseSolidAngleSr(e.semi_major, e.semi_minor - step)) /
+                           (2 * step);
   double var_a = std::pow(level_a * level_sigma_cd_m2, 2);
   double var_b = std::pow(level_b * level_sigma_cd_m2, 2);
+  double var_angle = std::pow(level_angle * level_sigma_cd_m2, 2);
+  double var_omega = std::pow((domega_da * level_a + domega_db * level_b) * level_sigma_cd_m2, 2);
   for (std::size_t i = 0; i < per_pixel.size();) {
-    const std::size_t pixel = std::get<0>(per_pixel[i]);
-    double sa = 0, sb = 0;
-    for (; i < per_pixel.size() && std::get<0>(per_pixel[i]) == pixel; ++i) {
-      sa += std::get<1>(per_pixel[i]);
-      sb += std::get<2>(per_pixel[i]);
+    const std::size_t pixel = per_pixel[i].pixel;
+    double sa = 0, sb = 0, sangle = 0;
+    for (; i < per_pixel.size() && per_pixel[i].pixel == pixel; ++i) {
+      sa += per_pixel[i].da;
+      sb += per_pixel[i].db;
+      sangle += per_pixel[i].dangle;
     }
     const double s = sigma(pixel);
     if (!std::isfinite(s)) continue;
     var_a += s * s * sa * sa;
     var_b += s * s * sb * sb;
+    var_angle += s * s * sangle * sangle;
+    var_omega += s * s * std::pow(domega_da * sa + domega_db * sb, 2);
   }
   const bool major_is_vertical = out.majorIsVertical();
   const double major_sigma = 2 * std::sqrt(var_a), minor_sigma = 2 * std::sqrt(var_b);
   out.vertical_uncertainty_deg = major_is_vertical ? major_sigma : minor_sigma;
   out.horizontal_uncertainty_deg = major_is_vertical ? minor_sigma : major_sigma;
+  out.orientation_uncertainty_deg = degrees(std::sqrt(var_angle));
+  out.solid_angle_uncertainty_sr = std::sqrt(var_omega);
   const double rms = fitted.fit.rms_residual;
   const double noise_ms = expected_variance / static_cast<double>(contour.points.size());
   out.shape_residual_fraction =
@@ -294,7 +322,8 @@ EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
                             ellipse.fit_rms_px,
                             ellipse.shape_residual_fraction,
                             ellipse.vertical_uncertainty_deg,
-                            ellipse.horizontal_uncertainty_deg};
+                            ellipse.horizontal_uncertainty_deg,
+                            ellipse.solid_angle_uncertainty_sr};
   if (!std::all_of(std::begin(numbers), std::end(numbers),
                    [](double v) { return std::isfinite(v); }))
     return outcome(EllipseStatus::kNotAnEllipse);  // result.json promises numbers

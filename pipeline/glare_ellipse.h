@@ -56,6 +56,9 @@ struct GlareEllipse {
   int regions = 0;         // separate regions at or above the level (kMinRegionPixels or more)
   std::size_t contour_points = 0, region_pixels = 0;
   double vertical_uncertainty_deg = 0, horizontal_uncertainty_deg = 0;
+  // The major axis's orientation and the solid angle, by the same propagation. The orientation's
+  // is meaningful only while it is well below 90° (a nearly round ellipse has none to speak of).
+  double orientation_uncertainty_deg = 0, solid_angle_uncertainty_sr = 0;
   std::size_t unweighted_contour_points = 0;  // points next to bound pixels (no noise figure)
   // Geometry for pictures: the contour in pixels, and the fitted ellipse (degrees) in the
   // angular plane around `plane_centre`.

@@ -49,6 +49,10 @@ nlohmann::json ellipseJson(const EllipseMeasurement& measurement) {
       {"uncertainty",
        {{"vertical_deg", e.vertical_uncertainty_deg},
         {"horizontal_deg", e.horizontal_uncertainty_deg},
+        {"orientation_deg", std::isfinite(e.orientation_uncertainty_deg)
+                                ? nlohmann::json(e.orientation_uncertainty_deg)
+                                : nlohmann::json(nullptr)},
+        {"solid_angle_sr", e.solid_angle_uncertainty_sr},
         {"unweighted_contour_points", e.unweighted_contour_points}}},
   };
 }

@@ -200,31 +200,37 @@ TEST(GlareEllipse, ReportedUncertaintyMatchesMonteCarloScatter) {
   spec.lobe = lobeAtLimit(30'000, 594'000, 5.0, 5.7);
   spec.relative_noise = 0.02;
   constexpr int kTrials = 40;
-  std::vector<double> limit_v, limit_h, fwhm_v, fwhm_h;
-  double reported[4] = {0, 0, 0, 0};
+  // Per ellipse: vertical, horizontal, orientation, solid angle.
+  std::vector<double> values[8];
+  double reported[8] = {};
   for (int trial = 0; trial < kTrials; ++trial) {
     spec.seed = 1000 + static_cast<unsigned>(trial);
     const Measured m = analyse(spec);
     ASSERT_TRUE(m.analysis.limit && m.analysis.limit->ellipse && m.analysis.fwhm.ellipse);
-    const GlareEllipse& limit = *m.analysis.limit->ellipse;
-    const GlareEllipse& fwhm = *m.analysis.fwhm.ellipse;
-    limit_v.push_back(limit.vertical_deg);
-    limit_h.push_back(limit.horizontal_deg);
-    fwhm_v.push_back(fwhm.vertical_deg);
-    fwhm_h.push_back(fwhm.horizontal_deg);
-    reported[0] += limit.vertical_uncertainty_deg / kTrials;
-    reported[1] += limit.horizontal_uncertainty_deg / kTrials;
-    reported[2] += fwhm.vertical_uncertainty_deg / kTrials;
-    reported[3] += fwhm.horizontal_uncertainty_deg / kTrials;
+    const GlareEllipse* ellipses[2] = {&*m.analysis.limit->ellipse, &*m.analysis.fwhm.ellipse};
+    for (int e = 0; e < 2; ++e) {
+      const GlareEllipse& g = *ellipses[e];
+      const double measured[4] = {g.vertical_deg, g.horizontal_deg, g.orientation_deg,
+                                  g.solid_angle_sr};
+      const double sigma[4] = {g.vertical_uncertainty_deg, g.horizontal_uncertainty_deg,
+                               g.orientation_uncertainty_deg, g.solid_angle_uncertainty_sr};
+      for (int q = 0; q < 4; ++q) {
+        values[4 * e + q].push_back(measured[q]);
+        reported[4 * e + q] += sigma[q] * sigma[q] / kTrials;  // mean variance
+      }
+    }
   }
   // A standard deviation from 40 samples is itself uncertain by about 11 %, and the linear
-  // propagation ignores second-order terms: the reported value must be within 0.7x..1.4x of the
-  // observed scatter (more than 3 sigma of the estimate on either side).
-  const double observed[4] = {standardDeviation(limit_v), standardDeviation(limit_h),
-                              standardDeviation(fwhm_v), standardDeviation(fwhm_h)};
-  for (int i = 0; i < 4; ++i) {
-    EXPECT_GT(reported[i], 0.7 * observed[i]) << i;
-    EXPECT_LT(reported[i], 1.4 * observed[i]) << i;
+  // propagation ignores second-order terms: the reported value (the root of the mean variance)
+  // must be within 0.7x..1.4x of the observed scatter (more than 3 sigma of the estimate on
+  // either side). The lobe is 14 % longer than wide, so its orientation is well determined.
+  const char* names[8] = {"limit vertical",    "limit horizontal", "limit orientation",
+                          "limit solid angle", "FWHM vertical",    "FWHM horizontal",
+                          "FWHM orientation",  "FWHM solid angle"};
+  for (int i = 0; i < 8; ++i) {
+    const double observed = standardDeviation(values[i]);
+    EXPECT_GT(std::sqrt(reported[i]), 0.7 * observed) << names[i];
+    EXPECT_LT(std::sqrt(reported[i]), 1.4 * observed) << names[i];
   }
 }
 

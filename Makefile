@@ -5,7 +5,7 @@ JOBS           ?= $(shell nproc)
 DEMO_DIR       ?= demo-out
 CMAKE_FLAGS    ?=
 
-.PHONY: deps configure build test test-asan fuzz soak demo bench install package clean format
+.PHONY: deps configure build test test-asan fuzz soak demo bench install package coverage-check clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -60,6 +60,13 @@ SOAK_DIR    ?= soak-out
 soak: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecamd
 	python3 scripts/soak --stacks $(SOAK_STACKS) --out $(SOAK_DIR) $(BUILD_DIR)/bin
+
+# Do the reported uncertainties hold? 50 noise seeds at three α and two lobe sizes, each sigma
+# against the seeds' scatter (scripts/uncertainty-coverage, docs/process.md). About 10 minutes.
+COVERAGE_SEEDS ?= 50
+coverage-check: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecam
+	python3 scripts/uncertainty-coverage --seeds $(COVERAGE_SEEDS) --jobs $(JOBS) $(BUILD_DIR)/bin
 
 bench: build
 	$(BUILD_DIR)/bin/glarecam-bench --benchmark_counters_tabular=true

@@ -9,6 +9,7 @@
 #include "core/angles.h"
 #include "core/neighbourhood.h"
 #include "pipeline/iso_contour.h"
+#include "pipeline/level_field.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -156,21 +157,23 @@ void measureAxes(const PlaneFit& fitted, const calibration::CameraModel& camera,
   out.plane_ellipse = e;
 }
 
-// Linear propagation of the pixels' and the level's noise into the semi-axes (see header),
-// and the residual the contour's noise alone would leave, to judge the shape by the rest.
+// Linear propagation of the pixels' and the level's noise into the semi-axes, the orientation and
+// the solid angle (see header), through the field the contour was traced in (level_field.h), and
+// the residual the contour's noise alone would leave, to judge the shape by the rest.
 void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
-                          const calibration::MergedImage& merged, double level_sigma_cd_m2,
-                          GlareEllipse& out) {
+                          const calibration::MergedImage& merged, const LevelField& field,
+                          double level_sigma_cd_m2, GlareEllipse& out) {
   const auto sigma = [&](std::size_t pixel) {
     return static_cast<double>(merged.relative_uncertainty.data()[pixel]) *
            merged.luminance_cd_m2.data()[pixel];
   };
-  struct PixelTerm {  // one contour point's dependence on one pixel's luminance
-    std::size_t pixel;
-    double da, db, dangle;  // d semi-axis (°) / dL, d angle (rad) / dL
-    bool operator<(const PixelTerm& other) const { return pixel < other.pixel; }
+  // A field pixel's noise: the merged pixel's, or the window's share of it where smoothed.
+  const auto field_sigma = [&](std::size_t pixel) {
+    if (!field.isSmoothed(pixel)) return sigma(pixel);
+    return field.noiseGain() * static_cast<double>(merged.relative_uncertainty.data()[pixel]) *
+           field.values().data()[pixel];
   };
-  std::vector<PixelTerm> per_pixel;
+  std::vector<LevelField::Term> per_field;  // d(a, b, angle) / d(field value)
   double level_a = 0, level_b = 0, level_angle = 0, expected_variance = 0;
   for (std::size_t i = 0; i < contour.points.size(); ++i) {
     const ContourPoint& point = *contour.points[i];
@@ -185,8 +188,10 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
     for (std::size_t k = 0; k < point.pixels.size(); ++k) {
       if (point.dt_dvalue[k] == 0) continue;
       const double t = point.dt_dvalue[k];
-      per_pixel.push_back({point.pixels[k], ga * t, gb * t, gangle * t});
-      t_variance += std::pow(t * sigma(point.pixels[k]), 2);
+      per_field.push_back({point.pixels[k], {ga * t, gb * t, gangle * t}});
+      // The slots' noises are taken as independent (they are not quite, where smoothed): this
+      // is only the shape residual's noise floor.
+      t_variance += std::pow(t * field_sigma(point.pixels[k]), 2);
     }
     level_a += ga * point.dt_dlevel;
     level_b += gb * point.dt_dlevel;
@@ -198,7 +203,9 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
       ++out.unweighted_contour_points;
     }
   }
-  std::sort(per_pixel.begin(), per_pixel.end());
+  std::sort(per_field.begin(), per_field.end(),
+            [](const auto& a, const auto& b) { return a.pixel < b.pixel; });
+  const std::vector<LevelField::Term> per_pixel = field.pullBack(per_field);
   // The solid angle moves with both semi-axes at once: its own sum, not the axes' variances.
   const Ellipse& e = fitted.fit.ellipse;
   const double step = kSolidAngleStepFraction * e.semi_minor;
@@ -212,16 +219,10 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
   double var_b = std::pow(level_b * level_sigma_cd_m2, 2);
   double var_angle = std::pow(level_angle * level_sigma_cd_m2, 2);
   double var_omega = std::pow((domega_da * level_a + domega_db * level_b) * level_sigma_cd_m2, 2);
-  for (std::size_t i = 0; i < per_pixel.size();) {
-    const std::size_t pixel = per_pixel[i].pixel;
-    double sa = 0, sb = 0, sangle = 0;
-    for (; i < per_pixel.size() && per_pixel[i].pixel == pixel; ++i) {
-      sa += per_pixel[i].da;
-      sb += per_pixel[i].db;
-      sangle += per_pixel[i].dangle;
-    }
-    const double s = sigma(pixel);
+  for (const LevelField::Term& term : per_pixel) {
+    const double s = sigma(term.pixel);
     if (!std::isfinite(s)) continue;
+    const auto& [sa, sb, sangle] = term.sensitivity;
     var_a += s * s * sa * sa;
     var_b += s * s * sb * sb;
     var_angle += s * s * sangle * sangle;
@@ -237,6 +238,34 @@ void propagateUncertainty(const PlaneFit& fitted, const ContourRays& contour,
   const double noise_ms = expected_variance / static_cast<double>(contour.points.size());
   out.shape_residual_fraction =
       std::sqrt(std::max(0.0, rms * rms - noise_ms)) / fitted.fit.ellipse.semi_minor;
+}
+
+// The merged pixels' typical relative uncertainty on the inside of a contour (NaN when none has
+// one).
+double contourRelativeUncertainty(const RegionContour& contour,
+                                  const calibration::MergedImage& merged) {
+  std::vector<double> values;
+  for (const ContourPoint& p : contour.points) {
+    if (p.on_border) continue;
+    const double u = merged.relative_uncertainty.data()[p.pixels[1]];  // the inside pixel
+    if (std::isfinite(u)) values.push_back(u);
+  }
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// The contour's pixel box grown by `margin`.
+PixelBox contourBox(const RegionContour& contour, int margin) {
+  PixelBox box{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
+               std::numeric_limits<int>::min(), std::numeric_limits<int>::min()};
+  for (const ContourPoint& p : contour.points) {
+    box.x0 = std::min(box.x0, static_cast<int>(std::floor(p.x_px)));
+    box.y0 = std::min(box.y0, static_cast<int>(std::floor(p.y_px)));
+    box.x1 = std::max(box.x1, static_cast<int>(std::ceil(p.x_px)) + 1);
+    box.y1 = std::max(box.y1, static_cast<int>(std::ceil(p.y_px)) + 1);
+  }
+  return {box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin};
 }
 
 }  // namespace
@@ -293,9 +322,37 @@ EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
     return outcome(EllipseStatus::kPeakIsBound);
   if (!reaches) return outcome(EllipseStatus::kBelowLevel);
   const auto seed = seedPixel(image, peak, level_cd_m2);
-  const auto contour = seed ? traceRegionContour(image, level_cd_m2, *seed) : std::nullopt;
+  auto contour = seed ? traceRegionContour(image, level_cd_m2, *seed) : std::nullopt;
   if (!contour) return outcome(EllipseStatus::kNoPixelAtLevel);
   if (contour->touches_all_borders) return outcome(EllipseStatus::kFillsImage);
+  // Where the noise is large against the step between pixels, the contour is traced again in a
+  // smoothed field (level_field.h); the merged image's own contour only tells where.
+  LevelField field(merged);
+  const SavitzkyGolayWindow window =
+      windowFor(noiseToStep(peak.value_cd_m2, level_cd_m2, contour->region_pixels,
+                            contourRelativeUncertainty(*contour, merged)),
+                contour->region_pixels);
+  if (window.radius > 0) {
+    // Room for the smoothed contour to sit a few pixels off the noisy one, and for the cubic's
+    // outer pixels.
+    const int margin = 2 * window.radius + 4;
+    LevelField smoothed(merged, window, contourBox(*contour, margin));
+    const auto smoothed_seed = seedPixel(smoothed.values(), peak, level_cd_m2);
+    auto retraced = smoothed_seed
+                        ? traceRegionContour(smoothed.values(), level_cd_m2, *smoothed_seed)
+                        : std::nullopt;
+    const PixelBox inner = contourBox(*contour, margin - 2);
+    const bool inside =
+        retraced &&
+        std::all_of(retraced->points.begin(), retraced->points.end(), [&](const ContourPoint& p) {
+          return inner.contains(static_cast<int>(std::lround(p.x_px)),
+                                static_cast<int>(std::lround(p.y_px)));
+        });
+    if (inside && !retraced->touches_all_borders) {
+      contour = std::move(retraced);
+      field = std::move(smoothed);
+    }
+  }
   const std::size_t observed = static_cast<std::size_t>(std::count_if(
       contour->points.begin(), contour->points.end(), [](const auto& p) { return !p.on_border; }));
   if (observed < kMinContourPoints) return outcome(EllipseStatus::kTooSmall);
@@ -310,7 +367,8 @@ EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
   measureAxes(*fitted, camera, ellipse);
   const double level_sigma_cd_m2 =
       std::isfinite(level_relative_uncertainty) ? level_relative_uncertainty * level_cd_m2 : 0.0;
-  propagateUncertainty(*fitted, *rays, merged, level_sigma_cd_m2, ellipse);
+  propagateUncertainty(*fitted, *rays, merged, field, level_sigma_cd_m2, ellipse);
+  ellipse.smoothing_radius_px = field.radius();
   const double numbers[] = {ellipse.major_deg,
                             ellipse.minor_deg,
                             ellipse.orientation_deg,

@@ -60,6 +60,9 @@ struct GlareEllipse {
   // is meaningful only while it is well below 90° (a nearly round ellipse has none to speak of).
   double orientation_uncertainty_deg = 0, solid_angle_uncertainty_sr = 0;
   std::size_t unweighted_contour_points = 0;  // points next to bound pixels (no noise figure)
+  // The Savitzky-Golay window the contour was traced through (level_field.h): its radius in
+  // pixels, 0 for the merged luminance itself.
+  int smoothing_radius_px = 0;
   // Geometry for pictures: the contour in pixels, and the fitted ellipse (degrees) in the
   // angular plane around `plane_centre`.
   std::vector<calibration::PixelPoint> contour_px;

@@ -46,6 +46,7 @@ nlohmann::json ellipseJson(const EllipseMeasurement& measurement) {
       {"regions", e.regions},
       {"contour_points", e.contour_points},
       {"region_pixels", e.region_pixels},
+      {"smoothing_radius_px", e.smoothing_radius_px},
       {"uncertainty",
        {{"vertical_deg", e.vertical_uncertainty_deg},
         {"horizontal_deg", e.horizontal_uncertainty_deg},

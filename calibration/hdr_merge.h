@@ -5,7 +5,8 @@
 // (Granados et al. 2010) from the noise model. Two passes per pixel: a pilot that judges each
 // frame by its own reading, then the final sum in which a frame counts when the pilot predicts
 // it within range (dark threshold .. saturation minus 3 sigma), so that no frame is truncated
-// by its own noise, with weights at the pilot. Output per pixel: luminance, relative standard
+// by its own noise, with weights at the pilot tapering smoothly to 0 toward that 3 sigma (from
+// 12 sigma). Output per pixel: luminance, relative standard
 // uncertainty (shot + read noise), the number of valid frames, and a bound flag for pixels
 // valid in no frame (and for masked hot pixels): saturated everywhere gives a lower bound (the
 // shortest frame's saturation luminance), dark everywhere an upper bound (the longest frame's

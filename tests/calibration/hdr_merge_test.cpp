@@ -346,5 +346,67 @@ TEST(HdrMerge, IsUnbiasedAtEveryLevelIncludingEachFramesSaturation) {
   }
 }
 
+// A frame's saturation band, finely: uniform rows from 80 % to 100 % of the middle frame's
+// saturation luminance, where the merge decides from a noisy pilot how much that frame counts.
+// Each row's mean and median stay within 5 of their standard errors (plus 0.05 % for
+// quantisation, which the noise model leaves out) of the truth, and the reported uncertainty
+// stays honest: the normalised residuals' RMS within 7 % of 1. Its own standard error with 4000
+// pixels is 1.1 %; the rest is the weights following the pilot's noise, which the variance of a
+// weighted mean leaves out (0.96..1.06 here with the taper, 0.92..1.08 with a hard cut at 3
+// sigma). With the hard cut the median sat up to 0.34 % low in the band (issue 23), 0.15 % now.
+TEST(HdrMerge, AFramesSaturationBandNeitherSkewsNorHidesNoise) {
+  constexpr int kWidth = 4000, kRows = 100;
+  Calibration calibration = basicCalibration();
+  calibration.luminance_factor = 1.5e6;
+  const std::vector<double> exposures_us{10.0, 30.0, 90.0, 270.0, 810.0};
+  std::vector<FrameSpec> specs;
+  for (double exposure_us : exposures_us) specs.push_back(frame(exposure_us));
+  const auto radiometry = frameRadiometry(specs, calibration);
+  // The middle frame's saturation luminance.
+  const FrameRadiometry& middle = radiometry[2];
+  const double saturated_cd_m2 =
+      (calibration.saturation_dn - calibration.black_level_dn) * middle.scale_cd_m2_per_dn;
+  FloatImage truth(kWidth, kRows);
+  for (int y = 0; y < kRows; ++y) {
+    const float level = static_cast<float>(saturated_cd_m2 * (0.80 + 0.20 * y / (kRows - 1.0)));
+    for (float& v : truth.row(y)) v = level;
+  }
+  std::vector<RawFrame> frames;
+  capture::SensorModel sensor;
+  for (std::size_t i = 0; i < specs.size(); ++i)
+    frames.push_back(capture::exposeFrame(truth, specs[i], calibration, sensor, 31 + i));
+  auto merged =
+      merge({frames, radiometry, calibration.black_level_dn, calibration.saturation_dn, nullptr});
+  ASSERT_TRUE(merged);
+  for (int y = 0; y < kRows; ++y) {
+    std::vector<double> ratios;
+    double sum_rel2 = 0, normalised2 = 0;
+    for (int x = 0; x < kWidth; ++x) {
+      if (merged->bound.at(x, y) != 0) continue;
+      const double ratio = merged->luminance_cd_m2.at(x, y) / truth.at(x, y);
+      const double rel = merged->relative_uncertainty.at(x, y);
+      ratios.push_back(ratio);
+      sum_rel2 += rel * rel;
+      normalised2 += std::pow((ratio - 1) / rel, 2);
+    }
+    ASSERT_EQ(ratios.size(), std::size_t{kWidth}) << "row " << y;
+    const double n = static_cast<double>(ratios.size());
+    double mean = 0;
+    for (double r : ratios) mean += r / n;
+    std::nth_element(ratios.begin(), ratios.begin() + kWidth / 2, ratios.end());
+    const double median = ratios[kWidth / 2];
+    const double sigma = std::sqrt(sum_rel2 / n);
+    constexpr double kQuantisation = 5e-4;
+    // The median of normal samples has a standard error sqrt(pi / 2) times the mean's.
+    EXPECT_NEAR(mean, 1.0, 5 * sigma / std::sqrt(n) + kQuantisation) << "row " << y;
+    EXPECT_NEAR(median, 1.0, 5 * 1.2533 * sigma / std::sqrt(n) + kQuantisation) << "row " << y;
+    EXPECT_NEAR(std::sqrt(normalised2 / n), 1.0, 0.07) << "row " << y;
+    if (std::getenv("GLARECAM_MERGE_BAND"))
+      std::fprintf(stderr, "band %3d %.4f mean %+.5f median %+.5f sigma %.5f nrms %.3f\n", y,
+                   truth.at(0, y) / saturated_cd_m2, mean - 1, median - 1, sigma,
+                   std::sqrt(normalised2 / n));
+  }
+}
+
 }  // namespace
 }  // namespace glarecam::calibration

@@ -155,6 +155,8 @@ struct LaneSums {
 // moves the bias onto them (+0.3 % on the mean, measured).
 constexpr float kSaturationMarginSigmas = 3.0f;
 constexpr float kTaperEndSigmas = 12.0f;
+// Below this taper (headroom within 0.13 sigma of the 3 sigma start) a frame is not counted.
+constexpr float kMinCountedTaper = 1e-4f;
 
 [[gnu::always_inline]] inline FloatLanes saturationTaper(FloatLanes headroom_sq_sigmas) {
   const FloatLanes zero{}, one = zero + 1.0f;
@@ -205,11 +207,12 @@ constexpr float kTaperEndSigmas = 12.0f;
     const FloatLanes weight = one / variance;
     const FloatLanes headroom = f.saturated_cd_m2 - pilot;
     const FloatLanes headroom_sq_sigmas = headroom * headroom / variance;
+    // A frame whose taper all but vanishes does not count: alone it would make the pixel
+    // "measured" by a weight whose square underflows float (its uncertainty then read 0).
+    const FloatLanes taper = saturationTaper(headroom_sq_sigmas);
     const IntLanes predicted_in_range =
-        pilot_measured & (pilot >= f.dark_cd_m2) & (headroom > zero) &
-        (headroom_sq_sigmas > kSaturationMarginSigmas * kSaturationMarginSigmas);
-    final_sums.add(predicted_in_range & (x.value < f.saturation_dn), weight, x.estimate,
-                   saturationTaper(headroom_sq_sigmas));
+        pilot_measured & (pilot >= f.dark_cd_m2) & (headroom > zero) & (taper > kMinCountedTaper);
+    final_sums.add(predicted_in_range & (x.value < f.saturation_dn), weight, x.estimate, taper);
     fallback_sums.add(validByReading(f, x), weight, x.estimate);
   }
 

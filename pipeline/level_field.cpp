@@ -180,14 +180,18 @@ std::vector<LevelField::Term> LevelField::pullBack(const std::vector<Term>& per_
       add(term.pixel, term.sensitivity, 1.0);
       continue;
     }
-    // d field_p / d L_q = field_p w(q - p) / L_q: the window's weights act on ln L.
+    // d field_p / d L_q = field_p w(q - p) / L_q: the window's weights act on ln L. A smoothed
+    // pixel's window lies inside the box, so inside the grown box: straight into the dense sums.
     const int px = static_cast<int>(term.pixel % static_cast<std::size_t>(width));
     const int py = static_cast<int>(term.pixel / static_cast<std::size_t>(width));
     const double field = smoothed_.at(px, py);
     for (int j = -r; j <= r; ++j) {
+      const float* luminance = merged_->luminance_cd_m2.row(py + j).data() + px;
+      auto* cells = dense.data() + static_cast<std::size_t>(py + j - grown.y0) * grown.width() +
+                    (px - grown.x0);
       for (int i = -r; i <= r; ++i) {
-        const std::size_t q = static_cast<std::size_t>(py + j) * width + px + i;
-        add(q, term.sensitivity, field * window_.weight(i, j) / merged_->luminance_cd_m2.data()[q]);
+        const double factor = field * window_.weight(i, j) / luminance[i];
+        for (std::size_t k = 0; k < 3; ++k) cells[i][k] += term.sensitivity[k] * factor;
       }
     }
   }

@@ -54,8 +54,11 @@ std::vector<fs::path> resultDirectories(const std::vector<fs::path>& stacks, con
 // Peak memory of `process` per pixel (measured as peak resident size less the executable's own,
 // --threads 1 and 2): 46 bytes at 1224x1024 and 39 at 2592x1944 with 6 frames, of which 2 a frame
 // for the decoded frames and the rest the merge's images, the encoders' copies and the encoded
-// files. Rounded up: a budget errs on the safe side.
-constexpr std::uint64_t kProcessBytesPerPixel = 40;
+// files. A lobe many pixels across adds its smoothed contour field (pipeline/level_field.h: a
+// copy of the luminance and double sums over the region's box): 48 bytes at 2592x1944 with the
+// lobe 1300 px across its limit contour (peak resident 241 MB against 166 MB for a small lobe).
+// Rounded up: a budget errs on the safe side.
+constexpr std::uint64_t kProcessBytesPerPixel = 52;
 constexpr std::uint64_t kFrameBytesPerPixel = 2;
 
 std::uint64_t physicalMemoryBytes() {

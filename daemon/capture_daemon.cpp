@@ -93,6 +93,7 @@ Status CaptureDaemon::start() {
   applyConfig();
   spdlog::info("glarecamd: {} with camera {}, output {}", schedule_.describe(), *config_.rig.camera,
                output_.root().string());
+  recallToday();
   catchUp();
   applyRetention(std::nullopt);
   publishStatus();
@@ -247,12 +248,10 @@ void CaptureDaemon::applyConfig() {
   const auto calibration = rig::rigCameraCalibration(config_.rig);
   calibration_ = calibration ? *calibration : std::nullopt;
   if (!calibration) spdlog::error("glarecamd: {}", calibration.error().message);
-  worker_->reconfigure(
-      {.day = {.root = daemon.output.root,
-               .module = daemon.output.module,
-               .longitude_deg = config_.rig.site ? std::optional(config_.rig.site->longitude_deg)
-                                                 : std::nullopt},
-       .threads = daemon.output.processing_threads});
+  worker_->reconfigure({.day = {.root = daemon.output.root,
+                                .module = daemon.output.module,
+                                .longitude_deg = siteLongitude()},
+                        .threads = daemon.output.processing_threads});
   output_ = OutputTree(daemon.output.root);
   schedule_.reconfigure(daemon.schedule);  // the slots taken so far stay taken
   prepareOutput(false);
@@ -328,6 +327,19 @@ void CaptureDaemon::prepareOutput(bool clean) {
   // Whatever a killed glarecamd left half-written (the worker has not started yet).
   if (const std::size_t removed = output_.removeLeftovers())
     spdlog::warn("glarecamd: removed {} half-written files of an earlier run", removed);
+}
+
+std::optional<double> CaptureDaemon::siteLongitude() const {
+  return config_.rig.site ? std::optional(config_.rig.site->longitude_deg) : std::nullopt;
+}
+
+void CaptureDaemon::recallToday() {
+  const std::string today = solarDay(clock_.utcNow(), siteLongitude());
+  const auto day = readDayProducts(
+      {.root = config_.daemon.output.root, .longitude_deg = siteLongitude()}, today);
+  if (!day) return;
+  recordDay(state_, *day);
+  spdlog::info("glarecamd: day {} (from an earlier run)", state_.day);
 }
 
 void CaptureDaemon::catchUp() {
@@ -547,13 +559,11 @@ std::size_t CaptureDaemon::applyRetention(const std::optional<DiskState>& disk) 
   // Ages are told by the clock: an unsynchronised one that ran ahead would delete a season.
   if (!clock_.clockStatus().synchronised) return 0;
   ScopedLogFields fields(LogFields{{"GLARECAM_EVENT", "retention"}});
-  const RetentionSummary summary = daemon::applyRetention(
-      output_, output.retention,
-      {.now = clock_.utcNow(),
-       .longitude_deg =
-           config_.rig.site ? std::optional(config_.rig.site->longitude_deg) : std::nullopt,
-       .disk = disk,
-       .reserve_bytes = output.reserve_bytes});
+  const RetentionSummary summary = daemon::applyRetention(output_, output.retention,
+                                                          {.now = clock_.utcNow(),
+                                                           .longitude_deg = siteLongitude(),
+                                                           .disk = disk,
+                                                           .reserve_bytes = output.reserve_bytes});
   for (const RetentionDeletion& deleted : summary.deleted) {
     ScopedLogFields deletion(LogFields{{"GLARECAM_DELETED", deleted.name},
                                        {"GLARECAM_DELETED_KIND", deleted.kind},
@@ -616,8 +626,7 @@ StatusSnapshot CaptureDaemon::snapshot() const {
           .reserve_bytes = output.reserve_bytes,
           .retention_policy = policy.empty() ? "off (nothing is deleted)" : policy,
           .now = now,
-          .today = solarDay(now, config_.rig.site ? std::optional(config_.rig.site->longitude_deg)
-                                                  : std::nullopt)};
+          .today = solarDay(now, siteLongitude())};
 }
 
 }  // namespace glarecam::daemon

@@ -119,6 +119,8 @@ class CaptureDaemon {
   void openGpio();
   void closeGpio();
   void prepareOutput(bool clean);
+  // A start during a day: the day's count and sheet from days/<today>/, until the next stack.
+  void recallToday();
   void catchUp();
   Status reopenCamera(SteadyTime now);
   Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
@@ -140,6 +142,7 @@ class CaptureDaemon {
   void feedWatchdog();
   void publishStatus();
   StatusSnapshot snapshot() const;
+  std::optional<double> siteLongitude() const;  // [site] longitude: days are its solar days
 
   DaemonOptions options_;
   DaemonServices services_;
@@ -160,7 +163,7 @@ class CaptureDaemon {
   std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;
-  std::optional<SteadyTime> last_publish_;  // for the time paused
+  std::optional<SteadyTime> last_publish_;   // for the time paused
 };
 
 }  // namespace glarecam::daemon

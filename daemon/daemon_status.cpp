@@ -49,15 +49,21 @@ void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_r
       spdlog::info("glarecamd: processed {}", event.detail);
       break;
     case WorkerEvent::Stage::kPublished:
-      state.last_day = {.day = event.path.filename().string(),
+      recordDay(state, {.day = event.path.filename().string(),
                         .directory = event.path,
                         .stacks = event.day_stacks,
-                        .datasheet = event.day_datasheet};
-      state.day = fmt::format("{}: {}", event.path.filename().string(), event.detail);
+                        .datasheet = event.day_datasheet,
+                        .detail = event.detail});
       spdlog::info("glarecamd: day {}", state.day);
       break;
   }
   state.worker_fault.clear();
+}
+
+void recordDay(DaemonState& state, const DaySummary& day) {
+  state.last_day = {
+      .day = day.day, .directory = day.directory, .stacks = day.stacks, .datasheet = day.datasheet};
+  state.day = fmt::format("{}: {}", day.day, day.detail);
 }
 
 void recordRetention(DaemonState& state, const RetentionSummary& summary, bool disk_checked) {

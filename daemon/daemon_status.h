@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "daemon/day_products.h"
 #include "daemon/retention.h"
 #include "daemon/stack_worker.h"
 #include "rig/gpio/status_led.h"
@@ -107,6 +108,10 @@ void recordWorkerEvent(DaemonState& state, const WorkerEvent& event, bool kept_r
 // ends or changes kind; each failed deletion logged as a warning). A pass that did not look at
 // the disk (`disk_checked` false) leaves a reserve shortfall as it is.
 void recordRetention(DaemonState& state, const RetentionSummary& summary, bool disk_checked = true);
+
+// The day's products as the status shows them (the day's line, its stack count, its sheet), from
+// a report of the worker or, for a glarecamd that starts again during a day, from the disk.
+void recordDay(DaemonState& state, const DaySummary& day);
 
 // The STATUS= line: what the daemon does, its last and next stack and every fault, e.g.
 // "capturing every 600 s; last 20260621T101503Z-a42.30 (α 42.30°) at 10:15:03Z; next at

@@ -110,4 +110,19 @@ Result<DaySummary> updateDayProducts(const DayProductsOptions& options, const st
   return summary;
 }
 
+std::optional<DaySummary> readDayProducts(const DayProductsOptions& options,
+                                          const std::string& day) {
+  DaySummary summary{.day = day, .directory = options.root / kDaysDirectory / day};
+  const auto table = pipeline::readSweepTable(summary.directory / pipeline::kSweepTableFileName);
+  if (!table) return std::nullopt;
+  summary.stacks = table->rows.size();
+  std::error_code error;
+  summary.datasheet = fs::is_regular_file(summary.directory / kFitsFileName, error) &&
+                      fs::is_regular_file(summary.directory / kDatasheetPictureName, error);
+  summary.detail = summary.datasheet
+                       ? fmt::format("{} stacks, data sheet of an earlier run", summary.stacks)
+                       : fmt::format("{} stacks; no data sheet yet", summary.stacks);
+  return summary;
+}
+
 }  // namespace glarecam::daemon

@@ -26,6 +26,7 @@ inline constexpr const char* kStacksDirectory = "stacks";
 inline constexpr const char* kResultsDirectory = "results";
 inline constexpr const char* kDaysDirectory = "days";
 inline constexpr const char* kFitsFileName = "fits.json";
+inline constexpr const char* kDatasheetPictureName = "datasheet.png";  // publishDatasheet's PNG
 
 // "2026-06-21", or nullopt when the id does not start with a UTC time stamp YYYYMMDDTHHMMSSZ.
 std::optional<std::string> stackDay(std::string_view stack_id, std::optional<double> longitude_deg);
@@ -49,5 +50,10 @@ struct DaySummary {
 // Rebuilds days/<day>/ from the results of that day's stacks. Fails (kIo) only when a file
 // cannot be written; too few stacks for the fits is a summary without a data sheet.
 Result<DaySummary> updateDayProducts(const DayProductsOptions& options, const std::string& day);
+
+// What days/<day>/ holds as updateDayProducts last left it, without rebuilding anything: for a
+// glarecamd that starts again during a day. Nullopt when the day has no readable sweep table.
+std::optional<DaySummary> readDayProducts(const DayProductsOptions& options,
+                                          const std::string& day);
 
 }  // namespace glarecam::daemon

@@ -90,7 +90,7 @@ std::optional<std::filesystem::path> statusPicture(const StatusSnapshot& s, Stat
       return s.state.last_result->directory / "luminance.png";
     case StatusPicture::kDatasheet:
       if (s.output_root.empty() || s.today.empty()) return std::nullopt;
-      return s.output_root / kDaysDirectory / s.today / "datasheet.png";
+      return s.output_root / kDaysDirectory / s.today / kDatasheetPictureName;
   }
   return std::nullopt;
 }

@@ -78,6 +78,19 @@ TEST_F(DaemonTest, IntervalStacksAreWrittenProcessedAndTabulatedPerDay) {
   EXPECT_FALSE(fs::exists(day / "datasheet.pdf"));
   EXPECT_EQ(daemon->state().stacks_processed, 7u);
   EXPECT_NE(daemon->state().day.find("no data sheet yet"), std::string::npos);
+  // Started again the same day on a disk now full, so that no stack comes: the day's count is
+  // read back from the disk, not "none processed yet today".
+  daemon.reset();
+  disk_.set({.free_bytes = 10ull << 20, .total_bytes = 100ull << 30});
+  auto again = makeDaemon();
+  terminateAt(clock_.elapsed() + 60s, *again);
+  ASSERT_TRUE(again->run());
+  ASSERT_TRUE(again->state().last_day);
+  EXPECT_EQ(again->state().last_day->day, "2026-06-21");
+  EXPECT_EQ(again->state().last_day->stacks, 7u);
+  EXPECT_FALSE(again->state().last_day->datasheet);
+  EXPECT_EQ(again->state().stacks_written, 0u);  // this run's counters start at nought
+  EXPECT_EQ(again->state().day, "2026-06-21: 7 stacks; no data sheet yet");
 }
 
 TEST_F(DaemonTest, NotifiesReadyOnceStatusOnChangeAndStoppingLast) {

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "capture/camera_registry.h"
 #include "daemon/journal_sink.h"
@@ -419,10 +420,12 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   state_.skip_reason.clear();
   state_.capturing = true;
   publishStatus();
-  feedWatchdog();
+  feedWatchdog(expectedBracket(settings));
   const UtcTime start = clock_.utcNow();
   settings.start_time = start;
+  const SteadyTime bracket_start = clock_.now();
   auto stack = capture::captureStack(**acquired, settings);
+  last_bracket_ = clock_.now() - bracket_start;
   const UtcTime end = clock_.utcNow();
   state_.capturing = false;
   if (!stack) {
@@ -584,8 +587,21 @@ void CaptureDaemon::checkClock() {
   state_.clock_warning = std::move(warning);
 }
 
-void CaptureDaemon::feedWatchdog() {
-  if (health_.feedWatchdog(worker_ ? worker_->busySince() : std::nullopt)) ++state_.watchdog_pings;
+void CaptureDaemon::feedWatchdog(std::chrono::nanoseconds away) {
+  if (health_.feedWatchdog(worker_ ? worker_->busySince() : std::nullopt, away))
+    ++state_.watchdog_pings;
+}
+
+std::chrono::nanoseconds CaptureDaemon::expectedBracket(
+    const capture::CaptureSettings& settings) const {
+  double exposures_us = 0;
+  for (const double exposure_us : settings.exposures_us.value_or(std::vector<double>{}))
+    exposures_us += exposure_us;
+  const std::chrono::nanoseconds exposures(std::llround(exposures_us * 1e3));
+  // A bracket can run longer than the last one (an auto-bracket's re-bracket, a slower
+  // transfer): half as long again.
+  const auto last = std::chrono::duration_cast<std::chrono::nanoseconds>(last_bracket_ * 1.5);
+  return std::max(exposures, last);
 }
 
 void CaptureDaemon::publishStatus() {

@@ -139,7 +139,10 @@ class CaptureDaemon {
   // [output] retention (retention.h), `disk` for its reserve rule; how many entries it deleted.
   std::size_t applyRetention(const std::optional<DiskState>& disk);
   void checkClock();
-  void feedWatchdog();
+  // `away`: how long the loop is about to be busy (HealthMonitor::feedWatchdog).
+  void feedWatchdog(std::chrono::nanoseconds away = {});
+  // How long the next bracket will keep the loop: the last one's length, at least its exposures.
+  std::chrono::nanoseconds expectedBracket(const capture::CaptureSettings& settings) const;
   void publishStatus();
   StatusSnapshot snapshot() const;
   std::optional<double> siteLongitude() const;  // [site] longitude: days are its solar days
@@ -164,6 +167,7 @@ class CaptureDaemon {
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;
   std::optional<SteadyTime> last_publish_;   // for the time paused
+  std::chrono::nanoseconds last_bracket_{};  // the last bracket's length, for the watchdog
 };
 
 }  // namespace glarecam::daemon

@@ -23,9 +23,10 @@ std::string HealthMonitor::clockWarning() const {
   return fmt::format("not synchronised ({}); stacks are flagged", clock.detail);
 }
 
-bool HealthMonitor::feedWatchdog(std::optional<SteadyTime> worker_busy_since) {
+bool HealthMonitor::feedWatchdog(std::optional<SteadyTime> worker_busy_since,
+                                 std::chrono::nanoseconds away) {
   const SteadyTime now = clock_.now();
-  if (!watchdog_interval_ || now < next_watchdog_) return false;
+  if (!watchdog_interval_ || now + away < next_watchdog_) return false;
   next_watchdog_ = now + *watchdog_interval_ / 2;
   // A stuck worker: systemd's watchdog will restart us.
   if (worker_busy_since && now - *worker_busy_since >= kWorkerStallLimit) return false;

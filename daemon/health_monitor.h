@@ -49,8 +49,11 @@ class HealthMonitor {
   std::string clockWarning() const;
 
   // Sends WATCHDOG=1 when a ping is due and the worker is not stuck (`worker_busy_since`: when
-  // its running job started); true when it sent one.
-  bool feedWatchdog(std::optional<SteadyTime> worker_busy_since);
+  // its running job started); true when it sent one. `away`: how long the loop is about to be
+  // busy (a bracket, which it cannot leave to ping): a ping that would fall due meanwhile is sent
+  // now, so that the cadence holds across brackets of up to half the interval.
+  bool feedWatchdog(std::optional<SteadyTime> worker_busy_since,
+                    std::chrono::nanoseconds away = {});
   // The next ping, while systemd asks for them.
   std::optional<SteadyTime> nextWatchdog() const;
 

@@ -135,6 +135,24 @@ TEST_F(DaemonTest, WatchdogIsFedAtHalfItsIntervalWhileTheLoopRuns) {
   }
 }
 
+// Brackets that take seconds, one after the other (interval 1 s; the camera takes its 4 s of
+// exposures on the manual clock): the loop cannot ping during a bracket, so it pings before one
+// in which a ping would fall due. Without that, a ping came only between brackets, 8 s apart.
+TEST_F(DaemonTest, WatchdogKeepsItsCadenceAcrossBracketsThatTakeSeconds) {
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 1",
+               .extra = "[capture]\nexposures = [400000, 500000, 600000, 700000, 800000, "
+                        "1000000]\n"});
+  cameras_.takeExposureTime(clock_);
+  auto daemon = makeDaemon({.max_stacks = 8});
+  terminateAt(1h, *daemon);
+  ASSERT_TRUE(daemon->run());
+  EXPECT_EQ(daemon->state().stacks_written, 8u);
+  const auto pings = notifier_.matching("WATCHDOG=1");
+  ASSERT_GE(pings.size(), 8u);  // 8 brackets of 4 s, a ping at least every 5 s
+  for (std::size_t i = 1; i < pings.size(); ++i)
+    EXPECT_LE(pings[i].at - pings[i - 1].at, 5s) << "gap before ping " << i;
+}
+
 TEST_F(DaemonTest, AWedgedCameraStopsTheHeartbeat) {
   writeConfig();
   cameras_.wedgeAtCall(3);  // in the middle of the first auto bracket

@@ -1,5 +1,6 @@
 #include "daemon/daemon_test_support.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -148,7 +149,7 @@ class ScriptedCamera final : public capture::Camera, public capture::SceneTruthS
  private:
   Result<std::vector<capture::CapturedFrame>> doCapture(
       std::span<const capture::ExposureRequest> requests) override {
-    if (auto error = script_.beforeCapture()) return std::unexpected(*error);
+    if (auto error = script_.beforeCapture(requests)) return std::unexpected(*error);
     return camera_->capture(requests);
   }
 
@@ -171,9 +172,15 @@ daemon::CameraOpener ScriptedCameras::opener() {
   };
 }
 
-std::optional<Error> ScriptedCameras::beforeCapture() {
+std::optional<Error> ScriptedCameras::beforeCapture(
+    std::span<const capture::ExposureRequest> requests) {
   const int call = ++calls_;
   std::unique_lock lock(mutex_);
+  if (exposure_clock_) {
+    double exposures_us = 0;
+    for (const capture::ExposureRequest& request : requests) exposures_us += request.exposure_us;
+    exposure_clock_->advance(std::chrono::nanoseconds(std::llround(exposures_us * 1e3)));
+  }
   if (wedge_at_ && call == *wedge_at_) {
     wedged_ = true;
     changed_.notify_all();
@@ -216,6 +223,11 @@ void ScriptedCameras::release() {
   const std::lock_guard lock(mutex_);
   released_ = true;
   changed_.notify_all();
+}
+
+void ScriptedCameras::takeExposureTime(ManualClock& clock) {
+  const std::lock_guard lock(mutex_);
+  exposure_clock_ = &clock;
 }
 
 }  // namespace glarecam::testing

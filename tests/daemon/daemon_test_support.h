@@ -13,6 +13,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -114,13 +115,16 @@ class ScriptedCameras {
   void wedgeAtCall(int call);
   void waitUntilWedged();
   void release();
+  // Every capture() advances `clock` by the exposures it was asked for, as a real camera takes
+  // them (the sim camera returns at once).
+  void takeExposureTime(ManualClock& clock);
 
   int opens() const { return opens_; }
   int captureCalls() const { return calls_; }
 
  private:
   friend class ScriptedCamera;
-  std::optional<Error> beforeCapture();
+  std::optional<Error> beforeCapture(std::span<const capture::ExposureRequest> requests);
 
   std::mutex mutex_;
   std::condition_variable changed_;
@@ -131,6 +135,7 @@ class ScriptedCameras {
   std::optional<int> wedge_at_;
   bool wedged_ = false;
   bool released_ = false;
+  ManualClock* exposure_clock_ = nullptr;
 };
 
 // "sim:size=160x128,fov=30,seed=N": small and fast.

@@ -274,7 +274,11 @@ expect "series wrote two stacks" test "$(wc -l <"$WORK/out")" -eq 2 -a "$(ls "$W
 "$GLARECAM" capture --camera sim:size=64x48 --out "$WORK/interrupted" --exposures 100 --count 1000 \
   --interval 0.2 --no-progress >"$WORK/out" 2>"$WORK/err" &
 series_pid=$!
-sleep 1
+# Interrupted once its first stack is there (so not before it handles SIGINT), at most 30 s on.
+for _ in $(seq 300); do
+  [ -n "$(ls "$WORK/interrupted" 2>/dev/null)" ] && break
+  sleep 0.1
+done
 kill -INT $series_pid
 wait $series_pid
 status=$?

@@ -9,6 +9,7 @@
 
 #include "capture/camera_registry.h"
 #include "daemon/journal_sink.h"
+#include "daemon/result_brief.h"
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"
 
@@ -94,7 +95,7 @@ Status CaptureDaemon::start() {
   applyConfig();
   spdlog::info("glarecamd: {} with camera {}, output {}", schedule_.describe(), *config_.rig.camera,
                output_.root().string());
-  recallToday();
+  recallEarlierRun();
   catchUp();
   applyRetention(std::nullopt);
   publishStatus();
@@ -334,7 +335,11 @@ std::optional<double> CaptureDaemon::siteLongitude() const {
   return config_.rig.site ? std::optional(config_.rig.site->longitude_deg) : std::nullopt;
 }
 
-void CaptureDaemon::recallToday() {
+void CaptureDaemon::recallEarlierRun() {
+  if (auto last = newestResult(output_.results())) {
+    spdlog::info("glarecamd: last result {} (from an earlier run)", last->stack_id);
+    state_.last_result = std::move(*last);
+  }
   const std::string today = solarDay(clock_.utcNow(), siteLongitude());
   const auto day = readDayProducts(
       {.root = config_.daemon.output.root, .longitude_deg = siteLongitude()}, today);

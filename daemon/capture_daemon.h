@@ -119,8 +119,9 @@ class CaptureDaemon {
   void openGpio();
   void closeGpio();
   void prepareOutput(bool clean);
-  // A start during a day: the day's count and sheet from days/<today>/, until the next stack.
-  void recallToday();
+  // What the status shows of an earlier run until this one has its own: the newest result, and
+  // on a start during a day the day's count and sheet from days/<today>/.
+  void recallEarlierRun();
   void catchUp();
   Status reopenCamera(SteadyTime now);
   Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "daemon/daemon_clock.h"
+#include "daemon/result_brief.h"
 
 namespace glarecam::daemon {
 
@@ -23,15 +24,6 @@ struct SignalEvent {
 
 struct ButtonEvent {
   std::optional<Error> error{};  // the button could not be read (a press otherwise)
-};
-
-// What the status page says of a processed stack, from its result.json (glarecam.result/1).
-struct ResultBrief {
-  std::optional<double> alpha_deg{};
-  double lmax_cd_m2 = 0;
-  std::string lmax_bound{};  // "lower", "upper" or empty: Lmax is a bound of a saturated frame
-  std::optional<double> limit_cd_m2{};
-  std::optional<bool> glare{};  // the verdict: Lmax above the limit (none without a limit)
 };
 
 // The worker's progress with one stack: written (or not), processed (or not), its day's sweep

@@ -17,14 +17,6 @@
 
 namespace glarecam::daemon {
 
-// The last stack processed: its result directory (luminance.png is its Figure-9 picture) and
-// what the status page says of it.
-struct LastResult {
-  std::string stack_id;
-  std::filesystem::path directory;
-  ResultBrief brief;
-};
-
 // The last day whose products were rebuilt.
 struct LastDay {
   std::string day;                  // "2026-06-21"

@@ -18,23 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The status page's part of a result this worker has just written (glarecam.result/1).
-ResultBrief resultBrief(const nlohmann::json& result) {
-  using Pointer = nlohmann::json::json_pointer;
-  const auto number = [&result](const char* pointer) -> std::optional<double> {
-    const nlohmann::json value = result.value(Pointer(pointer), nlohmann::json());
-    return value.is_number() ? std::optional(value.get<double>()) : std::nullopt;
-  };
-  ResultBrief brief{.alpha_deg = number("/alpha_deg"),
-                    .lmax_cd_m2 = number("/luminance/max_cd_m2").value_or(0),
-                    .limit_cd_m2 = number("/limit/limit_cd_m2")};
-  if (result.value(Pointer("/luminance/max_is_lower_bound"), false)) brief.lmax_bound = "lower";
-  if (result.value(Pointer("/luminance/max_is_upper_bound"), false)) brief.lmax_bound = "upper";
-  if (const auto glare = result.value(Pointer("/glare"), nlohmann::json()); glare.is_boolean())
-    brief.glare = glare.get<bool>();
-  return brief;
-}
-
 // The staging directories an earlier, refused try of stack `id` left in `directory`. Only the
 // worker writes them, one job at a time, so none of them belongs to a writer still running.
 void removeLeftoversOf(const fs::path& directory, std::string_view id) {

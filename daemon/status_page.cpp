@@ -286,7 +286,7 @@ img {{ max-width: 100%; height: auto; border: 1px solid #ccc; }}
     if (st.last_capture_time) html += row("at", isoSeconds(*st.last_capture_time));
     html += row("α", st.last_alpha_deg ? fmt::format("{:.2f}°", *st.last_alpha_deg) : "unknown");
   } else {
-    html += row("captured", "none yet");
+    html += row("captured", "none yet since glarecamd started");
   }
   if (st.last_result) {
     const ResultBrief& b = st.last_result->brief;

@@ -91,6 +91,9 @@ TEST_F(DaemonTest, IntervalStacksAreWrittenProcessedAndTabulatedPerDay) {
   EXPECT_FALSE(again->state().last_day->datasheet);
   EXPECT_EQ(again->state().stacks_written, 0u);  // this run's counters start at nought
   EXPECT_EQ(again->state().day, "2026-06-21: 7 stacks; no data sheet yet");
+  ASSERT_TRUE(again->state().last_result);  // and the last result is the earlier run's last
+  EXPECT_EQ(again->state().last_result->stack_id, written.back().filename().string());
+  EXPECT_GT(again->state().last_result->brief.lmax_cd_m2, 0);
 }
 
 TEST_F(DaemonTest, NotifiesReadyOnceStatusOnChangeAndStoppingLast) {

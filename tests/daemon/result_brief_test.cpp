@@ -1,0 +1,59 @@
+// The status page's brief of a result, and the newest result an earlier run left.
+#include "daemon/result_brief.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.h"
+
+namespace glarecam::daemon {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(ResultBrief, TakesWhatTheResultSaysAndLeavesTheRestUnknown) {
+  const ResultBrief full = resultBrief(nlohmann::json::parse(R"({
+      "alpha_deg": 42.3, "glare": true,
+      "luminance": {"max_cd_m2": 5.4e5, "max_is_lower_bound": true},
+      "limit": {"limit_cd_m2": 3e4}})"));
+  EXPECT_EQ(full.alpha_deg, 42.3);
+  EXPECT_EQ(full.lmax_cd_m2, 5.4e5);
+  EXPECT_EQ(full.lmax_bound, "lower");
+  EXPECT_EQ(full.limit_cd_m2, 3e4);
+  EXPECT_EQ(full.glare, true);
+  const ResultBrief bare = resultBrief(nlohmann::json::parse(R"({"alpha_deg": "forty"})"));
+  EXPECT_FALSE(bare.alpha_deg);
+  EXPECT_EQ(bare.lmax_cd_m2, 0);
+  EXPECT_EQ(bare.lmax_bound, "");
+  EXPECT_FALSE(bare.limit_cd_m2);
+  EXPECT_FALSE(bare.glare);
+}
+
+TEST(ResultBrief, NewestIsTheGreatestIdWithAResult) {
+  testing::TempDir dir;
+  const fs::path results = dir / "results";
+  EXPECT_FALSE(newestResult(results));  // no directory at all
+  fs::create_directories(results);
+  EXPECT_FALSE(newestResult(results));
+  const auto result = [&](const std::string& id, const std::string& text) {
+    fs::create_directories(results / id);
+    testing::writeText(results / id / "result.json", text);
+  };
+  result("20260621T080000Z-a40.00", R"({"luminance": {"max_cd_m2": 1000}})");
+  result("20260621T090000Z-a41.00", R"({"luminance": {"max_cd_m2": 2000}})");
+  fs::create_directories(results / "20260621T100000Z-a42.00");  // being processed: no result yet
+  result(".tmp-20260621T110000Z-a43.00-x1y2", R"({"luminance": {"max_cd_m2": 3000}})");
+  testing::writeText(results / "20260621T120000Z-a44.00.failed", "bad stack\n");
+  const auto newest = newestResult(results);
+  ASSERT_TRUE(newest);
+  EXPECT_EQ(newest->stack_id, "20260621T090000Z-a41.00");
+  EXPECT_EQ(newest->directory, results / "20260621T090000Z-a41.00");
+  EXPECT_EQ(newest->brief.lmax_cd_m2, 2000);
+  result("20260622T080000Z-a40.00", "{ not json");
+  EXPECT_FALSE(newestResult(results));  // the newest cannot be read: none, not an older one
+}
+
+}  // namespace
+}  // namespace glarecam::daemon

@@ -158,11 +158,23 @@ constexpr float kTaperEndSigmas = 12.0f;
 // Below this taper (headroom within 0.13 sigma of the 3 sigma start) a frame is not counted.
 constexpr float kMinCountedTaper = 1e-4f;
 
-[[gnu::always_inline]] inline FloatLanes saturationTaper(FloatLanes headroom_sq_sigmas) {
-  const FloatLanes zero{}, one = zero + 1.0f;
+// Every lane's mask set.
+[[gnu::always_inline]] inline bool allLanes(IntLanes mask) {
+  bool all = true;
+  for (int i = 0; i < kLanes; ++i) all &= mask[i] != 0;
+  return all;
+}
+
+// Where a lane is in the band: 0 at its start, 1 at its end (unclamped).
+[[gnu::always_inline]] inline FloatLanes taperPosition(FloatLanes headroom_sq_sigmas) {
   constexpr float kStart = kSaturationMarginSigmas * kSaturationMarginSigmas;
   constexpr float kSpan = kTaperEndSigmas * kTaperEndSigmas - kStart;
-  FloatLanes u = (headroom_sq_sigmas - kStart) * (1.0f / kSpan);
+  return (headroom_sq_sigmas - kStart) * (1.0f / kSpan);
+}
+
+[[gnu::always_inline]] inline FloatLanes saturationTaper(FloatLanes headroom_sq_sigmas) {
+  const FloatLanes zero{}, one = zero + 1.0f;
+  FloatLanes u = taperPosition(headroom_sq_sigmas);
   u = u < zero ? zero : u;
   u = u > one ? one : u;
   return u * u * (3.0f - 2.0f * u);
@@ -207,13 +219,21 @@ constexpr float kMinCountedTaper = 1e-4f;
     const FloatLanes weight = one / variance;
     const FloatLanes headroom = f.saturated_cd_m2 - pilot;
     const FloatLanes headroom_sq_sigmas = headroom * headroom / variance;
+    fallback_sums.add(validByReading(f, x), weight, x.estimate);
+    const IntLanes below_saturation = x.value < f.saturation_dn;
+    // Most of an image lies past the band in most frames: full weight, no taper to compute (the
+    // same test that clamps the taper to exactly 1, so the sums are bit for bit the same).
+    if (allLanes((headroom > zero) & (taperPosition(headroom_sq_sigmas) >= one))) {
+      final_sums.add(pilot_measured & (pilot >= f.dark_cd_m2) & below_saturation, weight,
+                     x.estimate);
+      continue;
+    }
     // A frame whose taper all but vanishes does not count: alone it would make the pixel
     // "measured" by a weight whose square underflows float (its uncertainty then read 0).
     const FloatLanes taper = saturationTaper(headroom_sq_sigmas);
     const IntLanes predicted_in_range =
         pilot_measured & (pilot >= f.dark_cd_m2) & (headroom > zero) & (taper > kMinCountedTaper);
-    final_sums.add(predicted_in_range & (x.value < f.saturation_dn), weight, x.estimate, taper);
-    fallback_sums.add(validByReading(f, x), weight, x.estimate);
+    final_sums.add(predicted_in_range & below_saturation, weight, x.estimate, taper);
   }
 
   const IntLanes refined = final_sums.count > zero;

@@ -95,9 +95,9 @@ Status CaptureDaemon::start() {
   applyConfig();
   spdlog::info("glarecamd: {} with camera {}, output {}", schedule_.describe(), *config_.rig.camera,
                output_.root().string());
+  applyRetention(std::nullopt);  // before the recall: what it deletes is not shown
   recallEarlierRun();
   catchUp();
-  applyRetention(std::nullopt);
   publishStatus();
   return {};
 }
@@ -430,7 +430,7 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   settings.start_time = start;
   const SteadyTime bracket_start = clock_.now();
   auto stack = capture::captureStack(**acquired, settings);
-  last_bracket_ = clock_.now() - bracket_start;
+  if (stack) last_bracket_ = clock_.now() - bracket_start;  // a failed one says nothing of length
   const UtcTime end = clock_.utcNow();
   state_.capturing = false;
   if (!stack) {
@@ -597,6 +597,9 @@ void CaptureDaemon::feedWatchdog(std::chrono::nanoseconds away) {
     ++state_.watchdog_pings;
 }
 
+// Longer than any watchdog interval: a bracket of unknown length gets a ping before it.
+constexpr std::chrono::nanoseconds kUnknownBracket = std::chrono::hours(24);
+
 std::chrono::nanoseconds CaptureDaemon::expectedBracket(
     const capture::CaptureSettings& settings) const {
   double exposures_us = 0;
@@ -605,7 +608,8 @@ std::chrono::nanoseconds CaptureDaemon::expectedBracket(
   const std::chrono::nanoseconds exposures(std::llround(exposures_us * 1e3));
   // A bracket can run longer than the last one (an auto-bracket's re-bracket, a slower
   // transfer): half as long again.
-  const auto last = std::chrono::duration_cast<std::chrono::nanoseconds>(last_bracket_ * 1.5);
+  if (!last_bracket_) return exposures_us > 0 ? exposures : kUnknownBracket;
+  const auto last = std::chrono::duration_cast<std::chrono::nanoseconds>(*last_bracket_ * 1.5);
   return std::max(exposures, last);
 }
 

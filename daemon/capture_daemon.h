@@ -142,7 +142,8 @@ class CaptureDaemon {
   void checkClock();
   // `away`: how long the loop is about to be busy (HealthMonitor::feedWatchdog).
   void feedWatchdog(std::chrono::nanoseconds away = {});
-  // How long the next bracket will keep the loop: the last one's length, at least its exposures.
+  // How long the next bracket will keep the loop: the last good one's length and half as much
+  // again, at least its exposures; unknown (the first auto-bracket) is "long": ping before it.
   std::chrono::nanoseconds expectedBracket(const capture::CaptureSettings& settings) const;
   void publishStatus();
   StatusSnapshot snapshot() const;
@@ -167,8 +168,9 @@ class CaptureDaemon {
   std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;
-  std::optional<SteadyTime> last_publish_;   // for the time paused
-  std::chrono::nanoseconds last_bracket_{};  // the last bracket's length, for the watchdog
+  std::optional<SteadyTime> last_publish_;  // for the time paused
+  // The last good bracket's length, for the watchdog; none before the first.
+  std::optional<std::chrono::nanoseconds> last_bracket_;
 };
 
 }  // namespace glarecam::daemon

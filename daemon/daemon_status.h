@@ -17,7 +17,7 @@
 
 namespace glarecam::daemon {
 
-// The last day whose products were rebuilt.
+// The last day whose products were rebuilt, or read back from disk at start.
 struct LastDay {
   std::string day;                  // "2026-06-21"
   std::filesystem::path directory;  // days/<day>/ (datasheet.png)

@@ -19,6 +19,7 @@
 
 #include "core/error.h"
 #include "core/time.h"
+#include "pipeline/render/datasheet.h"  // kDatasheetPng
 
 namespace glarecam::daemon {
 
@@ -26,7 +27,7 @@ inline constexpr const char* kStacksDirectory = "stacks";
 inline constexpr const char* kResultsDirectory = "results";
 inline constexpr const char* kDaysDirectory = "days";
 inline constexpr const char* kFitsFileName = "fits.json";
-inline constexpr const char* kDatasheetPictureName = "datasheet.png";  // publishDatasheet's PNG
+inline constexpr const char* kDatasheetPictureName = pipeline::kDatasheetPng;
 
 // "2026-06-21", or nullopt when the id does not start with a UTC time stamp YYYYMMDDTHHMMSSZ.
 std::optional<std::string> stackDay(std::string_view stack_id, std::optional<double> longitude_deg);

@@ -27,10 +27,12 @@ bool HealthMonitor::feedWatchdog(std::optional<SteadyTime> worker_busy_since,
                                  std::chrono::nanoseconds away) {
   const SteadyTime now = clock_.now();
   if (!watchdog_interval_ || now + away < next_watchdog_) return false;
+  if (last_ping_ && *last_ping_ == now) return false;  // one ping per instant is enough
   next_watchdog_ = now + *watchdog_interval_ / 2;
   // A stuck worker: systemd's watchdog will restart us.
   if (worker_busy_since && now - *worker_busy_since >= kWorkerStallLimit) return false;
   notifier_.notify("WATCHDOG=1");
+  last_ping_ = now;
   return true;
 }
 

@@ -63,6 +63,7 @@ class HealthMonitor {
   DiskProbe& disk_;
   std::optional<std::chrono::microseconds> watchdog_interval_;
   SteadyTime next_watchdog_{};
+  std::optional<SteadyTime> last_ping_;
   SteadyTime next_disk_check_{};
 };
 

@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
-#include "core/atomic_file.h"
 #include "core/stack_manifest.h"
+#include "daemon/day_products.h"
 
 namespace glarecam::daemon {
 
@@ -29,10 +29,13 @@ ResultBrief resultBrief(const nlohmann::json& result) {
 std::optional<LastResult> newestResult(const fs::path& results) {
   std::error_code error;
   std::optional<fs::path> newest;
-  for (const auto& entry : fs::directory_iterator(results, error)) {
-    const fs::path& path = entry.path();
-    if (path.filename().string().starts_with(kTemporaryPrefix)) continue;  // being staged
-    if (!fs::is_regular_file(path / "result.json", error)) continue;
+  for (fs::directory_iterator it(results, error), end; !error && it != end; it.increment(error)) {
+    const fs::path& path = it->path();
+    // Only stacks' ids, which begin with their time (a staging directory, a name of another
+    // tool's would sort above every time stamp and stay "newest" for good).
+    if (!stackDay(path.filename().string(), std::nullopt)) continue;
+    std::error_code file_error;
+    if (!fs::is_regular_file(path / "result.json", file_error)) continue;
     if (!newest || path.filename() > newest->filename()) newest = path;
   }
   if (!newest) return std::nullopt;

@@ -30,7 +30,8 @@ struct LastResult {
 ResultBrief resultBrief(const nlohmann::json& result);
 
 // The newest result under `results` (results/<id>/result.json: ids begin with their UTC time, so
-// the greatest id is the newest); nullopt when there is none, or it cannot be read.
+// the greatest id is the newest; other names are skipped); nullopt when there is none, or the
+// newest cannot be read.
 std::optional<LastResult> newestResult(const std::filesystem::path& results);
 
 }  // namespace glarecam::daemon

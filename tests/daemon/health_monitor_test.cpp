@@ -46,6 +46,19 @@ TEST(HealthMonitor, FeedsTheWatchdogAtHalfItsInterval) {
   EXPECT_EQ(m.monitor.nextWatchdog(), start + 10s);
 }
 
+// Before a bracket of `away`: a ping that would fall due during it is sent now (the boundary,
+// due exactly at its end, included), never twice at one instant.
+TEST(HealthMonitor, APingDueDuringTheComingBracketIsSentBeforeIt) {
+  Monitored m;
+  EXPECT_TRUE(m.monitor.feedWatchdog(std::nullopt));
+  EXPECT_FALSE(m.monitor.feedWatchdog(std::nullopt, 24h));  // the same instant: one is enough
+  m.clock.advance(1s);
+  EXPECT_FALSE(m.monitor.feedWatchdog(std::nullopt, 3999ms));  // due at 5 s, after the bracket
+  EXPECT_TRUE(m.monitor.feedWatchdog(std::nullopt, 4s));       // due as the bracket ends
+  EXPECT_EQ(m.pings(), 2u);
+  EXPECT_EQ(m.monitor.nextWatchdog(), m.clock.now() + 5s);
+}
+
 TEST(HealthMonitor, WithoutAWatchdogNothingIsSent) {
   Monitored m(std::nullopt);
   EXPECT_FALSE(m.monitor.nextWatchdog());

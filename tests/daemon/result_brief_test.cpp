@@ -41,6 +41,10 @@ TEST(ResultBrief, NewestIsTheGreatestIdWithAResult) {
     fs::create_directories(results / id);
     testing::writeText(results / id / "result.json", text);
   };
+  result(".tmp-20260621T070000Z-a39.00-x1y2", R"({"luminance": {"max_cd_m2": 500}})");
+  EXPECT_FALSE(newestResult(results));  // a result being staged is none yet
+  result("zz-not-a-stack", R"({"luminance": {"max_cd_m2": 9}})");  // sorts above any time
+  EXPECT_FALSE(newestResult(results));
   result("20260621T080000Z-a40.00", R"({"luminance": {"max_cd_m2": 1000}})");
   result("20260621T090000Z-a41.00", R"({"luminance": {"max_cd_m2": 2000}})");
   fs::create_directories(results / "20260621T100000Z-a42.00");  // being processed: no result yet

@@ -28,7 +28,7 @@ using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
 // Sends `request` as it is and returns the whole response (until the server closes, or 10 s).
-std::string rawRequest(int port, const std::string& request) {
+std::string rawRequest(int port, const std::string& request, int timeout_ms = 10000) {
   const UniqueFd fd = testing::connectLoopback(port);
   EXPECT_EQ(send(fd.get(), request.data(), request.size(), MSG_NOSIGNAL),
             static_cast<ssize_t>(request.size()));
@@ -36,7 +36,7 @@ std::string rawRequest(int port, const std::string& request) {
   char buffer[4096];
   for (;;) {
     pollfd p{fd.get(), POLLIN, 0};
-    if (poll(&p, 1, 10000) != 1) break;
+    if (poll(&p, 1, timeout_ms) != 1) break;
     const ssize_t n = recv(fd.get(), buffer, sizeof buffer, 0);
     if (n <= 0) break;
     response.append(buffer, static_cast<std::size_t>(n));
@@ -186,12 +186,12 @@ TEST_F(StatusServerTest, SilentClientsAreBoundedAndDropped) {
   };
   // Every thread busy with a silent client, every queue place taken by one: the next client,
   // one that asks, is answered 503 by the listening thread at once. (Were the server slower to
-  // hand connections to its threads than these sleeps, it would be queued and answered 200 once
-  // a thread's kStatusTimeout ends, well inside rawRequest's 10 s.)
+  // hand connections to its threads than these sleeps, it would be queued behind silent clients
+  // and answered 200 after up to 4 rounds of kStatusTimeout: hence 30 s.)
   connectSilent(kStatusThreads);
   connectSilent(kStatusQueuedConnections);
   const std::string busy =
-      rawRequest(port_, "GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+      rawRequest(port_, "GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n", 30000);
   EXPECT_TRUE(statusOf(busy) == 503 || statusOf(busy) == 200) << busy.substr(0, 200);
   if (statusOf(busy) == 503) {
     EXPECT_NE(busy.find("Retry-After: 5"), std::string::npos) << busy;

@@ -341,8 +341,8 @@ void CaptureDaemon::recallEarlierRun() {
     state_.last_result = std::move(*last);
   }
   const std::string today = solarDay(clock_.utcNow(), siteLongitude());
-  const auto day = readDayProducts(
-      {.root = config_.daemon.output.root, .longitude_deg = siteLongitude()}, today);
+  const auto day =
+      readDayProducts({.root = output_.root(), .longitude_deg = siteLongitude()}, today);
   if (!day) return;
   recordDay(state_, *day);
   spdlog::info("glarecamd: day {} (from an earlier run)", state_.day);
@@ -606,9 +606,9 @@ std::chrono::nanoseconds CaptureDaemon::expectedBracket(
   for (const double exposure_us : settings.exposures_us.value_or(std::vector<double>{}))
     exposures_us += exposure_us;
   const std::chrono::nanoseconds exposures(std::llround(exposures_us * 1e3));
+  if (!last_bracket_) return exposures_us > 0 ? exposures : kUnknownBracket;
   // A bracket can run longer than the last one (an auto-bracket's re-bracket, a slower
   // transfer): half as long again.
-  if (!last_bracket_) return exposures_us > 0 ? exposures : kUnknownBracket;
   const auto last = std::chrono::duration_cast<std::chrono::nanoseconds>(*last_bracket_ * 1.5);
   return std::max(exposures, last);
 }

@@ -11,6 +11,7 @@
 #include "core/stack_manifest.h"
 #include "pipeline/datasheet_publish.h"
 #include "pipeline/glare_fits.h"
+#include "pipeline/process_stack.h"
 #include "pipeline/sweep.h"
 #include "pipeline/sweep_table.h"
 
@@ -49,7 +50,7 @@ pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::stri
   for (const fs::path& entry : entries) {
     const std::string id = entry.filename().string();
     if (stackDay(id, options.longitude_deg) != day) continue;
-    const fs::path result_file = entry / "result.json";
+    const fs::path result_file = entry / pipeline::kResultFileName;
     if (!fs::is_regular_file(result_file, error)) continue;  // being processed
     const auto result = readJsonFile(result_file.string());
     auto row = result ? pipeline::sweepRowFromResult(

@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "daemon/day_products.h"
 #include "daemon/stack_worker.h"
+#include "pipeline/process_stack.h"
 
 namespace glarecam::daemon {
 
@@ -40,7 +41,7 @@ std::vector<fs::path> OutputTree::unprocessedStacks() const {
   for (const auto& entry : fs::directory_iterator(stacks(), error)) {
     const std::string id = entry.path().filename().string();
     if (entry.is_directory(error) && fs::exists(entry.path() / "stack.json", error) &&
-        !fs::exists(results() / id / "result.json", error) &&
+        !fs::exists(results() / id / pipeline::kResultFileName, error) &&
         !fs::exists(results() / (id + kFailedSuffix), error))
       found.push_back(entry.path());
   }

@@ -5,6 +5,7 @@
 
 #include "core/stack_manifest.h"
 #include "daemon/day_products.h"
+#include "pipeline/process_stack.h"
 
 namespace glarecam::daemon {
 
@@ -35,11 +36,11 @@ std::optional<LastResult> newestResult(const fs::path& results) {
     // tool's would sort above every time stamp and stay "newest" for good).
     if (!stackDay(path.filename().string(), std::nullopt)) continue;
     std::error_code file_error;
-    if (!fs::is_regular_file(path / "result.json", file_error)) continue;
+    if (!fs::is_regular_file(path / pipeline::kResultFileName, file_error)) continue;
     if (!newest || path.filename() > newest->filename()) newest = path;
   }
   if (!newest) return std::nullopt;
-  const auto result = readJsonFile((*newest / "result.json").string());
+  const auto result = readJsonFile((*newest / pipeline::kResultFileName).string());
   if (!result || !result->is_object()) return std::nullopt;
   return LastResult{
       .stack_id = newest->filename().string(), .directory = *newest, .brief = resultBrief(*result)};

@@ -13,6 +13,7 @@
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
 #include "daemon/day_products.h"
+#include "pipeline/process_stack.h"
 #include "pipeline/result.h"
 #include "pipeline/sweep.h"
 
@@ -67,8 +68,9 @@ std::uint64_t treeBytes(const fs::path& path) {
 
 bool isResultDirectory(const fs::path& path) {
   std::error_code error;
-  if (!isRealDirectory(path) || !fs::is_regular_file(path / "result.json", error)) return false;
-  const auto result = readJsonFile((path / "result.json").string());
+  if (!isRealDirectory(path) || !fs::is_regular_file(path / pipeline::kResultFileName, error))
+    return false;
+  const auto result = readJsonFile((path / pipeline::kResultFileName).string());
   return result && result->is_object() && result->value("schema", "") == pipeline::kResultSchema;
 }
 

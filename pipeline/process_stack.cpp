@@ -32,7 +32,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kProcessSteps = 7;
-constexpr const char* kResultFileName = "result.json";
 
 // luminance.exr and quality.exr at their price (docs/process.md, "Output encodings"; measured on
 // simulated 1.25 and 5 MP stacks). HALF cannot hold luminance (magnitudes above 65504 cd/m², every

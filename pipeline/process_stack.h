@@ -37,6 +37,9 @@ struct ProcessOptions {
   Status validate() const;  // thresholds positive and finite, at most kMaxThresholds
 };
 
+// The result document `process` writes into its output directory (glarecam.result/1).
+inline constexpr const char* kResultFileName = "result.json";
+
 inline constexpr std::size_t kMaxThresholds = 32;
 
 struct ProcessSummary {

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/atomic_file.h"
+#include "core/json.h"
 #include "core/time.h"
 
 namespace glarecam::calibration {
@@ -32,44 +33,41 @@ std::string stringField(const json& object, const std::string& key) {
   return found != object.end() && found->is_string() ? found->get<std::string>() : std::string();
 }
 
-Result<CameraIdentity> parseCamera(const json& document, const std::string& where) {
-  const auto found = document.find(kCameraKey);
-  if (found == document.end()) return CameraIdentity{};
-  if (!found->is_object()) return badInput(where + ": camera must be an object");
-  for (const char* key : {"model", "serial", "pixel_format"}) {
-    if (found->contains(key) && !found->at(key).is_string())
-      return badInput(fmt::format("{}: camera.{} must be a string", where, key));
+Result<CameraIdentity> parseCamera(const JsonReader& document) {
+  std::optional<JsonReader> camera;
+  GLARECAM_ASSIGN(camera, document.optionalMember(kCameraKey));
+  if (!camera) return CameraIdentity{};
+  GLARECAM_CHECK(camera->object());
+  CameraIdentity identity;
+  for (auto [key, field] : {std::pair{"model", &identity.model},
+                            {"serial", &identity.serial},
+                            {"pixel_format", &identity.pixel_format}}) {
+    std::optional<std::string> text;
+    GLARECAM_ASSIGN(text, camera->optionalText(key));
+    *field = text.value_or("");
   }
-  return CameraIdentity{.model = stringField(*found, "model"),
-                        .serial = stringField(*found, "serial"),
-                        .pixel_format = stringField(*found, "pixel_format")};
+  return identity;
 }
 
-Result<PartProvenance> parsePart(const json& part, const std::string& name,
-                                 const std::string& where) {
-  const std::string field = where + ": parts." + name;
-  if (!part.is_object()) return badInput(field + " must be an object");
+Result<PartProvenance> parsePart(const JsonReader& part) {
+  GLARECAM_CHECK(part.object());
   PartProvenance provenance;
-  for (const char* key : {"measured_at", "method"}) {
-    if (!part.contains(key) || !part.at(key).is_string())
-      return badInput(fmt::format("{}.{} must be a string", field, key));
-  }
-  provenance.measured_at = part.at("measured_at").get<std::string>();
-  provenance.method = part.at("method").get<std::string>();
+  GLARECAM_ASSIGN(provenance.measured_at, part.text("measured_at"));
+  GLARECAM_ASSIGN(provenance.method, part.text("method"));
   for (auto [key, size] : {std::pair{"width", &provenance.width}, {"height", &provenance.height}}) {
-    if (!part.contains(key)) continue;
-    const json& value = part.at(key);
-    if (!value.is_number() || !isImageSidePx(value.get<double>()))
-      return badInput(fmt::format("{}.{} must be a whole number of pixels", field, key));
-    *size = value.get<int>();
+    if (!part.has(key)) continue;
+    GLARECAM_ASSIGN(*size, part.integer(key, 1, kMaxImageSide));
   }
   if (provenance.width.has_value() != provenance.height.has_value())
-    return badInput(field + " gives width and height together or neither");
-  if (part.contains("inputs")) {
-    if (!part.at("inputs").is_array()) return badInput(field + ".inputs must be a list of paths");
-    for (const json& input : part.at("inputs")) {
-      if (!input.is_string()) return badInput(field + ".inputs must be a list of paths");
-      provenance.inputs.push_back(input.get<std::string>());
+    return part.fail("gives width and height together or neither");
+  std::optional<JsonReader> inputs;
+  GLARECAM_ASSIGN(inputs, part.optionalMember("inputs"));
+  if (inputs) {
+    GLARECAM_CHECK(inputs->array());
+    for (std::size_t i = 0; i < inputs->size(); ++i) {
+      std::string input;
+      GLARECAM_ASSIGN(input, inputs->element(i).text());
+      provenance.inputs.push_back(std::move(input));
     }
   }
   return provenance;
@@ -155,18 +153,18 @@ CameraIdentity cameraIdentityOf(const StackManifest& manifest) {
 
 Result<CalibrationDocument> parseCalibrationDocument(const json& document,
                                                      const std::string& where) {
-  if (!document.is_object()) return badInput(where + ": a calibration file must be a JSON object");
-  const std::string schema = stringField(document, kSchemaKey);
-  if (schema != kCalibrationSchema) {
-    return badInput(fmt::format("{}: schema \"{}\" is not supported (expected \"{}\")", where,
-                                schema, kCalibrationSchema));
-  }
+  const JsonReader fields(document, where);
+  GLARECAM_CHECK(fields.schema(kCalibrationSchema, "a calibration file"));
   CalibrationDocument parsed;
-  GLARECAM_ASSIGN(parsed.camera, parseCamera(document, where));
-  if (const auto parts = document.find(kPartsKey); parts != document.end()) {
-    if (!parts->is_object()) return badInput(where + ": parts must be an object");
-    for (const auto& [name, part] : parts->items()) {
-      GLARECAM_ASSIGN(parsed.parts[name], parsePart(part, name, where));
+  GLARECAM_ASSIGN(parsed.camera, parseCamera(fields));
+  std::optional<JsonReader> parts;
+  GLARECAM_ASSIGN(parts, fields.optionalMember(kPartsKey));
+  if (parts) {
+    GLARECAM_CHECK(parts->object());
+    for (const auto& [name, part] : parts->value().items()) {
+      JsonReader reader = *parts;
+      GLARECAM_ASSIGN(reader, parts->member(name));
+      GLARECAM_ASSIGN(parsed.parts[name], parsePart(reader));
     }
   }
   for (const auto& [key, value] : document.items()) {
@@ -226,7 +224,8 @@ Result<CalibrationDocument> mergeCalibrationDocuments(
     GLARECAM_CHECK(mergeCamera(merged.camera, document.camera, files[i]));
     // A flat field or intrinsics of another size than the frames would be wrong for every stack.
     for (SizeWitness& size : statedSizes(document, files[i])) {
-      if (!first_size) first_size = std::move(size);
+      if (!first_size)
+        first_size = std::move(size);
       else if (size.width != first_size->width || size.height != first_size->height)
         return badInput(fmt::format(
             "{}: {} was measured at {}x{}, but {} of {} at {}x{}: make every part at the "
@@ -264,21 +263,6 @@ Status attachFiles(CalibrationDocument& document, const fs::path& output_directo
   return {};
 }
 
-namespace {
-
-// The date of an ISO 8601 timestamp ("2026-06-21T10:15:03Z" or "2026-06-21").
-std::optional<std::chrono::sys_days> isoDate(const std::string& text) {
-  int year = 0;
-  unsigned month = 0, day = 0;
-  if (std::sscanf(text.c_str(), "%4d-%2u-%2u", &year, &month, &day) != 3) return std::nullopt;
-  const std::chrono::year_month_day date{std::chrono::year(year), std::chrono::month(month),
-                                         std::chrono::day(day)};
-  if (!date.ok()) return std::nullopt;
-  return std::chrono::sys_days(date);
-}
-
-}  // namespace
-
 Status checkCalibrationUse(const Calibration& calibration, const StackManifest& manifest,
                            const std::string& where, const CalibrationUseOptions& options,
                            std::vector<std::string>& warnings) {
@@ -298,7 +282,7 @@ Status checkCalibrationUse(const Calibration& calibration, const StackManifest& 
   if (!source.contains(kPartsKey) || !source[kPartsKey].is_object()) return {};
   for (const auto& [name, part] : source[kPartsKey].items()) {
     const auto measured =
-        part.is_object() ? isoDate(stringField(part, "measured_at")) : std::nullopt;
+        part.is_object() ? isoDayOf(stringField(part, "measured_at")) : std::nullopt;
     if (!measured) continue;
     const std::chrono::sys_days today = options.today == std::chrono::sys_days{}
                                             ? std::chrono::floor<std::chrono::days>(utcNow())

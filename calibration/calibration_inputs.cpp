@@ -85,9 +85,8 @@ CalibrationDocument partDocument(const CalibrationInputs& inputs, const std::str
   CalibrationDocument document;
   document.camera = inputs.camera;
   document.values = std::move(values);
-  document.parts[part] = {.measured_at = inputs.latest_capture.empty()
-                                             ? formatUtc(utcNow(), "%Y-%m-%dT%H:%M:%SZ")
-                                             : inputs.latest_capture,
+  document.parts[part] = {.measured_at = inputs.latest_capture.empty() ? formatIsoSeconds(utcNow())
+                                                                       : inputs.latest_capture,
                           .method = method,
                           .inputs = inputs.stack_paths,
                           .width = inputs.width,

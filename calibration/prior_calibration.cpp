@@ -5,17 +5,13 @@
 #include <string_view>
 #include <utility>
 
+#include "core/json.h"
+
 namespace glarecam::calibration {
 namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-
-std::optional<double> numberAt(const json& values, const char* key) {
-  const auto found = values.find(key);
-  if (found == values.end() || !found->is_number()) return std::nullopt;
-  return found->get<double>();
-}
 
 // The values of a --calibration file, absolute paths; a bare block or a calibration/1 file.
 Result<json> fileValues(const fs::path& path) {
@@ -55,19 +51,22 @@ json stackValues(const Stack& stack) {
 }  // namespace
 
 PriorCalibration priorCalibrationOf(json values) {
+  // The values come from a calibration already read; one a prior cannot use is no prior.
+  const auto number = [](const JsonReader& block, const char* key) {
+    return block.optionalNumber(key).value_or(std::nullopt);
+  };
+  const JsonReader fields(values, "the calibration");
   PriorCalibration prior;
-  prior.black_level_dn = numberAt(values, "black_level_dn");
-  prior.saturation_dn = numberAt(values, "saturation_dn");
-  if (const auto intrinsics = values.find("intrinsics");
-      intrinsics != values.end() && intrinsics->is_object()) {
-    prior.principal_x_px = numberAt(*intrinsics, "cx");
-    prior.principal_y_px = numberAt(*intrinsics, "cy");
+  prior.black_level_dn = number(fields, "black_level_dn");
+  prior.saturation_dn = number(fields, "saturation_dn");
+  if (const auto intrinsics = fields.optionalMember("intrinsics").value_or(std::nullopt)) {
+    prior.principal_x_px = number(*intrinsics, "cx");
+    prior.principal_y_px = number(*intrinsics, "cy");
   }
-  prior.reference_f_number = numberAt(values, "reference_f_number");
-  prior.luminance_factor = numberAt(values, "luminance_factor");
-  prior.luminance_factor_u = numberAt(values, "luminance_factor_u");
-  if (const auto flat = values.find("flat_field"); flat != values.end() && flat->is_string())
-    prior.flat_field = flat->get<std::string>();
+  prior.reference_f_number = number(fields, "reference_f_number");
+  prior.luminance_factor = number(fields, "luminance_factor");
+  prior.luminance_factor_u = number(fields, "luminance_factor_u");
+  prior.flat_field = fields.optionalText("flat_field").value_or(std::nullopt);
   prior.source = std::move(values);
   return prior;
 }

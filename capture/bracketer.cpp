@@ -9,6 +9,7 @@
 #include <ctime>
 
 #include "capture/sim/sim_camera.h"
+#include "core/json.h"
 #include "core/progress.h"
 #include "core/stack_io.h"
 #include "core/time.h"
@@ -199,9 +200,8 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
   const std::optional<double> alpha_deg = alphaFor(camera, settings);
   StackManifest manifest;
   const UtcTime now = settings.start_time.value_or(utcNow());
-  const std::string stamp = formatUtc(now, "%Y%m%dT%H%M%SZ");
-  manifest.id = stackId(stamp, alpha_deg);
-  manifest.captured_at = formatUtc(now, "%Y-%m-%dT%H:%M:%SZ");
+  manifest.id = stackId(formatStackStamp(now), alpha_deg);
+  manifest.captured_at = formatIsoSeconds(now);
   manifest.alpha_deg = alpha_deg;
   manifest.calibration = calibrationFor(camera, settings);
   const CameraOptics& known = camera.info().optics;

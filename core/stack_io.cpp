@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/image_io.h"
+#include "core/json.h"
 #include "core/parallel.h"
 #include "core/unique_fd.h"
 
@@ -204,7 +205,7 @@ Result<Calibration> readCalibrationFile(const fs::path& path) {
     calibration->directory = fs::absolute(path, ec).parent_path();
   }
   if (!calibration && document->is_object() && document->contains("parts") &&
-      calibration.error().message.find(" is required") != std::string::npos) {
+      calibration.error().message.find(" is missing") != std::string::npos) {
     // One part of a calibration (docs/calibration.md): say how to make a whole one.
     calibration.error().message +=
         " (a calibration part: combine the parts with `glarecam calibrate merge`)";

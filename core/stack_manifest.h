@@ -101,19 +101,6 @@ inline constexpr int kMaxImageSide = 1 << 20;
 // An image side a calibration may record: a whole number of pixels in [1, kMaxImageSide].
 bool isImageSidePx(double value);
 
-// Deepest nesting accepted in a JSON document (manifests need 4).
-inline constexpr int kMaxJsonDepth = 64;
-
-// Parses JSON text; the error names `where` and the parser's line and column.
-Result<nlohmann::json> parseJsonText(std::string_view text, const std::string& where);
-// Reads and parses a JSON file; a missing file is kBadInput.
-Result<nlohmann::json> readJsonFile(const std::string& path);
-
-// A document as written to files and stdout: two-space indent, a final newline, and any string
-// that is not valid UTF-8 (a directory name, say) with U+FFFD in place of its bad bytes instead
-// of an exception.
-std::string jsonText(const nlohmann::json& document);
-
 // True when `relative` is a plain relative path that stays inside its base directory.
 bool isContainedRelativePath(std::string_view relative);
 

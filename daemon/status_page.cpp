@@ -5,9 +5,10 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/json.h"
+#include "core/time.h"
 #include "core/version.h"
 #include "daemon/output_tree.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::daemon {
 
@@ -20,15 +21,11 @@ constexpr std::array<const char*, 5> kStates{"starting", "capturing", "paused", 
                                              "stopping"};
 
 std::string isoSeconds(UtcTime time) {
-  return sun::formatIsoTime(std::chrono::floor<std::chrono::seconds>(time));
+  return formatIsoTime(std::chrono::floor<std::chrono::seconds>(time));
 }
 
 std::string isoSeconds(std::chrono::system_clock::time_point time) {
   return isoSeconds(std::chrono::time_point_cast<std::chrono::microseconds>(time));
-}
-
-json optionalNumber(const std::optional<double>& value) {
-  return value && std::isfinite(*value) ? json(*value) : json(nullptr);
 }
 
 json optionalText(const std::string& text) { return text.empty() ? json(nullptr) : json(text); }
@@ -103,17 +100,17 @@ json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
     last_stack = {{"id", *st.last_stack},
                   {"captured_at",
                    st.last_capture_time ? json(isoSeconds(*st.last_capture_time)) : json(nullptr)},
-                  {"alpha_deg", optionalNumber(st.last_alpha_deg)}};
+                  {"alpha_deg", finiteOrNull(st.last_alpha_deg)}};
   }
   json last_result = nullptr;
   if (st.last_result) {
     const ResultBrief& b = st.last_result->brief;
     last_result = {{"id", st.last_result->stack_id},
-                   {"alpha_deg", optionalNumber(b.alpha_deg)},
+                   {"alpha_deg", finiteOrNull(b.alpha_deg)},
                    {"lmax_cd_m2", b.lmax_cd_m2},
                    {"lmax_bound", optionalText(b.lmax_bound)},
-                   {"limit_cd_m2", optionalNumber(b.limit_cd_m2)},
-                   {"glare", b.glare ? json(*b.glare) : json(nullptr)},
+                   {"limit_cd_m2", finiteOrNull(b.limit_cd_m2)},
+                   {"glare", jsonOrNull(b.glare)},
                    {"picture", "/last-stack.png"}};
   }
   json disk = {{"root", s.output_root.string()},
@@ -139,7 +136,7 @@ json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
       {"schedule", s.schedule},
       {"next",
        {{"time", st.next_capture_time ? json(isoSeconds(*st.next_capture_time)) : json(nullptr)},
-        {"alpha_deg", optionalNumber(st.next_target_deg)}}},
+        {"alpha_deg", finiteOrNull(st.next_target_deg)}}},
       {"last_stack", last_stack},
       {"last_result", last_result},
       {"today",

@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "daemon/status_page.h"
 
 namespace glarecam::daemon {

@@ -8,7 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "core/version.h"
 
 namespace glarecam::hazard {

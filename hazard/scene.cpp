@@ -4,8 +4,7 @@
 #include <cmath>
 #include <set>
 
-#include "core/stack_manifest.h"
-#include "hazard/json_fields.h"
+#include "core/json.h"
 
 namespace glarecam::hazard {
 namespace {
@@ -41,99 +40,83 @@ bool segmentsMeet(Point2 a, Point2 b, Point2 c, Point2 d, double epsilon) {
   return false;
 }
 
-Result<Vec3> readPoint(const JsonFields& fields, const nlohmann::json& value,
-                       const std::string& field) {
-  GLARECAM_CHECK(fields.array(value, field));
-  if (value.size() != 3) return fields.fail(field, "is not [x, y, z] (3 numbers in metres)");
+Result<Vec3> readPoint(const JsonReader& value) {
+  GLARECAM_CHECK(value.array());
+  if (value.size() != 3) return value.fail("is not [x, y, z] (3 numbers in metres)");
   std::array<double, 3> xyz{};
-  for (std::size_t i = 0; i < 3; ++i) {
-    GLARECAM_ASSIGN(xyz[i], fields.numberIn(value[i], JsonFields::element(field, i),
-                                            -kMaxCoordinateM, kMaxCoordinateM, " m"));
-  }
+  for (std::size_t i = 0; i < 3; ++i)
+    GLARECAM_ASSIGN(xyz[i], value.element(i).numberIn(-kMaxCoordinateM, kMaxCoordinateM, " m"));
   return Vec3{xyz[0], xyz[1], xyz[2]};
 }
 
-Status readSite(const JsonFields& fields, const nlohmann::json& document, HazardSite& site) {
-  const nlohmann::json* value = nullptr;
-  GLARECAM_ASSIGN(value, fields.member(document, "", "site"));
-  const nlohmann::json& json = *value;
-  GLARECAM_CHECK(fields.object(json, "site"));
+Status readSite(const JsonReader& document, HazardSite& site) {
+  JsonReader json = document;
+  GLARECAM_ASSIGN(json, document.member("site"));
+  GLARECAM_CHECK(json.object());
   sun::SiteLocation& location = site.location;
-  GLARECAM_ASSIGN(value, fields.member(json, "site", "latitude_deg"));
-  GLARECAM_ASSIGN(location.latitude_deg,
-                  fields.numberIn(*value, "site.latitude_deg", -90, 90, "°"));
-  GLARECAM_ASSIGN(value, fields.member(json, "site", "longitude_deg"));
-  GLARECAM_ASSIGN(location.longitude_deg,
-                  fields.numberIn(*value, "site.longitude_deg", -180, 180, "°"));
-  GLARECAM_ASSIGN(value, fields.member(json, "site", "utc_offset_h"));
-  GLARECAM_ASSIGN(site.utc_offset_h, fields.numberIn(*value, "site.utc_offset_h", kMinUtcOffsetH,
-                                                     kMaxUtcOffsetH, " h"));
-  if (const nlohmann::json* elevation = JsonFields::optionalMember(json, "elevation_m")) {
-    GLARECAM_ASSIGN(location.altitude_m,
-                    fields.numberIn(*elevation, "site.elevation_m", -1000, 10000, " m"));
-  }
-  location.pressure_hpa = sun::standardPressureHpa(location.altitude_m);
-  if (const nlohmann::json* pressure = JsonFields::optionalMember(json, "pressure_hpa")) {
-    GLARECAM_ASSIGN(location.pressure_hpa,
-                    fields.numberIn(*pressure, "site.pressure_hpa", 0, 5000, " hPa"));
-  }
-  if (const nlohmann::json* temperature = JsonFields::optionalMember(json, "temperature_c")) {
-    GLARECAM_ASSIGN(location.temperature_c,
-                    fields.numberIn(*temperature, "site.temperature_c", -90, 60, " °C"));
-  }
+  GLARECAM_ASSIGN(location.latitude_deg, json.numberIn("latitude_deg", -90, 90, "°"));
+  GLARECAM_ASSIGN(location.longitude_deg, json.numberIn("longitude_deg", -180, 180, "°"));
+  GLARECAM_ASSIGN(site.utc_offset_h,
+                  json.numberIn("utc_offset_h", kMinUtcOffsetH, kMaxUtcOffsetH, " h"));
+  std::optional<double> elevation_m, pressure_hpa, temperature_c;
+  GLARECAM_ASSIGN(elevation_m, json.optionalNumberIn("elevation_m", -1000, 10000, " m"));
+  GLARECAM_ASSIGN(pressure_hpa, json.optionalNumberIn("pressure_hpa", 0, 5000, " hPa"));
+  GLARECAM_ASSIGN(temperature_c, json.optionalNumberIn("temperature_c", -90, 60, " °C"));
+  if (elevation_m) location.altitude_m = *elevation_m;
+  location.pressure_hpa = pressure_hpa.value_or(sun::standardPressureHpa(location.altitude_m));
+  if (temperature_c) location.temperature_c = *temperature_c;
   return {};
 }
 
-Result<std::string> readName(const JsonFields& fields, const nlohmann::json& json,
-                             const std::string& where, std::set<std::string>& seen,
+Result<std::string> readName(const JsonReader& json, std::set<std::string>& seen,
                              const char* kind) {
-  const nlohmann::json* value = nullptr;
-  GLARECAM_ASSIGN(value, fields.member(json, where, "name"));
   std::string name;
-  GLARECAM_ASSIGN(name, fields.text(*value, JsonFields::child(where, "name")));
-  if (name.empty()) return fields.fail(JsonFields::child(where, "name"), "is empty");
+  GLARECAM_ASSIGN(name, json.text("name"));
+  if (name.empty()) return json.fail("name", "is empty");
   if (!seen.insert(name).second)
-    return fields.fail(JsonFields::child(where, "name"),
-                       "repeats the " + std::string(kind) + " name \"" + name + "\"");
+    return json.fail("name", "repeats the " + std::string(kind) + " name \"" + name + "\"");
   return name;
 }
 
-Status readArrays(const JsonFields& fields, const nlohmann::json& document,
-                  const std::filesystem::path& base, Scene& scene) {
-  const nlohmann::json* value = nullptr;
-  GLARECAM_ASSIGN(value, fields.member(document, "", "arrays"));
-  GLARECAM_CHECK(fields.array(*value, "arrays"));
-  if (value->empty()) return fields.fail("arrays", "is empty (the scene needs an array)");
+// A non-empty array member of the document (`what`: why it may not be empty).
+Result<JsonReader> nonEmptyArray(const JsonReader& document, const char* key, const char* what) {
+  JsonReader list = document;
+  GLARECAM_ASSIGN(list, document.member(key));
+  GLARECAM_CHECK(list.array());
+  if (list.size() == 0) return list.fail(std::string("is empty (the scene needs ") + what + ")");
+  return list;
+}
+
+Status readArrays(const JsonReader& document, const std::filesystem::path& base, Scene& scene) {
+  JsonReader list = document;
+  GLARECAM_ASSIGN(list, nonEmptyArray(document, "arrays", "an array"));
   std::set<std::string> names;
-  for (std::size_t i = 0; i < value->size(); ++i) {
-    const std::string where = JsonFields::element("arrays", i);
-    const nlohmann::json& json = (*value)[i];
-    GLARECAM_CHECK(fields.object(json, where));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const JsonReader json = list.element(i);
+    GLARECAM_CHECK(json.object());
     std::string name;
-    GLARECAM_ASSIGN(name, readName(fields, json, where, names, "array"));
-    const nlohmann::json* vertices_json = nullptr;
-    const std::string vertices_field = JsonFields::child(where, "vertices_m");
-    GLARECAM_ASSIGN(vertices_json, fields.member(json, where, "vertices_m"));
-    GLARECAM_CHECK(fields.array(*vertices_json, vertices_field));
+    GLARECAM_ASSIGN(name, readName(json, names, "array"));
+    JsonReader vertices_json = json;
+    GLARECAM_ASSIGN(vertices_json, json.member("vertices_m"));
+    GLARECAM_CHECK(vertices_json.array());
     std::vector<Vec3> vertices;
-    for (std::size_t v = 0; v < vertices_json->size(); ++v) {
+    for (std::size_t v = 0; v < vertices_json.size(); ++v) {
       Vec3 point;
-      GLARECAM_ASSIGN(
-          point, readPoint(fields, (*vertices_json)[v], JsonFields::element(vertices_field, v)));
+      GLARECAM_ASSIGN(point, readPoint(vertices_json.element(v)));
       vertices.push_back(point);
     }
     ArrayPolygon array;
-    GLARECAM_ASSIGN(array, makeArrayPolygon(std::move(name), std::move(vertices), fields.file(),
-                                            vertices_field));
-    if (const nlohmann::json* profile = JsonFields::optionalMember(json, "profile")) {
-      std::string text;
-      GLARECAM_ASSIGN(text, fields.text(*profile, JsonFields::child(where, "profile")));
-      if (text.empty()) return fields.fail(JsonFields::child(where, "profile"), "is empty");
-      const std::filesystem::path path(text);
+    GLARECAM_ASSIGN(array, makeArrayPolygon(std::move(name), std::move(vertices), json.file(),
+                                            vertices_json.path()));
+    std::optional<std::string> profile;
+    GLARECAM_ASSIGN(profile, json.optionalText("profile"));
+    if (profile) {
+      if (profile->empty()) return json.fail("profile", "is empty");
+      const std::filesystem::path path(*profile);
       array.profile = path.is_absolute() ? path : base / path;
     }
     if (array.normal.z < 0) {
-      scene.warnings.push_back(fields.file() + ": array \"" + array.name +
+      scene.warnings.push_back(json.file() + ": array \"" + array.name +
                                "\" faces downward (its vertices may run clockwise seen from "
                                "its front)");
     }
@@ -142,32 +125,27 @@ Status readArrays(const JsonFields& fields, const nlohmann::json& document,
   return {};
 }
 
-Status readObservers(const JsonFields& fields, const nlohmann::json& document, Scene& scene) {
-  const nlohmann::json* value = nullptr;
-  GLARECAM_ASSIGN(value, fields.member(document, "", "observers"));
-  GLARECAM_CHECK(fields.array(*value, "observers"));
-  if (value->empty()) return fields.fail("observers", "is empty (the scene needs an observer)");
+Status readObservers(const JsonReader& document, Scene& scene) {
+  JsonReader list = document;
+  GLARECAM_ASSIGN(list, nonEmptyArray(document, "observers", "an observer"));
   std::set<std::string> names;
-  for (std::size_t i = 0; i < value->size(); ++i) {
-    const std::string where = JsonFields::element("observers", i);
-    const nlohmann::json& json = (*value)[i];
-    GLARECAM_CHECK(fields.object(json, where));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const JsonReader json = list.element(i);
+    GLARECAM_CHECK(json.object());
     Observer observer;
-    GLARECAM_ASSIGN(observer.name, readName(fields, json, where, names, "observer"));
-    const nlohmann::json* position = nullptr;
-    GLARECAM_ASSIGN(position, fields.member(json, where, "position_m"));
-    GLARECAM_ASSIGN(observer.position_m,
-                    readPoint(fields, *position, JsonFields::child(where, "position_m")));
-    if (const nlohmann::json* hours = JsonFields::optionalMember(json, "hours")) {
-      const std::string field = JsonFields::child(where, "hours");
-      GLARECAM_CHECK(fields.array(*hours, field));
-      if (hours->size() != 2) return fields.fail(field, "is not [from, to] in hours");
-      GLARECAM_ASSIGN(observer.from_h,
-                      fields.numberIn((*hours)[0], JsonFields::element(field, 0), 0, 24, " h"));
-      GLARECAM_ASSIGN(observer.to_h,
-                      fields.numberIn((*hours)[1], JsonFields::element(field, 1), 0, 24, " h"));
+    GLARECAM_ASSIGN(observer.name, readName(json, names, "observer"));
+    JsonReader position = json;
+    GLARECAM_ASSIGN(position, json.member("position_m"));
+    GLARECAM_ASSIGN(observer.position_m, readPoint(position));
+    std::optional<JsonReader> hours;
+    GLARECAM_ASSIGN(hours, json.optionalMember("hours"));
+    if (hours) {
+      GLARECAM_CHECK(hours->array());
+      if (hours->size() != 2) return hours->fail("is not [from, to] in hours");
+      GLARECAM_ASSIGN(observer.from_h, hours->element(0).numberIn(0, 24, " h"));
+      GLARECAM_ASSIGN(observer.to_h, hours->element(1).numberIn(0, 24, " h"));
       if (observer.from_h >= observer.to_h)
-        return fields.fail(field, "is an empty window (from must be before to)");
+        return hours->fail("is an empty window (from must be before to)");
     }
     scene.observers.push_back(std::move(observer));
   }
@@ -178,15 +156,15 @@ Status readObservers(const JsonFields& fields, const nlohmann::json& document, S
 
 Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertices_m,
                                       const std::string& file, const std::string& field) {
-  const JsonFields fields(file);
+  const auto fail = [&](const std::string& problem) {
+    return badInput(file + ": " + field + " " + problem);
+  };
   const std::size_t count = vertices_m.size();
-  if (count < 3)
-    return fields.fail(field, "has " + std::to_string(count) + " vertices (a polygon needs 3)");
+  if (count < 3) return fail("has " + std::to_string(count) + " vertices (a polygon needs 3)");
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t j = i + 1; j < count; ++j) {
       if (norm(vertices_m[i] - vertices_m[j]) < kSameVertexM) {
-        return fields.fail(
-            field, "repeats a vertex (" + std::to_string(i) + " and " + std::to_string(j) + ")");
+        return fail("repeats a vertex (" + std::to_string(i) + " and " + std::to_string(j) + ")");
       }
     }
   }
@@ -200,9 +178,9 @@ Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertic
     sum = sum + a;
   }
   array.area_m2 = norm(newell) / 2;
-  if (!std::isfinite(array.area_m2)) return fields.fail(field, "has coordinates too large to use");
+  if (!std::isfinite(array.area_m2)) return fail("has coordinates too large to use");
   if (!(array.area_m2 >= kMinArrayAreaM2))
-    return fields.fail(field, "is degenerate (its vertices enclose no area)");
+    return fail("is degenerate (its vertices enclose no area)");
   array.normal = normalised(newell);
   array.centroid_m = (1.0 / static_cast<double>(count)) * sum;
   for (std::size_t i = 0; i < count; ++i) {
@@ -211,7 +189,7 @@ Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertic
       char text[96];
       std::snprintf(text, sizeof text, "is not planar (vertex %zu lies %.3f m off the plane)", i,
                     off_plane_m);
-      return fields.fail(field, text);
+      return fail(text);
     }
     array.radius_m = std::max(array.radius_m, norm(vertices_m[i] - array.centroid_m));
   }
@@ -248,8 +226,8 @@ Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertic
         meet = std::abs(turn) <= epsilon && along > 0;
       }
       if (meet) {
-        return fields.fail(field, "crosses itself (edges " + std::to_string(i) + " and " +
-                                      std::to_string(j) + " meet)");
+        return fail("crosses itself (edges " + std::to_string(i) + " and " + std::to_string(j) +
+                    " meet)");
       }
     }
   }
@@ -272,18 +250,12 @@ bool containsPlanePoint(const ArrayPolygon& array, Vec3 point_m) {
 
 Result<Scene> parseScene(const nlohmann::json& document, const std::string& file,
                          const std::filesystem::path& base) {
-  const JsonFields fields(file);
-  if (!document.is_object()) return fields.fail("the document", "is not a JSON object");
-  const nlohmann::json* schema = nullptr;
-  GLARECAM_ASSIGN(schema, fields.member(document, "", "schema"));
-  if (!schema->is_string() || schema->get<std::string>() != kSceneSchema) {
-    return fields.fail("schema", schema->dump() + " is not \"" + std::string(kSceneSchema) +
-                                     "\" (not a hazard scene)");
-  }
+  const JsonReader fields(document, file);
+  GLARECAM_CHECK(fields.schema(kSceneSchema, "a hazard scene"));
   Scene scene;
-  GLARECAM_CHECK(readSite(fields, document, scene.site));
-  GLARECAM_CHECK(readArrays(fields, document, base, scene));
-  GLARECAM_CHECK(readObservers(fields, document, scene));
+  GLARECAM_CHECK(readSite(fields, scene.site));
+  GLARECAM_CHECK(readArrays(fields, base, scene));
+  GLARECAM_CHECK(readObservers(fields, scene));
   return scene;
 }
 

@@ -13,6 +13,8 @@
 #include <set>
 #include <tuple>
 
+#include "core/json.h"
+
 namespace glarecam::pipeline {
 
 namespace {
@@ -507,19 +509,17 @@ nlohmann::json qualityJson(const FitQuality& q, std::initializer_list<const char
   int i = 0;
   for (const char* name : names) {
     j[name] = q.parameters[i];
-    errors[name] = q.standard_errors[i] ? nlohmann::json(*q.standard_errors[i]) : nullptr;
+    errors[name] = jsonOrNull(q.standard_errors[i]);
     ++i;
   }
   j["standard_errors"] = errors;
-  j["r2"] = std::isfinite(q.r2) ? nlohmann::json(q.r2) : nullptr;
+  j["r2"] = finiteOrNull(q.r2);
   j["rmse"] = q.rmse;
   j["points"] = q.points;
-  j["condition_number"] =
-      std::isfinite(q.condition_number) ? nlohmann::json(q.condition_number) : nullptr;
+  j["condition_number"] = finiteOrNull(q.condition_number);
   j["under_determined"] = q.under_determined;
   j["ill_conditioned"] = q.ill_conditioned;
-  j["max_correlation"] =
-      std::isfinite(q.max_correlation) ? nlohmann::json(q.max_correlation) : nullptr;
+  j["max_correlation"] = finiteOrNull(q.max_correlation);
   j["starts"] = q.start_r2.size();
   return j;
 }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "core/json.h"
 #include "core/stack_io.h"
 #include "rig/config_table.h"
 

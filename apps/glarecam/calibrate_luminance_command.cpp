@@ -10,6 +10,7 @@
 
 #include "apps/glarecam/calibrate_options.h"
 #include "calibration/luminance_drift.h"
+#include "core/json.h"
 
 namespace glarecam::apps {
 namespace {

@@ -7,6 +7,7 @@
 
 #include "apps/glarecam/calibrate_options.h"
 #include "apps/glarecam/option_parsing.h"
+#include "core/json.h"
 
 namespace glarecam::apps {
 namespace {

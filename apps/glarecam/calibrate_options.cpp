@@ -5,6 +5,7 @@
 
 #include "apps/glarecam/option_parsing.h"
 #include "capture/calibration_series.h"
+#include "core/json.h"
 
 namespace glarecam::apps {
 

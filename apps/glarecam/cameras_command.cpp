@@ -4,6 +4,7 @@
 
 #include "apps/glarecam/commands.h"
 #include "capture/camera_registry.h"
+#include "core/json.h"
 #include "core/stack_manifest.h"
 
 namespace glarecam::apps {

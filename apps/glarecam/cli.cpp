@@ -12,8 +12,8 @@
 #include "apps/common/value_types.h"
 #include "apps/glarecam/commands.h"
 #include "core/error.h"
+#include "core/json.h"
 #include "core/logging.h"
-#include "core/stack_manifest.h"
 #include "core/version.h"
 
 namespace glarecam::apps {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "apps/glarecam/commands.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "daemon/rig_doctor.h"
 #include "rig/rig_config.h"
 

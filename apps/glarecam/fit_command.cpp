@@ -8,7 +8,7 @@
 #include <string>
 
 #include "apps/glarecam/commands.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "pipeline/glare_fits.h"
 
 namespace glarecam::apps {
@@ -25,7 +25,7 @@ Status runFit(const FitArgs& args) {
   pipeline::SweepTable table;
   pipeline::SweepFits fits;
   GLARECAM_ASSIGN(fits, pipeline::readAndFitSweep(args.sweep, table,
-                                                    {.include_suspect = args.include_suspect}));
+                                                  {.include_suspect = args.include_suspect}));
   if (args.json) {
     std::printf("%s", jsonText(pipeline::fitsJson(fits)).c_str());
   } else {

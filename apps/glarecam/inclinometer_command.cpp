@@ -10,13 +10,12 @@
 #include "apps/glarecam/inclinometer_options.h"
 #include "apps/glarecam/option_parsing.h"
 #include "core/atomic_file.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "core/time.h"
 #include "daemon/daemon_config.h"
 #include "rig/inclinometer/inclinometer_registry.h"
 #include "rig/inclinometer/sample_progress.h"
 #include "rig/inclinometer/zero_offset_file.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::apps {
 
@@ -88,7 +87,7 @@ Status runInclinometerRead(const InclinometerArgs& args) {
                                                    }));
   nlohmann::json document = rig::tiltReadingJson(reading);
   document["uri"] = choice.uri;
-  document["time"] = sun::formatIsoTime(utcNow());
+  document["time"] = formatIsoTime(utcNow());
   document["zero_offset_applied"] = stored.has_value();
   if (args.out) GLARECAM_CHECK(writeFileAtomic(*args.out, jsonText(document)));
   if (args.json) {

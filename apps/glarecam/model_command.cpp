@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "apps/glarecam/commands.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "pipeline/facet_model.h"
 
 namespace glarecam::apps {

@@ -21,6 +21,7 @@
 #include "capture/aravis/glib_ownership.h"
 #include "capture/sim/sensor_model.h"
 #include "core/atomic_file.h"
+#include "core/json.h"
 
 namespace glarecam::capture {
 namespace {

@@ -10,6 +10,7 @@
 #include "calibration/camera_model.h"
 #include "capture/sim/simulated_stack.h"
 #include "core/angles.h"
+#include "core/json.h"
 #include "core/stack_io.h"
 
 namespace glarecam::capture {

@@ -10,6 +10,7 @@
 #include "calibration/radiometry.h"
 #include "capture/sim/module_model.h"
 #include "core/angles.h"
+#include "core/json.h"
 #include "core/progress.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"

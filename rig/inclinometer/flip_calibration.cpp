@@ -5,12 +5,11 @@
 
 #include <cmath>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "core/time.h"
 #include "rig/inclinometer/inclinometer_registry.h"
 #include "rig/inclinometer/sample_progress.h"
 #include "rig/inclinometer/zero_offset_file.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::rig {
 
@@ -36,7 +35,7 @@ Result<FlipReading> takeFlipReading(Inclinometer& sensor, const std::string& uri
   flip.uri = uri;
   flip.record = tiltReadingJson(flip.reading);
   flip.record["uri"] = uri;
-  flip.record["time"] = sun::formatIsoTime(utcNow());
+  flip.record["time"] = formatIsoTime(utcNow());
   return flip;
 }
 
@@ -111,7 +110,7 @@ Result<FlipCalibration> storeFlipCalibration(const std::filesystem::path& calibr
     spdlog::warn("inclinometer flip: the readings are of {}, the configured sensor is {}", flip.uri,
                  configured_uri);
   const nlohmann::json provenance{{"method", "flip"},
-                                  {"date", sun::formatIsoTime(utcNow())},
+                                  {"date", formatIsoTime(utcNow())},
                                   {"uri", flip.uri},
                                   {"readings", {readings.first.record, readings.second.record}}};
   GLARECAM_CHECK(writeZeroOffset(calibration_file, flip.zero, provenance));

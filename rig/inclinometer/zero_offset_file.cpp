@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "core/atomic_file.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
 
 namespace glarecam::rig {
 
@@ -17,14 +17,6 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kBlock = "inclinometer";
-
-Result<double> finiteNumber(const json& object, const char* key, const std::string& where) {
-  const auto it = object.find(key);
-  if (it == object.end()) return badInput(fmt::format("{}: missing \"{}\"", where, key));
-  if (!it->is_number() || !std::isfinite(it->get<double>()))
-    return badInput(fmt::format("{}: \"{}\" must be a finite number", where, key));
-  return it->get<double>();
-}
 
 }  // namespace
 
@@ -43,57 +35,51 @@ json tiltReadingJson(const TiltReading& r) {
 }
 
 Result<TiltReading> parseTiltReading(const json& document, const std::string& where) {
-  if (!document.is_object()) return badInput(where + ": a tilt reading must be a JSON object");
+  const JsonReader fields(document, where);
+  GLARECAM_CHECK(fields.object());
   TiltReading r;
-  GLARECAM_ASSIGN(r.raw_tilt.x_deg, finiteNumber(document, "raw_tilt_x_deg", where));
-  GLARECAM_ASSIGN(r.raw_tilt.y_deg, finiteNumber(document, "raw_tilt_y_deg", where));
-  GLARECAM_ASSIGN(r.tilt_std_deg, finiteNumber(document, "tilt_std_deg", where));
-  if (r.tilt_std_deg < 0) return badInput(where + ": \"tilt_std_deg\" must not be negative");
-  double samples = 0;
-  GLARECAM_ASSIGN(samples, finiteNumber(document, "samples", where));
-  if (!(samples >= kMinTiltSamples && samples <= kMaxTiltSamples) || samples != std::floor(samples))
-    return badInput(fmt::format("{}: \"samples\" must be a whole number in [{}, {}]", where,
-                                kMinTiltSamples, kMaxTiltSamples));
-  r.samples = static_cast<int>(samples);
+  GLARECAM_ASSIGN(r.raw_tilt.x_deg, fields.number("raw_tilt_x_deg"));
+  GLARECAM_ASSIGN(r.raw_tilt.y_deg, fields.number("raw_tilt_y_deg"));
+  GLARECAM_ASSIGN(r.tilt_std_deg, fields.nonNegative("tilt_std_deg"));
+  GLARECAM_ASSIGN(r.samples, fields.integer("samples", kMinTiltSamples, kMaxTiltSamples));
   r.tilt = r.raw_tilt;
   r.module_tilt_deg = moduleTiltDeg(r.tilt);
   // The raw mean vector (the flip's exact formula uses it); from the tilts when not recorded.
   r.mean = mountedGravity(r.raw_tilt, {});
-  const auto mean = document.find("mean");
-  if (mean != document.end()) {
-    if (!mean->is_object()) return badInput(where + ": \"mean\" must be an object");
-    const std::string mean_where = where + ": mean";
-    GLARECAM_ASSIGN(r.mean.x_g, finiteNumber(*mean, "x_g", mean_where));
-    GLARECAM_ASSIGN(r.mean.y_g, finiteNumber(*mean, "y_g", mean_where));
-    GLARECAM_ASSIGN(r.mean.z_g, finiteNumber(*mean, "z_g", mean_where));
+  std::optional<JsonReader> mean;
+  GLARECAM_ASSIGN(mean, fields.optionalMember("mean"));
+  if (mean) {
+    GLARECAM_CHECK(mean->object());
+    GLARECAM_ASSIGN(r.mean.x_g, mean->number("x_g"));
+    GLARECAM_ASSIGN(r.mean.y_g, mean->number("y_g"));
+    GLARECAM_ASSIGN(r.mean.z_g, mean->number("z_g"));
     if (!(std::hypot(r.mean.x_g, r.mean.y_g, r.mean.z_g) > 0))
-      return badInput(mean_where + ": the vector is zero");
+      return mean->fail("is the zero vector");
   }
   return r;
 }
 
 Result<std::optional<InclinometerZeroOffset>> readZeroOffset(const std::filesystem::path& file) {
   json document;
-  GLARECAM_ASSIGN(document, readJsonFile(file.string()));
-  if (!document.is_object()) return badInput(file.string() + ": not a JSON object");
-  const auto block = document.find(kBlock);
-  if (block == document.end()) return std::nullopt;
-  const std::string where = file.string() + ": " + kBlock;
-  if (!block->is_object()) return badInput(where + " must be an object");
+  GLARECAM_ASSIGN(document, readJsonFile(file));
+  const JsonReader fields(document, file.string());
+  std::optional<JsonReader> block;
+  GLARECAM_ASSIGN(block, fields.optionalMember(kBlock));
+  if (!block) return std::nullopt;
+  GLARECAM_CHECK(block->object());
   InclinometerZeroOffset zero;
-  GLARECAM_ASSIGN(zero.offset.x_deg, finiteNumber(*block, "zero_offset_x_deg", where));
-  GLARECAM_ASSIGN(zero.offset.y_deg, finiteNumber(*block, "zero_offset_y_deg", where));
-  const auto uri = block->find("uri");
-  if (uri != block->end() && uri->is_string()) zero.measured_with = uri->get<std::string>();
-  if (block->contains("uncertainty_deg"))
-    GLARECAM_ASSIGN(zero.uncertainty_deg, finiteNumber(*block, "uncertainty_deg", where));
-  if (zero.uncertainty_deg < 0)
-    return badInput(where + ": \"uncertainty_deg\" must not be negative");
+  GLARECAM_ASSIGN(zero.offset.x_deg, block->number("zero_offset_x_deg"));
+  GLARECAM_ASSIGN(zero.offset.y_deg, block->number("zero_offset_y_deg"));
+  const auto uri = block->value().find("uri");
+  if (uri != block->value().end() && uri->is_string()) zero.measured_with = uri->get<std::string>();
+  std::optional<double> uncertainty_deg;
+  GLARECAM_ASSIGN(uncertainty_deg, block->optionalNonNegative("uncertainty_deg"));
+  if (uncertainty_deg) zero.uncertainty_deg = *uncertainty_deg;
   if (std::abs(zero.offset.x_deg) > kMaxPlausibleZeroOffsetDeg ||
       std::abs(zero.offset.y_deg) > kMaxPlausibleZeroOffsetDeg)
-    return badInput(fmt::format("{}: zero offset ({:g}°, {:g}°) is implausibly large (> {:g}°)",
-                                where, zero.offset.x_deg, zero.offset.y_deg,
-                                kMaxPlausibleZeroOffsetDeg));
+    return block->fail(fmt::format("zero offset ({:g}°, {:g}°) is implausibly large (> {:g}°)",
+                                   zero.offset.x_deg, zero.offset.y_deg,
+                                   kMaxPlausibleZeroOffsetDeg));
   return zero;
 }
 
@@ -132,7 +118,7 @@ Status writeZeroOffset(const std::filesystem::path& file, const InclinometerZero
   block["zero_offset_y_deg"] = zero.offset.y_deg;
   block["uncertainty_deg"] = zero.uncertainty_deg;
   document[kBlock] = block;
-  return writeFileAtomic(file, jsonText(document));
+  return writeJsonFile(file, document);
 }
 
 }  // namespace glarecam::rig

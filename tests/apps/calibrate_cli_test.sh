@@ -176,7 +176,7 @@ check "process: another size is not forced" 2 "$GLARECAM" process "$WORK/glare" 
 expect "process: nothing written for another size" test ! -e "$WORK/mixed-result"
 check "process: a part is not a calibration" 2 "$GLARECAM" process "$WORK/glare" --calibration "$C/dark.json" \
   --out "$WORK/glare-result" --no-progress
-expect "process: missing key named" one_line_naming "saturation_dn is required (a calibration part: combine the parts with"
+expect "process: missing key named" one_line_naming "saturation_dn is missing (a calibration part: combine the parts with"
 check "simulate-calibration: unknown target" 2 "$GLARECAM" simulate-calibration sphere --out "$T"
 expect "simulate-calibration: targets listed" one_line_naming "known: dark, flat"
 expect "nothing half-written" test -z "$(find "$WORK" -name '.tmp-*')"

@@ -27,8 +27,8 @@
 
 #include "apps/glarecamd_harness.h"
 #include "core/build_config.h"
+#include "core/json.h"
 #include "core/stack_io.h"
-#include "core/stack_manifest.h"
 #include "support/test_support.h"
 
 namespace glarecam {

@@ -60,7 +60,7 @@ edit() {  # edit NAME SED-EXPRESSION: a copy of the example scene, changed
 }
 bad "wrong schema" "schema" "$(edit schema 's/hazard-scene\/1/hazard-scene\/9/')" --profile "$PROFILE"
 bad "latitude" "site.latitude_deg 95° is outside" "$(edit lat 's/"latitude_deg": 47.37/"latitude_deg": 95/')" --profile "$PROFILE"
-bad "text coordinate" "arrays[0].vertices_m[1][0] is not a number" \
+bad "text coordinate" "arrays[0].vertices_m[1][0] must be a number, not" \
   "$(edit text 's/\[6, 0, 9\]/["6", 0, 9]/')" --profile "$PROFILE"
 bad "two vertices" "has 2 vertices" \
   "$(edit two 's/\[\[-6, 0, 9\], \[6, 0, 9\], \[6, 5.2, 6\], \[-6, 5.2, 6\]\]/[[-6, 0, 9], [6, 0, 9]]/')" --profile "$PROFILE"

@@ -77,12 +77,5 @@ TEST(StackManifest, RefusesPathsThatEscape) {
   EXPECT_FALSE(isContainedRelativePath(""));
 }
 
-TEST(StackManifest, InvalidJsonGivesLineAndColumn) {
-  auto document = parseJsonText("{\n  \"schema\": ,\n}", "x/stack.json");
-  ASSERT_FALSE(document);
-  EXPECT_NE(document.error().message.find("x/stack.json: invalid JSON"), std::string::npos);
-  EXPECT_NE(document.error().message.find("line 2"), std::string::npos) << document.error().message;
-}
-
 }  // namespace
 }  // namespace glarecam

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "daemon/capture_daemon.h"
 #include "daemon/daemon_test_support.h"
 #include "daemon/day_products.h"

@@ -110,7 +110,7 @@ def main():
     case("exposure-zero", "exposure_us must be positive", edit=set_path(["frames", 1, "exposure_us"], 0))
     case("exposure-negative", "exposure_us must be positive", edit=set_path(["frames", 1, "exposure_us"], -5))
     case("exposure-not-a-number", "exposure_us must be a number", edit=set_path(["frames", 1, "exposure_us"], "10us"))
-    case("exposure-missing", "exposure_us is required", edit=remove_path(["frames", 1, "exposure_us"]))
+    case("exposure-missing", "frames[1].exposure_us is missing", edit=remove_path(["frames", 1, "exposure_us"]))
     case("exposure-infinite", "number overflow",
          manifest_text=json.dumps(manifest, indent=2).replace(
              '"exposure_us": %s' % json.dumps(manifest["frames"][1]["exposure_us"]), '"exposure_us": 1e999'))
@@ -122,7 +122,7 @@ def main():
          edit=set_path(["calibration", "luminance_factor"], 1e300))
     case("nd-zero", "nd_transmission must be in (0, 1]", edit=set_path(["frames", 0, "nd_transmission"], 0))
     case("f-number-negative", "f_number must be positive", edit=set_path(["frames", 0, "f_number"], -8))
-    case("frame-file-missing-key", "file is required", edit=remove_path(["frames", 0, "file"]))
+    case("frame-file-missing-key", "frames[0].file is missing", edit=remove_path(["frames", 0, "file"]))
     case("frame-path-dotdot", "escapes the stack directory", edit=set_path(["frames", 0, "file"], "../good/frame-00.png"))
     case("frame-path-absolute", "escapes the stack directory", edit=set_path(["frames", 0, "file"], "/etc/passwd"))
 
@@ -136,11 +136,11 @@ def main():
          edit=lambda m, d: m["calibration"].update(black_level_dn=5000))
     case("luminance-factor-negative", "luminance_factor must be positive",
          edit=set_path(["calibration", "luminance_factor"], -1500))
-    case("luminance-factor-missing", "luminance_factor is required", edit=remove_path(["calibration", "luminance_factor"]))
+    case("luminance-factor-missing", "calibration.luminance_factor is missing", edit=remove_path(["calibration", "luminance_factor"]))
     case("fx-zero", "intrinsics.fx must be positive", edit=set_path(["calibration", "intrinsics", "fx"], 0))
     case("fy-negative", "intrinsics.fy must be positive", edit=set_path(["calibration", "intrinsics", "fy"], -2400))
     case("cx-not-a-number", "intrinsics.cx must be a number", edit=set_path(["calibration", "intrinsics", "cx"], "centre"))
-    case("intrinsics-missing", "intrinsics is required", edit=remove_path(["calibration", "intrinsics"]))
+    case("intrinsics-missing", "calibration.intrinsics is missing", edit=remove_path(["calibration", "intrinsics"]))
     case("distortion-too-long", "at most 5 numbers",
          edit=set_path(["calibration", "intrinsics", "distortion"], [0, 0, 0, 0, 0, 0, 0, 0]))
     case("calibration-path-missing", "calibration file \"../calib/rig1.json\" does not exist",
@@ -157,7 +157,7 @@ def main():
     case("flat-field-not-exr", "unreadable EXR",
          edit=lambda m, d: (open(os.path.join(d, "flat.exr"), "w").write("not exr"),
                             m["calibration"].update(flat_field="flat.exr")) and None)
-    case("alpha-out-of-range", "alpha_deg must be between 0 and 90", edit=set_path(["alpha_deg"], 120))
+    case("alpha-out-of-range", "alpha_deg 120° is outside [0, 90]", edit=set_path(["alpha_deg"], 120))
     case("alpha-not-a-number", "alpha_deg must be a number", edit=set_path(["alpha_deg"], "forty"))
     case("noise-negative", "read_noise_dn must not be negative",
          edit=set_path(["calibration", "noise", "read_noise_dn"], -2))

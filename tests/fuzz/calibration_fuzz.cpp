@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "calibration/calibration_file.h"
+#include "core/json.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
 #include "tests/fuzz/fuzz_support.h"

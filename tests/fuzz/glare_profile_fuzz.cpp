@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "hazard/profile_table.h"
 #include "tests/fuzz/fuzz_support.h"
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "hazard/scene.h"
 #include "tests/fuzz/fuzz_support.h"
 

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/sweep_table.h"
 #include "tests/fuzz/fuzz_support.h"

@@ -102,12 +102,12 @@ TEST(HazardScene, RefusesEachBadInputNamingTheField) {
        "site.latitude_deg 91° is outside [-90, 90]"},
       {"longitude", [](json& s) { s["site"]["longitude_deg"] = -181; }, "site.longitude_deg"},
       {"text latitude", [](json& s) { s["site"]["latitude_deg"] = "47"; },
-       "site.latitude_deg is not a number"},
+       "site.latitude_deg must be a number, not \"47\""},
       {"no offset", [](json& s) { s["site"].erase("utc_offset_h"); },
        "site.utc_offset_h is missing"},
       {"offset", [](json& s) { s["site"]["utc_offset_h"] = 15; }, "site.utc_offset_h"},
       {"no arrays", [](json& s) { s["arrays"] = json::array(); }, "arrays is empty"},
-      {"arrays not a list", [](json& s) { s["arrays"] = 3; }, "arrays is not an array"},
+      {"arrays not a list", [](json& s) { s["arrays"] = 3; }, "arrays must be an array, not 3"},
       {"no observers", [](json& s) { s["observers"] = json::array(); }, "observers is empty"},
       {"two vertices",
        [](json& s) {
@@ -115,7 +115,7 @@ TEST(HazardScene, RefusesEachBadInputNamingTheField) {
        },
        "arrays[0].vertices_m has 2 vertices"},
       {"text coordinate", [](json& s) { s["arrays"][0]["vertices_m"][2][1] = "5.2"; },
-       "arrays[0].vertices_m[2][1] is not a number"},
+       "arrays[0].vertices_m[2][1] must be a number, not \"5.2\""},
       {"far coordinate", [](json& s) { s["arrays"][0]["vertices_m"][1][0] = 2e6; },
        "arrays[0].vertices_m[1][0] 2e+06 m is outside [-1e+06, 1e+06]"},
       {"two coordinates",
@@ -167,10 +167,11 @@ TEST(HazardScene, RefusesEachBadInputNamingTheField) {
        [](json& s) {
          s["observers"][0]["position_m"] = {0, "a", 1};
        },
-       "observers[0].position_m[1] is not a number"},
+       "observers[0].position_m[1] must be a number, not \"a\""},
       {"profile not text", [](json& s) { s["arrays"][0]["profile"] = 3; },
-       "arrays[0].profile is not a string"},
-      {"not an object", [](json& s) { s = json::array(); }, "is not a JSON object"},
+       "arrays[0].profile must be a string, not 3"},
+      {"not an object", [](json& s) { s = json::array(); },
+       "the document must be an object, not []"},
   };
   for (const BadScene& bad : cases) {
     json scene = goodScene();

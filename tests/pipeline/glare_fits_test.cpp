@@ -9,7 +9,7 @@
 #include <cmath>
 #include <random>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "support/test_support.h"
 
 namespace glarecam::pipeline {

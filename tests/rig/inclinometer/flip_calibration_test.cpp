@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "rig/inclinometer/scripted_inclinometer.h"
 #include "rig/inclinometer/zero_offset_file.h"
 #include "support/test_support.h"

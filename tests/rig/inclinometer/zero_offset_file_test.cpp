@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "rig/inclinometer/scripted_inclinometer.h"
 #include "rig/rig_config_test_support.h"
 #include "support/test_support.h"
@@ -53,7 +53,7 @@ TEST(ZeroOffsetFile, BadFilesAreNamedAndNeverOverwritten) {
   const auto str = readZeroOffset(dir / "str.json");
   ASSERT_FALSE(str);
   EXPECT_NE(str.error().message.find(
-                "str.json: inclinometer: \"zero_offset_x_deg\" must be a finite number"),
+                "str.json: inclinometer.zero_offset_x_deg must be a number, not \"0.3\""),
             std::string::npos)
       << str.error().message;
   writeText(dir, "big.json",

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/time.h"
 #include "sun/incidence_angle.h"
 #include "sun/solar_position.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::daemon {
 

@@ -16,8 +16,8 @@
 #include <functional>
 #include <mutex>
 
+#include "core/time.h"
 #include "sun/clock_sync.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::daemon {
 

@@ -29,7 +29,7 @@ Result<DaemonRig> prepareDaemonRig(const DaemonRunOptions& run) {
   GLARECAM_ASSIGN(rig.options.config_path, writeSimulatedRigConfig(simulated));
   rig.clock = std::make_unique<TimeLapseClock>(start, run.time_lapse);
   spdlog::info("glarecamd: simulated rig {}; the sun from {} at {:g}× real time",
-               rig.options.config_path.string(), sun::formatIsoTime(start), run.time_lapse);
+               rig.options.config_path.string(), formatIsoTime(start), run.time_lapse);
   return rig;
 }
 

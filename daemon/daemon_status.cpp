@@ -99,7 +99,7 @@ void recordRetention(DaemonState& state, const RetentionSummary& summary, bool d
 namespace {
 
 std::string seconds(UtcTime time) {
-  return sun::formatIsoTime(std::chrono::floor<std::chrono::seconds>(time));
+  return formatIsoTime(std::chrono::floor<std::chrono::seconds>(time));
 }
 
 std::string joined(const std::vector<std::string>& parts) {

@@ -9,11 +9,11 @@
 #include <string_view>
 #include <vector>
 
+#include "core/time.h"
 #include "daemon/day_products.h"
 #include "daemon/retention.h"
 #include "daemon/stack_worker.h"
 #include "rig/gpio/status_led.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::daemon {
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <functional>
 
+#include "core/time.h"
 #include "rig/inclinometer/inclinometer_registry.h"
 #include "rig/inclinometer/sample_progress.h"
 #include "rig/inclinometer/zero_offset_file.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::rig {
 
@@ -122,7 +122,7 @@ nlohmann::json geometryJson(const RigGeometry& g) {
                        {"alpha_deg", g.alpha_deg},
                        {"alpha_uncertainty_deg", g.alpha_uncertainty_deg},
                        {"source", geometrySourceName(g.source)},
-                       {"time", sun::formatIsoTime(g.time)}};
+                       {"time", formatIsoTime(g.time)}};
   if (g.sun) {
     block["sun_elevation_deg"] = g.sun->elevation_deg;
     block["sun_azimuth_deg"] = g.sun->azimuth_deg;

@@ -13,13 +13,13 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/time.h"
 #include "rig/inclinometer/inclinometer.h"
 #include "rig/inclinometer/tilt.h"
 #include "rig/rig_config.h"
 #include "sun/clock_sync.h"
 #include "sun/incidence_angle.h"
 #include "sun/solar_position.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::rig {
 

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <string>
 
-#include "sun/utc_time.h"
+#include "core/time.h"
 
 namespace glarecam::sun {
 

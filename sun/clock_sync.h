@@ -34,7 +34,7 @@ ClockStatus interpretClockState(int state, int status_flags, long max_error_us, 
 // The system clock now (a read-only adjtimex call; needs no privilege).
 ClockStatus systemClockStatus();
 
-// The instant `text` gives (ISO 8601, utc_time.h), else the system clock's now, with a warning
+// The instant `text` gives (ISO 8601, core/time.h), else the system clock's now, with a warning
 // when the clock is not synchronised (a wrong clock is a wrong sun position).
 Result<UtcTime> givenTimeOrNow(const std::optional<std::string>& text);
 

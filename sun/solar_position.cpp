@@ -10,8 +10,8 @@
 #include <string>
 
 #include "core/angles.h"
+#include "core/time.h"
 #include "sun/spa_tables.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::sun {
 namespace {

@@ -8,11 +8,11 @@
 #include <string>
 
 #include "apps/glarecam/commands.h"
+#include "core/time.h"
 #include "daemon/daemon_config.h"
 #include "rig/rig_config.h"
 #include "rig/rig_geometry.h"
 #include "sun/clock_sync.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::apps {
 namespace {
@@ -43,14 +43,14 @@ void printGeometry(const rig::RigGeometry& g) {
   }
   std::printf("%s elevation %.3f°, azimuth %.3f° at %s\n", from_sun ? "sun" : "source",
               g.source_direction.elevation_deg, g.source_direction.azimuth_deg,
-              sun::formatIsoTime(g.time).c_str());
+              formatIsoTime(g.time).c_str());
 }
 
 Status runAlpha(const AlphaArgs& args) {
   rig::RigConfig config;
   GLARECAM_ASSIGN(config, daemon::readRigConfig(args.config));
   UtcTime time;
-  GLARECAM_ASSIGN(time, args.time ? sun::parseIsoTime(*args.time) : Result<UtcTime>(utcNow()));
+  GLARECAM_ASSIGN(time, args.time ? parseIsoTime(*args.time) : Result<UtcTime>(utcNow()));
   // A time the user gave has no clock error.
   const auto clock = args.time ? std::nullopt : std::optional(sun::systemClockStatus());
   std::unique_ptr<rig::RigSensors> sensors;

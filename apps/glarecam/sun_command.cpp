@@ -7,9 +7,9 @@
 
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
+#include "core/time.h"
 #include "sun/clock_sync.h"
 #include "sun/solar_position.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::apps {
 namespace {
@@ -56,7 +56,7 @@ Status runSun(const SunArgs& args) {
   std::printf(
       "%s at %.6f° %.6f°: elevation %.4f°, zenith %.4f°, azimuth %.4f° (apparent; "
       "refraction %.4f°)\n",
-      sun::formatIsoTime(time).c_str(), site.latitude_deg, site.longitude_deg, sun.elevation_deg,
+      formatIsoTime(time).c_str(), site.latitude_deg, site.longitude_deg, sun.elevation_deg,
       sun.zenith_deg, sun.azimuth_deg, sun.refraction_deg);
   return {};
 }

@@ -12,11 +12,11 @@
 #include "apps/common/parse_error.h"
 #include "apps/common/value_types.h"
 #include "core/logging.h"
+#include "core/time.h"
 #include "core/version.h"
 #include "daemon/daemon_run.h"
 #include "daemon/journal_sink.h"
 #include "daemon/signal_forwarder.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::apps {
 
@@ -85,7 +85,7 @@ Result<daemon::DaemonRunOptions> runOptions(const DaemonArgs& args) {
   run.simulated_camera = args.camera;
   if (args.start) {
     if (!args.simulate) return badInput("--camera and --start are options of --simulate");
-    GLARECAM_ASSIGN(run.simulation_start, sun::parseIsoTime(*args.start));
+    GLARECAM_ASSIGN(run.simulation_start, parseIsoTime(*args.start));
   }
   run.time_lapse = args.time_lapse;
   GLARECAM_CHECK(run.validate());

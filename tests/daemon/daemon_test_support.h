@@ -18,18 +18,18 @@
 #include <vector>
 
 #include "capture/camera.h"
+#include "core/time.h"
 #include "daemon/capture_daemon.h"
 #include "daemon/daemon_clock.h"
 #include "daemon/disk_space.h"
 #include "daemon/service_notifier.h"
-#include "sun/utc_time.h"
 
 namespace glarecam::testing {
 
 using daemon::SteadyTime;
 
 // A time the test names in ISO 8601.
-inline UtcTime utc(const char* text) { return *sun::parseIsoTime(text); }
+inline UtcTime utc(const char* text) { return *parseIsoTime(text); }
 
 class ManualClock final : public daemon::DaemonClock {
  public:

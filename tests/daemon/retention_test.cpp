@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
-#include "sun/utc_time.h"
+#include "core/time.h"
 #include "support/test_support.h"
 
 namespace glarecam::daemon {
@@ -39,7 +39,7 @@ void makeProcessed(const OutputTree& tree, const std::string& id, std::uint64_t 
   makeGlarecamResult(tree.results() / id);
 }
 
-UtcTime utcAt(const char* iso) { return sun::parseIsoTime(iso).value(); }
+UtcTime utcAt(const char* iso) { return parseIsoTime(iso).value(); }
 
 std::vector<std::string> entryNames(const fs::path& directory) {
   std::vector<std::string> found;

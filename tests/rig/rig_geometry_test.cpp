@@ -9,10 +9,10 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/time.h"
 #include "rig/inclinometer/zero_offset_file.h"
 #include "rig/rig_config_test_support.h"
 #include "sun/clock_sync.h"
-#include "sun/utc_time.h"
 #include "support/test_support.h"
 
 namespace glarecam::rig {
@@ -82,7 +82,7 @@ TEST(RigGeometry, SunModeUsesTheSolarPositionAndTheClock) {
   auto config = readRigConfig(writeText(dir, "rig.toml", kSunConfig));
   ASSERT_TRUE(config);
   // NREL SPA's test case (Reda & Andreas 2008, table A4.1): zenith 50.11162°, azimuth 194.34024°.
-  const auto time = sun::parseIsoTime("2003-10-17T12:30:30-07:00");
+  const auto time = parseIsoTime("2003-10-17T12:30:30-07:00");
   ASSERT_TRUE(time);
   const TiltReading tilt = readingOf(50.11162);  // facing the sun exactly: α = 0 up to the model
   config->module_azimuth_deg = 194.34024;
@@ -205,7 +205,7 @@ TEST(RigSensors, RetimeMovesTheSunNotTheModule) {
   ASSERT_TRUE(config) << config.error().message;
   auto sensors = RigSensors::open(*config);
   ASSERT_TRUE(sensors) << sensors.error().message;
-  const auto time = sun::parseIsoTime("2003-10-17T19:30:30Z");
+  const auto time = parseIsoTime("2003-10-17T19:30:30Z");
   const auto first = (*sensors)->measure(*time, {}, false);
   ASSERT_TRUE(first);
   const auto later = (*sensors)->retime(*first, *time + std::chrono::minutes(10));

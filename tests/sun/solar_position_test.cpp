@@ -13,7 +13,7 @@
 #include <string>
 
 #include "core/angles.h"
-#include "sun/utc_time.h"
+#include "core/time.h"
 
 namespace glarecam::sun {
 namespace {

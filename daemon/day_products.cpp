@@ -8,7 +8,8 @@
 #include <cstdio>
 
 #include "core/atomic_file.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
+#include "core/time.h"
 #include "pipeline/datasheet_publish.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/process_stack.h"
@@ -21,23 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kDegreesPerHour = 15.0;    // the Earth turns 360° in 24 h
-constexpr std::size_t kIdStampLength = 16;  // "20260621T101503Z"
-
-std::optional<std::chrono::sys_seconds> idTime(std::string_view id) {
-  if (id.size() < kIdStampLength || id[8] != 'T' || id[15] != 'Z') return std::nullopt;
-  int year = 0;
-  unsigned month = 0, day = 0, hour = 0, minute = 0, second = 0;
-  const std::string stamp(id.substr(0, kIdStampLength));
-  if (std::sscanf(stamp.c_str(), "%4d%2u%2uT%2u%2u%2uZ", &year, &month, &day, &hour, &minute,
-                  &second) != 6)
-    return std::nullopt;
-  const std::chrono::year_month_day date{std::chrono::year(year), std::chrono::month(month),
-                                         std::chrono::day(day)};
-  if (!date.ok() || hour > 23 || minute > 59 || second > 59) return std::nullopt;
-  return std::chrono::sys_days(date) + std::chrono::hours(hour) + std::chrono::minutes(minute) +
-         std::chrono::seconds(second);
-}
+constexpr double kDegreesPerHour = 15.0;  // the Earth turns 360° in 24 h
 
 // The rows of the day's processed stacks, with a note for each result that gives none.
 pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::string& day) {
@@ -52,7 +37,7 @@ pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::stri
     if (stackDay(id, options.longitude_deg) != day) continue;
     const fs::path result_file = entry / pipeline::kResultFileName;
     if (!fs::is_regular_file(result_file, error)) continue;  // being processed
-    const auto result = readJsonFile(result_file.string());
+    const auto result = pipeline::readResult(result_file);
     auto row = result ? pipeline::sweepRowFromResult(
                             *result, (options.root / kStacksDirectory / id).string())
                       : Result<pipeline::SweepRow>(std::unexpected(result.error()));
@@ -70,7 +55,7 @@ pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::stri
 
 std::optional<std::string> stackDay(std::string_view stack_id,
                                     std::optional<double> longitude_deg) {
-  const auto utc = idTime(stack_id);
+  const auto utc = parseStackStamp(stack_id);
   if (!utc) return std::nullopt;
   return solarDay(*utc, longitude_deg);
 }

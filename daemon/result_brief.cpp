@@ -1,9 +1,7 @@
 #include "daemon/result_brief.h"
 
-#include <nlohmann/json.hpp>
 #include <system_error>
 
-#include "core/stack_manifest.h"
 #include "daemon/day_products.h"
 #include "pipeline/process_stack.h"
 
@@ -11,20 +9,15 @@ namespace glarecam::daemon {
 
 namespace fs = std::filesystem;
 
-ResultBrief resultBrief(const nlohmann::json& result) {
-  using Pointer = nlohmann::json::json_pointer;
-  const auto number = [&result](const char* pointer) -> std::optional<double> {
-    const nlohmann::json value = result.value(Pointer(pointer), nlohmann::json());
-    return value.is_number() ? std::optional(value.get<double>()) : std::nullopt;
-  };
-  ResultBrief brief{.alpha_deg = number("/alpha_deg"),
-                    .lmax_cd_m2 = number("/luminance/max_cd_m2").value_or(0),
-                    .limit_cd_m2 = number("/limit/limit_cd_m2")};
-  if (result.value(Pointer("/luminance/max_is_lower_bound"), false)) brief.lmax_bound = "lower";
-  if (result.value(Pointer("/luminance/max_is_upper_bound"), false)) brief.lmax_bound = "upper";
-  if (const auto glare = result.value(Pointer("/glare"), nlohmann::json()); glare.is_boolean())
-    brief.glare = glare.get<bool>();
-  return brief;
+ResultBrief resultBrief(const pipeline::StackResult& result) {
+  const pipeline::ResultLuminance& luminance = result.luminance;
+  return {.alpha_deg = result.alpha_deg,
+          .lmax_cd_m2 = luminance.max_cd_m2,
+          .lmax_bound = luminance.isLowerBound()   ? "lower"
+                        : luminance.isUpperBound() ? "upper"
+                                                   : "",
+          .limit_cd_m2 = result.limit.limit_cd_m2,
+          .glare = result.glare};
 }
 
 std::optional<LastResult> newestResult(const fs::path& results) {
@@ -40,8 +33,8 @@ std::optional<LastResult> newestResult(const fs::path& results) {
     if (!newest || path.filename() > newest->filename()) newest = path;
   }
   if (!newest) return std::nullopt;
-  const auto result = readJsonFile((*newest / pipeline::kResultFileName).string());
-  if (!result || !result->is_object()) return std::nullopt;
+  const auto result = pipeline::readResult(*newest / pipeline::kResultFileName);
+  if (!result) return std::nullopt;
   return LastResult{
       .stack_id = newest->filename().string(), .directory = *newest, .brief = resultBrief(*result)};
 }

@@ -4,9 +4,10 @@
 #pragma once
 
 #include <filesystem>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
+
+#include "pipeline/result.h"
 
 namespace glarecam::daemon {
 
@@ -26,12 +27,12 @@ struct LastResult {
   ResultBrief brief;
 };
 
-// The brief of a result document; what it lacks stays unknown (Lmax 0).
-ResultBrief resultBrief(const nlohmann::json& result);
+// The brief of a result.
+ResultBrief resultBrief(const pipeline::StackResult& result);
 
 // The newest result under `results` (results/<id>/result.json: ids begin with their UTC time, so
 // the greatest id is the newest; other names are skipped); nullopt when there is none, or the
-// newest cannot be read.
+// newest cannot be read (pipeline::readResult refuses it).
 std::optional<LastResult> newestResult(const std::filesystem::path& results);
 
 }  // namespace glarecam::daemon

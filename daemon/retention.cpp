@@ -10,8 +10,9 @@
 #include <system_error>
 
 #include "core/atomic_file.h"
+#include "core/json.h"
 #include "core/stack_io.h"
-#include "core/stack_manifest.h"
+#include "core/time.h"
 #include "daemon/day_products.h"
 #include "pipeline/process_stack.h"
 #include "pipeline/result.h"
@@ -22,18 +23,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "2026-06-21" as a day, or nullopt for anything else.
-std::optional<std::chrono::sys_days> parseDay(const std::string& text) {
-  int year = 0;
-  unsigned month = 0, day = 0;
-  char tail = 0;
-  if (text.size() != 10 ||
-      std::sscanf(text.c_str(), "%4d-%2u-%2u%c", &year, &month, &day, &tail) != 3)
-    return std::nullopt;
-  const std::chrono::year_month_day date{std::chrono::year(year), std::chrono::month(month),
-                                         std::chrono::day(day)};
-  if (!date.ok()) return std::nullopt;
-  return std::chrono::sys_days(date);
+// "2026-06-21" as a day, or nullopt for anything else (a directory of another name).
+std::optional<UtcDay> parseDay(const std::string& text) {
+  const auto day = parseIsoDay(text);
+  return day ? std::optional(*day) : std::nullopt;
 }
 
 // The solar day of the stack (or its result) named `id`, or nullopt when its name tells none.
@@ -70,8 +63,8 @@ bool isResultDirectory(const fs::path& path) {
   std::error_code error;
   if (!isRealDirectory(path) || !fs::is_regular_file(path / pipeline::kResultFileName, error))
     return false;
-  const auto result = readJsonFile((path / pipeline::kResultFileName).string());
-  return result && result->is_object() && result->value("schema", "") == pipeline::kResultSchema;
+  const auto result = readJsonFile(path / pipeline::kResultFileName);
+  return result && pipeline::hasResultSchema(*result);
 }
 
 bool isDayDirectory(const fs::path& path) {

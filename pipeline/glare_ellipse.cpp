@@ -292,6 +292,16 @@ const char* toString(EllipseStatus status) {
   return "unknown";
 }
 
+std::optional<EllipseStatus> ellipseStatusFromString(std::string_view text) {
+  for (EllipseStatus status :
+       {EllipseStatus::kMeasured, EllipseStatus::kBelowLevel, EllipseStatus::kPeakIsBound,
+        EllipseStatus::kNoPixelAtLevel, EllipseStatus::kTooSmall, EllipseStatus::kFillsImage,
+        EllipseStatus::kCameraModelNotInvertible, EllipseStatus::kNotAnEllipse}) {
+    if (text == toString(status)) return status;
+  }
+  return std::nullopt;
+}
+
 double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg) {
   // Omega = integral over psi of (1 - cos R(psi)), R the ellipse's radius in direction psi: the
   // plane's radius is the angle from its centre. Periodic trapezoid rule: spectrally accurate.

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "calibration/angular_plane.h"
@@ -85,6 +86,8 @@ enum class EllipseStatus {
   kNotAnEllipse,              // the contour determines no ellipse (or one beyond a hemisphere)
 };
 const char* toString(EllipseStatus status);
+// The status toString() names `text`, or nullopt.
+std::optional<EllipseStatus> ellipseStatusFromString(std::string_view text);
 
 struct EllipseMeasurement {
   double level_cd_m2 = 0;

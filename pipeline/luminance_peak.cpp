@@ -294,6 +294,14 @@ const char* toString(PeakMethod method) {
   return "unknown";
 }
 
+std::optional<PeakMethod> peakMethodFromString(std::string_view text) {
+  for (PeakMethod method : {PeakMethod::kQuadraticFit, PeakMethod::kNeighbourhood3x3,
+                            PeakMethod::kLowerBound, PeakMethod::kUpperBound}) {
+    if (text == toString(method)) return method;
+  }
+  return std::nullopt;
+}
+
 LocatedPeak locateLuminancePeak(const calibration::MergedImage& merged) {
   if (merged.luminance_cd_m2.empty()) return {};
   const Located top = locatePeak(merged);

@@ -10,6 +10,9 @@
 // frame gives a lower bound; an image under-exposed everywhere gives an upper bound.
 #pragma once
 
+#include <optional>
+#include <string_view>
+
 #include "calibration/hdr_merge.h"
 
 namespace glarecam::pipeline {
@@ -26,6 +29,8 @@ struct LuminancePeak {
 };
 
 const char* toString(PeakMethod method);
+// The method toString() names `text`, or nullopt.
+std::optional<PeakMethod> peakMethodFromString(std::string_view text);
 
 struct LocatedPeak {
   int x = 0, y = 0;

@@ -13,6 +13,7 @@
 #include "calibration/hdr_merge.h"
 #include "core/atomic_file.h"
 #include "core/image_io.h"
+#include "core/json.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/sha256.h"
@@ -81,8 +82,8 @@ Status prepareOutputDirectory(const fs::path& directory) {
   removeStaleTemporaries(directory, kStaleTemporaryAge, kOutputNames);
   const fs::path previous = directory / kResultFileName;
   if (!fs::exists(fs::symlink_status(previous, ec))) return {};
-  auto document = readJsonFile(previous.string());
-  if (!document || !document->is_object() || document->value("schema", "") != kResultSchema) {
+  auto document = readJsonFile(previous);
+  if (!document || !hasResultSchema(*document)) {
     return badInput(previous.string() +
                     ": exists and is not a glarecam result; refusing to overwrite it");
   }
@@ -145,20 +146,15 @@ Status checkRadiometry(const Stack& stack,
 }  // namespace
 
 std::string ProcessSummary::briefReport() const {
-  const auto& lum = result.at("luminance");
-  const auto& limit = result.at("limit").at("limit_cd_m2");
-  char line[256];
-  std::snprintf(
-      line, sizeof line, "%s: Lmax %s%.4g cd/m² at (%d, %d), limit %s, glare %s",
-      result.at("stack").get<std::string>().c_str(),
-      lum.at("max_is_lower_bound").get<bool>()   ? ">= "
-      : lum.at("max_is_upper_bound").get<bool>() ? "<= "
-                                                 : "",
-      lum.at("max_cd_m2").get<double>(), lum.at("max_pixel")[0].get<int>(),
-      lum.at("max_pixel")[1].get<int>(),
-      limit.is_null() ? "none" : std::to_string(std::lround(limit.get<double>())).c_str(),
-      result.at("glare").is_null() ? "n/a" : (result.at("glare").get<bool>() ? "yes" : "no"));
-  return line;
+  const ResultLuminance& lum = result.luminance;
+  const std::optional<double>& limit = result.limit.limit_cd_m2;
+  return fmt::format("{}: Lmax {}{:.4g} cd/m² at ({}, {}), limit {}, glare {}", result.stack,
+                     lum.isLowerBound()   ? ">= "
+                     : lum.isUpperBound() ? "<= "
+                                          : "",
+                     lum.max_cd_m2, lum.max_pixel[0], lum.max_pixel[1],
+                     limit ? std::to_string(std::lround(*limit)) : "none",
+                     result.glare ? (*result.glare ? "yes" : "no") : "n/a");
 }
 
 namespace {
@@ -241,22 +237,20 @@ constexpr int kPictureMinImageHeightPx = 512;
 
 // The picture's caption: the stack, Lmax (≥/≤ for a bound), the limit and the verdict, as in
 // result.json, so that the picture alone says what was measured.
-std::vector<std::string> pictureCaption(const nlohmann::json& result) {
+std::vector<std::string> pictureCaption(const StackResult& result) {
   constexpr int kCaptionDigits = 4;  // as the data sheet: a measurement is not known better
-  const nlohmann::json& luminance = result["luminance"];
-  const char* bound = luminance.value("max_is_lower_bound", false)   ? "\u2265 "
-                      : luminance.value("max_is_upper_bound", false) ? "\u2264 "
-                                                                     : "";
-  const nlohmann::json limit = result["limit"]["limit_cd_m2"];
-  const nlohmann::json glare = result["glare"];
-  return {result.value("stack", std::string()),
-          fmt::format("Lmax {}{} cd/m\u00b2", bound,
-                      formatGrouped(luminance.value("max_cd_m2", 0.0), kCaptionDigits)),
-          limit.is_number() ? fmt::format("limit {} cd/m\u00b2",
-                                          formatGrouped(limit.get<double>(), kCaptionDigits))
-                            : std::string("no limit"),
-          glare.is_boolean() ? (glare.get<bool>() ? "glare: yes" : "glare: no")
-                             : std::string("glare: \u2013")};
+  const ResultLuminance& luminance = result.luminance;
+  const char* bound = luminance.isLowerBound()   ? "\u2265 "
+                      : luminance.isUpperBound() ? "\u2264 "
+                                                 : "";
+  const std::optional<double>& limit = result.limit.limit_cd_m2;
+  return {
+      result.stack,
+      fmt::format("Lmax {}{} cd/m\u00b2", bound,
+                  formatGrouped(luminance.max_cd_m2, kCaptionDigits)),
+      limit ? fmt::format("limit {} cd/m\u00b2", formatGrouped(*limit, kCaptionDigits))
+            : std::string("no limit"),
+      result.glare ? (*result.glare ? "glare: yes" : "glare: no") : std::string("glare: \u2013")};
 }
 
 std::string pictureTitle(const std::optional<double>& alpha_deg) {
@@ -292,7 +286,7 @@ Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
   progress.advance("luminance.exr");
   progress.advance("quality.exr");
   progress.advance("luminance.png");
-  GLARECAM_CHECK(writeFileAtomic(out / kResultFileName, jsonText(summary.result)));
+  GLARECAM_CHECK(writeJsonFile(out / kResultFileName, toJson(summary.result)));
   progress.advance("result.json");
   return {};
 }
@@ -375,11 +369,16 @@ CalibrationIdentity calibrationIdentity(const Stack& stack, const ProcessOptions
   if (const auto camera = source.find("camera"); camera != source.end() && camera->is_object())
     identity.camera = *camera;
   if (const auto parts = source.find("parts"); parts != source.end() && parts->is_object()) {
-    identity.parts = nlohmann::json::object();
+    identity.parts.emplace();
+    const auto text = [](const nlohmann::json& part, const char* key) {
+      const auto value = part.find(key);
+      return value != part.end() && value->is_string() ? std::optional(value->get<std::string>())
+                                                       : std::nullopt;
+    };
     for (const auto& [name, part] : parts->items()) {
       if (!part.is_object()) continue;
-      identity.parts[name] = {{"measured_at", part.value("measured_at", nlohmann::json())},
-                              {"method", part.value("method", nlohmann::json())}};
+      (*identity.parts)[name] = {.measured_at = text(part, "measured_at"),
+                                 .method = text(part, "method")};
     }
   }
   constexpr std::size_t kIdHexDigits = 16;  // 64 bits: no two calibrations of a lab collide
@@ -498,7 +497,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   picture_options.min_image_height_px = kPictureMinImageHeightPx;
   picture_options.overlay = glareOverlay(glare, camera, stats.max);
   picture_options.caption = pictureCaption(summary.result);
-  if (summary.result["luminance"]["frames_consistent"] == false)
+  if (summary.result.luminance.frames_consistent == false)
     picture_options.banner = "SUSPECT: frames disagree with the merge";
   GLARECAM_CHECK(
       writeOutputs(summary.output_directory, merged, summary, picture_options, options, progress));

@@ -14,6 +14,7 @@
 
 #include "calibration/calibration_file.h"
 #include "core/error.h"
+#include "pipeline/result.h"
 
 namespace glarecam::pipeline {
 
@@ -44,7 +45,7 @@ inline constexpr std::size_t kMaxThresholds = 32;
 
 struct ProcessSummary {
   std::filesystem::path output_directory;
-  nlohmann::json result;
+  StackResult result;
   std::string briefReport() const;  // one line for logs
 };
 

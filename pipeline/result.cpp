@@ -1,46 +1,68 @@
 #include "pipeline/result.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "core/version.h"
+#include "core/stack_manifest.h"
 
 namespace glarecam::pipeline {
 
 namespace {
 
-// true / false, or null when there is no limit or the verdict cannot be known: a lower bound
+using nlohmann::json;
+
+// Counts (pixels, points, regions): whole numbers far below 2^53.
+constexpr long long kMaxCount = 1LL << 53;
+// A full ellipse axis is an angle between two rays; an orientation is within ±90°.
+constexpr double kMaxAxisDeg = 180.0;
+constexpr double kMaxOrientationDeg = 90.0;
+// A solid angle is at most the whole sphere.
+constexpr double kMaxSolidAngleSr = 4 * 3.14159265358979323846;
+
+json pair(const std::array<double, 2>& values) { return json::array({values[0], values[1]}); }
+
+// true / false, or none when there is no limit or the verdict cannot be known: a lower bound
 // (saturated everywhere) below the limit may still exceed it, an upper bound (dark everywhere)
 // above it may still stay below.
-nlohmann::json glareVerdict(const LuminancePeak& max, const std::optional<double>& limit_cd_m2) {
-  if (!limit_cd_m2) return nullptr;
+std::optional<bool> glareVerdict(const LuminancePeak& max,
+                                 const std::optional<double>& limit_cd_m2) {
+  if (!limit_cd_m2) return std::nullopt;
   const bool reaches = max.value_cd_m2 >= *limit_cd_m2;
-  if (!reaches && max.method == PeakMethod::kLowerBound) return nullptr;
-  if (reaches && max.method == PeakMethod::kUpperBound) return nullptr;
+  if (!reaches && max.method == PeakMethod::kLowerBound) return std::nullopt;
+  if (reaches && max.method == PeakMethod::kUpperBound) return std::nullopt;
   return reaches;
 }
 
-nlohmann::json pair(double a, double b) { return nlohmann::json::array({a, b}); }
+std::optional<double> finite(double value) {
+  return std::isfinite(value) ? std::optional(value) : std::nullopt;
+}
 
-}  // namespace
+ResultLevel resultLevel(const EllipseMeasurement& measurement) {
+  return {.level_cd_m2 = measurement.level_cd_m2,
+          .status = measurement.status,
+          .ellipse = measurement.ellipse ? std::optional(resultEllipse(*measurement.ellipse))
+                                         : std::nullopt};
+}
 
-nlohmann::json ellipseJson(const EllipseMeasurement& measurement) {
-  if (!measurement.ellipse) return nullptr;
-  const GlareEllipse& e = *measurement.ellipse;
+// ---- writing ---------------------------------------------------------------------------------
+
+json ellipseJson(const std::optional<ResultEllipse>& ellipse) {
+  if (!ellipse) return nullptr;
+  const ResultEllipse& e = *ellipse;
   return {
       {"vertical_deg", e.vertical_deg},
       {"horizontal_deg", e.horizontal_deg},
       {"major_deg", e.major_deg},
       {"minor_deg", e.minor_deg},
       {"orientation_deg", e.orientation_deg},
-      {"center_px", pair(e.centre_px.x, e.centre_px.y)},
-      {"center_direction_deg",
-       pair(e.centre_direction.horizontal_deg, e.centre_direction.vertical_deg)},
-      {"semi_axes_px", pair(e.semi_major_px, e.semi_minor_px)},
+      {"center_px", pair(e.center_px)},
+      {"center_direction_deg", pair(e.center_direction_deg)},
+      {"semi_axes_px", pair(e.semi_axes_px)},
       {"solid_angle_sr", e.solid_angle_sr},
       {"fit_rms_px", e.fit_rms_px},
       {"fit_rms_deg", e.fit_rms_deg},
-      {"shape_residual", e.shape_residual_fraction},
+      {"shape_residual", e.shape_residual},
       {"ellipticity_ok", e.ellipticity_ok},
       {"truncated", e.truncated},
       {"regions", e.regions},
@@ -50,101 +72,485 @@ nlohmann::json ellipseJson(const EllipseMeasurement& measurement) {
       {"uncertainty",
        {{"vertical_deg", e.vertical_uncertainty_deg},
         {"horizontal_deg", e.horizontal_uncertainty_deg},
-        {"orientation_deg", std::isfinite(e.orientation_uncertainty_deg)
-                                ? nlohmann::json(e.orientation_uncertainty_deg)
-                                : nlohmann::json(nullptr)},
+        {"orientation_deg", jsonOrNull(e.orientation_uncertainty_deg)},
         {"solid_angle_sr", e.solid_angle_uncertainty_sr},
         {"unweighted_contour_points", e.unweighted_contour_points}}},
   };
 }
 
-nlohmann::json makeResult(const ResultInputs& in) {
-  using nlohmann::json;
+json calibrationJson(const CalibrationIdentity& cal) {
+  json parts = nullptr;
+  if (cal.parts) {
+    parts = json::object();
+    for (const auto& [name, part] : *cal.parts)
+      parts[name] = {{"measured_at", jsonOrNull(part.measured_at)},
+                     {"method", jsonOrNull(part.method)}};
+  }
+  return {{"origin", cal.origin},
+          {"noise_model", cal.noise_model_assumed ? "assumed" : "calibrated"},
+          {"black", cal.dark_frame ? "dark_frame" : "black_level"},
+          {"hot_pixels_masked", cal.hot_pixels},
+          {"file", jsonOrNull(cal.file)},
+          {"sha256", jsonOrNull(cal.sha256)},
+          {"camera", cal.camera},
+          {"parts", parts},
+          {"id", cal.id},
+          {"luminance_factor", cal.luminance_factor},
+          {"luminance_factor_u", jsonOrNull(cal.luminance_factor_u)}};
+}
+
+json luminanceJson(const ResultLuminance& l) {
+  return {{"max_cd_m2", l.max_cd_m2},
+          {"max_pixel", {l.max_pixel[0], l.max_pixel[1]}},
+          {"max_position_px", pair(l.max_position_px)},
+          {"max_method", toString(l.max_method)},
+          {"max_relative_uncertainty", jsonOrNull(l.max_relative_uncertainty)},
+          {"max_relative_uncertainty_combined", jsonOrNull(l.max_relative_uncertainty_combined)},
+          {"max_is_lower_bound", l.isLowerBound()},
+          {"max_is_upper_bound", l.isUpperBound()},
+          {"valid_fraction", l.valid_fraction},
+          {"saturated_pixels", l.saturated_pixels},
+          {"dark_pixels", l.dark_pixels},
+          {"masked_pixels", l.masked_pixels},
+          {"median_relative_uncertainty", l.median_relative_uncertainty},
+          {"frames_consistent", jsonOrNull(l.frames_consistent)}};
+}
+
+// ---- reading ---------------------------------------------------------------------------------
+
+Result<std::array<double, 2>> readPair(const JsonReader& parent, std::string_view key) {
+  JsonReader value = parent;
+  GLARECAM_ASSIGN(value, parent.member(key));
+  GLARECAM_CHECK(value.array());
+  if (value.size() != 2) return value.fail("must be a pair of numbers");
+  std::array<double, 2> pair{};
+  for (std::size_t i = 0; i < 2; ++i) GLARECAM_ASSIGN(pair[i], value.element(i).number());
+  return pair;
+}
+
+Result<long long> readCount(const JsonReader& parent, std::string_view key) {
+  return parent.integer(key, 0, kMaxCount);
+}
+
+Result<std::optional<ResultEllipse>> readEllipse(const JsonReader& parent) {
+  std::optional<JsonReader> block;
+  GLARECAM_ASSIGN(block, parent.optionalMember("ellipse"));
+  if (!block) return std::optional<ResultEllipse>{};
+  const JsonReader& r = *block;
+  GLARECAM_CHECK(r.object());
+  ResultEllipse e;
+  GLARECAM_ASSIGN(e.vertical_deg, r.numberIn("vertical_deg", 0, kMaxAxisDeg, "°"));
+  GLARECAM_ASSIGN(e.horizontal_deg, r.numberIn("horizontal_deg", 0, kMaxAxisDeg, "°"));
+  GLARECAM_ASSIGN(e.major_deg, r.numberIn("major_deg", 0, kMaxAxisDeg, "°"));
+  GLARECAM_ASSIGN(e.minor_deg, r.numberIn("minor_deg", 0, kMaxAxisDeg, "°"));
+  GLARECAM_ASSIGN(e.orientation_deg,
+                  r.numberIn("orientation_deg", -kMaxOrientationDeg, kMaxOrientationDeg, "°"));
+  GLARECAM_ASSIGN(e.center_px, readPair(r, "center_px"));
+  GLARECAM_ASSIGN(e.center_direction_deg, readPair(r, "center_direction_deg"));
+  GLARECAM_ASSIGN(e.semi_axes_px, readPair(r, "semi_axes_px"));
+  GLARECAM_ASSIGN(e.solid_angle_sr, r.numberIn("solid_angle_sr", 0, kMaxSolidAngleSr, " sr"));
+  GLARECAM_ASSIGN(e.fit_rms_px, r.nonNegative("fit_rms_px"));
+  GLARECAM_ASSIGN(e.fit_rms_deg, r.nonNegative("fit_rms_deg"));
+  GLARECAM_ASSIGN(e.shape_residual, r.nonNegative("shape_residual"));
+  GLARECAM_ASSIGN(e.ellipticity_ok, r.boolean("ellipticity_ok"));
+  GLARECAM_ASSIGN(e.truncated, r.boolean("truncated"));
+  GLARECAM_ASSIGN(e.regions, readCount(r, "regions"));
+  GLARECAM_ASSIGN(e.contour_points, readCount(r, "contour_points"));
+  GLARECAM_ASSIGN(e.region_pixels, readCount(r, "region_pixels"));
+  GLARECAM_ASSIGN(e.smoothing_radius_px, readCount(r, "smoothing_radius_px"));
+  JsonReader u = r;
+  GLARECAM_ASSIGN(u, r.member("uncertainty"));
+  GLARECAM_CHECK(u.object());
+  GLARECAM_ASSIGN(e.vertical_uncertainty_deg, u.nonNegative("vertical_deg"));
+  GLARECAM_ASSIGN(e.horizontal_uncertainty_deg, u.nonNegative("horizontal_deg"));
+  GLARECAM_ASSIGN(e.orientation_uncertainty_deg, u.optionalNonNegative("orientation_deg"));
+  GLARECAM_ASSIGN(e.solid_angle_uncertainty_sr, u.nonNegative("solid_angle_sr"));
+  GLARECAM_ASSIGN(e.unweighted_contour_points, readCount(u, "unweighted_contour_points"));
+  return std::optional(e);
+}
+
+Result<EllipseStatus> readStatus(const JsonReader& parent) {
+  std::string text;
+  GLARECAM_ASSIGN(text, parent.text("status"));
+  const auto status = ellipseStatusFromString(text);
+  if (!status) return parent.fail("status", "\"" + text + "\" is not an ellipse status");
+  return *status;
+}
+
+// The ellipse is there exactly when it was measured.
+Status checkEllipseMatchesStatus(const JsonReader& parent, std::optional<EllipseStatus> status,
+                                 const std::optional<ResultEllipse>& ellipse) {
+  const bool measured = status == EllipseStatus::kMeasured;
+  if (measured && !ellipse) return parent.fail("ellipse", "is missing though status is measured");
+  if (!measured && ellipse) return parent.fail("ellipse", "is given though status is not measured");
+  return {};
+}
+
+Result<ResultLevel> readLevel(const JsonReader& block, std::string_view level_key) {
+  GLARECAM_CHECK(block.object());
+  ResultLevel level;
+  GLARECAM_ASSIGN(level.level_cd_m2, block.number(level_key));
+  GLARECAM_ASSIGN(level.status, readStatus(block));
+  GLARECAM_ASSIGN(level.ellipse, readEllipse(block));
+  GLARECAM_CHECK(checkEllipseMatchesStatus(block, level.status, level.ellipse));
+  return level;
+}
+
+Result<ResultLimit> readResultLimit(const JsonReader& document) {
+  JsonReader block = document;
+  GLARECAM_ASSIGN(block, document.member("limit"));
+  GLARECAM_CHECK(block.object());
+  ResultLimit limit;
+  GLARECAM_ASSIGN(limit.limit_cd_m2, block.optionalPositive("limit_cd_m2"));
+  std::string mode;
+  GLARECAM_ASSIGN(mode, block.text("mode"));
+  if (mode == toString(LimitMode::kAlphaCurve)) {
+    limit.mode = LimitMode::kAlphaCurve;
+  } else if (mode == toString(LimitMode::kConstant)) {
+    limit.mode = LimitMode::kConstant;
+  } else if (mode == toString(LimitMode::kNone)) {
+    limit.mode = LimitMode::kNone;
+  } else {
+    return block.fail("mode", "\"" + mode + "\" is not alpha_curve, constant or none");
+  }
+  if ((limit.mode == LimitMode::kNone) == limit.limit_cd_m2.has_value())
+    return block.fail("mode", "\"" + mode + "\" does not match limit_cd_m2");
+  std::string status;
+  GLARECAM_ASSIGN(status, block.text("status"));
+  if (status != "no_limit") GLARECAM_ASSIGN(limit.status, readStatus(block));
+  if (limit.status.has_value() != limit.limit_cd_m2.has_value())
+    return block.fail("status", "\"" + status + "\" does not match limit_cd_m2");
+  GLARECAM_ASSIGN(limit.ellipse, readEllipse(block));
+  GLARECAM_CHECK(checkEllipseMatchesStatus(block, limit.status, limit.ellipse));
+  return limit;
+}
+
+Result<ResultLuminance> readLuminance(const JsonReader& document) {
+  JsonReader r = document;
+  GLARECAM_ASSIGN(r, document.member("luminance"));
+  GLARECAM_CHECK(r.object());
+  ResultLuminance l;
+  // An upper bound of a dark image may be at or below zero (black subtracted from noise).
+  GLARECAM_ASSIGN(l.max_cd_m2, r.number("max_cd_m2"));
+  JsonReader pixel = r;
+  GLARECAM_ASSIGN(pixel, r.member("max_pixel"));
+  GLARECAM_CHECK(pixel.array());
+  if (pixel.size() != 2) return pixel.fail("must be a pair of whole numbers");
+  for (std::size_t i = 0; i < 2; ++i)
+    GLARECAM_ASSIGN(l.max_pixel[i], pixel.element(i).integer(-kMaxCount, kMaxCount));
+  GLARECAM_ASSIGN(l.max_position_px, readPair(r, "max_position_px"));
+  std::string method;
+  GLARECAM_ASSIGN(method, r.text("max_method"));
+  const auto parsed = peakMethodFromString(method);
+  if (!parsed) return r.fail("max_method", "\"" + method + "\" is not a peak method");
+  l.max_method = *parsed;
+  GLARECAM_ASSIGN(l.max_relative_uncertainty, r.optionalNonNegative("max_relative_uncertainty"));
+  GLARECAM_ASSIGN(l.max_relative_uncertainty_combined,
+                  r.optionalNonNegative("max_relative_uncertainty_combined"));
+  bool lower = false, upper = false;
+  GLARECAM_ASSIGN(lower, r.boolean("max_is_lower_bound"));
+  GLARECAM_ASSIGN(upper, r.boolean("max_is_upper_bound"));
+  if (lower != l.isLowerBound() || upper != l.isUpperBound())
+    return r.fail("max_method", "\"" + method + "\" contradicts max_is_lower/upper_bound");
+  GLARECAM_ASSIGN(l.valid_fraction, r.numberIn("valid_fraction", 0, 1));
+  GLARECAM_ASSIGN(l.saturated_pixels, readCount(r, "saturated_pixels"));
+  GLARECAM_ASSIGN(l.dark_pixels, readCount(r, "dark_pixels"));
+  GLARECAM_ASSIGN(l.masked_pixels, readCount(r, "masked_pixels"));
+  GLARECAM_ASSIGN(l.median_relative_uncertainty, r.nonNegative("median_relative_uncertainty"));
+  GLARECAM_ASSIGN(l.frames_consistent, r.optionalBoolean("frames_consistent"));
+  return l;
+}
+
+Result<std::vector<ResultFrame>> readFrames(const JsonReader& document) {
+  JsonReader list = document;
+  GLARECAM_ASSIGN(list, document.member("frames"));
+  GLARECAM_CHECK(list.array());
+  std::vector<ResultFrame> frames;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const JsonReader r = list.element(i);
+    GLARECAM_CHECK(r.object());
+    ResultFrame frame;
+    GLARECAM_ASSIGN(frame.file, r.text("file"));
+    GLARECAM_ASSIGN(frame.median_ratio, r.optionalNonNegative("median_ratio"));
+    GLARECAM_ASSIGN(frame.samples, readCount(r, "samples"));
+    GLARECAM_ASSIGN(frame.agrees, r.optionalBoolean("agrees"));
+    if (frame.agrees.has_value() != frame.median_ratio.has_value())
+      return r.fail("agrees", "must be given exactly when median_ratio is");
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
+// A block copied verbatim from the stack's manifest or calibration (a camera block, whatever
+// another tool put in it): an object or null, kept as written.
+Result<json> readCopiedBlock(const JsonReader& parent, std::string_view key) {
+  std::optional<JsonReader> block;
+  GLARECAM_ASSIGN(block, parent.optionalMember(key));
+  if (!block) return json(nullptr);
+  GLARECAM_CHECK(block->object());
+  return block->value();
+}
+
+Result<CalibrationIdentity> readResultCalibration(const JsonReader& document) {
+  JsonReader r = document;
+  GLARECAM_ASSIGN(r, document.member("calibration"));
+  GLARECAM_CHECK(r.object());
+  CalibrationIdentity cal;
+  GLARECAM_ASSIGN(cal.origin, r.text("origin"));
+  std::string noise, black;
+  GLARECAM_ASSIGN(noise, r.text("noise_model"));
+  if (noise != "assumed" && noise != "calibrated")
+    return r.fail("noise_model", "\"" + noise + "\" is not assumed or calibrated");
+  cal.noise_model_assumed = noise == "assumed";
+  GLARECAM_ASSIGN(black, r.text("black"));
+  if (black != "dark_frame" && black != "black_level")
+    return r.fail("black", "\"" + black + "\" is not dark_frame or black_level");
+  cal.dark_frame = black == "dark_frame";
+  GLARECAM_ASSIGN(cal.hot_pixels, r.boolean("hot_pixels_masked"));
+  GLARECAM_ASSIGN(cal.file, r.optionalText("file"));
+  GLARECAM_ASSIGN(cal.sha256, r.optionalText("sha256"));
+  GLARECAM_ASSIGN(cal.camera, readCopiedBlock(r, "camera"));
+  std::optional<JsonReader> parts;
+  GLARECAM_ASSIGN(parts, r.optionalMember("parts"));
+  if (parts) {
+    GLARECAM_CHECK(parts->object());
+    cal.parts.emplace();
+    for (const auto& [name, value] : parts->value().items()) {
+      JsonReader part = *parts;
+      GLARECAM_ASSIGN(part, parts->member(name));
+      GLARECAM_CHECK(part.object());
+      CalibrationPart& entry = (*cal.parts)[name];
+      GLARECAM_ASSIGN(entry.measured_at, part.optionalText("measured_at"));
+      GLARECAM_ASSIGN(entry.method, part.optionalText("method"));
+    }
+  }
+  GLARECAM_ASSIGN(cal.id, r.text("id"));
+  GLARECAM_ASSIGN(cal.luminance_factor, r.positive("luminance_factor"));
+  GLARECAM_ASSIGN(cal.luminance_factor_u, r.optionalNonNegative("luminance_factor_u"));
+  return cal;
+}
+
+Result<ResultOutputs> readOutputs(const JsonReader& document) {
+  JsonReader r = document;
+  GLARECAM_ASSIGN(r, document.member("outputs"));
+  GLARECAM_CHECK(r.object());
+  ResultOutputs outputs;
+  GLARECAM_ASSIGN(outputs.luminance_exr, r.text("luminance_exr"));
+  GLARECAM_ASSIGN(outputs.quality_exr, r.text("quality_exr"));
+  GLARECAM_ASSIGN(outputs.luminance_png, r.text("luminance_png"));
+  return outputs;
+}
+
+}  // namespace
+
+const char* toString(LimitMode mode) {
+  switch (mode) {
+    case LimitMode::kAlphaCurve:
+      return "alpha_curve";
+    case LimitMode::kConstant:
+      return "constant";
+    case LimitMode::kNone:
+      return "none";
+  }
+  return "none";
+}
+
+ResultEllipse resultEllipse(const GlareEllipse& e) {
+  return {
+      .vertical_deg = e.vertical_deg,
+      .horizontal_deg = e.horizontal_deg,
+      .major_deg = e.major_deg,
+      .minor_deg = e.minor_deg,
+      .orientation_deg = e.orientation_deg,
+      .center_px = {e.centre_px.x, e.centre_px.y},
+      .center_direction_deg = {e.centre_direction.horizontal_deg, e.centre_direction.vertical_deg},
+      .semi_axes_px = {e.semi_major_px, e.semi_minor_px},
+      .solid_angle_sr = e.solid_angle_sr,
+      .fit_rms_px = e.fit_rms_px,
+      .fit_rms_deg = e.fit_rms_deg,
+      .shape_residual = e.shape_residual_fraction,
+      .ellipticity_ok = e.ellipticity_ok,
+      .truncated = e.truncated,
+      .regions = e.regions,
+      .contour_points = static_cast<long long>(e.contour_points),
+      .region_pixels = static_cast<long long>(e.region_pixels),
+      .smoothing_radius_px = e.smoothing_radius_px,
+      .vertical_uncertainty_deg = e.vertical_uncertainty_deg,
+      .horizontal_uncertainty_deg = e.horizontal_uncertainty_deg,
+      .orientation_uncertainty_deg = finite(e.orientation_uncertainty_deg),
+      .solid_angle_uncertainty_sr = e.solid_angle_uncertainty_sr,
+      .unweighted_contour_points = static_cast<long long>(e.unweighted_contour_points)};
+}
+
+std::string newestPartDate(const CalibrationIdentity& calibration) {
+  std::string newest;
+  if (!calibration.parts) return newest;
+  for (const auto& [name, part] : *calibration.parts) {
+    // ISO 8601 in UTC ("2026-06-21T10:00:00Z"): the text orders as the time.
+    if (part.measured_at && part.measured_at->size() >= 10)
+      newest = std::max(newest, part.measured_at->substr(0, 10));
+  }
+  return newest;
+}
+
+std::string StackResult::cameraText(std::string_view key) const {
+  if (!camera.is_object()) return {};
+  const auto it = camera.find(key);
+  return it != camera.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
+StackResult makeResult(const ResultInputs& in) {
   const LuminanceStats& s = in.stats;
-  json result;
-  result["schema"] = kResultSchema;
-  result["stack"] = in.stack_id;
-  result["alpha_deg"] = in.alpha_deg ? json(*in.alpha_deg) : json(nullptr);
-  result["alpha_source"] = in.alpha_source.empty() ? json(nullptr) : json(in.alpha_source);
-  result["alpha_uncertainty_deg"] =
-      in.alpha_uncertainty_deg ? json(*in.alpha_uncertainty_deg) : json(nullptr);
-  result["image"] = {{"width", in.width}, {"height", in.height}};
-  result["camera"] = in.camera;
-  result["module"] = in.module ? nlohmann::json(*in.module) : nlohmann::json(nullptr);
-  const CalibrationIdentity& cal = in.calibration;
-  const auto optional = [](const auto& value) { return value ? json(*value) : json(nullptr); };
-  result["calibration"] = {{"origin", cal.origin},
-                           {"noise_model", cal.noise_model_assumed ? "assumed" : "calibrated"},
-                           {"black", cal.dark_frame ? "dark_frame" : "black_level"},
-                           {"hot_pixels_masked", cal.hot_pixels},
-                           {"file", optional(cal.file)},
-                           {"sha256", optional(cal.sha256)},
-                           {"camera", cal.camera},
-                           {"parts", cal.parts},
-                           {"id", cal.id},
-                           {"luminance_factor", cal.luminance_factor},
-                           {"luminance_factor_u", optional(cal.luminance_factor_u)}};
+  StackResult result;
+  result.stack = in.stack_id;
+  result.alpha_deg = in.alpha_deg;
+  if (!in.alpha_source.empty()) result.alpha_source = in.alpha_source;
+  result.alpha_uncertainty_deg = in.alpha_uncertainty_deg;
+  result.width = in.width;
+  result.height = in.height;
+  result.camera = in.camera;
+  result.module = in.module;
+  result.calibration = in.calibration;
   // Lmax's uncertainty: the merge's noise, and that combined in quadrature with K's, which scales
-  // every luminance of the stack alike (null when the calibration states no u(K)).
+  // every luminance of the stack alike (none when the calibration states no u(K)).
+  const CalibrationIdentity& cal = in.calibration;
   const double noise_u = s.max.relative_uncertainty;
   const double k_u = cal.luminance_factor_u && cal.luminance_factor > 0
                          ? *cal.luminance_factor_u / cal.luminance_factor
                          : std::numeric_limits<double>::quiet_NaN();
-  result["luminance"] = {
-      {"max_cd_m2", s.max.value_cd_m2},
-      {"max_pixel", {std::lround(s.max.x_px), std::lround(s.max.y_px)}},
-      {"max_position_px", {s.max.x_px, s.max.y_px}},
-      {"max_method", toString(s.max.method)},
-      {"max_relative_uncertainty", std::isfinite(s.max.relative_uncertainty)
-                                       ? json(s.max.relative_uncertainty)
-                                       : json(nullptr)},
-      {"max_relative_uncertainty_combined", std::isfinite(noise_u) && std::isfinite(k_u)
-                                                ? json(std::hypot(noise_u, k_u))
-                                                : json(nullptr)},
-      {"max_is_lower_bound", s.max.method == PeakMethod::kLowerBound},
-      {"max_is_upper_bound", s.max.method == PeakMethod::kUpperBound},
-      {"valid_fraction", s.valid_fraction},
-      {"saturated_pixels", s.saturated_pixels},
-      {"dark_pixels", s.dark_pixels},
-      {"masked_pixels", s.masked_pixels},
-      {"median_relative_uncertainty", s.median_relative_uncertainty}};
-  const auto& limit = in.glare.limit;
-  // true: every frame checked and agreeing; false: one disagrees; null: some frame had too few
-  // well-exposed pixels to be checked (and none disagrees).
-  result["frames"] = json::array();
+  ResultLuminance& l = result.luminance;
+  l.max_cd_m2 = s.max.value_cd_m2;
+  l.max_pixel = {std::lround(s.max.x_px), std::lround(s.max.y_px)};
+  l.max_position_px = {s.max.x_px, s.max.y_px};
+  l.max_method = s.max.method;
+  l.max_relative_uncertainty = finite(noise_u);
+  if (std::isfinite(noise_u) && std::isfinite(k_u))
+    l.max_relative_uncertainty_combined = std::hypot(noise_u, k_u);
+  l.valid_fraction = s.valid_fraction;
+  l.saturated_pixels = static_cast<long long>(s.saturated_pixels);
+  l.dark_pixels = static_cast<long long>(s.dark_pixels);
+  l.masked_pixels = static_cast<long long>(s.masked_pixels);
+  l.median_relative_uncertainty = s.median_relative_uncertainty;
   bool disagreement = false, unchecked = in.frames.empty();
   for (const FrameCheck& f : in.frames) {
-    const double ratio = f.agreement.median_ratio;
-    result["frames"].push_back(
-        {{"file", f.file},
-         {"median_ratio", std::isfinite(ratio) ? json(ratio) : json(nullptr)},
-         {"samples", f.agreement.samples},
-         {"agrees", std::isfinite(ratio) ? json(f.agreement.agrees()) : json(nullptr)}});
+    const std::optional<double> ratio = finite(f.agreement.median_ratio);
+    result.frames.push_back({.file = f.file,
+                             .median_ratio = ratio,
+                             .samples = static_cast<long long>(f.agreement.samples),
+                             .agrees = ratio ? std::optional(f.agreement.agrees()) : std::nullopt});
     disagreement = disagreement || !f.agreement.agrees();
-    unchecked = unchecked || !std::isfinite(ratio);
+    unchecked = unchecked || !ratio;
   }
-  result["luminance"]["frames_consistent"] =
-      disagreement ? json(false) : (unchecked ? json(nullptr) : json(true));
-  result["limit"] = {
-      {"limit_cd_m2", in.limit_cd_m2 ? json(*in.limit_cd_m2) : json(nullptr)},
-      {"mode", in.constant_limit ? "constant" : (in.limit_cd_m2 ? "alpha_curve" : "none")},
-      {"status", limit ? toString(limit->status) : "no_limit"},
-      {"ellipse", limit ? ellipseJson(*limit) : json(nullptr)}};
-  result["fwhm"] = {{"level_cd_m2", in.glare.fwhm.level_cd_m2},
-                    {"status", toString(in.glare.fwhm.status)},
-                    {"ellipse", ellipseJson(in.glare.fwhm)}};
-  result["thresholds"] = json::array();
-  for (const EllipseMeasurement& m : in.glare.thresholds) {
-    result["thresholds"].push_back({{"threshold_cd_m2", m.level_cd_m2},
-                                    {"status", toString(m.status)},
-                                    {"ellipse", ellipseJson(m)}});
-  }
-  result["glare"] = glareVerdict(s.max, in.limit_cd_m2);
-  result["outputs"] = {{"luminance_exr", "luminance.exr"},
-                       {"quality_exr", "quality.exr"},
-                       {"luminance_png", "luminance.png"}};
-  result["generator"] = {{"name", "glarecam"}, {"version", kVersion}};
+  if (disagreement || !unchecked) l.frames_consistent = !disagreement;
+  const auto& limit = in.glare.limit;
+  result.limit = {.limit_cd_m2 = in.limit_cd_m2,
+                  .mode = in.constant_limit ? LimitMode::kConstant
+                          : in.limit_cd_m2  ? LimitMode::kAlphaCurve
+                                            : LimitMode::kNone,
+                  .status = limit ? std::optional(limit->status) : std::nullopt,
+                  .ellipse = limit ? resultLevel(*limit).ellipse : std::nullopt};
+  result.fwhm = resultLevel(in.glare.fwhm);
+  for (const EllipseMeasurement& m : in.glare.thresholds)
+    result.thresholds.push_back(resultLevel(m));
+  result.glare = glareVerdict(s.max, in.limit_cd_m2);
   return result;
+}
+
+json toJson(const StackResult& r) {
+  json thresholds = json::array();
+  for (const ResultLevel& level : r.thresholds) {
+    thresholds.push_back({{"threshold_cd_m2", level.level_cd_m2},
+                          {"status", toString(level.status)},
+                          {"ellipse", ellipseJson(level.ellipse)}});
+  }
+  json frames = json::array();
+  for (const ResultFrame& f : r.frames) {
+    frames.push_back({{"file", f.file},
+                      {"median_ratio", jsonOrNull(f.median_ratio)},
+                      {"samples", f.samples},
+                      {"agrees", jsonOrNull(f.agrees)}});
+  }
+  return {{"schema", kResultSchema},
+          {"stack", r.stack},
+          {"alpha_deg", jsonOrNull(r.alpha_deg)},
+          {"alpha_source", jsonOrNull(r.alpha_source)},
+          {"alpha_uncertainty_deg", jsonOrNull(r.alpha_uncertainty_deg)},
+          {"image", {{"width", r.width}, {"height", r.height}}},
+          {"camera", r.camera},
+          {"module", jsonOrNull(r.module)},
+          {"calibration", calibrationJson(r.calibration)},
+          {"luminance", luminanceJson(r.luminance)},
+          {"frames", frames},
+          {"limit",
+           {{"limit_cd_m2", jsonOrNull(r.limit.limit_cd_m2)},
+            {"mode", toString(r.limit.mode)},
+            {"status", r.limit.status ? toString(*r.limit.status) : "no_limit"},
+            {"ellipse", ellipseJson(r.limit.ellipse)}}},
+          {"fwhm",
+           {{"level_cd_m2", r.fwhm.level_cd_m2},
+            {"status", toString(r.fwhm.status)},
+            {"ellipse", ellipseJson(r.fwhm.ellipse)}}},
+          {"thresholds", thresholds},
+          {"glare", jsonOrNull(r.glare)},
+          {"outputs",
+           {{"luminance_exr", r.outputs.luminance_exr},
+            {"quality_exr", r.outputs.quality_exr},
+            {"luminance_png", r.outputs.luminance_png}}},
+          {"generator", toJson(r.generator)}};
+}
+
+Result<StackResult> resultFromJson(const json& document, const std::string& file) {
+  const JsonReader r(document, file);
+  GLARECAM_CHECK(r.schema(kResultSchema, "a result"));
+  StackResult result;
+  GLARECAM_ASSIGN(result.stack, r.text("stack"));
+  GLARECAM_ASSIGN(result.alpha_deg, r.optionalNumberIn("alpha_deg", 0, kMaxStackAlphaDeg, "°"));
+  GLARECAM_ASSIGN(result.alpha_source, r.optionalText("alpha_source"));
+  if (result.alpha_source && *result.alpha_source != "manifest" && *result.alpha_source != "given")
+    return r.fail("alpha_source", "\"" + *result.alpha_source + "\" is not manifest or given");
+  if (result.alpha_source.has_value() != result.alpha_deg.has_value())
+    return r.fail("alpha_source", "must be given exactly when alpha_deg is");
+  GLARECAM_ASSIGN(result.alpha_uncertainty_deg, r.optionalNonNegative("alpha_uncertainty_deg"));
+  JsonReader image = r;
+  GLARECAM_ASSIGN(image, r.member("image"));
+  GLARECAM_CHECK(image.object());
+  GLARECAM_ASSIGN(result.width, image.integer("width", 1, kMaxImageSide));
+  GLARECAM_ASSIGN(result.height, image.integer("height", 1, kMaxImageSide));
+  GLARECAM_ASSIGN(result.camera, readCopiedBlock(r, "camera"));
+  GLARECAM_ASSIGN(result.module, r.optionalText("module"));
+  GLARECAM_ASSIGN(result.calibration, readResultCalibration(r));
+  GLARECAM_ASSIGN(result.luminance, readLuminance(r));
+  GLARECAM_ASSIGN(result.frames, readFrames(r));
+  GLARECAM_ASSIGN(result.limit, readResultLimit(r));
+  JsonReader fwhm = r;
+  GLARECAM_ASSIGN(fwhm, r.member("fwhm"));
+  GLARECAM_ASSIGN(result.fwhm, readLevel(fwhm, "level_cd_m2"));
+  JsonReader thresholds = r;
+  GLARECAM_ASSIGN(thresholds, r.member("thresholds"));
+  GLARECAM_CHECK(thresholds.array());
+  for (std::size_t i = 0; i < thresholds.size(); ++i) {
+    ResultLevel level;
+    GLARECAM_ASSIGN(level, readLevel(thresholds.element(i), "threshold_cd_m2"));
+    result.thresholds.push_back(std::move(level));
+  }
+  GLARECAM_ASSIGN(result.glare, r.optionalBoolean("glare"));
+  if (result.glare && !result.limit.limit_cd_m2)
+    return r.fail("glare", "is a verdict without a limit");
+  GLARECAM_ASSIGN(result.outputs, readOutputs(r));
+  JsonReader generator = r;
+  GLARECAM_ASSIGN(generator, r.member("generator"));
+  GLARECAM_ASSIGN(result.generator, generatorFromJson(generator));
+  return result;
+}
+
+Result<StackResult> readResult(const std::filesystem::path& path) {
+  json document;
+  GLARECAM_ASSIGN(document, readJsonFile(path));
+  return resultFromJson(document, path.string());
+}
+
+bool hasResultSchema(const json& document) {
+  return document.is_object() && document.value("schema", "") == kResultSchema;
 }
 
 }  // namespace glarecam::pipeline

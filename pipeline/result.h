@@ -1,14 +1,27 @@
-// The result document of one processed stack (schema glarecam.result/1, docs/process.md).
-// Built from plain values: identity, calibration origin, luminance statistics, the limit and
-// FWHM ellipses (null where there is none, with a status saying why) and the glare verdict.
+// The result document of one processed stack, schema glarecam.result/1 (docs/process.md, "The
+// result document"), as one value type with one writer and one reader:
+//   makeResult()      the document of a processed stack, from the analysis' plain values
+//   toJson()          its text form: every field, null where there is no value
+//   resultFromJson()  the reader: the schema checked and every field validated (type, range, the
+//                     statuses and methods among the known words), one error naming the file and
+//                     the field; toJson(*resultFromJson(toJson(r))) == toJson(r)
+// Everything that reads a result (the sweep's rows, the daemon's status, `process --json`) reads
+// this type, so a renamed or mistyped key fails loudly in one place.
 #pragma once
 
+#include <array>
+#include <cstddef>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "calibration/frame_consistency.h"
+#include "core/error.h"
+#include "core/generator.h"
+#include "core/json.h"
 #include "pipeline/glare_analysis.h"
 #include "pipeline/luminance_stats.h"
 
@@ -16,9 +29,80 @@ namespace glarecam::pipeline {
 
 inline constexpr std::string_view kResultSchema = "glarecam.result/1";
 
-struct FrameCheck {
+// One measured ellipse (glare_ellipse.h's GlareEllipse as written): full axes in degrees, the
+// centre in pixels and as a direction, the fit's quality and the standard uncertainties.
+struct ResultEllipse {
+  double vertical_deg = 0, horizontal_deg = 0, major_deg = 0, minor_deg = 0;
+  double orientation_deg = 0;
+  std::array<double, 2> center_px{};             // x, y
+  std::array<double, 2> center_direction_deg{};  // horizontal, vertical
+  std::array<double, 2> semi_axes_px{};          // major, minor
+  double solid_angle_sr = 0;
+  double fit_rms_px = 0, fit_rms_deg = 0, shape_residual = 0;
+  bool ellipticity_ok = false, truncated = false;
+  long long regions = 0, contour_points = 0, region_pixels = 0, smoothing_radius_px = 0;
+  double vertical_uncertainty_deg = 0, horizontal_uncertainty_deg = 0;
+  std::optional<double> orientation_uncertainty_deg;  // none for a circle
+  double solid_angle_uncertainty_sr = 0;
+  long long unweighted_contour_points = 0;
+  bool operator==(const ResultEllipse&) const = default;
+};
+
+ResultEllipse resultEllipse(const GlareEllipse& ellipse);
+
+// An ellipse at one luminance level (the FWHM, a threshold): why there is none, or the ellipse.
+struct ResultLevel {
+  double level_cd_m2 = 0;
+  EllipseStatus status = EllipseStatus::kBelowLevel;
+  std::optional<ResultEllipse> ellipse;  // exactly when status is kMeasured
+  bool operator==(const ResultLevel&) const = default;
+};
+
+// How the stack's limit was set: the α curve, a constant (--threshold), or none (no α).
+enum class LimitMode { kAlphaCurve, kConstant, kNone };
+const char* toString(LimitMode mode);
+
+// The limit ellipse: the level is the glare limit; no limit is status "no_limit" (nullopt here).
+struct ResultLimit {
+  std::optional<double> limit_cd_m2;
+  LimitMode mode = LimitMode::kNone;
+  std::optional<EllipseStatus> status;  // nullopt: no limit
+  std::optional<ResultEllipse> ellipse;
+  bool operator==(const ResultLimit&) const = default;
+};
+
+struct ResultLuminance {
+  double max_cd_m2 = 0;
+  std::array<long long, 2> max_pixel{};  // max_position_px rounded
+  std::array<double, 2> max_position_px{};
+  PeakMethod max_method = PeakMethod::kQuadraticFit;
+  std::optional<double> max_relative_uncertainty;           // the merge's noise
+  std::optional<double> max_relative_uncertainty_combined;  // with u(K), when it is known
+  double valid_fraction = 0;
+  long long saturated_pixels = 0, dark_pixels = 0, masked_pixels = 0;
+  double median_relative_uncertainty = 0;
+  // true: every frame checked and agreeing; false: one disagrees; nullopt: some frame could not
+  // be checked (and none disagrees).
+  std::optional<bool> frames_consistent;
+  bool isLowerBound() const { return max_method == PeakMethod::kLowerBound; }
+  bool isUpperBound() const { return max_method == PeakMethod::kUpperBound; }
+  bool operator==(const ResultLuminance&) const = default;
+};
+
+// A frame's agreement with the merge: median ratio (nullopt: too few samples to judge).
+struct ResultFrame {
   std::string file;
-  calibration::FrameAgreement agreement;
+  std::optional<double> median_ratio;
+  long long samples = 0;
+  std::optional<bool> agrees;  // nullopt with the ratio
+  bool operator==(const ResultFrame&) const = default;
+};
+
+// A part of the calibration (dark, flat, luminance, ...): when and how it was measured.
+struct CalibrationPart {
+  std::optional<std::string> measured_at;  // ISO 8601
+  std::optional<std::string> method;
+  bool operator==(const CalibrationPart&) const = default;
 };
 
 // What a result's numbers rest on: the calibration's identity and its absolute scale K.
@@ -27,7 +111,7 @@ struct CalibrationIdentity {
   std::optional<std::string> file = std::nullopt;    // the file read, absolute (absent: inline)
   std::optional<std::string> sha256 = std::nullopt;  // of that file's bytes
   nlohmann::json camera = nullptr;  // the calibration's camera block (model, serial), or null
-  nlohmann::json parts = nullptr;   // {name: {measured_at, method}}, or null
+  std::optional<std::map<std::string, CalibrationPart>> parts = std::nullopt;
   // The calibration's values as used, in a short stable form: the first 16 hex digits of the
   // SHA-256 of the block's JSON with sorted keys. Equal for a file and its inline copy; what a
   // sweep compares to refuse mixing calibrations.
@@ -37,6 +121,47 @@ struct CalibrationIdentity {
   bool noise_model_assumed = false;
   bool dark_frame = false;  // black subtracted pixel by pixel (else the black level)
   bool hot_pixels = false;  // the calibration's hot pixels masked out of the merge
+  bool operator==(const CalibrationIdentity&) const = default;
+};
+
+// The day (YYYY-MM-DD) the newest of the parts was measured, or "" when none says.
+std::string newestPartDate(const CalibrationIdentity& calibration);
+
+// The files `process` writes beside result.json.
+struct ResultOutputs {
+  std::string luminance_exr = "luminance.exr";
+  std::string quality_exr = "quality.exr";
+  std::string luminance_png = "luminance.png";
+  bool operator==(const ResultOutputs&) const = default;
+};
+
+struct StackResult {
+  std::string stack;  // the stack's id
+  std::optional<double> alpha_deg;
+  std::optional<std::string> alpha_source;  // "manifest" or "given"; none without α
+  std::optional<double> alpha_uncertainty_deg;
+  int width = 0, height = 0;        // image
+  nlohmann::json camera = nullptr;  // the manifest's camera block (backend, model, serial), or null
+  std::optional<std::string> module;
+  CalibrationIdentity calibration;
+  ResultLuminance luminance;
+  std::vector<ResultFrame> frames;
+  ResultLimit limit;
+  ResultLevel fwhm;
+  std::vector<ResultLevel> thresholds;  // in the order asked
+  // Lmax at or above the limit; nullopt without a limit, or when a bound cannot decide.
+  std::optional<bool> glare;
+  ResultOutputs outputs;
+  Generator generator;
+  bool operator==(const StackResult&) const = default;
+
+  // The camera block's text field `key` ("backend", "serial", "model"), or "".
+  std::string cameraText(std::string_view key) const;
+};
+
+struct FrameCheck {
+  std::string file;
+  calibration::FrameAgreement agreement;
 };
 
 struct ResultInputs {
@@ -56,8 +181,16 @@ struct ResultInputs {
   GlareAnalysis glare;
 };
 
-nlohmann::json ellipseJson(const EllipseMeasurement& measurement);
+StackResult makeResult(const ResultInputs& inputs);
 
-nlohmann::json makeResult(const ResultInputs& inputs);
+nlohmann::json toJson(const StackResult& result);
+// Reads a result document; `file` names it in errors.
+Result<StackResult> resultFromJson(const nlohmann::json& document, const std::string& file);
+// Reads result.json at `path`.
+Result<StackResult> readResult(const std::filesystem::path& path);
+
+// Whether `document` says it is a glarecam result (its schema), whatever else it holds: what may
+// be overwritten or deleted as one.
+bool hasResultSchema(const nlohmann::json& document);
 
 }  // namespace glarecam::pipeline

@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/image_io.h"
+#include "core/json.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/stack_manifest.h"
@@ -81,11 +82,11 @@ unsigned jobsWithinMemory(unsigned jobs, const std::vector<fs::path>& stacks,
 
 // A stack without a valid α is refused before the seconds of processing it.
 Status checkAlpha(const fs::path& stack) {
-  auto manifest = readJsonFile((stack / kManifestFileName).string());
-  if (!manifest || !manifest->is_object()) return {};  // processStack names what is wrong
-  const auto alpha = manifest->find("alpha_deg");
-  if (alpha == manifest->end() || !alpha->is_number()) return validateSweepAlpha(std::nullopt);
-  return validateSweepAlpha(alpha->get<double>());
+  const auto manifest = readJsonFile(stack / kManifestFileName);
+  if (!manifest) return {};  // processStack names what is wrong
+  const auto alpha = JsonReader(*manifest, kManifestFileName).optionalNumber("alpha_deg");
+  if (!alpha) return {};  // likewise
+  return validateSweepAlpha(*alpha);
 }
 
 Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_directory,

@@ -10,13 +10,10 @@
 #include <functional>
 
 #include "core/csv.h"
-#include "core/stack_manifest.h"
 
 namespace glarecam::pipeline {
 
 namespace {
-
-using nlohmann::json;
 
 enum Column {
   kAlpha,
@@ -238,11 +235,6 @@ std::string number(const std::optional<double>& value) {
   return value ? fmt::format("{}", *value) : std::string();  // shortest exact form
 }
 
-std::optional<double> numberAt(const json& object, const json::json_pointer& pointer) {
-  if (!object.contains(pointer) || !object.at(pointer).is_number()) return std::nullopt;
-  return object.at(pointer).get<double>();
-}
-
 }  // namespace
 
 GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning) {
@@ -337,90 +329,63 @@ Status validateSweepAlpha(std::optional<double> alpha_deg) {
   return {};
 }
 
+namespace {
+
 // "frames disagree: frame-03.png reads +1610 %, ..." from result.json's frames check.
-std::string disagreeingFrames(const json& result) {
+std::string disagreeingFrames(const StackResult& result) {
   std::string reason = "frames disagree with the merge";
-  const auto frames = result.find("frames");
-  if (frames == result.end() || !frames->is_array()) return reason;
   std::string sep = ": ";
-  for (const json& frame : *frames) {
-    if (!frame.is_object() || frame.value("agrees", json()) != json(false)) continue;
-    const json ratio = frame.value("median_ratio", json());
-    reason += sep + frame.value("file", std::string("a frame"));
-    if (ratio.is_number())
-      reason += fmt::format(" reads {:+.0f} %", 100 * (ratio.get<double>() - 1));
+  for (const ResultFrame& frame : result.frames) {
+    if (frame.agrees != false) continue;
+    reason += sep + frame.file;
+    if (frame.median_ratio)
+      reason += fmt::format(" reads {:+.0f} %", 100 * (*frame.median_ratio - 1));
     sep = ", ";
   }
   return reason;
 }
 
-namespace {
-
-// The day (YYYY-MM-DD) of the newest measured_at among result.json's calibration parts, or "".
-std::string newestPartDate(const json& result) {
-  const json::json_pointer pointer("/calibration/parts");
-  const json parts = result.contains(pointer) ? result.at(pointer) : json();
-  std::string newest;
-  if (!parts.is_object()) return newest;
-  for (const auto& [name, part] : parts.items()) {
-    if (!part.is_object()) continue;
-    const json measured = part.value("measured_at", json());
-    // ISO 8601 in UTC ("2026-06-21T10:00:00Z"): the text orders as the time.
-    if (measured.is_string() && measured.get<std::string>().size() >= 10)
-      newest = std::max(newest, measured.get<std::string>().substr(0, 10));
-  }
-  return newest;
+std::optional<double> axis(const std::optional<ResultEllipse>& ellipse,
+                           double ResultEllipse::*field) {
+  return ellipse ? std::optional((*ellipse).*field) : std::nullopt;
 }
 
 }  // namespace
 
-Result<SweepRow> sweepRowFromResult(const json& result, const std::string& stack) {
-  using P = json::json_pointer;
+Result<SweepRow> sweepRowFromResult(const StackResult& result, const std::string& stack) {
+  GLARECAM_CHECK(validateSweepAlpha(result.alpha_deg));
+  const ResultLuminance& luminance = result.luminance;
+  if (!(luminance.max_cd_m2 > 0)) return badInput("no positive luminance maximum in the result");
   SweepRow row;
-  // Absent, or under a value of another type (a result.json from elsewhere): null, never a throw.
-  const auto at = [&](const char* pointer) {
-    return result.contains(P(pointer)) ? result.at(P(pointer)) : json();
-  };
-  const auto text = [&](const char* pointer) {
-    const json value = at(pointer);
-    return value.is_string() ? value.get<std::string>() : std::string();
-  };
-  const auto alpha = numberAt(result, P("/alpha_deg"));
-  GLARECAM_CHECK(validateSweepAlpha(alpha));
-  const auto lmax = numberAt(result, P("/luminance/max_cd_m2"));
-  if (!lmax || *lmax <= 0) return badInput("no positive luminance maximum in the result");
-  row.alpha_deg = *alpha;
-  row.alpha_uncertainty_deg = numberAt(result, P("/alpha_uncertainty_deg"));
-  row.lmax_cd_m2 = *lmax;
-  row.limit_cd_m2 = numberAt(result, P("/limit/limit_cd_m2"));
-  if (const auto relative = numberAt(result, P("/luminance/max_relative_uncertainty")))
-    row.lmax_uncertainty_cd_m2 = *relative * *lmax;
-  row.vertical_deg = numberAt(result, P("/limit/ellipse/vertical_deg"));
-  row.horizontal_deg = numberAt(result, P("/limit/ellipse/horizontal_deg"));
-  row.vertical_uncertainty_deg = numberAt(result, P("/limit/ellipse/uncertainty/vertical_deg"));
-  row.horizontal_uncertainty_deg = numberAt(result, P("/limit/ellipse/uncertainty/horizontal_deg"));
-  row.fwhm_vertical_deg = numberAt(result, P("/fwhm/ellipse/vertical_deg"));
-  row.fwhm_horizontal_deg = numberAt(result, P("/fwhm/ellipse/horizontal_deg"));
-  if (result.contains("glare") && result["glare"].is_boolean())
-    row.glare = result["glare"].get<bool>();
-  if (at("/luminance/max_is_lower_bound") == json(true)) row.lmax_bound = "lower";
-  if (at("/luminance/max_is_upper_bound") == json(true)) row.lmax_bound = "upper";
-  row.limit_status = text("/limit/status");
-  if (const json consistent = at("/luminance/frames_consistent"); consistent.is_boolean())
-    row.frames_consistent = consistent.get<bool>();
+  row.alpha_deg = *result.alpha_deg;
+  row.alpha_uncertainty_deg = result.alpha_uncertainty_deg;
+  row.lmax_cd_m2 = luminance.max_cd_m2;
+  row.limit_cd_m2 = result.limit.limit_cd_m2;
+  if (luminance.max_relative_uncertainty)
+    row.lmax_uncertainty_cd_m2 = *luminance.max_relative_uncertainty * luminance.max_cd_m2;
+  const std::optional<ResultEllipse>& limit = result.limit.ellipse;
+  row.vertical_deg = axis(limit, &ResultEllipse::vertical_deg);
+  row.horizontal_deg = axis(limit, &ResultEllipse::horizontal_deg);
+  row.vertical_uncertainty_deg = axis(limit, &ResultEllipse::vertical_uncertainty_deg);
+  row.horizontal_uncertainty_deg = axis(limit, &ResultEllipse::horizontal_uncertainty_deg);
+  row.fwhm_vertical_deg = axis(result.fwhm.ellipse, &ResultEllipse::vertical_deg);
+  row.fwhm_horizontal_deg = axis(result.fwhm.ellipse, &ResultEllipse::horizontal_deg);
+  row.glare = result.glare;
+  if (luminance.isLowerBound()) row.lmax_bound = "lower";
+  if (luminance.isUpperBound()) row.lmax_bound = "upper";
+  row.limit_status = result.limit.status ? toString(*result.limit.status) : "no_limit";
+  row.frames_consistent = luminance.frames_consistent;
   if (row.frames_consistent == false) row.suspect = disagreeingFrames(result);
-  row.camera_backend = text("/camera/backend");
-  row.camera_serial = text("/camera/serial");
-  row.module = text("/module");
-  row.calibration_id = text("/calibration/id");
-  row.calibration_date = newestPartDate(result);
-  row.luminance_factor = numberAt(result, P("/calibration/luminance_factor"));
-  row.luminance_factor_u = numberAt(result, P("/calibration/luminance_factor_u"));
-  if (const auto w = numberAt(result, P("/image/width")); w && isImageSidePx(*w))
-    row.width = static_cast<int>(*w);
-  if (const auto h = numberAt(result, P("/image/height")); h && isImageSidePx(*h))
-    row.height = static_cast<int>(*h);
-  if (result.contains("stack") && result["stack"].is_string()) row.stack_id = result["stack"];
+  row.camera_backend = result.cameraText("backend");
+  row.camera_serial = result.cameraText("serial");
+  row.module = result.module.value_or("");
+  row.calibration_id = result.calibration.id;
+  row.calibration_date = newestPartDate(result.calibration);
+  row.luminance_factor = result.calibration.luminance_factor;
+  row.luminance_factor_u = result.calibration.luminance_factor_u;
+  row.width = result.width;
+  row.height = result.height;
+  row.stack_id = result.stack;
   row.stack = stack;
   return row;
 }

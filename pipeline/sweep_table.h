@@ -5,13 +5,13 @@
 #pragma once
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
 #include "pipeline/limit_curve.h"
+#include "pipeline/result.h"
 
 namespace glarecam::pipeline {
 
@@ -88,9 +88,9 @@ std::string formatSweepTable(const SweepTable& table);
 // A sweep row's α: present and in [0, 90) (the cosine function is undefined at 90°).
 Status validateSweepAlpha(std::optional<double> alpha_deg);
 
-// The row of one processed stack (at path `stack`) from its result.json (glarecam.result/1);
-// kBadInput when the result's α is missing or invalid (a sweep needs one). Errors do not repeat
-// the stack's path: the caller names it.
-Result<SweepRow> sweepRowFromResult(const nlohmann::json& result, const std::string& stack);
+// The row of one processed stack (at path `stack`) from its result (result.h); kBadInput when the
+// result's α is missing or invalid (a sweep needs one). Errors do not repeat the stack's path: the
+// caller names it.
+Result<SweepRow> sweepRowFromResult(const StackResult& result, const std::string& stack);
 
 }  // namespace glarecam::pipeline

@@ -9,7 +9,7 @@
 
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
 #include "pipeline/process_stack.h"
 
 namespace glarecam::apps {
@@ -50,7 +50,7 @@ Status runProcess(const ProcessArgs& args) {
   if (!summary) return std::unexpected(summary.error());
   spdlog::info("{}", summary->briefReport());
   if (args.json) {
-    std::printf("%s", jsonText(summary->result).c_str());
+    std::printf("%s", jsonText(pipeline::toJson(summary->result)).c_str());
   } else {
     std::printf("%s\n", summary->output_directory.c_str());
   }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "core/json.h"
 #include "support/test_support.h"
 
 namespace glarecam::daemon {
@@ -13,19 +14,35 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(ResultBrief, TakesWhatTheResultSaysAndLeavesTheRestUnknown) {
-  const ResultBrief full = resultBrief(nlohmann::json::parse(R"({
-      "alpha_deg": 42.3, "glare": true,
-      "luminance": {"max_cd_m2": 5.4e5, "max_is_lower_bound": true},
-      "limit": {"limit_cd_m2": 3e4}})"));
+// A result as `process` writes it, with Lmax `lmax_cd_m2` and the rest at its defaults.
+pipeline::StackResult someResult(double lmax_cd_m2) {
+  pipeline::StackResult result;
+  result.stack = "20260621T080000Z-a40.00";
+  result.width = 320;
+  result.height = 256;
+  result.calibration.luminance_factor = 1500;
+  result.luminance.max_cd_m2 = lmax_cd_m2;
+  return result;
+}
+
+TEST(ResultBrief, TakesWhatTheResultSays) {
+  pipeline::StackResult result = someResult(5.4e5);
+  result.alpha_deg = 42.3;
+  result.alpha_source = "manifest";
+  result.glare = true;
+  result.luminance.max_method = pipeline::PeakMethod::kLowerBound;
+  result.limit = {.limit_cd_m2 = 3e4,
+                  .mode = pipeline::LimitMode::kAlphaCurve,
+                  .status = pipeline::EllipseStatus::kTooSmall};
+  const ResultBrief full = resultBrief(result);
   EXPECT_EQ(full.alpha_deg, 42.3);
   EXPECT_EQ(full.lmax_cd_m2, 5.4e5);
   EXPECT_EQ(full.lmax_bound, "lower");
   EXPECT_EQ(full.limit_cd_m2, 3e4);
   EXPECT_EQ(full.glare, true);
-  const ResultBrief bare = resultBrief(nlohmann::json::parse(R"({"alpha_deg": "forty"})"));
+  const ResultBrief bare = resultBrief(someResult(700));
   EXPECT_FALSE(bare.alpha_deg);
-  EXPECT_EQ(bare.lmax_cd_m2, 0);
+  EXPECT_EQ(bare.lmax_cd_m2, 700);
   EXPECT_EQ(bare.lmax_bound, "");
   EXPECT_FALSE(bare.limit_cd_m2);
   EXPECT_FALSE(bare.glare);
@@ -37,26 +54,35 @@ TEST(ResultBrief, NewestIsTheGreatestIdWithAResult) {
   EXPECT_FALSE(newestResult(results));  // no directory at all
   fs::create_directories(results);
   EXPECT_FALSE(newestResult(results));
-  const auto result = [&](const std::string& id, const std::string& text) {
+  const auto write = [&](const std::string& id, const std::string& text) {
     fs::create_directories(results / id);
     testing::writeText(results / id / "result.json", text);
   };
-  result(".tmp-20260621T070000Z-a39.00-x1y2", R"({"luminance": {"max_cd_m2": 500}})");
+  const auto result = [&](const std::string& id, double lmax_cd_m2) {
+    write(id, jsonText(pipeline::toJson(someResult(lmax_cd_m2))));
+  };
+  result(".tmp-20260621T070000Z-a39.00-x1y2", 500);
   EXPECT_FALSE(newestResult(results));  // a result being staged is none yet
-  result("zz-not-a-stack", R"({"luminance": {"max_cd_m2": 9}})");  // sorts above any time
+  result("zz-not-a-stack", 9);          // sorts above any time
   EXPECT_FALSE(newestResult(results));
-  result("20260621T080000Z-a40.00", R"({"luminance": {"max_cd_m2": 1000}})");
-  result("20260621T090000Z-a41.00", R"({"luminance": {"max_cd_m2": 2000}})");
+  result("20260621T080000Z-a40.00", 1000);
+  result("20260621T090000Z-a41.00", 2000);
   fs::create_directories(results / "20260621T100000Z-a42.00");  // being processed: no result yet
-  result(".tmp-20260621T110000Z-a43.00-x1y2", R"({"luminance": {"max_cd_m2": 3000}})");
+  result(".tmp-20260621T110000Z-a43.00-x1y2", 3000);
   testing::writeText(results / "20260621T120000Z-a44.00.failed", "bad stack\n");
   const auto newest = newestResult(results);
   ASSERT_TRUE(newest);
   EXPECT_EQ(newest->stack_id, "20260621T090000Z-a41.00");
   EXPECT_EQ(newest->directory, results / "20260621T090000Z-a41.00");
   EXPECT_EQ(newest->brief.lmax_cd_m2, 2000);
-  result("20260622T080000Z-a40.00", "{ not json");
+  write("20260622T080000Z-a40.00", "{ not json");
   EXPECT_FALSE(newestResult(results));  // the newest cannot be read: none, not an older one
+  // Nor one that is JSON but not a valid result (a key renamed by another tool).
+  nlohmann::json renamed = pipeline::toJson(someResult(4000));
+  renamed["luminance"]["max_cd"] = renamed["luminance"]["max_cd_m2"];
+  renamed["luminance"].erase("max_cd_m2");
+  write("20260622T080000Z-a40.00", renamed.dump());
+  EXPECT_FALSE(newestResult(results));
 }
 
 }  // namespace

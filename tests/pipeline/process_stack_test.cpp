@@ -46,7 +46,7 @@ TEST(ProcessStack, WritesEveryOutputAndAResultMatchingTheTruth) {
     EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
   }
   const json result = json::parse(testing::readText(out / "result.json"));
-  EXPECT_EQ(result, summary->result);
+  EXPECT_EQ(result, toJson(summary->result));
   EXPECT_EQ(result["schema"], "glarecam.result/1");
   EXPECT_EQ(result["stack"], *simulated.manifest.id);
   EXPECT_EQ(result["alpha_deg"], 65.0);
@@ -140,7 +140,7 @@ DarkRun processWith(const fs::path& stack, const std::optional<fs::path>& calibr
   RawFrame flags(bound->width(), bound->height());
   for (std::size_t i = 0; i < flags.pixelCount(); ++i)
     flags.data()[i] = static_cast<std::uint16_t>(bound->data()[i]);
-  return {summary->result, std::move(*luminance), std::move(flags)};
+  return {toJson(summary->result), std::move(*luminance), std::move(flags)};
 }
 
 // The RMS of (L - truth) / truth over the pixels `keep` accepts.
@@ -246,8 +246,8 @@ TEST(ProcessStack, NoAlphaMeansNoLimitAndNoVerdict) {
   options.output_directory = dir / "out";
   auto summary = processStack(dir / "s", options);
   ASSERT_TRUE(summary) << summary.error().message;
-  EXPECT_TRUE(summary->result["limit"]["limit_cd_m2"].is_null());
-  EXPECT_TRUE(summary->result["glare"].is_null());
+  EXPECT_TRUE(toJson(summary->result)["limit"]["limit_cd_m2"].is_null());
+  EXPECT_TRUE(toJson(summary->result)["glare"].is_null());
   EXPECT_TRUE(fs::exists(dir / "out" / "result.json"));
 }
 
@@ -262,7 +262,7 @@ TEST(ProcessStack, AlphaGivenToAStackThatRecordsNone) {
   options.alpha_deg = recorded;
   auto confirmed = processStack(dir / "s", options);
   ASSERT_TRUE(confirmed) << confirmed.error().message;
-  EXPECT_EQ(confirmed->result["alpha_source"], "manifest");
+  EXPECT_EQ(toJson(confirmed->result)["alpha_source"], "manifest");
   options.alpha_deg = recorded + 10;
   auto contradicted = processStack(dir / "s", options);
   ASSERT_FALSE(contradicted);
@@ -274,13 +274,13 @@ TEST(ProcessStack, AlphaGivenToAStackThatRecordsNone) {
   testing::writeText(dir / "s" / "stack.json", manifest.dump());
   auto given = processStack(dir / "s", options);
   ASSERT_TRUE(given) << given.error().message;
-  EXPECT_EQ(given->result["alpha_deg"], recorded + 10);
-  EXPECT_EQ(given->result["alpha_source"], "given");
-  EXPECT_EQ(given->result["limit"]["limit_cd_m2"], glareLimitCdM2(recorded + 10));
+  EXPECT_EQ(toJson(given->result)["alpha_deg"], recorded + 10);
+  EXPECT_EQ(toJson(given->result)["alpha_source"], "given");
+  EXPECT_EQ(toJson(given->result)["limit"]["limit_cd_m2"], glareLimitCdM2(recorded + 10));
   options.alpha_deg.reset();
   auto none = processStack(dir / "s", options);
   ASSERT_TRUE(none);
-  EXPECT_TRUE(none->result["alpha_source"].is_null());
+  EXPECT_TRUE(toJson(none->result)["alpha_source"].is_null());
   options.alpha_deg = 91;
   EXPECT_FALSE(processStack(dir / "s", options));
 }
@@ -293,12 +293,12 @@ TEST(ProcessStack, BelowTheLimitDoesNotGlare) {
   ASSERT_FALSE(simulated.truth.limit_axes.has_value());
   auto summary = processStack(dir / "s", quiet());
   ASSERT_TRUE(summary) << summary.error().message;
-  EXPECT_EQ(summary->result["glare"], false);
-  EXPECT_LT(summary->result["luminance"]["max_cd_m2"].get<double>(), 30'000.0);
-  EXPECT_TRUE(summary->result["limit"]["ellipse"].is_null());
-  EXPECT_EQ(summary->result["limit"]["status"], "below_level");
-  EXPECT_EQ(summary->result["fwhm"]["status"], "measured");
-  EXPECT_TRUE(summary->result["fwhm"]["ellipse"].is_object());
+  EXPECT_EQ(toJson(summary->result)["glare"], false);
+  EXPECT_LT(toJson(summary->result)["luminance"]["max_cd_m2"].get<double>(), 30'000.0);
+  EXPECT_TRUE(toJson(summary->result)["limit"]["ellipse"].is_null());
+  EXPECT_EQ(toJson(summary->result)["limit"]["status"], "below_level");
+  EXPECT_EQ(toJson(summary->result)["fwhm"]["status"], "measured");
+  EXPECT_TRUE(toJson(summary->result)["fwhm"]["ellipse"].is_object());
 }
 
 // The whole chain (simulated sensor noise, bracketing, merge, analysis) against the scene's
@@ -312,7 +312,7 @@ TEST(ProcessStack, EllipsesMatchTheTruthThroughTheWholeChain) {
     const auto simulated = testing::writeSmallStack(dir / "s", options);
     auto summary = processStack(dir / "s", quiet());
     ASSERT_TRUE(summary) << summary.error().message;
-    const json& result = summary->result;
+    const json result = toJson(summary->result);
     // The tolerances: axes and maximum within 1 % of the truth. The merged image has
     // about 1 % noise per pixel; each axis averages hundreds of contour points (its scatter is
     // ~0.1 % at the limit, ~0.3 % at half maximum, which also carries the maximum's error).
@@ -342,8 +342,9 @@ TEST(ProcessStack, SwappedFramesAreFlaggedAsInconsistent) {
   testing::writeSmallStack(dir / "s");
   auto good = processStack(dir / "s", quiet());
   ASSERT_TRUE(good) << good.error().message;
-  EXPECT_TRUE(good->result["luminance"]["frames_consistent"].get<bool>());
-  for (const json& frame : good->result["frames"]) {
+  EXPECT_TRUE(toJson(good->result)["luminance"]["frames_consistent"].get<bool>());
+  const json good_result = toJson(good->result);
+  for (const json& frame : good_result["frames"]) {
     if (frame["median_ratio"].is_null()) continue;  // too few well-exposed pixels to judge
     // Noise and the merge's weighting leave a well-exposed frame within 1 % of the merge.
     EXPECT_NEAR(frame["median_ratio"].get<double>(), 1.0, 0.01) << frame;
@@ -353,9 +354,9 @@ TEST(ProcessStack, SwappedFramesAreFlaggedAsInconsistent) {
   testing::writeText(dir / "s" / "stack.json", manifest.dump());
   auto swapped = processStack(dir / "s", quiet());
   ASSERT_TRUE(swapped) << swapped.error().message;
-  EXPECT_FALSE(swapped->result["luminance"]["frames_consistent"].get<bool>());
-  EXPECT_FALSE(swapped->result["frames"][2]["agrees"].get<bool>());
-  EXPECT_FALSE(swapped->result["frames"][3]["agrees"].get<bool>());
+  EXPECT_FALSE(toJson(swapped->result)["luminance"]["frames_consistent"].get<bool>());
+  EXPECT_FALSE(toJson(swapped->result)["frames"][2]["agrees"].get<bool>());
+  EXPECT_FALSE(toJson(swapped->result)["frames"][3]["agrees"].get<bool>());
 }
 
 TEST(ProcessStack, EllipseCarriesEveryDocumentedKey) {
@@ -363,7 +364,7 @@ TEST(ProcessStack, EllipseCarriesEveryDocumentedKey) {
   testing::writeSmallStack(dir / "s");
   auto summary = processStack(dir / "s", quiet());
   ASSERT_TRUE(summary) << summary.error().message;
-  const json& ellipse = summary->result["limit"]["ellipse"];
+  const json ellipse = toJson(summary->result)["limit"]["ellipse"];
   for (const char* key :
        {"vertical_deg", "horizontal_deg", "major_deg", "minor_deg", "orientation_deg", "center_px",
         "center_direction_deg", "semi_axes_px", "solid_angle_sr", "fit_rms_px", "ellipticity_ok",
@@ -372,9 +373,9 @@ TEST(ProcessStack, EllipseCarriesEveryDocumentedKey) {
   }
   EXPECT_TRUE(ellipse["uncertainty"].contains("vertical_deg"));
   EXPECT_TRUE(ellipse["uncertainty"].contains("horizontal_deg"));
-  EXPECT_EQ(summary->result["limit"]["mode"], "alpha_curve");
-  EXPECT_EQ(summary->result["limit"]["status"], "measured");
-  EXPECT_TRUE(summary->result["thresholds"].empty());
+  EXPECT_EQ(toJson(summary->result)["limit"]["mode"], "alpha_curve");
+  EXPECT_EQ(toJson(summary->result)["limit"]["status"], "measured");
+  EXPECT_TRUE(toJson(summary->result)["thresholds"].empty());
 }
 
 TEST(ProcessStack, ConstantThresholdReplacesTheAlphaCurve) {
@@ -386,11 +387,11 @@ TEST(ProcessStack, ConstantThresholdReplacesTheAlphaCurve) {
   options.threshold_cd_m2 = kConstantGlareLimitCdM2;
   auto constant = processStack(dir / "s", options);
   ASSERT_TRUE(constant) << constant.error().message;
-  EXPECT_EQ(constant->result["limit"]["mode"], "constant");
-  EXPECT_EQ(constant->result["limit"]["limit_cd_m2"], 30'000.0);
+  EXPECT_EQ(toJson(constant->result)["limit"]["mode"], "constant");
+  EXPECT_EQ(toJson(constant->result)["limit"]["limit_cd_m2"], 30'000.0);
   // At α 70 the curve's limit is 100 000: the constant 30 000 contour is wider.
-  EXPECT_GT(constant->result["limit"]["ellipse"]["vertical_deg"].get<double>(),
-            curve->result["limit"]["ellipse"]["vertical_deg"].get<double>());
+  EXPECT_GT(toJson(constant->result)["limit"]["ellipse"]["vertical_deg"].get<double>(),
+            toJson(curve->result)["limit"]["ellipse"]["vertical_deg"].get<double>());
 }
 
 // result.json says what its numbers rest on: the calibration file and its SHA-256, the camera and
@@ -401,12 +402,13 @@ TEST(ProcessStack, TheResultRecordsTheCalibrationItRestsOn) {
   testing::writeSmallStack(dir / "s");
   auto inline_run = processStack(dir / "s", quiet());
   ASSERT_TRUE(inline_run) << inline_run.error().message;
-  const json& inline_cal = inline_run->result["calibration"];
+  const json inline_cal = toJson(inline_run->result)["calibration"];
   EXPECT_EQ(inline_cal["origin"], "inline");
   EXPECT_TRUE(inline_cal["file"].is_null());
   EXPECT_TRUE(inline_cal["sha256"].is_null());
   EXPECT_TRUE(inline_cal["luminance_factor_u"].is_null());
-  EXPECT_TRUE(inline_run->result["luminance"]["max_relative_uncertainty_combined"].is_null());
+  EXPECT_TRUE(
+      toJson(inline_run->result)["luminance"]["max_relative_uncertainty_combined"].is_null());
 
   json calibration = json::parse(testing::readText(dir / "s" / "stack.json"))["calibration"];
   calibration.erase("flat_field");
@@ -422,7 +424,7 @@ TEST(ProcessStack, TheResultRecordsTheCalibrationItRestsOn) {
   options.calibration_file = dir / "calibration.json";
   auto run = processStack(dir / "s", options);
   ASSERT_TRUE(run) << run.error().message;
-  const json& cal = run->result["calibration"];
+  const json cal = toJson(run->result)["calibration"];
   EXPECT_EQ(cal["file"], fs::absolute(dir / "calibration.json").lexically_normal().string());
   EXPECT_EQ(cal["sha256"], *sha256OfFile(dir / "calibration.json"));
   EXPECT_EQ(cal["camera"]["serial"], "SIM-0001");
@@ -430,7 +432,7 @@ TEST(ProcessStack, TheResultRecordsTheCalibrationItRestsOn) {
   EXPECT_FALSE(cal["parts"]["luminance"].contains("inputs"));
   EXPECT_EQ(cal["luminance_factor"], k);
   EXPECT_DOUBLE_EQ(cal["luminance_factor_u"].get<double>(), 0.0116 * k);
-  const json& luminance = run->result["luminance"];
+  const json luminance = toJson(run->result)["luminance"];
   const double noise = luminance["max_relative_uncertainty"].get<double>();
   EXPECT_LT(noise, 0.0116);  // the merge's noise is the smaller part here
   EXPECT_NEAR(luminance["max_relative_uncertainty_combined"].get<double>(),
@@ -444,7 +446,7 @@ TEST(ProcessStack, ThresholdSweepReportsOneEllipsePerLevel) {
   options.thresholds_cd_m2 = {50'000, 200'000, 1e12};
   auto summary = processStack(dir / "s", options);
   ASSERT_TRUE(summary) << summary.error().message;
-  const json& sweep = summary->result["thresholds"];
+  const json sweep = toJson(summary->result)["thresholds"];
   ASSERT_EQ(sweep.size(), 3u);
   EXPECT_EQ(sweep[0]["threshold_cd_m2"], 50'000.0);
   EXPECT_GT(sweep[0]["ellipse"]["major_deg"].get<double>(),
@@ -463,9 +465,10 @@ TEST(ProcessStack, DistortionThatCannotBeInvertedAtTheSpotLosesOnlyTheEllipses) 
   testing::writeText(dir / "s" / "stack.json", manifest.dump());
   auto summary = processStack(dir / "s", quiet());
   ASSERT_TRUE(summary) << summary.error().message;
-  EXPECT_EQ(summary->result["limit"]["status"], "camera_model_not_invertible");
-  EXPECT_TRUE(summary->result["limit"]["ellipse"].is_null());
-  EXPECT_EQ(summary->result["glare"], true);  // the luminance verdict does not need the lens
+  EXPECT_EQ(toJson(summary->result)["limit"]["status"], "camera_model_not_invertible");
+  EXPECT_TRUE(toJson(summary->result)["limit"]["ellipse"].is_null());
+  EXPECT_EQ(toJson(summary->result)["glare"],
+            true);  // the luminance verdict does not need the lens
   EXPECT_TRUE(fs::exists(dir / "s" / "result" / "luminance.png"));
 }
 
@@ -480,8 +483,8 @@ TEST(ProcessStack, LevelBelowTheBackgroundWithDistortionFillsTheImage) {
   process.thresholds_cd_m2 = {1000.0};  // the simulated background is 3000 cd/m²
   auto summary = processStack(dir / "s", process);
   ASSERT_TRUE(summary) << summary.error().message;
-  EXPECT_EQ(summary->result["thresholds"][0]["status"], "fills_image");
-  EXPECT_EQ(summary->result["limit"]["status"], "measured");
+  EXPECT_EQ(toJson(summary->result)["thresholds"][0]["status"], "fills_image");
+  EXPECT_EQ(toJson(summary->result)["limit"]["status"], "measured");
 }
 
 TEST(ProcessStack, InvalidThresholdsAreBadInput) {
@@ -511,17 +514,18 @@ TEST(ProcessStack, SaturatedPeakIsReportedAsALowerBound) {
   testing::writeText(dir / "s" / "stack.json", manifest.dump());
   auto summary = processStack(dir / "s", quiet());
   ASSERT_TRUE(summary) << summary.error().message;
-  EXPECT_GT(summary->result["luminance"]["saturated_pixels"].get<int>(), 0);
-  EXPECT_TRUE(summary->result["luminance"]["max_is_lower_bound"].get<bool>());
-  EXPECT_LT(summary->result["luminance"]["max_cd_m2"].get<double>(), simulated.truth.peak_cd_m2);
+  EXPECT_GT(toJson(summary->result)["luminance"]["saturated_pixels"].get<int>(), 0);
+  EXPECT_TRUE(toJson(summary->result)["luminance"]["max_is_lower_bound"].get<bool>());
+  EXPECT_LT(toJson(summary->result)["luminance"]["max_cd_m2"].get<double>(),
+            simulated.truth.peak_cd_m2);
   // The clipped top's position is the plateau's centroid, on the lobe's centre (not its edge).
-  EXPECT_NEAR(summary->result["luminance"]["max_position_px"][0].get<double>(),
+  EXPECT_NEAR(toJson(summary->result)["luminance"]["max_position_px"][0].get<double>(),
               simulated.centre_pixel[0], 1.0);
-  EXPECT_NEAR(summary->result["luminance"]["max_position_px"][1].get<double>(),
+  EXPECT_NEAR(toJson(summary->result)["luminance"]["max_position_px"][1].get<double>(),
               simulated.centre_pixel[1], 1.0);
   // Half of a lower bound is no FWHM level.
-  EXPECT_EQ(summary->result["fwhm"]["status"], "peak_is_bound");
-  EXPECT_TRUE(summary->result["fwhm"]["ellipse"].is_null());
+  EXPECT_EQ(toJson(summary->result)["fwhm"]["status"], "peak_is_bound");
+  EXPECT_TRUE(toJson(summary->result)["fwhm"]["ellipse"].is_null());
 }
 
 TEST(ProcessStack, EightBitFramesSaturateAtTheirMaximum) {
@@ -538,8 +542,8 @@ TEST(ProcessStack, EightBitFramesSaturateAtTheirMaximum) {
   auto summary = processStack(dir / "s", quiet());
   ASSERT_TRUE(summary) << summary.error().message;
   // The peak is clipped at 255 in every frame: a lower bound, not a measurement of 255 DN.
-  EXPECT_TRUE(summary->result["luminance"]["max_is_lower_bound"].get<bool>());
-  EXPECT_GT(summary->result["luminance"]["saturated_pixels"].get<int>(), 0);
+  EXPECT_TRUE(toJson(summary->result)["luminance"]["max_is_lower_bound"].get<bool>());
+  EXPECT_GT(toJson(summary->result)["luminance"]["saturated_pixels"].get<int>(), 0);
 }
 
 TEST(ProcessStack, AFailedRunNeverLeavesAnOldResultBesideNewOutputs) {

@@ -77,7 +77,7 @@ nlohmann::json expectProcessedMatchesTruth(const std::filesystem::path& director
   auto summary = pipeline::processStack(directory, options);
   EXPECT_TRUE(summary) << summary.error().message;
   if (!summary) return {};
-  const nlohmann::json& result = summary->result;
+  const nlohmann::json result = pipeline::toJson(summary->result);
   EXPECT_NEAR(result["luminance"]["max_cd_m2"].get<double>() / truth.peak_cd_m2, 1,
               relative_tolerance);
   const auto expect_axes = [&](const nlohmann::json& ellipse,

@@ -33,9 +33,9 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
     }
     auto& table = tables[path->lexically_normal()];
     if (!table) {
-      ProfileTable read;
-      GLARECAM_ASSIGN(read, ProfileTable::read(*path));
-      table = std::make_unique<ProfileTable>(std::move(read));
+      Result<ProfileTable> read = ProfileTable::read(*path);
+      if (!read) return std::unexpected(read.error());
+      table = std::make_unique<ProfileTable>(std::move(*read));
     }
     profiles.push_back(table.get());
   }

@@ -1,5 +1,5 @@
-// A module's glare profile (glarecam.glare-profile/1, docs/glare-profile.md) as the hazard
-// calculation reads it: whether the module glares at an α, and the beam spread and luminances
+// A module's glare profile (pipeline/glare_profile.h, read by its one reader) as the hazard
+// calculation asks it: whether the module glares at an α, and the beam spread and luminances
 // there, interpolated between the profile's whole-degree rows (../shared/docs/hazard.md,
 // "Inputs"):
 //   - glare is possible at α iff α lies in one of glare_ranges_deg (ends included) and
@@ -8,8 +8,7 @@
 //     it; where one of them is null, the other's value; where both are null but α glares, the
 //     spread is unknown (reported, never taken as "no glare");
 //   - Lmax and the glare limit are linear in ln L.
-// Profiles written by earlier versions stay readable: only schema, module, glare_ranges_deg and
-// profile (one row per whole degree 0–80 with alpha_deg) are required; a row's lmax_cd_m2,
+// Profiles written by earlier versions stay readable (the reader's rules): a row's lmax_cd_m2,
 // limit_cd_m2, axes and circular_beam may be null or absent. An axis below kMinAxisDeg counts as
 // absent (no region, and no ellipse so thin that the test would crawl along it).
 #pragma once
@@ -26,7 +25,6 @@
 
 namespace glarecam::hazard {
 
-inline constexpr const char* kProfileSchema = "glarecam.glare-profile/1";
 inline constexpr double kMinAxisDeg = 0.001;
 
 enum class SpreadStatus {
@@ -48,8 +46,11 @@ struct LuminancesAt {
 
 class ProfileTable {
  public:
-  // Reads and validates a profile file; errors name the file and the field (kBadInput).
+  explicit ProfileTable(const pipeline::GlareProfile& profile);
+  // Reads and validates a profile file (pipeline::readGlareProfile); errors name the file and the
+  // field (kBadInput).
   static Result<ProfileTable> read(const std::filesystem::path& path);
+  // The same for a document read already (`file` names it in errors).
   static Result<ProfileTable> fromJson(const nlohmann::json& document, const std::string& file);
 
   SpreadAt at(double alpha_deg) const;
@@ -68,7 +69,8 @@ class ProfileTable {
 
   const std::filesystem::path& path() const { return path_; }
   const std::string& module() const { return module_; }
-  // Identity for the report: module, date, simulated, calibrations when the file has them.
+  // Identity for the report: module, simulated and calibrations, date and source when the file
+  // has them, and the path it was read from.
   const nlohmann::json& identity() const { return identity_; }
   const std::vector<pipeline::AlphaRange>& glareRanges() const { return ranges_; }
 

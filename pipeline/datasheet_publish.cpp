@@ -11,7 +11,8 @@
 #include <ctime>
 
 #include "core/atomic_file.h"
-#include "core/stack_manifest.h"
+#include "core/json.h"
+#include "core/time.h"
 #include "core/utf8.h"
 #include "pipeline/facet_model.h"
 #include "pipeline/glare_fits.h"
@@ -23,10 +24,10 @@ namespace fs = std::filesystem;
 Status publishDatasheet(const DatasheetContent& content, const std::string& source,
                         const std::filesystem::path& directory) {
   GLARECAM_CHECK(writeDatasheet(content, directory));
-  const nlohmann::json profile =
-      glareProfileJson({.module = content.module, .date = content.date, .source = source},
+  const GlareProfile profile =
+      makeGlareProfile({.module = content.module, .date = content.date, .source = source},
                        *content.table, *content.fits, content.limit);
-  return writeFileAtomic(directory / kGlareProfileFileName, jsonText(profile));
+  return writeJsonFile(directory / kGlareProfileFileName, toJson(profile));
 }
 
 Status SweepPublishOptions::validate() const {
@@ -58,16 +59,8 @@ Result<fs::path> publishSweepTable(const SweepPublishOptions& options) {
 
 Result<std::string> sheetDate(const std::optional<std::string>& date) {
   if (date) {
-    int year = 0;
-    unsigned month = 0, day = 0;
-    char tail = 0;
-    const bool parsed =
-        std::sscanf(date->c_str(), "%4d-%2u-%2u%c", &year, &month, &day, &tail) == 3;
-    if (!parsed || date->size() != 10 ||
-        !std::chrono::year_month_day(std::chrono::year(year), std::chrono::month(month),
-                                     std::chrono::day(day))
-             .ok())
-      return badInput("--date: expected a date YYYY-MM-DD, got \"" + *date + "\"");
+    const auto day = parseIsoDay(*date);
+    if (!day) return badInput("--date " + day.error().message);
     return *date;
   }
   std::time_t seconds = std::time(nullptr);
@@ -86,7 +79,7 @@ Result<std::string> sheetDate(const std::optional<std::string>& date) {
 }
 
 Result<GlareLimit> sheetLimit(const std::string& sweep, const SweepTable& table,
-                      const std::optional<double>& threshold_cd_m2) {
+                              const std::optional<double>& threshold_cd_m2) {
   std::string warning;
   const GlareLimit measured = inferGlareLimit(table, &warning);
   if (!warning.empty()) spdlog::warn("{}: {}", sweep, warning);

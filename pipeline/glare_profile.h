@@ -2,13 +2,25 @@
 // α from the sweep's fits, the glare limit and whether the module glares, and the beam spread as
 // glare-hazard tools model it: the circular cone of the same solid angle as the measured ellipse,
 // and the surface slope error σ that gives that cone in beta = 2 (4.65 mrad + σ).
+//
+// The document, glarecam.glare-profile/1, is one value type (GlareProfile) with one writer
+// (toJson) and one reader (glareProfileFromJson, readGlareProfile), which every consumer (the
+// hazard calculation, tests, other tools through the docs) goes through. The reader accepts the
+// versions in kGlareProfileSchemas and profiles written by earlier glarecam versions, which lack
+// what was added since: only schema, module, glare_ranges_deg and profile (one row per whole
+// degree 0–80, each with alpha_deg) are required; a row's other fields may be null or absent.
 #pragma once
 
+#include <filesystem>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/error.h"
+#include "core/generator.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/limit_curve.h"
 
@@ -23,6 +35,7 @@ struct CircularBeamSpread {
   double solid_angle_sr = 0;    // of the elliptical cone with the measured full axes
   double beta_mrad = 0;         // full apex angle of the circular cone of that solid angle
   double slope_error_mrad = 0;  // σ with beta = 2 (4.65 mrad + σ); negative: narrower than the sun
+  bool operator==(const CircularBeamSpread&) const = default;
 };
 
 // The equal-solid-angle circular cone of an elliptical cone with full axes in degrees (the
@@ -31,12 +44,13 @@ CircularBeamSpread circularBeamSpread(double vertical_deg, double horizontal_deg
 
 struct ProfileRow {
   double alpha_deg = 0;
-  double lmax_cd_m2 = 0;  // from the better luminance fit
+  std::optional<double> lmax_cd_m2;  // from the better luminance fit (always written)
   std::optional<double> limit_cd_m2;
   bool glares = false;  // Lmax at or above the limit (as in result.json)
   std::optional<double> vertical_deg, horizontal_deg;  // from the logistic fits, where glaring
   std::optional<CircularBeamSpread> beam;
   bool extrapolated = false;  // outside the α range the given values were fitted on
+  bool operator==(const ProfileRow&) const = default;
 };
 
 inline constexpr int kProfileAlphaMaxDeg = 80;  // the method is defined up to 80°
@@ -46,6 +60,7 @@ std::vector<ProfileRow> glareProfile(const SweepFits& fits, const GlareLimit& li
 
 struct AlphaRange {
   double from_deg = 0, to_deg = 0;
+  bool operator==(const AlphaRange&) const = default;
 };
 inline constexpr double kGlareRangeResolutionDeg = 0.1;
 
@@ -64,8 +79,57 @@ struct ProfileIdentity {
   std::string source;  // the sweep table's path
 };
 
-// glarecam.glare-profile/1 (docs/glare-profile.md).
-nlohmann::json glareProfileJson(const ProfileIdentity& identity, const SweepTable& table,
-                                const SweepFits& fits, const GlareLimit& limit);
+inline constexpr std::string_view kGlareProfileSchema = "glarecam.glare-profile/1";
+// The schemas glareProfileFromJson() reads.
+inline constexpr std::initializer_list<std::string_view> kGlareProfileSchemas = {
+    kGlareProfileSchema};
+
+// A calibration the profile's rows rest on (by id, in the rows' order): its date and K ± u(K).
+struct ProfileCalibration {
+  std::string id;
+  std::optional<std::string> date;  // YYYY-MM-DD of its newest part
+  std::optional<double> luminance_factor, luminance_factor_u;
+  bool operator==(const ProfileCalibration&) const = default;
+};
+
+// A row of the sweep table, as the profile lists it for reference.
+struct MeasuredRow {
+  double alpha_deg = 0;
+  std::optional<double> limit_cd_m2;
+  double lmax_cd_m2 = 0;
+  std::optional<std::string> lmax_bound;  // "lower" or "upper": Lmax only a bound
+  std::optional<double> vertical_deg, horizontal_deg;
+  bool operator==(const MeasuredRow&) const = default;
+};
+
+// glarecam.glare-profile/1 (docs/glare-profile.md). Fields marked "since" may be absent in a
+// profile of an earlier version, where the reader leaves them at their defaults.
+struct GlareProfile {
+  std::string module;
+  std::optional<std::string> date;    // YYYY-MM-DD
+  std::optional<std::string> source;  // the sweep table's path
+  bool simulated = false;             // any row from the simulated camera: not a measurement
+  std::vector<std::string> cameras, calibrations;
+  std::vector<ProfileCalibration> calibration_details;
+  std::optional<std::string> luminance_fit;  // "cos" or "biquadratic"
+  std::vector<AlphaRange> glare_ranges;      // within 0–80°, ascending
+  GlareLimit limit;                          // absent: the α curve
+  double sun_half_angle_mrad = kSunHalfAngleMrad;
+  std::vector<ProfileRow> rows;  // α = 0, 1, … kProfileAlphaMaxDeg, in order
+  std::vector<MeasuredRow> measured;
+  // The fits exactly as `glarecam fit --json` writes them (glarecam.fits/1, fitsJson()), or null.
+  nlohmann::json fits = nullptr;
+  std::optional<Generator> generator;
+  bool operator==(const GlareProfile&) const = default;
+};
+
+// The profile of a sweep's fits under `limit`, with the table's rows and identity.
+GlareProfile makeGlareProfile(const ProfileIdentity& identity, const SweepTable& table,
+                              const SweepFits& fits, const GlareLimit& limit);
+
+nlohmann::json toJson(const GlareProfile& profile);
+// Reads a profile document, validating every field it has; `file` names it in errors (kBadInput).
+Result<GlareProfile> glareProfileFromJson(const nlohmann::json& document, const std::string& file);
+Result<GlareProfile> readGlareProfile(const std::filesystem::path& path);
 
 }  // namespace glarecam::pipeline

@@ -22,6 +22,7 @@ struct GlareLimit {
     return constant_cd_m2 ? constant_cd_m2 : glareLimitCdM2(alpha_deg);
   }
   const char* mode() const { return constant_cd_m2 ? "constant" : "alpha_curve"; }
+  bool operator==(const GlareLimit&) const = default;
 };
 
 }  // namespace glarecam::pipeline

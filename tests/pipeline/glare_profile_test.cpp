@@ -1,11 +1,14 @@
-// The glare profile: the SGHAT-equivalent beam spread of an ellipse, and one row per degree from
-// a sweep's fits.
+// The glare profile: the SGHAT-equivalent beam spread of an ellipse, one row per degree from a
+// sweep's fits, and the document: what is written reads back equal, the docs' example and older
+// profiles read, and what is not a profile is refused naming the file and the field.
 #include "pipeline/glare_profile.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
+#include <regex>
 
 #include "core/angles.h"
 #include "pipeline/sweep_fits_test_support.h"
@@ -64,7 +67,7 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
   EXPECT_TRUE(rows[0].extrapolated);  // the table starts at 5°
   EXPECT_FALSE(rows[5].extrapolated);
   EXPECT_EQ(rows[60].limit_cd_m2, 40000);
-  EXPECT_DOUBLE_EQ(rows[60].lmax_cd_m2, fits.biquadratic.curve(60));  // the better fit
+  EXPECT_DOUBLE_EQ(*rows[60].lmax_cd_m2, fits.biquadratic.curve(60));  // the better fit
   EXPECT_TRUE(rows[60].glares);
   ASSERT_TRUE(rows[60].vertical_deg && rows[60].beam);
   EXPECT_DOUBLE_EQ(*rows[60].vertical_deg, fits.vertical.logistic->curve(60));
@@ -72,7 +75,8 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
       circularBeamSpread(*rows[60].vertical_deg, *rows[60].horizontal_deg);
   EXPECT_DOUBLE_EQ(rows[60].beam->beta_mrad, expected.beta_mrad);
 
-  const nlohmann::json j = glareProfileJson({"standard", "2026-11-26", "t.csv"}, *table, fits, {});
+  const nlohmann::json j =
+      toJson(makeGlareProfile({"standard", "2026-11-26", "t.csv"}, *table, fits, {}));
   EXPECT_EQ(j["schema"], "glarecam.glare-profile/1");
   EXPECT_EQ(j["profile"].size(), 81u);
   EXPECT_EQ(j["measured"].size(), 9u);
@@ -88,7 +92,8 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
     row.camera_serial = "SIM-0001";
     row.calibration_id = "0123456789abcdef";
   }
-  const nlohmann::json s = glareProfileJson({"standard", "2026-11-26", "t.csv"}, simulated, fits, {});
+  const nlohmann::json s =
+      toJson(makeGlareProfile({"standard", "2026-11-26", "t.csv"}, simulated, fits, {}));
   EXPECT_EQ(s["simulated"], true);
   EXPECT_EQ(s["cameras"], nlohmann::json::array({"sim SIM-0001"}));
   EXPECT_EQ(s["calibrations"], nlohmann::json::array({"0123456789abcdef"}));
@@ -139,6 +144,167 @@ TEST(GlareProfile, AxesFittedOnANarrowerRangeAreFlaggedExtrapolated) {
   EXPECT_TRUE(rows[30].glares);
   EXPECT_TRUE(rows[30].extrapolated);
   EXPECT_FALSE(rows[50].extrapolated);
+}
+
+GlareProfile tableIIIProfile(const GlareLimit& limit = {}) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  EXPECT_TRUE(table);
+  for (SweepRow& row : table->rows) {  // what a measured table also says
+    row.camera_backend = "sim";
+    row.camera_serial = "SIM-0001";
+    row.calibration_id = "0123456789abcdef";
+    row.calibration_date = "2026-06-21";
+    row.luminance_factor = 1500;
+  }
+  table->rows[2].lmax_bound = "lower";
+  return makeGlareProfile({"Standard module", "2026-11-26", "t.csv"}, *table, fitsOf(*table),
+                          limit);
+}
+
+void expectRoundTrip(const GlareProfile& profile, const std::string& what) {
+  const nlohmann::json written = toJson(profile);
+  const auto read = glareProfileFromJson(nlohmann::json::parse(jsonText(written)), "p.json");
+  ASSERT_TRUE(read) << what << ": " << read.error().message;
+  EXPECT_EQ(*read, profile) << what;
+  EXPECT_EQ(toJson(*read), written) << what;
+}
+
+TEST(GlareProfileDocument, WhatIsWrittenReadsBackEqual) {
+  expectRoundTrip(tableIIIProfile(), "alpha curve");
+  expectRoundTrip(tableIIIProfile({.constant_cd_m2 = 5e6}), "constant limit");
+  expectRoundTrip(makeGlareProfile({"dim", "2026-11-26", "d.csv"}, exponentialSweep(10000, 40),
+                                   fitsOf(exponentialSweep(10000, 40)), {}),
+                  "glares in part of the range");
+}
+
+TEST(GlareProfileDocument, WrittenToAFileByTheDataSheetAndReadBack) {
+  testing::TempDir dir;
+  const GlareProfile profile = tableIIIProfile();
+  ASSERT_TRUE(writeJsonFile(dir / "glare-profile.json", toJson(profile)));
+  const auto read = readGlareProfile(dir / "glare-profile.json");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(*read, profile);
+  EXPECT_NE(readGlareProfile(dir / "none.json").error().message.find("none.json"),
+            std::string::npos);
+}
+
+// A profile written before glarecam recorded its identity, limit, fits and beam details: the
+// required four keys and rows of α alone (and a beam of beta alone) still read.
+TEST(GlareProfileDocument, AnEarlierVersionsProfileReads) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int alpha = 0; alpha <= kProfileAlphaMaxDeg; ++alpha) {
+    nlohmann::json row{{"alpha_deg", alpha}};
+    if (alpha == 60) row["circular_beam"] = {{"beta_mrad", 100.0}};
+    rows.push_back(row);
+  }
+  const nlohmann::json old{{"schema", "glarecam.glare-profile/1"},
+                           {"module", "old module"},
+                           {"glare_ranges_deg", {{50.0, 80.0}}},
+                           {"profile", rows}};
+  const auto read = glareProfileFromJson(old, "old.json");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->module, "old module");
+  EXPECT_FALSE(read->date || read->source || read->luminance_fit || read->generator);
+  EXPECT_FALSE(read->simulated);
+  EXPECT_EQ(read->limit, GlareLimit{});
+  EXPECT_EQ(read->glare_ranges, (std::vector<AlphaRange>{{50, 80}}));
+  ASSERT_EQ(read->rows.size(), 81u);
+  EXPECT_FALSE(read->rows[10].lmax_cd_m2);
+  ASSERT_TRUE(read->rows[60].beam);
+  // The beam's other numbers follow from beta: Ω = 2π (1 − cos(β/2)), σ = β/2 − 4.65 mrad.
+  EXPECT_NEAR(read->rows[60].beam->solid_angle_sr, 2 * std::numbers::pi * (1 - std::cos(0.05)),
+              1e-15);
+  EXPECT_NEAR(read->rows[60].beam->slope_error_mrad, 50 - kSunHalfAngleMrad, 1e-12);
+  expectRoundTrip(*read, "an earlier version's, as read");
+}
+
+// The docs' example (docs/glare-profile.md, generated by scripts/doc-examples from the same table
+// and abbreviated there) is what the reader takes: with the rows it leaves out taken from a fresh
+// profile of Table III, it parses, and its α = 60° row is the fresh one.
+TEST(GlareProfileDocument, TheDocsExampleParses) {
+  const std::filesystem::path doc =
+      testing::testDataDir().parent_path().parent_path() / "docs" / "glare-profile.md";
+  const std::string text = testing::readText(doc);
+  const std::regex block(
+      "<!-- generated: glare-profile \\(scripts/doc-examples\\) -->\\n```json\\n([^`]*)```");
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(text, match, block)) << doc;
+  auto example = parseJsonText(match[1].str(), doc.string());
+  ASSERT_TRUE(example) << example.error().message;
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const nlohmann::json fresh = toJson(
+      makeGlareProfile({"Standard module", "2026-11-26", "t.csv"}, *table, fitsOf(*table), {}));
+  nlohmann::json rows = fresh["profile"];
+  const nlohmann::json& documented = (*example)["profile"][1];
+  ASSERT_EQ(documented["alpha_deg"], 60.0);
+  // Within scripts/doc-examples' own tolerance (1e-3 relative): another CPU's last digits.
+  for (auto& [key, value] : documented.items()) {
+    if (value.is_number()) {
+      EXPECT_NEAR(value.get<double>(), rows[60][key].get<double>(),
+                  1e-3 * std::abs(value.get<double>()))
+          << key;
+    }
+  }
+  rows[60] = documented;
+  (*example)["profile"] = rows;
+  (*example)["measured"] = fresh["measured"];
+  (*example)["fits"] = fresh["fits"];
+  const auto read = glareProfileFromJson(*example, doc.string());
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->module, "Standard module");
+}
+
+TEST(GlareProfileDocument, RefusesWhatIsNotAProfileNamingTheField) {
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> cases{
+      {[](nlohmann::json& d) { d["schema"] = "glarecam.fits/1"; },
+       "p.json: schema \"glarecam.fits/1\" is not supported (a glare profile's is "
+       "\"glarecam.glare-profile/1\")"},
+      {[](nlohmann::json& d) { d.erase("module"); }, "p.json: module is missing"},
+      {[](nlohmann::json& d) { d.erase("glare_ranges_deg"); },
+       "p.json: glare_ranges_deg is missing"},
+      {[](nlohmann::json& d) {
+         d["glare_ranges_deg"] = {{20, 10}};
+       },
+       "p.json: glare_ranges_deg[0] runs backwards (from > to)"},
+      {[](nlohmann::json& d) {
+         d["glare_ranges_deg"] = nlohmann::json::array({nlohmann::json::array({"a", 10})});
+       },
+       "p.json: glare_ranges_deg[0][0] must be a number, not \"a\""},
+      {[](nlohmann::json& d) { d["profile"].erase(37); }, "p.json: profile has no row for α = 37°"},
+      {[](nlohmann::json& d) { d["profile"][3]["alpha_deg"] = 2; },
+       "p.json: profile[3].alpha_deg repeats an earlier row's α"},
+      {[](nlohmann::json& d) { d["profile"][3]["alpha_deg"] = 2.5; },
+       "p.json: profile[3].alpha_deg is not a whole degree"},
+      {[](nlohmann::json& d) { d["profile"][3]["vertical_deg"] = -1; },
+       "p.json: profile[3].vertical_deg -1° is outside [0, 180]"},
+      {[](nlohmann::json& d) { d["profile"][3]["vertical_deg"] = "6"; },
+       "p.json: profile[3].vertical_deg must be a number, not \"6\""},
+      {[](nlohmann::json& d) { d["profile"][3]["circular_beam"] = 5; },
+       "p.json: profile[3].circular_beam must be an object, not 5"},
+      {[](nlohmann::json& d) { d["profile"] = nlohmann::json::object(); },
+       "p.json: profile must be an array, not {}"},
+      {[](nlohmann::json& d) { d["limit"]["mode"] = "constant"; },
+       "p.json: limit.mode \"constant\" does not match constant_cd_m2 (alpha_curve without one, "
+       "constant with one)"},
+      {[](nlohmann::json& d) { d["luminance_fit"] = "spline"; },
+       "p.json: luminance_fit \"spline\" is not cos or biquadratic"},
+      {[](nlohmann::json& d) { d["measured"][0]["lmax_bound"] = "maybe"; },
+       "p.json: measured[0].lmax_bound \"maybe\" is not lower or upper"},
+      {[](nlohmann::json& d) { d["cameras"] = {7}; }, "p.json: cameras[0] must be a string, not 7"},
+      {[](nlohmann::json& d) { d["fits"] = "none"; },
+       "p.json: fits must be an object, not \"none\""},
+  };
+  const nlohmann::json good = toJson(tableIIIProfile());
+  for (const auto& [change, expected] : cases) {
+    nlohmann::json document = good;
+    change(document);
+    Result<GlareProfile> read = badInput("not run");
+    EXPECT_NO_THROW(read = glareProfileFromJson(document, "p.json")) << expected;
+    ASSERT_FALSE(read) << expected;
+    EXPECT_EQ(read.error().code, ErrorCode::kBadInput);
+    EXPECT_EQ(read.error().message, expected);
+  }
 }
 
 }  // namespace

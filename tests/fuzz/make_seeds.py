@@ -56,6 +56,9 @@ def main():
     put("calibration", "rig.json", open(os.path.join(demo, "rig", "calibration.json")).read())
     put("zero_offset", "rig.json", open(os.path.join(demo, "rig", "calibration.json")).read())
     put("sweep", "sweep.csv", open(os.path.join(demo, "sweep", "sweep.csv")).read())
+    for alpha in ("05", "60", "80"):
+        put("result", f"alpha-{alpha}.json",
+            open(os.path.join(demo, "sweep", "results", f"alpha-{alpha}", "result.json")).read())
     put("config", "rig.toml", open(os.path.join(demo, "rig", "rig.toml")).read())
     put("config", "simulated.toml", open(os.path.join(demo, "daemon", "glarecamd-simulated.toml")).read())
     put("glare_profile", "profile.json", open(os.path.join(demo, "sweep", "glare-profile.json")).read())

@@ -35,9 +35,8 @@ std::string stringField(const json& object, const std::string& key) {
 
 Result<CameraIdentity> parseCamera(const JsonReader& document) {
   std::optional<JsonReader> camera;
-  GLARECAM_ASSIGN(camera, document.optionalMember(kCameraKey));
+  GLARECAM_ASSIGN(camera, document.optionalObject(kCameraKey));
   if (!camera) return CameraIdentity{};
-  GLARECAM_CHECK(camera->object());
   CameraIdentity identity;
   for (auto [key, field] : {std::pair{"model", &identity.model},
                             {"serial", &identity.serial},
@@ -61,9 +60,8 @@ Result<PartProvenance> parsePart(const JsonReader& part) {
   if (provenance.width.has_value() != provenance.height.has_value())
     return part.fail("gives width and height together or neither");
   std::optional<JsonReader> inputs;
-  GLARECAM_ASSIGN(inputs, part.optionalMember("inputs"));
+  GLARECAM_ASSIGN(inputs, part.optionalArray("inputs"));
   if (inputs) {
-    GLARECAM_CHECK(inputs->array());
     for (std::size_t i = 0; i < inputs->size(); ++i) {
       std::string input;
       GLARECAM_ASSIGN(input, inputs->element(i).text());
@@ -158,11 +156,10 @@ Result<CalibrationDocument> parseCalibrationDocument(const json& document,
   CalibrationDocument parsed;
   GLARECAM_ASSIGN(parsed.camera, parseCamera(fields));
   std::optional<JsonReader> parts;
-  GLARECAM_ASSIGN(parts, fields.optionalMember(kPartsKey));
+  GLARECAM_ASSIGN(parts, fields.optionalObject(kPartsKey));
   if (parts) {
-    GLARECAM_CHECK(parts->object());
     for (const auto& [name, part] : parts->value().items()) {
-      JsonReader reader = *parts;
+      JsonReader reader;
       GLARECAM_ASSIGN(reader, parts->member(name));
       GLARECAM_ASSIGN(parsed.parts[name], parsePart(reader));
     }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -73,6 +74,11 @@ std::string shortNumber(double value) { return fmt::format("{:g}", value); }
 
 }  // namespace
 
+JsonReader::JsonReader() {
+  static const json kNull;
+  value_ = &kNull;
+}
+
 JsonReader::JsonReader(const json& value, std::string file)
     : value_(&value), file_(std::move(file)) {}
 
@@ -111,6 +117,34 @@ Result<std::optional<JsonReader>> JsonReader::optionalMember(std::string_view ke
   const auto it = value_->find(key);
   if (it == value_->end() || it->is_null()) return std::optional<JsonReader>{};
   return std::optional<JsonReader>(JsonReader(*it, file_, childPath(key)));
+}
+
+Result<JsonReader> JsonReader::objectMember(std::string_view key) const {
+  JsonReader child = *this;
+  GLARECAM_ASSIGN(child, member(key));
+  GLARECAM_CHECK(child.object());
+  return child;
+}
+
+Result<JsonReader> JsonReader::arrayMember(std::string_view key) const {
+  JsonReader child = *this;
+  GLARECAM_ASSIGN(child, member(key));
+  GLARECAM_CHECK(child.array());
+  return child;
+}
+
+Result<std::optional<JsonReader>> JsonReader::optionalObject(std::string_view key) const {
+  std::optional<JsonReader> child;
+  GLARECAM_ASSIGN(child, optionalMember(key));
+  if (child) GLARECAM_CHECK(child->object());
+  return child;
+}
+
+Result<std::optional<JsonReader>> JsonReader::optionalArray(std::string_view key) const {
+  std::optional<JsonReader> child;
+  GLARECAM_ASSIGN(child, optionalMember(key));
+  if (child) GLARECAM_CHECK(child->array());
+  return child;
 }
 
 JsonReader JsonReader::element(std::size_t index) const {
@@ -244,6 +278,38 @@ Result<bool> JsonReader::boolean(std::string_view key) const {
 }
 Result<std::optional<bool>> JsonReader::optionalBoolean(std::string_view key) const {
   return optional<bool>(*this, key, [](const JsonReader& r) { return r.boolean(); });
+}
+
+namespace {
+
+// "a, b or c".
+std::string alternatives(std::initializer_list<std::string_view> words) {
+  std::string text;
+  std::size_t i = 0;
+  for (std::string_view word : words) {
+    text += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + std::string(word);
+    ++i;
+  }
+  return text;
+}
+
+}  // namespace
+
+Result<std::optional<std::string>> JsonReader::optionalWord(
+    std::string_view key, std::initializer_list<std::string_view> words) const {
+  std::optional<std::string> text;
+  GLARECAM_ASSIGN(text, optionalText(key));
+  if (text && std::find(words.begin(), words.end(), *text) == words.end())
+    return fail(key, "\"" + *text + "\" is not " + alternatives(words));
+  return text;
+}
+
+Result<std::string> JsonReader::word(std::string_view key,
+                                     std::initializer_list<std::string_view> words) const {
+  std::optional<std::string> text;
+  GLARECAM_ASSIGN(text, optionalWord(key, words));
+  if (!text) return fail(key, "is missing (" + alternatives(words) + ")");
+  return *text;
 }
 
 Result<std::string> JsonReader::schema(std::string_view expected, std::string_view what,

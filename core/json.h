@@ -14,10 +14,12 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/error.h"
 
@@ -55,6 +57,8 @@ std::string jsonSnippet(const nlohmann::json& value);
 // that nested blocks are read with their full path in every message.
 class JsonReader {
  public:
+  // Null, of no file: a reader to assign a member's to.
+  JsonReader();
   // The root of a document read from `file` (the name messages give).
   JsonReader(const nlohmann::json& value, std::string file);
   // A block of it at `path` ("calibration"), read on its own.
@@ -79,6 +83,11 @@ class JsonReader {
   Result<JsonReader> member(std::string_view key) const;
   // A member that may be absent or null.
   Result<std::optional<JsonReader>> optionalMember(std::string_view key) const;
+  // A required member that is an object (or an array); an optional one (absent or null: none).
+  Result<JsonReader> objectMember(std::string_view key) const;
+  Result<JsonReader> arrayMember(std::string_view key) const;
+  Result<std::optional<JsonReader>> optionalObject(std::string_view key) const;
+  Result<std::optional<JsonReader>> optionalArray(std::string_view key) const;
   // Elements of an array (call array() first): element(i) for i < size().
   std::size_t size() const { return value_->size(); }
   JsonReader element(std::size_t index) const;
@@ -112,6 +121,11 @@ class JsonReader {
   Result<std::optional<std::string>> optionalText(std::string_view key) const;
   Result<bool> boolean(std::string_view key) const;
   Result<std::optional<bool>> optionalBoolean(std::string_view key) const;
+  // Text that is one of `words`: "\"x\" is not a, b or c" otherwise.
+  Result<std::string> word(std::string_view key,
+                           std::initializer_list<std::string_view> words) const;
+  Result<std::optional<std::string>> optionalWord(
+      std::string_view key, std::initializer_list<std::string_view> words) const;
 
   // The document's "schema": `expected`, or one of the older `accepted` ones. `what` names the
   // kind of document in the message ("a glare profile").
@@ -125,5 +139,20 @@ class JsonReader {
   std::string file_;
   std::string path_;
 };
+
+// Each element of an array, read by `read` (a function of a JsonReader giving a Result<T>); the
+// first failure is the result.
+template <typename T, typename Read>
+Result<std::vector<T>> readEach(const JsonReader& list, Read&& read) {
+  GLARECAM_CHECK(list.array());
+  std::vector<T> values;
+  values.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    Result<T> value = read(list.element(i));
+    if (!value) return std::unexpected(value.error());
+    values.push_back(std::move(*value));
+  }
+  return values;
+}
 
 }  // namespace glarecam

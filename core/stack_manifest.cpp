@@ -34,9 +34,8 @@ Result<std::optional<std::string>> optionalContainedPath(const JsonReader& field
 
 Result<Intrinsics> parseIntrinsics(const JsonReader& parent) {
   if (!parent.has("intrinsics")) return parent.fail("intrinsics", "is missing (fx, fy, cx, cy)");
-  JsonReader fields = parent;
-  GLARECAM_ASSIGN(fields, parent.member("intrinsics"));
-  GLARECAM_CHECK(fields.object());
+  JsonReader fields;
+  GLARECAM_ASSIGN(fields, parent.objectMember("intrinsics"));
   Intrinsics intrinsics;
   // "intrinsics that are not finite and positive" are refused (stack-format.md).
   GLARECAM_ASSIGN(intrinsics.fx, fields.positive("fx"));
@@ -59,9 +58,8 @@ Result<Intrinsics> parseIntrinsics(const JsonReader& parent) {
 
 Result<std::optional<NoiseModel>> parseNoise(const JsonReader& parent) {
   std::optional<JsonReader> fields;
-  GLARECAM_ASSIGN(fields, parent.optionalMember("noise"));
+  GLARECAM_ASSIGN(fields, parent.optionalObject("noise"));
   if (!fields) return std::optional<NoiseModel>{};
-  GLARECAM_CHECK(fields->object());
   NoiseModel noise;
   GLARECAM_ASSIGN(noise.read_noise_dn, fields->nonNegative("read_noise_dn"));
   GLARECAM_ASSIGN(noise.dn_per_electron, fields->positive("dn_per_electron"));
@@ -171,7 +169,7 @@ Result<StackManifest> parseManifest(const json& document, const std::string& whe
   }
   if (!fields.has("frames") || !document.at("frames").is_array())
     return fields.fail("frames", "must be a list of frames");
-  JsonReader frames = fields;
+  JsonReader frames;
   GLARECAM_ASSIGN(frames, fields.member("frames"));
   if (frames.size() == 0) return frames.fail("is empty: a stack needs at least one frame");
   for (std::size_t i = 0; i < frames.size(); ++i) {

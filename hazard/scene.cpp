@@ -50,9 +50,8 @@ Result<Vec3> readPoint(const JsonReader& value) {
 }
 
 Status readSite(const JsonReader& document, HazardSite& site) {
-  JsonReader json = document;
-  GLARECAM_ASSIGN(json, document.member("site"));
-  GLARECAM_CHECK(json.object());
+  JsonReader json;
+  GLARECAM_ASSIGN(json, document.objectMember("site"));
   sun::SiteLocation& location = site.location;
   GLARECAM_ASSIGN(location.latitude_deg, json.numberIn("latitude_deg", -90, 90, "°"));
   GLARECAM_ASSIGN(location.longitude_deg, json.numberIn("longitude_deg", -180, 180, "°"));
@@ -80,15 +79,14 @@ Result<std::string> readName(const JsonReader& json, std::set<std::string>& seen
 
 // A non-empty array member of the document (`what`: why it may not be empty).
 Result<JsonReader> nonEmptyArray(const JsonReader& document, const char* key, const char* what) {
-  JsonReader list = document;
-  GLARECAM_ASSIGN(list, document.member(key));
-  GLARECAM_CHECK(list.array());
+  JsonReader list;
+  GLARECAM_ASSIGN(list, document.arrayMember(key));
   if (list.size() == 0) return list.fail(std::string("is empty (the scene needs ") + what + ")");
   return list;
 }
 
 Status readArrays(const JsonReader& document, const std::filesystem::path& base, Scene& scene) {
-  JsonReader list = document;
+  JsonReader list;
   GLARECAM_ASSIGN(list, nonEmptyArray(document, "arrays", "an array"));
   std::set<std::string> names;
   for (std::size_t i = 0; i < list.size(); ++i) {
@@ -96,9 +94,8 @@ Status readArrays(const JsonReader& document, const std::filesystem::path& base,
     GLARECAM_CHECK(json.object());
     std::string name;
     GLARECAM_ASSIGN(name, readName(json, names, "array"));
-    JsonReader vertices_json = json;
-    GLARECAM_ASSIGN(vertices_json, json.member("vertices_m"));
-    GLARECAM_CHECK(vertices_json.array());
+    JsonReader vertices_json;
+    GLARECAM_ASSIGN(vertices_json, json.arrayMember("vertices_m"));
     std::vector<Vec3> vertices;
     for (std::size_t v = 0; v < vertices_json.size(); ++v) {
       Vec3 point;
@@ -126,7 +123,7 @@ Status readArrays(const JsonReader& document, const std::filesystem::path& base,
 }
 
 Status readObservers(const JsonReader& document, Scene& scene) {
-  JsonReader list = document;
+  JsonReader list;
   GLARECAM_ASSIGN(list, nonEmptyArray(document, "observers", "an observer"));
   std::set<std::string> names;
   for (std::size_t i = 0; i < list.size(); ++i) {
@@ -134,13 +131,12 @@ Status readObservers(const JsonReader& document, Scene& scene) {
     GLARECAM_CHECK(json.object());
     Observer observer;
     GLARECAM_ASSIGN(observer.name, readName(json, names, "observer"));
-    JsonReader position = json;
+    JsonReader position;
     GLARECAM_ASSIGN(position, json.member("position_m"));
     GLARECAM_ASSIGN(observer.position_m, readPoint(position));
     std::optional<JsonReader> hours;
-    GLARECAM_ASSIGN(hours, json.optionalMember("hours"));
+    GLARECAM_ASSIGN(hours, json.optionalArray("hours"));
     if (hours) {
-      GLARECAM_CHECK(hours->array());
       if (hours->size() != 2) return hours->fail("is not [from, to] in hours");
       GLARECAM_ASSIGN(observer.from_h, hours->element(0).numberIn(0, 24, " h"));
       GLARECAM_ASSIGN(observer.to_h, hours->element(1).numberIn(0, 24, " h"));

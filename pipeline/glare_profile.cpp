@@ -159,39 +159,21 @@ json measuredJson(const MeasuredRow& row) {
 // A circular beam's full angle, in mrad: at most a half turn.
 constexpr double kMaxBetaMrad = std::numbers::pi * kMradPerRad;
 
-Result<std::vector<std::string>> readTexts(const JsonReader& document, std::string_view key) {
-  std::vector<std::string> texts;
-  std::optional<JsonReader> list;
-  GLARECAM_ASSIGN(list, document.optionalMember(key));
-  if (!list) return texts;
-  GLARECAM_CHECK(list->array());
-  for (std::size_t i = 0; i < list->size(); ++i) {
-    std::string text;
-    GLARECAM_ASSIGN(text, list->element(i).text());
-    texts.push_back(std::move(text));
-  }
-  return texts;
-}
-
 // A list member (absent: empty) whose elements `read` turns into T.
 template <typename T, typename Read>
 Result<std::vector<T>> readList(const JsonReader& document, std::string_view key, Read read) {
-  std::vector<T> values;
   std::optional<JsonReader> list;
-  GLARECAM_ASSIGN(list, document.optionalMember(key));
-  if (!list) return values;
-  GLARECAM_CHECK(list->array());
-  for (std::size_t i = 0; i < list->size(); ++i) {
-    const JsonReader element = list->element(i);
-    GLARECAM_CHECK(element.object());
-    T value;
-    GLARECAM_ASSIGN(value, read(element));
-    values.push_back(std::move(value));
-  }
-  return values;
+  GLARECAM_ASSIGN(list, document.optionalArray(key));
+  if (!list) return std::vector<T>{};
+  return readEach<T>(*list, read);
+}
+
+Result<std::vector<std::string>> readTexts(const JsonReader& document, std::string_view key) {
+  return readList<std::string>(document, key, [](const JsonReader& r) { return r.text(); });
 }
 
 Result<ProfileCalibration> readCalibration(const JsonReader& r) {
+  GLARECAM_CHECK(r.object());
   ProfileCalibration calibration;
   GLARECAM_ASSIGN(calibration.id, r.text("id"));
   GLARECAM_ASSIGN(calibration.date, r.optionalText("date"));
@@ -205,13 +187,12 @@ Result<std::optional<double>> readAxis(const JsonReader& r, std::string_view key
 }
 
 Result<MeasuredRow> readMeasured(const JsonReader& r) {
+  GLARECAM_CHECK(r.object());
   MeasuredRow row;
   GLARECAM_ASSIGN(row.alpha_deg, r.numberIn("alpha_deg", 0, 90, "°"));
   GLARECAM_ASSIGN(row.limit_cd_m2, r.optionalPositive("limit_cd_m2"));
   GLARECAM_ASSIGN(row.lmax_cd_m2, r.nonNegative("lmax_cd_m2"));
-  GLARECAM_ASSIGN(row.lmax_bound, r.optionalText("lmax_bound"));
-  if (row.lmax_bound && *row.lmax_bound != "lower" && *row.lmax_bound != "upper")
-    return r.fail("lmax_bound", "\"" + *row.lmax_bound + "\" is not lower or upper");
+  GLARECAM_ASSIGN(row.lmax_bound, r.optionalWord("lmax_bound", {"lower", "upper"}));
   GLARECAM_ASSIGN(row.vertical_deg, readAxis(r, "vertical_deg"));
   GLARECAM_ASSIGN(row.horizontal_deg, readAxis(r, "horizontal_deg"));
   return row;
@@ -219,9 +200,8 @@ Result<MeasuredRow> readMeasured(const JsonReader& r) {
 
 Result<std::optional<CircularBeamSpread>> readBeam(const JsonReader& row) {
   std::optional<JsonReader> block;
-  GLARECAM_ASSIGN(block, row.optionalMember("circular_beam"));
+  GLARECAM_ASSIGN(block, row.optionalObject("circular_beam"));
   if (!block) return std::optional<CircularBeamSpread>{};
-  GLARECAM_CHECK(block->object());
   CircularBeamSpread beam;
   GLARECAM_ASSIGN(beam.beta_mrad, block->numberIn("beta_mrad", 0, kMaxBetaMrad, " mrad"));
   // Earlier profiles may give beta alone: the rest follows from it (circularBeamSpread()).
@@ -256,9 +236,8 @@ Result<ProfileRow> readRow(const JsonReader& r) {
 
 // One row per whole degree 0–80, each once, in order of α.
 Result<std::vector<ProfileRow>> readRows(const JsonReader& document) {
-  JsonReader list = document;
-  GLARECAM_ASSIGN(list, document.member("profile"));
-  GLARECAM_CHECK(list.array());
+  JsonReader list;
+  GLARECAM_ASSIGN(list, document.arrayMember("profile"));
   std::vector<std::optional<ProfileRow>> by_alpha(kProfileAlphaMaxDeg + 1);
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader element = list.element(i);
@@ -279,28 +258,23 @@ Result<std::vector<ProfileRow>> readRows(const JsonReader& document) {
 }
 
 Result<std::vector<AlphaRange>> readRanges(const JsonReader& document) {
-  JsonReader list = document;
-  GLARECAM_ASSIGN(list, document.member("glare_ranges_deg"));
-  GLARECAM_CHECK(list.array());
-  std::vector<AlphaRange> ranges;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const JsonReader range = list.element(i);
+  JsonReader list;
+  GLARECAM_ASSIGN(list, document.arrayMember("glare_ranges_deg"));
+  return readEach<AlphaRange>(list, [](const JsonReader& range) -> Result<AlphaRange> {
     GLARECAM_CHECK(range.array());
     if (range.size() != 2) return range.fail("is not [from, to] in degrees");
     AlphaRange alpha;
     GLARECAM_ASSIGN(alpha.from_deg, range.element(0).numberIn(0, 90, "°"));
     GLARECAM_ASSIGN(alpha.to_deg, range.element(1).numberIn(0, 90, "°"));
     if (alpha.from_deg > alpha.to_deg) return range.fail("runs backwards (from > to)");
-    ranges.push_back(alpha);
-  }
-  return ranges;
+    return alpha;
+  });
 }
 
 Result<GlareLimit> readLimit(const JsonReader& document) {
   std::optional<JsonReader> block;
-  GLARECAM_ASSIGN(block, document.optionalMember("limit"));
+  GLARECAM_ASSIGN(block, document.optionalObject("limit"));
   if (!block) return GlareLimit{};
-  GLARECAM_CHECK(block->object());
   std::string mode;
   GLARECAM_ASSIGN(mode, block->text("mode"));
   GlareLimit limit;
@@ -364,9 +338,7 @@ Result<GlareProfile> glareProfileFromJson(const json& document, const std::strin
   GLARECAM_ASSIGN(p.calibrations, readTexts(r, "calibrations"));
   GLARECAM_ASSIGN(p.calibration_details,
                   readList<ProfileCalibration>(r, "calibration_details", readCalibration));
-  GLARECAM_ASSIGN(p.luminance_fit, r.optionalText("luminance_fit"));
-  if (p.luminance_fit && *p.luminance_fit != "cos" && *p.luminance_fit != "biquadratic")
-    return r.fail("luminance_fit", "\"" + *p.luminance_fit + "\" is not cos or biquadratic");
+  GLARECAM_ASSIGN(p.luminance_fit, r.optionalWord("luminance_fit", {"cos", "biquadratic"}));
   GLARECAM_ASSIGN(p.glare_ranges, readRanges(r));
   GLARECAM_ASSIGN(p.limit, readLimit(r));
   std::optional<double> sun_half_angle_mrad;
@@ -375,9 +347,8 @@ Result<GlareProfile> glareProfileFromJson(const json& document, const std::strin
   GLARECAM_ASSIGN(p.rows, readRows(r));
   GLARECAM_ASSIGN(p.measured, readList<MeasuredRow>(r, "measured", readMeasured));
   std::optional<JsonReader> fits;
-  GLARECAM_ASSIGN(fits, r.optionalMember("fits"));
+  GLARECAM_ASSIGN(fits, r.optionalObject("fits"));
   if (fits) {
-    GLARECAM_CHECK(fits->object());
     p.fits = fits->value();
   }
   std::optional<JsonReader> generator;

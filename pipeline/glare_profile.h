@@ -44,11 +44,13 @@ CircularBeamSpread circularBeamSpread(double vertical_deg, double horizontal_deg
 
 struct ProfileRow {
   double alpha_deg = 0;
-  std::optional<double> lmax_cd_m2;  // from the better luminance fit (always written)
-  std::optional<double> limit_cd_m2;
+  std::optional<double> lmax_cd_m2 =
+      std::nullopt;  // from the better luminance fit (always written)
+  std::optional<double> limit_cd_m2 = std::nullopt;
   bool glares = false;  // Lmax at or above the limit (as in result.json)
-  std::optional<double> vertical_deg, horizontal_deg;  // from the logistic fits, where glaring
-  std::optional<CircularBeamSpread> beam;
+  std::optional<double> vertical_deg = std::nullopt,
+                        horizontal_deg = std::nullopt;  // from the logistic fits, where glaring
+  std::optional<CircularBeamSpread> beam = std::nullopt;
   bool extrapolated = false;  // outside the α range the given values were fitted on
   bool operator==(const ProfileRow&) const = default;
 };
@@ -74,9 +76,9 @@ inline constexpr double kMaxFullAxisDeg = 180.0;
 bool isPhysicalAxisDeg(double axis_deg);
 
 struct ProfileIdentity {
-  std::string module;
-  std::string date;    // ISO 8601
-  std::string source;  // the sweep table's path
+  std::string module = {};
+  std::string date = {};    // ISO 8601
+  std::string source = {};  // the sweep table's path
 };
 
 inline constexpr std::string_view kGlareProfileSchema = "glarecam.glare-profile/1";
@@ -86,40 +88,40 @@ inline constexpr std::initializer_list<std::string_view> kGlareProfileSchemas = 
 
 // A calibration the profile's rows rest on (by id, in the rows' order): its date and K ± u(K).
 struct ProfileCalibration {
-  std::string id;
-  std::optional<std::string> date;  // YYYY-MM-DD of its newest part
-  std::optional<double> luminance_factor, luminance_factor_u;
+  std::string id = {};
+  std::optional<std::string> date = std::nullopt;  // YYYY-MM-DD of its newest part
+  std::optional<double> luminance_factor = std::nullopt, luminance_factor_u = std::nullopt;
   bool operator==(const ProfileCalibration&) const = default;
 };
 
 // A row of the sweep table, as the profile lists it for reference.
 struct MeasuredRow {
   double alpha_deg = 0;
-  std::optional<double> limit_cd_m2;
+  std::optional<double> limit_cd_m2 = std::nullopt;
   double lmax_cd_m2 = 0;
-  std::optional<std::string> lmax_bound;  // "lower" or "upper": Lmax only a bound
-  std::optional<double> vertical_deg, horizontal_deg;
+  std::optional<std::string> lmax_bound = std::nullopt;  // "lower" or "upper": Lmax only a bound
+  std::optional<double> vertical_deg = std::nullopt, horizontal_deg = std::nullopt;
   bool operator==(const MeasuredRow&) const = default;
 };
 
 // glarecam.glare-profile/1 (docs/glare-profile.md). Fields marked "since" may be absent in a
 // profile of an earlier version, where the reader leaves them at their defaults.
 struct GlareProfile {
-  std::string module;
-  std::optional<std::string> date;    // YYYY-MM-DD
-  std::optional<std::string> source;  // the sweep table's path
-  bool simulated = false;             // any row from the simulated camera: not a measurement
-  std::vector<std::string> cameras, calibrations;
-  std::vector<ProfileCalibration> calibration_details;
-  std::optional<std::string> luminance_fit;  // "cos" or "biquadratic"
-  std::vector<AlphaRange> glare_ranges;      // within 0–80°, ascending
-  GlareLimit limit;                          // absent: the α curve
+  std::string module = {};
+  std::optional<std::string> date = std::nullopt;    // YYYY-MM-DD
+  std::optional<std::string> source = std::nullopt;  // the sweep table's path
+  bool simulated = false;  // any row from the simulated camera: not a measurement
+  std::vector<std::string> cameras = {}, calibrations = {};
+  std::vector<ProfileCalibration> calibration_details = {};
+  std::optional<std::string> luminance_fit = std::nullopt;  // "cos" or "biquadratic"
+  std::vector<AlphaRange> glare_ranges = {};                // within 0–80°, ascending
+  GlareLimit limit;                                         // absent: the α curve
   double sun_half_angle_mrad = kSunHalfAngleMrad;
-  std::vector<ProfileRow> rows;  // α = 0, 1, … kProfileAlphaMaxDeg, in order
-  std::vector<MeasuredRow> measured;
+  std::vector<ProfileRow> rows = {};  // α = 0, 1, … kProfileAlphaMaxDeg, in order
+  std::vector<MeasuredRow> measured = {};
   // The fits exactly as `glarecam fit --json` writes them (glarecam.fits/1, fitsJson()), or null.
   nlohmann::json fits = nullptr;
-  std::optional<Generator> generator;
+  std::optional<Generator> generator = std::nullopt;
   bool operator==(const GlareProfile&) const = default;
 };
 

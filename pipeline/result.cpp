@@ -119,9 +119,8 @@ json luminanceJson(const ResultLuminance& l) {
 // ---- reading ---------------------------------------------------------------------------------
 
 Result<std::array<double, 2>> readPair(const JsonReader& parent, std::string_view key) {
-  JsonReader value = parent;
-  GLARECAM_ASSIGN(value, parent.member(key));
-  GLARECAM_CHECK(value.array());
+  JsonReader value;
+  GLARECAM_ASSIGN(value, parent.arrayMember(key));
   if (value.size() != 2) return value.fail("must be a pair of numbers");
   std::array<double, 2> pair{};
   for (std::size_t i = 0; i < 2; ++i) GLARECAM_ASSIGN(pair[i], value.element(i).number());
@@ -158,9 +157,8 @@ Result<std::optional<ResultEllipse>> readEllipse(const JsonReader& parent) {
   GLARECAM_ASSIGN(e.contour_points, readCount(r, "contour_points"));
   GLARECAM_ASSIGN(e.region_pixels, readCount(r, "region_pixels"));
   GLARECAM_ASSIGN(e.smoothing_radius_px, readCount(r, "smoothing_radius_px"));
-  JsonReader u = r;
-  GLARECAM_ASSIGN(u, r.member("uncertainty"));
-  GLARECAM_CHECK(u.object());
+  JsonReader u;
+  GLARECAM_ASSIGN(u, r.objectMember("uncertainty"));
   GLARECAM_ASSIGN(e.vertical_uncertainty_deg, u.nonNegative("vertical_deg"));
   GLARECAM_ASSIGN(e.horizontal_uncertainty_deg, u.nonNegative("horizontal_deg"));
   GLARECAM_ASSIGN(e.orientation_uncertainty_deg, u.optionalNonNegative("orientation_deg"));
@@ -197,21 +195,14 @@ Result<ResultLevel> readLevel(const JsonReader& block, std::string_view level_ke
 }
 
 Result<ResultLimit> readResultLimit(const JsonReader& document) {
-  JsonReader block = document;
-  GLARECAM_ASSIGN(block, document.member("limit"));
-  GLARECAM_CHECK(block.object());
+  JsonReader block;
+  GLARECAM_ASSIGN(block, document.objectMember("limit"));
   ResultLimit limit;
   GLARECAM_ASSIGN(limit.limit_cd_m2, block.optionalPositive("limit_cd_m2"));
   std::string mode;
-  GLARECAM_ASSIGN(mode, block.text("mode"));
-  if (mode == toString(LimitMode::kAlphaCurve)) {
-    limit.mode = LimitMode::kAlphaCurve;
-  } else if (mode == toString(LimitMode::kConstant)) {
-    limit.mode = LimitMode::kConstant;
-  } else if (mode == toString(LimitMode::kNone)) {
-    limit.mode = LimitMode::kNone;
-  } else {
-    return block.fail("mode", "\"" + mode + "\" is not alpha_curve, constant or none");
+  GLARECAM_ASSIGN(mode, block.word("mode", {"alpha_curve", "constant", "none"}));
+  for (LimitMode known : {LimitMode::kAlphaCurve, LimitMode::kConstant, LimitMode::kNone}) {
+    if (mode == toString(known)) limit.mode = known;
   }
   if ((limit.mode == LimitMode::kNone) == limit.limit_cd_m2.has_value())
     return block.fail("mode", "\"" + mode + "\" does not match limit_cd_m2");
@@ -226,15 +217,13 @@ Result<ResultLimit> readResultLimit(const JsonReader& document) {
 }
 
 Result<ResultLuminance> readLuminance(const JsonReader& document) {
-  JsonReader r = document;
-  GLARECAM_ASSIGN(r, document.member("luminance"));
-  GLARECAM_CHECK(r.object());
+  JsonReader r;
+  GLARECAM_ASSIGN(r, document.objectMember("luminance"));
   ResultLuminance l;
   // An upper bound of a dark image may be at or below zero (black subtracted from noise).
   GLARECAM_ASSIGN(l.max_cd_m2, r.number("max_cd_m2"));
-  JsonReader pixel = r;
-  GLARECAM_ASSIGN(pixel, r.member("max_pixel"));
-  GLARECAM_CHECK(pixel.array());
+  JsonReader pixel;
+  GLARECAM_ASSIGN(pixel, r.arrayMember("max_pixel"));
   if (pixel.size() != 2) return pixel.fail("must be a pair of whole numbers");
   for (std::size_t i = 0; i < 2; ++i)
     GLARECAM_ASSIGN(l.max_pixel[i], pixel.element(i).integer(-kMaxCount, kMaxCount));
@@ -261,64 +250,48 @@ Result<ResultLuminance> readLuminance(const JsonReader& document) {
   return l;
 }
 
-Result<std::vector<ResultFrame>> readFrames(const JsonReader& document) {
-  JsonReader list = document;
-  GLARECAM_ASSIGN(list, document.member("frames"));
-  GLARECAM_CHECK(list.array());
-  std::vector<ResultFrame> frames;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const JsonReader r = list.element(i);
-    GLARECAM_CHECK(r.object());
-    ResultFrame frame;
-    GLARECAM_ASSIGN(frame.file, r.text("file"));
-    GLARECAM_ASSIGN(frame.median_ratio, r.optionalNonNegative("median_ratio"));
-    GLARECAM_ASSIGN(frame.samples, readCount(r, "samples"));
-    GLARECAM_ASSIGN(frame.agrees, r.optionalBoolean("agrees"));
-    if (frame.agrees.has_value() != frame.median_ratio.has_value())
-      return r.fail("agrees", "must be given exactly when median_ratio is");
-    frames.push_back(std::move(frame));
-  }
-  return frames;
+Result<ResultFrame> readFrame(const JsonReader& r) {
+  GLARECAM_CHECK(r.object());
+  ResultFrame frame;
+  GLARECAM_ASSIGN(frame.file, r.text("file"));
+  GLARECAM_ASSIGN(frame.median_ratio, r.optionalNonNegative("median_ratio"));
+  GLARECAM_ASSIGN(frame.samples, readCount(r, "samples"));
+  GLARECAM_ASSIGN(frame.agrees, r.optionalBoolean("agrees"));
+  if (frame.agrees.has_value() != frame.median_ratio.has_value())
+    return r.fail("agrees", "must be given exactly when median_ratio is");
+  return frame;
 }
 
 // A block copied verbatim from the stack's manifest or calibration (a camera block, whatever
 // another tool put in it): an object or null, kept as written.
 Result<json> readCopiedBlock(const JsonReader& parent, std::string_view key) {
   std::optional<JsonReader> block;
-  GLARECAM_ASSIGN(block, parent.optionalMember(key));
+  GLARECAM_ASSIGN(block, parent.optionalObject(key));
   if (!block) return json(nullptr);
-  GLARECAM_CHECK(block->object());
   return block->value();
 }
 
 Result<CalibrationIdentity> readResultCalibration(const JsonReader& document) {
-  JsonReader r = document;
-  GLARECAM_ASSIGN(r, document.member("calibration"));
-  GLARECAM_CHECK(r.object());
+  JsonReader r;
+  GLARECAM_ASSIGN(r, document.objectMember("calibration"));
   CalibrationIdentity cal;
   GLARECAM_ASSIGN(cal.origin, r.text("origin"));
   std::string noise, black;
-  GLARECAM_ASSIGN(noise, r.text("noise_model"));
-  if (noise != "assumed" && noise != "calibrated")
-    return r.fail("noise_model", "\"" + noise + "\" is not assumed or calibrated");
+  GLARECAM_ASSIGN(noise, r.word("noise_model", {"assumed", "calibrated"}));
   cal.noise_model_assumed = noise == "assumed";
-  GLARECAM_ASSIGN(black, r.text("black"));
-  if (black != "dark_frame" && black != "black_level")
-    return r.fail("black", "\"" + black + "\" is not dark_frame or black_level");
+  GLARECAM_ASSIGN(black, r.word("black", {"dark_frame", "black_level"}));
   cal.dark_frame = black == "dark_frame";
   GLARECAM_ASSIGN(cal.hot_pixels, r.boolean("hot_pixels_masked"));
   GLARECAM_ASSIGN(cal.file, r.optionalText("file"));
   GLARECAM_ASSIGN(cal.sha256, r.optionalText("sha256"));
   GLARECAM_ASSIGN(cal.camera, readCopiedBlock(r, "camera"));
   std::optional<JsonReader> parts;
-  GLARECAM_ASSIGN(parts, r.optionalMember("parts"));
+  GLARECAM_ASSIGN(parts, r.optionalObject("parts"));
   if (parts) {
-    GLARECAM_CHECK(parts->object());
     cal.parts.emplace();
     for (const auto& [name, value] : parts->value().items()) {
-      JsonReader part = *parts;
-      GLARECAM_ASSIGN(part, parts->member(name));
-      GLARECAM_CHECK(part.object());
+      JsonReader part;
+      GLARECAM_ASSIGN(part, parts->objectMember(name));
       CalibrationPart& entry = (*cal.parts)[name];
       GLARECAM_ASSIGN(entry.measured_at, part.optionalText("measured_at"));
       GLARECAM_ASSIGN(entry.method, part.optionalText("method"));
@@ -331,9 +304,8 @@ Result<CalibrationIdentity> readResultCalibration(const JsonReader& document) {
 }
 
 Result<ResultOutputs> readOutputs(const JsonReader& document) {
-  JsonReader r = document;
-  GLARECAM_ASSIGN(r, document.member("outputs"));
-  GLARECAM_CHECK(r.object());
+  JsonReader r;
+  GLARECAM_ASSIGN(r, document.objectMember("outputs"));
   ResultOutputs outputs;
   GLARECAM_ASSIGN(outputs.luminance_exr, r.text("luminance_exr"));
   GLARECAM_ASSIGN(outputs.quality_exr, r.text("quality_exr"));
@@ -505,39 +477,35 @@ Result<StackResult> resultFromJson(const json& document, const std::string& file
   StackResult result;
   GLARECAM_ASSIGN(result.stack, r.text("stack"));
   GLARECAM_ASSIGN(result.alpha_deg, r.optionalNumberIn("alpha_deg", 0, kMaxStackAlphaDeg, "°"));
-  GLARECAM_ASSIGN(result.alpha_source, r.optionalText("alpha_source"));
-  if (result.alpha_source && *result.alpha_source != "manifest" && *result.alpha_source != "given")
-    return r.fail("alpha_source", "\"" + *result.alpha_source + "\" is not manifest or given");
+  GLARECAM_ASSIGN(result.alpha_source, r.optionalWord("alpha_source", {"manifest", "given"}));
   if (result.alpha_source.has_value() != result.alpha_deg.has_value())
     return r.fail("alpha_source", "must be given exactly when alpha_deg is");
   GLARECAM_ASSIGN(result.alpha_uncertainty_deg, r.optionalNonNegative("alpha_uncertainty_deg"));
-  JsonReader image = r;
-  GLARECAM_ASSIGN(image, r.member("image"));
-  GLARECAM_CHECK(image.object());
+  JsonReader image;
+  GLARECAM_ASSIGN(image, r.objectMember("image"));
   GLARECAM_ASSIGN(result.width, image.integer("width", 1, kMaxImageSide));
   GLARECAM_ASSIGN(result.height, image.integer("height", 1, kMaxImageSide));
   GLARECAM_ASSIGN(result.camera, readCopiedBlock(r, "camera"));
   GLARECAM_ASSIGN(result.module, r.optionalText("module"));
   GLARECAM_ASSIGN(result.calibration, readResultCalibration(r));
   GLARECAM_ASSIGN(result.luminance, readLuminance(r));
-  GLARECAM_ASSIGN(result.frames, readFrames(r));
+  JsonReader frames;
+  GLARECAM_ASSIGN(frames, r.arrayMember("frames"));
+  GLARECAM_ASSIGN(result.frames, readEach<ResultFrame>(frames, readFrame));
   GLARECAM_ASSIGN(result.limit, readResultLimit(r));
-  JsonReader fwhm = r;
+  JsonReader fwhm;
   GLARECAM_ASSIGN(fwhm, r.member("fwhm"));
   GLARECAM_ASSIGN(result.fwhm, readLevel(fwhm, "level_cd_m2"));
-  JsonReader thresholds = r;
-  GLARECAM_ASSIGN(thresholds, r.member("thresholds"));
-  GLARECAM_CHECK(thresholds.array());
-  for (std::size_t i = 0; i < thresholds.size(); ++i) {
-    ResultLevel level;
-    GLARECAM_ASSIGN(level, readLevel(thresholds.element(i), "threshold_cd_m2"));
-    result.thresholds.push_back(std::move(level));
-  }
+  JsonReader thresholds;
+  GLARECAM_ASSIGN(thresholds, r.arrayMember("thresholds"));
+  GLARECAM_ASSIGN(result.thresholds, readEach<ResultLevel>(thresholds, [](const JsonReader& level) {
+                    return readLevel(level, "threshold_cd_m2");
+                  }));
   GLARECAM_ASSIGN(result.glare, r.optionalBoolean("glare"));
   if (result.glare && !result.limit.limit_cd_m2)
     return r.fail("glare", "is a verdict without a limit");
   GLARECAM_ASSIGN(result.outputs, readOutputs(r));
-  JsonReader generator = r;
+  JsonReader generator;
   GLARECAM_ASSIGN(generator, r.member("generator"));
   GLARECAM_ASSIGN(result.generator, generatorFromJson(generator));
   return result;

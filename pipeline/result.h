@@ -42,7 +42,7 @@ struct ResultEllipse {
   bool ellipticity_ok = false, truncated = false;
   long long regions = 0, contour_points = 0, region_pixels = 0, smoothing_radius_px = 0;
   double vertical_uncertainty_deg = 0, horizontal_uncertainty_deg = 0;
-  std::optional<double> orientation_uncertainty_deg;  // none for a circle
+  std::optional<double> orientation_uncertainty_deg = std::nullopt;  // none for a circle
   double solid_angle_uncertainty_sr = 0;
   long long unweighted_contour_points = 0;
   bool operator==(const ResultEllipse&) const = default;
@@ -54,7 +54,7 @@ ResultEllipse resultEllipse(const GlareEllipse& ellipse);
 struct ResultLevel {
   double level_cd_m2 = 0;
   EllipseStatus status = EllipseStatus::kBelowLevel;
-  std::optional<ResultEllipse> ellipse;  // exactly when status is kMeasured
+  std::optional<ResultEllipse> ellipse = std::nullopt;  // exactly when status is kMeasured
   bool operator==(const ResultLevel&) const = default;
 };
 
@@ -64,10 +64,10 @@ const char* toString(LimitMode mode);
 
 // The limit ellipse: the level is the glare limit; no limit is status "no_limit" (nullopt here).
 struct ResultLimit {
-  std::optional<double> limit_cd_m2;
+  std::optional<double> limit_cd_m2 = std::nullopt;
   LimitMode mode = LimitMode::kNone;
-  std::optional<EllipseStatus> status;  // nullopt: no limit
-  std::optional<ResultEllipse> ellipse;
+  std::optional<EllipseStatus> status = std::nullopt;  // nullopt: no limit
+  std::optional<ResultEllipse> ellipse = std::nullopt;
   bool operator==(const ResultLimit&) const = default;
 };
 
@@ -76,14 +76,15 @@ struct ResultLuminance {
   std::array<long long, 2> max_pixel{};  // max_position_px rounded
   std::array<double, 2> max_position_px{};
   PeakMethod max_method = PeakMethod::kQuadraticFit;
-  std::optional<double> max_relative_uncertainty;           // the merge's noise
-  std::optional<double> max_relative_uncertainty_combined;  // with u(K), when it is known
+  std::optional<double> max_relative_uncertainty = std::nullopt;  // the merge's noise
+  std::optional<double> max_relative_uncertainty_combined =
+      std::nullopt;  // with u(K), when it is known
   double valid_fraction = 0;
   long long saturated_pixels = 0, dark_pixels = 0, masked_pixels = 0;
   double median_relative_uncertainty = 0;
   // true: every frame checked and agreeing; false: one disagrees; nullopt: some frame could not
   // be checked (and none disagrees).
-  std::optional<bool> frames_consistent;
+  std::optional<bool> frames_consistent = std::nullopt;
   bool isLowerBound() const { return max_method == PeakMethod::kLowerBound; }
   bool isUpperBound() const { return max_method == PeakMethod::kUpperBound; }
   bool operator==(const ResultLuminance&) const = default;
@@ -91,23 +92,23 @@ struct ResultLuminance {
 
 // A frame's agreement with the merge: median ratio (nullopt: too few samples to judge).
 struct ResultFrame {
-  std::string file;
-  std::optional<double> median_ratio;
+  std::string file = {};
+  std::optional<double> median_ratio = std::nullopt;
   long long samples = 0;
-  std::optional<bool> agrees;  // nullopt with the ratio
+  std::optional<bool> agrees = std::nullopt;  // nullopt with the ratio
   bool operator==(const ResultFrame&) const = default;
 };
 
 // A part of the calibration (dark, flat, luminance, ...): when and how it was measured.
 struct CalibrationPart {
-  std::optional<std::string> measured_at;  // ISO 8601
-  std::optional<std::string> method;
+  std::optional<std::string> measured_at = std::nullopt;  // ISO 8601
+  std::optional<std::string> method = std::nullopt;
   bool operator==(const CalibrationPart&) const = default;
 };
 
 // What a result's numbers rest on: the calibration's identity and its absolute scale K.
 struct CalibrationIdentity {
-  std::string origin;  // "inline", the manifest's path as written, or --calibration
+  std::string origin = {};  // "inline", the manifest's path as written, or --calibration
   std::optional<std::string> file = std::nullopt;    // the file read, absolute (absent: inline)
   std::optional<std::string> sha256 = std::nullopt;  // of that file's bytes
   nlohmann::json camera = nullptr;  // the calibration's camera block (model, serial), or null
@@ -136,21 +137,21 @@ struct ResultOutputs {
 };
 
 struct StackResult {
-  std::string stack;  // the stack's id
-  std::optional<double> alpha_deg;
-  std::optional<std::string> alpha_source;  // "manifest" or "given"; none without α
-  std::optional<double> alpha_uncertainty_deg;
+  std::string stack = {};  // the stack's id
+  std::optional<double> alpha_deg = std::nullopt;
+  std::optional<std::string> alpha_source = std::nullopt;  // "manifest" or "given"; none without α
+  std::optional<double> alpha_uncertainty_deg = std::nullopt;
   int width = 0, height = 0;        // image
   nlohmann::json camera = nullptr;  // the manifest's camera block (backend, model, serial), or null
-  std::optional<std::string> module;
+  std::optional<std::string> module = std::nullopt;
   CalibrationIdentity calibration;
   ResultLuminance luminance;
-  std::vector<ResultFrame> frames;
+  std::vector<ResultFrame> frames = {};
   ResultLimit limit;
   ResultLevel fwhm;
-  std::vector<ResultLevel> thresholds;  // in the order asked
+  std::vector<ResultLevel> thresholds = {};  // in the order asked
   // Lmax at or above the limit; nullopt without a limit, or when a bound cannot decide.
-  std::optional<bool> glare;
+  std::optional<bool> glare = std::nullopt;
   ResultOutputs outputs;
   Generator generator;
   bool operator==(const StackResult&) const = default;
@@ -160,23 +161,23 @@ struct StackResult {
 };
 
 struct FrameCheck {
-  std::string file;
+  std::string file = {};
   calibration::FrameAgreement agreement;
 };
 
 struct ResultInputs {
-  std::string stack_id;
-  std::optional<double> alpha_deg;
-  std::string alpha_source;  // "manifest", "given" (process --alpha), or empty: no α
+  std::string stack_id = {};
+  std::optional<double> alpha_deg = std::nullopt;
+  std::string alpha_source = {};  // "manifest", "given" (process --alpha), or empty: no α
   // The manifest's geometry.alpha_uncertainty_deg (inclinometer and clock), when α is its.
-  std::optional<double> alpha_uncertainty_deg;
+  std::optional<double> alpha_uncertainty_deg = std::nullopt;
   nlohmann::json camera = nullptr;  // the manifest's camera block (backend, model, serial), or null
-  std::optional<std::string> module;  // the manifest's module, when it names one
+  std::optional<std::string> module = std::nullopt;  // the manifest's module, when it names one
   int width = 0, height = 0;
   CalibrationIdentity calibration;
   LuminanceStats stats;
-  std::vector<FrameCheck> frames;
-  std::optional<double> limit_cd_m2;
+  std::vector<FrameCheck> frames = {};
+  std::optional<double> limit_cd_m2 = std::nullopt;
   bool constant_limit = false;  // --threshold rather than the α curve
   GlareAnalysis glare;
 };

@@ -84,7 +84,8 @@ unsigned jobsWithinMemory(unsigned jobs, const std::vector<fs::path>& stacks,
 Status checkAlpha(const fs::path& stack) {
   const auto manifest = readJsonFile(stack / kManifestFileName);
   if (!manifest) return {};  // processStack names what is wrong
-  const auto alpha = JsonReader(*manifest, kManifestFileName).optionalNumber("alpha_deg");
+  const auto alpha =
+      JsonReader(*manifest, std::string(kManifestFileName)).optionalNumber("alpha_deg");
   if (!alpha) return {};  // likewise
   return validateSweepAlpha(*alpha);
 }

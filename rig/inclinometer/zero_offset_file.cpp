@@ -47,9 +47,8 @@ Result<TiltReading> parseTiltReading(const json& document, const std::string& wh
   // The raw mean vector (the flip's exact formula uses it); from the tilts when not recorded.
   r.mean = mountedGravity(r.raw_tilt, {});
   std::optional<JsonReader> mean;
-  GLARECAM_ASSIGN(mean, fields.optionalMember("mean"));
+  GLARECAM_ASSIGN(mean, fields.optionalObject("mean"));
   if (mean) {
-    GLARECAM_CHECK(mean->object());
     GLARECAM_ASSIGN(r.mean.x_g, mean->number("x_g"));
     GLARECAM_ASSIGN(r.mean.y_g, mean->number("y_g"));
     GLARECAM_ASSIGN(r.mean.z_g, mean->number("z_g"));
@@ -64,9 +63,8 @@ Result<std::optional<InclinometerZeroOffset>> readZeroOffset(const std::filesyst
   GLARECAM_ASSIGN(document, readJsonFile(file));
   const JsonReader fields(document, file.string());
   std::optional<JsonReader> block;
-  GLARECAM_ASSIGN(block, fields.optionalMember(kBlock));
+  GLARECAM_ASSIGN(block, fields.optionalObject(kBlock));
   if (!block) return std::nullopt;
-  GLARECAM_CHECK(block->object());
   InclinometerZeroOffset zero;
   GLARECAM_ASSIGN(zero.offset.x_deg, block->number("zero_offset_x_deg"));
   GLARECAM_ASSIGN(zero.offset.y_deg, block->number("zero_offset_y_deg"));

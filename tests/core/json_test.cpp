@@ -120,6 +120,40 @@ TEST(JsonReader, NumbersAreFiniteAndWithinTheirKind) {
   EXPECT_EQ(errorOf(JsonReader(infinite, "i.json").number("x")), "i.json: x must be finite");
 }
 
+TEST(JsonReader, ObjectAndArrayMembersAreCheckedForTheirKind) {
+  const JsonReader root(kScene, "scene.json");
+  EXPECT_EQ(root.objectMember("site")->path(), "site");
+  EXPECT_EQ(root.arrayMember("arrays")->size(), 1u);
+  EXPECT_EQ(
+      errorOf(root.objectMember("arrays")),
+      "scene.json: arrays must be an object, not [{\"vertices_m\":[[0,0,0],[1,\"east\",0]]}]");
+  EXPECT_EQ(errorOf(root.arrayMember("site")).substr(0, 37),
+            "scene.json: site must be an array, no");
+  EXPECT_EQ(errorOf(root.arrayMember("nowhere")), "scene.json: nowhere is missing");
+  const JsonReader site = *root.objectMember("site");
+  EXPECT_FALSE(site.optionalObject("empty").value());
+  EXPECT_FALSE(site.optionalArray("nowhere").value());
+  EXPECT_EQ(errorOf(site.optionalObject("flat")),
+            "scene.json: site.flat must be an object, not true");
+  EXPECT_EQ(errorOf(site.optionalArray("name")),
+            "scene.json: site.name must be an array, not \"Zürich\"");
+  JsonReader assigned;  // what a member's reader is assigned to
+  EXPECT_TRUE(assigned.isNull());
+  assigned = *root.objectMember("site");
+  EXPECT_EQ(assigned.number("latitude_deg").value(), 47.4);
+}
+
+TEST(JsonReader, AWordIsOneOfItsList) {
+  const json values{{"mode", "constant"}, {"fit", "spline"}};
+  const JsonReader r(values, "w.json");
+  EXPECT_EQ(r.word("mode", {"alpha_curve", "constant", "none"}).value(), "constant");
+  EXPECT_EQ(errorOf(r.word("fit", {"cos", "biquadratic"})),
+            "w.json: fit \"spline\" is not cos or biquadratic");
+  EXPECT_EQ(errorOf(r.word("fit", {"a", "b", "c"})), "w.json: fit \"spline\" is not a, b or c");
+  EXPECT_EQ(errorOf(r.word("none", {"a", "b"})), "w.json: none is missing (a or b)");
+  EXPECT_EQ(r.optionalWord("none", {"a", "b"}).value(), std::nullopt);
+}
+
 TEST(JsonReader, SchemaIsTheExpectedOneOrAnAcceptedOlderOne) {
   const JsonReader root(kScene, "scene.json");
   EXPECT_EQ(root.schema("demo/2", "a demo").value(), "demo/2");

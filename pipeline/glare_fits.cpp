@@ -643,7 +643,7 @@ Result<SweepFits> fitSweep(const SweepTable& all, const FitOptions& options) {
 }
 
 nlohmann::json fitsJson(const SweepFits& fits) {
-  return {{"schema", "glarecam.fits/1"},
+  return {{"schema", kFitsSchema},
           {"alpha_range_deg", {fits.alpha_min_deg, fits.alpha_max_deg}},
           {"luminance",
            {{"cos", qualityJson(fits.cosine.quality, {"a", "b", "c"})},

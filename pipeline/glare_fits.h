@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/error.h"
@@ -97,8 +98,11 @@ Result<SweepFits> fitSweep(const SweepTable& table, const FitOptions& options = 
 Result<SweepFits> readAndFitSweep(const std::filesystem::path& path, SweepTable& table,
                                   const FitOptions& options = {});
 
+inline constexpr std::string_view kFitsSchema = "glarecam.fits/1";
+
+// The fits as `glarecam fit --json` and fits.json give them (kFitsSchema, docs/sweep.md):
 // {"luminance": {"cos": {a,b,c,r2,...}, "biquadratic": {...}}, "vertical": {"logistic": {...}},
-//  "horizontal": {...}, "warnings": [...]} (docs/datasheet.md).
+//  "horizontal": {...}, "warnings": [...]}.
 nlohmann::json fitsJson(const SweepFits& fits);
 
 // The fits as a short human-readable report (parameters ± standard errors, R², RMSE, points).

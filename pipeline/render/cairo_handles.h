@@ -3,9 +3,10 @@
 // move, never copy, so that each reference is dropped exactly once. An empty handle holds none.
 //
 // Cairo reports a failed creation not with a null pointer but with an object in an error
-// state that every later call ignores; createContext (and createRgbSurface, rgb_surface.h) turn
-// that state into an Error. The Cairo types are only declared here: code that passes handles around
-// (the pipeline, the tests) does not need <cairo.h>, which only pipeline/render/ may include.
+// state that every later call ignores; createContext (and RgbSurface::create, rgb_surface.h)
+// turn that state into an Error. The Cairo types are only declared here: the headers that hold
+// handles (canvas.h, rgb_surface.h) do not need <cairo.h>, which only the toolkit's .cpp files
+// include.
 #pragma once
 
 #include <memory>

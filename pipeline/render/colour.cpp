@@ -1,6 +1,6 @@
 #include "pipeline/render/colour.h"
 
-#include <cairo.h>
+#include "pipeline/render/canvas.h"
 
 namespace glarecam::pipeline {
 
@@ -9,13 +9,9 @@ Rgb lightened(const Rgb& colour, double fraction) {
   return {lighten(colour.r), lighten(colour.g), lighten(colour.b)};
 }
 
-void setColour(cairo_t* cr, const Rgb& colour, double alpha) {
-  cairo_set_source_rgba(cr, colour.r, colour.g, colour.b, alpha);
-}
-
-void paint(cairo_t* cr, const Rgb& colour) {
-  setColour(cr, colour);
-  cairo_paint(cr);
+void paint(Canvas& canvas, const Rgb& colour) {
+  canvas.setColour(colour);
+  canvas.paint();
 }
 
 }  // namespace glarecam::pipeline

@@ -1,6 +1,5 @@
 #include "pipeline/render/datasheet.h"
 
-#include <cairo.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -15,7 +14,7 @@
 #include "pipeline/facet_model.h"
 #include "pipeline/glare_profile.h"
 #include "pipeline/limit_curve.h"
-#include "pipeline/render/cairo_handles.h"
+#include "pipeline/render/canvas.h"
 #include "pipeline/render/colour.h"
 #include "pipeline/render/line_style.h"
 #include "pipeline/render/markers.h"
@@ -116,13 +115,13 @@ constexpr double kEmptyAxesTopDeg = 10;         // the axes plot of a sweep with
 
 // A fitted function: solid over the measured range, lighter and dotted where extrapolated
 // within `shown` (default 0–80°).
-void drawFit(cairo_t* cr, Plot& plot, const PlotFunction& f, Range measured_deg,
+void drawFit(Canvas& canvas, Plot& plot, const PlotFunction& f, Range measured_deg,
              const LineStyle& style, std::optional<Range> shown = std::nullopt) {
   const Range all =
       shown.value_or(Range{kAlphaRangeDeg.lo, std::max(kMaxLimitAlphaDeg, measured_deg.hi)});
-  drawCurve(cr, plot, f, {all.lo, std::min(all.hi, measured_deg.lo)}, extrapolated(style));
-  drawCurve(cr, plot, f, {std::max(all.lo, measured_deg.hi), all.hi}, extrapolated(style));
-  drawCurve(cr, plot, f, {std::max(all.lo, measured_deg.lo), std::min(all.hi, measured_deg.hi)},
+  drawCurve(canvas, plot, f, {all.lo, std::min(all.hi, measured_deg.lo)}, extrapolated(style));
+  drawCurve(canvas, plot, f, {std::max(all.lo, measured_deg.hi), all.hi}, extrapolated(style));
+  drawCurve(canvas, plot, f, {std::max(all.lo, measured_deg.lo), std::min(all.hi, measured_deg.hi)},
             style);
 }
 
@@ -144,8 +143,8 @@ Box dataArea(const Box& block) {
   return plotArea({block.x0, block.y0 + kBlockTitleHeightPt, block.x1, block.y1});
 }
 
-void drawBlockTitle(cairo_t* cr, const Box& block, const std::string& title) {
-  drawText(cr, {block.x0, block.y0 + kSectionFont.size}, title, {kSectionFont});
+void drawBlockTitle(Canvas& canvas, const Box& block, const std::string& title) {
+  drawText(canvas, {block.x0, block.y0 + kSectionFont.size}, title, {kSectionFont});
 }
 
 // The α range a fit was measured over: all luminance rows, or an axis's rows with an ellipse.
@@ -171,7 +170,7 @@ std::vector<double> lmaxPlotValues(const SweepTable& table, const SweepFits& fit
   return values;
 }
 
-void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block) {
+void drawLmaxPlot(Canvas& canvas, const DatasheetContent& content, const Box& block) {
   const SweepFits& fits = *content.fits;
   const PlotFunction limit = [&](double a) { return content.limit.at(a).value_or(kNaN); };
   const PlotFunction cosine = [&](double a) { return fits.cosine.curve(a); };
@@ -180,20 +179,20 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
             .x = kAlphaAxis,
             .y = logAxis(lmaxPlotValues(*content.table, fits, limit, {cosine, biquadratic}),
                          kEmptyLmaxRangeCdM2)};
-  drawBlockTitle(cr, block, "Maximum luminance");
-  drawAxes(cr, plot, {.x = kAlphaTitle, .y = "Lmax (cd/m\u00b2)"});
-  drawCurve(cr, plot, limit, {kAlphaRangeDeg.lo, kMaxLimitAlphaDeg}, kLimitStyle);
-  drawFit(cr, plot, cosine, measuredRange(fits), kCosineStyle);
-  drawFit(cr, plot, biquadratic, measuredRange(fits), kBiquadraticStyle);
+  drawBlockTitle(canvas, block, "Maximum luminance");
+  drawAxes(canvas, plot, {.x = kAlphaTitle, .y = "Lmax (cd/m\u00b2)"});
+  drawCurve(canvas, plot, limit, {kAlphaRangeDeg.lo, kMaxLimitAlphaDeg}, kLimitStyle);
+  drawFit(canvas, plot, cosine, measuredRange(fits), kCosineStyle);
+  drawFit(canvas, plot, biquadratic, measuredRange(fits), kBiquadraticStyle);
   std::vector<DataPoint> measured, bounds, suspects;
   for (const SweepRow& row : content.table->rows)
     (row.isSuspect()          ? suspects
      : row.lmax_bound.empty() ? measured
                               : bounds)
         .push_back({row.alpha_deg, row.lmax_cd_m2});
-  drawMarkers(cr, plot, measured, kLmaxMarker);
-  drawMarkers(cr, plot, bounds, kLmaxBoundMarker);
-  drawMarkers(cr, plot, suspects, kSuspectMarker);
+  drawMarkers(canvas, plot, measured, kLmaxMarker);
+  drawMarkers(canvas, plot, bounds, kLmaxBoundMarker);
+  drawMarkers(canvas, plot, suspects, kSuspectMarker);
   std::vector<LegendEntry> legend = {
       {"measured Lmax", std::nullopt, kLmaxMarker},
       {content.limit.constant_cd_m2 ? fmt::format("glare limit (constant {})",
@@ -209,7 +208,7 @@ void drawLmaxPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
         {"suspect: frames disagree (hollow; listed below)", std::nullopt, kSuspectMarker});
   if (extrapolates(measuredRange(fits)))
     legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, {}});
-  drawLegend(cr, plot, legend);
+  drawLegend(canvas, plot, legend);
 }
 
 // One limit-ellipse axis: its measured rows, fit and style.
@@ -236,14 +235,15 @@ std::vector<PlotFunction> modelCurves(const std::optional<double>& beta_deg) {
 }
 
 // The model's curves (under everything else) and their legend entries.
-std::vector<LegendEntry> drawModel(cairo_t* cr, Plot& plot, const std::optional<double>& beta_deg) {
+std::vector<LegendEntry> drawModel(Canvas& canvas, Plot& plot,
+                                   const std::optional<double>& beta_deg) {
   const std::vector<PlotFunction> curves = modelCurves(beta_deg);
   if (curves.empty()) return {};
   const std::array<LineStyle, 2> styles = {kModelNsStyle, kModelEwStyle};
   const std::array<const char*, 2> facets = {"N\u2013S", "E\u2013W"};
   std::vector<LegendEntry> legend;
   for (std::size_t i = 0; i < curves.size(); ++i) {
-    drawCurve(cr, plot, curves[i], kAlphaRangeDeg, styles[i]);
+    drawCurve(canvas, plot, curves[i], kAlphaRangeDeg, styles[i]);
     legend.push_back(
         {fmt::format("facet model \u03b2 = {:g}\u00b0: 2\u03b3 {}", *beta_deg, facets[i]),
          styles[i], std::nullopt});
@@ -273,7 +273,8 @@ LegendEntry axisLegendEntry(const AxisSeries& s) {
   return {r2Label(s.name + ", logistic fit", s.fit->logistic->quality), s.line, s.marker};
 }
 
-void drawAxisSeries(cairo_t* cr, Plot& plot, const DatasheetContent& content, const AxisSeries& s) {
+void drawAxisSeries(Canvas& canvas, Plot& plot, const DatasheetContent& content,
+                    const AxisSeries& s) {
   // An axis exists only where the module glares: its fit is drawn there only (it can
   // extrapolate to anything elsewhere), as in glare-profile.json.
   const std::optional<Range> glaring = glaringRange(content);
@@ -284,18 +285,18 @@ void drawAxisSeries(cairo_t* cr, Plot& plot, const DatasheetContent& content, co
     return isPhysicalAxisDeg(axis_deg) ? axis_deg : kNaN;
   };
   if (s.fit->logistic && glaring)
-    drawFit(cr, plot, physical, measuredRange(*s.fit), s.line, glaring);
+    drawFit(canvas, plot, physical, measuredRange(*s.fit), s.line, glaring);
   std::vector<DataPoint> measured, suspects;
   for (const SweepRow& row : content.table->rows)
     if (const std::optional<double>& v = row.*s.column)
       (row.isSuspect() ? suspects : measured).push_back({row.alpha_deg, *v});
-  drawMarkers(cr, plot, measured, s.marker);
+  drawMarkers(canvas, plot, measured, s.marker);
   MarkerStyle hollow = s.marker;
   hollow.hollow = true;
-  drawMarkers(cr, plot, suspects, hollow);
+  drawMarkers(canvas, plot, suspects, hollow);
 }
 
-void drawAxesPlot(cairo_t* cr, const DatasheetContent& content, const Box& block) {
+void drawAxesPlot(Canvas& canvas, const DatasheetContent& content, const Box& block) {
   const SweepFits& fits = *content.fits;
   const std::vector<AxisSeries> series = {
       {"vertical", &fits.vertical, &SweepRow::vertical_deg, kVerticalStyle, kVerticalMarker},
@@ -305,12 +306,12 @@ void drawAxesPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
       .area = dataArea(block),
       .x = kAlphaAxis,
       .y = linearAxisFromZero(axesPlotValues(content, series), kAxesHeadroom, kEmptyAxesTopDeg)};
-  drawBlockTitle(cr, block, "Limit-ellipse axes (full angles)");
-  drawAxes(cr, plot, {.x = kAlphaTitle, .y = "axis (\u00b0)"});
-  const std::vector<LegendEntry> model_legend = drawModel(cr, plot, content.model_beta_deg);
+  drawBlockTitle(canvas, block, "Limit-ellipse axes (full angles)");
+  drawAxes(canvas, plot, {.x = kAlphaTitle, .y = "axis (\u00b0)"});
+  const std::vector<LegendEntry> model_legend = drawModel(canvas, plot, content.model_beta_deg);
   std::vector<LegendEntry> legend;
   for (const AxisSeries& s : series) {
-    drawAxisSeries(cr, plot, content, s);
+    drawAxisSeries(canvas, plot, content, s);
     legend.push_back(axisLegendEntry(s));
   }
   legend.insert(legend.end(), model_legend.begin(), model_legend.end());
@@ -319,7 +320,7 @@ void drawAxesPlot(cairo_t* cr, const DatasheetContent& content, const Box& block
   };
   if (axis_extrapolates(fits.vertical) || axis_extrapolates(fits.horizontal))
     legend.push_back({"fit extrapolated", kExtrapolationKeyStyle, std::nullopt});
-  drawLegend(cr, plot, legend);
+  drawLegend(canvas, plot, legend);
 }
 
 // ---- Tables ----
@@ -450,12 +451,13 @@ struct Layout {
 
 constexpr std::size_t kMaxWarningLines = 6;
 
-std::vector<std::string> warningLines(cairo_t* cr, const std::vector<std::string>& warnings,
+std::vector<std::string> warningLines(Canvas& canvas, const std::vector<std::string>& warnings,
                                       double width_pt) {
   std::vector<std::string> lines;
   std::size_t shown = 0;
   for (const std::string& warning : warnings) {
-    const std::vector<std::string> wrapped = wrapText(cr, "\u2022 " + warning, width_pt, kNoteFont);
+    const std::vector<std::string> wrapped =
+        wrapText(canvas, "\u2022 " + warning, width_pt, kNoteFont);
     if (lines.size() + wrapped.size() > kMaxWarningLines) break;
     lines.insert(lines.end(), wrapped.begin(), wrapped.end());
     ++shown;
@@ -465,16 +467,16 @@ std::vector<std::string> warningLines(cairo_t* cr, const std::vector<std::string
   return lines;
 }
 
-double warningsHeightPt(cairo_t* cr, const std::vector<std::string>& warnings, double width_pt) {
+double warningsHeightPt(Canvas& canvas, const std::vector<std::string>& warnings, double width_pt) {
   if (warnings.empty()) return 0;
   return lineHeight(kSectionFont) +
-         warningLines(cr, warnings, width_pt).size() * lineHeight(kNoteFont);
+         warningLines(canvas, warnings, width_pt).size() * lineHeight(kNoteFont);
 }
 
-Layout pageLayout(cairo_t* cr, const DatasheetContent& content) {
+Layout pageLayout(Canvas& canvas, const DatasheetContent& content) {
   const Box page{kMarginPt, kMarginPt, kPageWidthPt - kMarginPt, kPageHeightPt - kMarginPt};
   const double plot_right = page.x0 + kPlotColumnWidthPt;
-  const double warnings_pt = warningsHeightPt(cr, content.fits->warnings, kPlotColumnWidthPt);
+  const double warnings_pt = warningsHeightPt(canvas, content.fits->warnings, kPlotColumnWidthPt);
   const double body_top = page.y0 + kHeaderHeightPt + kGapPt;
   const double plots_bottom = page.y1 - (warnings_pt > 0 ? warnings_pt + kGapPt : 0);
   const double plot_split = (body_top + plots_bottom) / 2;
@@ -537,57 +539,58 @@ std::string subtitle(const DatasheetContent& content) {
       glareRangesText(content), measured_with);
 }
 
-void drawHeader(cairo_t* cr, const DatasheetContent& content, const Box& box) {
+void drawHeader(Canvas& canvas, const DatasheetContent& content, const Box& box) {
   const std::string version = fmt::format("glarecam {}", kVersion);
   const std::string stamp =
       content.date.empty() ? version : fmt::format("{}   \u00b7   {}", content.date, version);
   const TextStyle stamp_style{kSubtitleFont, kMutedInk, Align::kRight};
   const double title_baseline = box.y0 + kTitleFont.size;
-  drawText(cr, {box.x1, title_baseline}, stamp, stamp_style);
+  drawText(canvas, {box.x1, title_baseline}, stamp, stamp_style);
   const std::string title = content.module.empty() ? std::string("Glare data sheet")
                                                    : "Glare data sheet \u2014 " + content.module;
-  const double room = box.width() - textWidth(cr, stamp, kSubtitleFont) - kColumnGapPt;
-  const double scale = std::min(1.0, room / textWidth(cr, title, kTitleFont));
-  drawText(cr, {box.x0, title_baseline}, title, {{kTitleFont.size * scale, true}});
+  const double room = box.width() - textWidth(canvas, stamp, kSubtitleFont) - kColumnGapPt;
+  const double scale = std::min(1.0, room / textWidth(canvas, title, kTitleFont));
+  drawText(canvas, {box.x0, title_baseline}, title, {{kTitleFont.size * scale, true}});
   const std::string line = subtitle(content);
-  const double sub_scale = std::min(1.0, box.width() / textWidth(cr, line, kSubtitleFont));
-  drawText(cr, {box.x0, title_baseline + 2 * kSubtitleFont.size}, line,
+  const double sub_scale = std::min(1.0, box.width() / textWidth(canvas, line, kSubtitleFont));
+  drawText(canvas, {box.x0, title_baseline + 2 * kSubtitleFont.size}, line,
            {{kSubtitleFont.size * sub_scale}, kMutedInk});
-  drawSegment(cr, {box.x0, box.y1}, {box.x1, box.y1}, kRuleStyle);
+  drawSegment(canvas, {box.x0, box.y1}, {box.x1, box.y1}, kRuleStyle);
 }
 
-double notesHeightPt(cairo_t* cr, double width_pt) {
+double notesHeightPt(Canvas& canvas, double width_pt) {
   double lines = 0;
   for (const std::string& note : fitNotes())
-    lines += wrapText(cr, note, width_pt, kNoteFont).size();
+    lines += wrapText(canvas, note, width_pt, kNoteFont).size();
   return lines * lineHeight(kNoteFont);
 }
 
 // The sweep table on top, the fit parameters right below it: the sweep table shrinks (long
 // sweeps) so that both fit.
-void drawTables(cairo_t* cr, const DatasheetContent& content, const Box& column) {
+void drawTables(Canvas& canvas, const DatasheetContent& content, const Box& column) {
   const TextTable fits = fitTable(*content.fits);
   const double fits_pt = kBlockTitleHeightPt + tableHeightPt(fits, kTableFont) + kGapPt / 2 +
-                         notesHeightPt(cr, column.width());
-  drawBlockTitle(cr, column, "Sweep");
+                         notesHeightPt(canvas, column.width());
+  drawBlockTitle(canvas, column, "Sweep");
   const Box sweep_box{column.x0, column.y0 + kBlockTitleHeightPt, column.x1,
                       column.y1 - fits_pt - kSectionGapPt};
-  const double sweep_pt = drawTable(cr, datasheetSweepTable(*content.table), sweep_box, kTableFont);
+  const double sweep_pt =
+      drawTable(canvas, datasheetSweepTable(*content.table), sweep_box, kTableFont);
   const Box fits_block{column.x0, sweep_box.y0 + sweep_pt + kSectionGapPt, column.x1, column.y1};
-  drawBlockTitle(cr, fits_block, "Fit parameters");
+  drawBlockTitle(canvas, fits_block, "Fit parameters");
   const Box fits_box{fits_block.x0, fits_block.y0 + kBlockTitleHeightPt, fits_block.x1,
                      fits_block.y1};
-  const double table_pt = drawTable(cr, fits, fits_box, kTableFont);
-  drawParagraphs(cr, {column.x0, fits_box.y0 + table_pt + kGapPt / 2 + kNoteFont.size},
+  const double table_pt = drawTable(canvas, fits, fits_box, kTableFont);
+  drawParagraphs(canvas, {column.x0, fits_box.y0 + table_pt + kGapPt / 2 + kNoteFont.size},
                  column.width(), fitNotes(), {kNoteFont, kMutedInk});
 }
 
-void drawWarnings(cairo_t* cr, const std::vector<std::string>& warnings, const Box& box) {
+void drawWarnings(Canvas& canvas, const std::vector<std::string>& warnings, const Box& box) {
   if (warnings.empty()) return;
-  drawText(cr, {box.x0, box.y0 + kSectionFont.size}, "Warnings", {kSectionFont});
+  drawText(canvas, {box.x0, box.y0 + kSectionFont.size}, "Warnings", {kSectionFont});
   double y = box.y0 + lineHeight(kSectionFont) + kNoteFont.size;
-  for (const std::string& line : warningLines(cr, warnings, box.width())) {
-    drawText(cr, {box.x0, y}, line, {kNoteFont, kMutedInk});
+  for (const std::string& line : warningLines(canvas, warnings, box.width())) {
+    drawText(canvas, {box.x0, y}, line, {kNoteFont, kMutedInk});
     y += lineHeight(kNoteFont);
   }
 }
@@ -595,27 +598,26 @@ void drawWarnings(cairo_t* cr, const std::vector<std::string>& warnings, const B
 // Across the page's face, pale red under everything drawn after it: a sheet of the simulated
 // camera's stacks can never pass for a measurement, whatever is cut from it. (Opaque pale red
 // drawn first rather than translucent red drawn last: the same look, and no group surface.)
-void drawSimulatedMark(cairo_t* cr) {
-  cairo_save(cr);
-  cairo_translate(cr, kPageWidthPt / 2, kPageHeightPt / 2);
-  cairo_rotate(cr, -kSimulatedMarkAngleRad);
-  drawText(cr, {0, kSimulatedMarkFont.size * kBaselineBelowMiddleEm}, "SIMULATED",
+void drawSimulatedMark(Canvas& canvas) {
+  const Canvas::Saved saved = canvas.save();
+  canvas.translate(kPageWidthPt / 2, kPageHeightPt / 2);
+  canvas.rotate(-kSimulatedMarkAngleRad);
+  drawText(canvas, {0, kSimulatedMarkFont.size * kBaselineBelowMiddleEm}, "SIMULATED",
            {kSimulatedMarkFont, kSimulatedMarkColour, Align::kCentre});
-  drawText(cr, {0, kSimulatedMarkFont.size * 0.75},
+  drawText(canvas, {0, kSimulatedMarkFont.size * 0.75},
            "stacks of the simulated camera: not a measurement",
            {kSectionFont, kSimulatedMarkColour, Align::kCentre});
-  cairo_restore(cr);
 }
 
-void drawDatasheet(cairo_t* cr, const DatasheetContent& content) {
-  paint(cr, kWhite);
-  if (isSimulated(*content.table)) drawSimulatedMark(cr);
-  const Layout layout = pageLayout(cr, content);
-  drawHeader(cr, content, layout.header);
-  drawLmaxPlot(cr, content, layout.lmax_plot);
-  drawAxesPlot(cr, content, layout.axes_plot);
-  drawTables(cr, content, layout.right_column);
-  drawWarnings(cr, content.fits->warnings, layout.warnings);
+void drawDatasheet(Canvas& canvas, const DatasheetContent& content) {
+  paint(canvas, kWhite);
+  if (isSimulated(*content.table)) drawSimulatedMark(canvas);
+  const Layout layout = pageLayout(canvas, content);
+  drawHeader(canvas, content, layout.header);
+  drawLmaxPlot(canvas, content, layout.lmax_plot);
+  drawAxesPlot(canvas, content, layout.axes_plot);
+  drawTables(canvas, content, layout.right_column);
+  drawWarnings(canvas, content.fits->warnings, layout.warnings);
 }
 
 constexpr double kMaxFacetBetaDeg = 45;  // facet_model.h's domain
@@ -636,7 +638,7 @@ Status validate(const DatasheetContent& content) {
 
 Status writeDatasheet(const DatasheetContent& content, const fs::path& directory) {
   GLARECAM_CHECK(validate(content));
-  const PageDrawing draw = [&content](cairo_t* cr) { drawDatasheet(cr, content); };
+  const PageDrawing draw = [&content](Canvas& canvas) { drawDatasheet(canvas, content); };
   const PdfMetadata metadata{.title = "Glare data sheet " + content.module,
                              .creator = std::string("glarecam ") + kVersion};
   GLARECAM_CHECK(writePdfPage(directory / kDatasheetPdf, kA4Landscape, draw, metadata));

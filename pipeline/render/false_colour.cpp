@@ -1,13 +1,12 @@
 #include "pipeline/render/false_colour.h"
 
-#include <cairo.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "core/parallel.h"
 #include "pipeline/luminance_stats.h"
+#include "pipeline/render/canvas.h"
 #include "pipeline/render/number_format.h"
 #include "pipeline/render/text.h"
 
@@ -71,7 +70,7 @@ ColourScale chooseScale(const calibration::MergedImage& merged, const FalseColou
 }
 
 // Each pixel as a zoom x zoom block.
-void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged,
+void paintImage(RgbSurface& surface, const calibration::MergedImage& merged,
                 const ColourScale& scale, int zoom) {
   std::array<std::uint32_t, kLutSize> lut;
   for (int i = 0; i < kLutSize; ++i) {
@@ -79,14 +78,11 @@ void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged
     turboColour(static_cast<double>(i) / (kLutSize - 1), rgb);
     lut[static_cast<std::size_t>(i)] = argb(rgb);
   }
-  cairo_surface_flush(surface);
-  unsigned char* data = cairo_image_surface_get_data(surface);
-  const int stride = cairo_image_surface_get_stride(surface);
+  const RgbSurface::Pixels pixels = surface.pixels();
   const FloatImage& luminance = merged.luminance_cd_m2;
   parallelRows(luminance.height(), availableThreads(), [&](int begin, int end) {
     for (int y = begin; y < end; ++y) {
-      auto* out =
-          reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * zoom * stride);
+      std::uint32_t* out = pixels.row(y * zoom);
       auto in = luminance.row(y);
       auto bound = merged.bound.row(y);
       for (int x = 0; x < luminance.width(); ++x) {
@@ -104,19 +100,17 @@ void paintImage(cairo_surface_t* surface, const calibration::MergedImage& merged
       }
       for (int copy = 1; copy < zoom; ++copy) {
         std::copy_n(out, static_cast<std::size_t>(luminance.width() * zoom),
-                    reinterpret_cast<std::uint32_t*>(reinterpret_cast<unsigned char*>(out) +
-                                                     static_cast<std::ptrdiff_t>(copy) * stride));
+                    pixels.row(y * zoom + copy));
       }
     }
   });
-  cairo_surface_mark_dirty(surface);
 }
 
 struct PanelLayout {
   double bar_top, bar_bottom, bar_x, bar_width, font_px;
 };
 
-void paintColourBar(cairo_t* cr, const PanelLayout& p, const ColourScale& scale,
+void paintColourBar(Canvas& canvas, const PanelLayout& p, const ColourScale& scale,
                     const FalseColourOptions& options, bool has_saturated) {
   const Font font{.size = p.font_px};
   const TextStyle label_style{font, kWhite};
@@ -124,15 +118,15 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const ColourScale& scale,
   for (int i = 0; i < steps; ++i) {
     std::uint8_t rgb[3];
     turboColour(1.0 - static_cast<double>(i) / std::max(1, steps - 1), rgb);
-    setColour(cr, {rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0});
-    cairo_rectangle(cr, p.bar_x, p.bar_top + i, p.bar_width, 1.0);
-    cairo_fill(cr);
+    canvas.setColour({rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0});
+    canvas.rectangle({p.bar_x, p.bar_top + i}, p.bar_width, 1.0);
+    canvas.fill();
   }
   auto yOf = [&](double value) {
     return p.bar_bottom - scale.position(value) * (p.bar_bottom - p.bar_top);
   };
-  setColour(cr, kWhite);
-  cairo_set_line_width(cr, std::max(1.0, p.font_px / 10));
+  canvas.setColour(kWhite);
+  canvas.setLineWidth(std::max(1.0, p.font_px / 10));
   // Ticks at each decade; on a scale under kFineTickDecades also at 2 and 5 times each, so
   // that a dim, low-contrast image still has values to read.
   const bool fine = scale.log_max - scale.log_min < kFineTickDecades;
@@ -144,22 +138,23 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const ColourScale& scale,
           std::log10(value) > scale.log_max)
         continue;
       const double y = yOf(value);
-      cairo_move_to(cr, p.bar_x + p.bar_width, y);
-      cairo_line_to(cr, p.bar_x + p.bar_width + p.font_px * 0.4, y);
-      cairo_stroke(cr);
-      drawText(cr,
+      canvas.moveTo({p.bar_x + p.bar_width, y});
+      canvas.lineTo({p.bar_x + p.bar_width + p.font_px * 0.4, y});
+      canvas.stroke();
+      drawText(canvas,
                {p.bar_x + p.bar_width + p.font_px * 0.6, y + p.font_px * kBaselineBelowMiddleEm},
                formatSiPrefixed(value), label_style);
     }
   }
-  drawText(cr, {p.bar_x, p.bar_top - p.font_px * 0.8}, "cd/m\u00b2", label_style);
-  if (!options.title.empty()) drawText(cr, {p.bar_x, p.font_px * 1.2}, options.title, label_style);
+  drawText(canvas, {p.bar_x, p.bar_top - p.font_px * 0.8}, "cd/m\u00b2", label_style);
+  if (!options.title.empty())
+    drawText(canvas, {p.bar_x, p.font_px * 1.2}, options.title, label_style);
   const double caption_width = p.font_px * (kPanelWidthEm - 1.5);
   for (std::size_t i = 0; i < options.caption.size(); ++i) {
     const std::string& line = options.caption[i];
-    const double scale = std::min(1.0, caption_width / textWidth(cr, line, font));
-    drawText(cr, {p.bar_x, p.font_px * (1.2 + kLineSpacingEm * static_cast<double>(i + 1))}, line,
-             {{.size = p.font_px * scale}, kWhite});
+    const double scale = std::min(1.0, caption_width / textWidth(canvas, line, font));
+    drawText(canvas, {p.bar_x, p.font_px * (1.2 + kLineSpacingEm * static_cast<double>(i + 1))},
+             line, {{.size = p.font_px * scale}, kWhite});
   }
   // The limit is marked only where it lies on the scale: pinned to an end it would read as
   // "the maximum is the limit".
@@ -168,18 +163,18 @@ void paintColourBar(cairo_t* cr, const PanelLayout& p, const ColourScale& scale,
                               std::log10(*options.limit_cd_m2) <= scale.log_max;
   if (limit_on_scale) {
     const double y = yOf(*options.limit_cd_m2);
-    setColour(cr, kLimitColour);
-    cairo_move_to(cr, p.bar_x - p.font_px * 0.3, y);
-    cairo_line_to(cr, p.bar_x + p.bar_width, y);
-    cairo_stroke(cr);
-    drawText(cr, {p.bar_x + p.bar_width + p.font_px * 0.6, y - p.font_px * 0.5}, "limit",
+    canvas.setColour(kLimitColour);
+    canvas.moveTo({p.bar_x - p.font_px * 0.3, y});
+    canvas.lineTo({p.bar_x + p.bar_width, y});
+    canvas.stroke();
+    drawText(canvas, {p.bar_x + p.bar_width + p.font_px * 0.6, y - p.font_px * 0.5}, "limit",
              {font, kLimitColour});
   }
   if (!has_saturated) return;
-  setColour(cr, kWhite);
-  cairo_rectangle(cr, p.bar_x, p.bar_bottom + p.font_px * 0.8, p.bar_width, p.font_px);
-  cairo_fill(cr);
-  drawText(cr, {p.bar_x + p.bar_width + p.font_px * 0.6, p.bar_bottom + p.font_px * 1.7},
+  canvas.setColour(kWhite);
+  canvas.rectangle({p.bar_x, p.bar_bottom + p.font_px * 0.8}, p.bar_width, p.font_px);
+  canvas.fill();
+  drawText(canvas, {p.bar_x + p.bar_width + p.font_px * 0.6, p.bar_bottom + p.font_px * 1.7},
            "saturated", label_style);
 }
 
@@ -224,37 +219,36 @@ Result<RgbImage> renderFalseColour(const calibration::MergedImage& merged,
   const double caption_em = kLineSpacingEm * static_cast<double>(options.caption.size());
   const int canvas_height =
       std::max(height, static_cast<int>(font_px * (kMinCanvasHeightEm + caption_em)));
-  const Result<CairoSurface> surface = createRgbSurface(width + panel_width, canvas_height);
+  Result<RgbSurface> surface = RgbSurface::create(width + panel_width, canvas_height);
   if (!surface) return std::unexpected(withContext(surface.error(), "false colour"));
-  const Result<CairoContext> context = createContext(surface->get());
+  Result<Canvas> context = Canvas::onSurface(*surface);
   if (!context) return std::unexpected(withContext(context.error(), "false colour"));
-  cairo_t* const cr = context->get();
+  Canvas& canvas = *context;
   const ColourScale scale = chooseScale(merged, options);
-  paint(cr, kBackground);
-  paintImage(surface->get(), merged, scale, zoom);
+  paint(canvas, kBackground);
+  paintImage(*surface, merged, scale, zoom);
   if (options.overlay) {
-    cairo_save(cr);
-    cairo_rectangle(cr, 0, 0, width, height);
-    cairo_clip(cr);
+    const Canvas::Saved saved = canvas.save();
+    canvas.rectangle({0, 0}, width, height);
+    canvas.clip();
     // Pixel (x, y) covers [x, x + 1] of the frame (zoomed on the canvas); overlays draw in the
     // frame's pixel-centre coordinates, their font and lines sized for the canvas.
-    cairo_scale(cr, zoom, zoom);
-    cairo_translate(cr, 0.5, 0.5);
-    options.overlay(cr, font_px / zoom);
-    cairo_restore(cr);
+    canvas.scale(zoom, zoom);
+    canvas.translate(0.5, 0.5);
+    options.overlay(canvas, font_px / zoom);
   }
   if (!options.banner.empty()) {
-    setColour(cr, kLimitColour);
-    cairo_rectangle(cr, 0, 0, width, font_px * kBannerHeightEm);
-    cairo_fill(cr);
-    drawText(cr, {width / 2.0, font_px * (kBannerHeightEm / 2 + kBaselineBelowMiddleEm)},
+    canvas.setColour(kLimitColour);
+    canvas.rectangle({0, 0}, width, font_px * kBannerHeightEm);
+    canvas.fill();
+    drawText(canvas, {width / 2.0, font_px * (kBannerHeightEm / 2 + kBaselineBelowMiddleEm)},
              options.banner, {{.size = font_px, .bold = true}, kWhite, Align::kCentre});
   }
   const PanelLayout layout{font_px * (kBarMarginEm + caption_em),
                            canvas_height - font_px * kBarMarginEm, width + font_px,
                            font_px * kBarWidthEm, font_px};
-  paintColourBar(cr, layout, scale, options, hasSaturated(merged));
-  return copyRgb(surface->get());
+  paintColourBar(canvas, layout, scale, options, hasSaturated(merged));
+  return surface->copyRgb();
 }
 
 }  // namespace glarecam::pipeline

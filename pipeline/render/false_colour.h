@@ -13,16 +13,15 @@
 
 #include "calibration/hdr_merge.h"
 #include "core/error.h"
-#include "pipeline/render/cairo_handles.h"
 #include "pipeline/render/colour.h"
 #include "pipeline/render/rgb_surface.h"
 
 namespace glarecam::pipeline {
 
 // A drawing over the image part of the picture (glare_picture.h), clipped to it, in pixel-centre
-// coordinates (core/image.h: the centre of pixel (x, y) is at (x, y)): gets the Cairo context
-// and the label font size in pixels.
-using PictureOverlay = std::function<void(cairo_t* cairo, double font_px)>;
+// coordinates (core/image.h: the centre of pixel (x, y) is at (x, y)): gets the canvas and the
+// label font size in pixels.
+using PictureOverlay = std::function<void(Canvas& canvas, double font_px)>;
 
 // The glare limit's colour: its mark on the colour bar, the limit contour over the image.
 inline constexpr Rgb kLimitColour{1, 0, 1};  // magenta: no colour of the Turbo map

@@ -1,13 +1,14 @@
 #include "pipeline/render/glare_picture.h"
 
-#include <cairo.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "calibration/angular_plane.h"
+#include "pipeline/render/canvas.h"
 #include "pipeline/render/colour.h"
 #include "pipeline/render/label_placement.h"
 #include "pipeline/render/number_format.h"
@@ -46,10 +47,9 @@ constexpr double kSmallLabelEm = 0.8;  // the circles' labels and the legend, be
 Font labelFont(double font_px) { return {.size = font_px, .bold = true}; }
 
 // One pixel of the canvas in the overlay's units (the picture may show a small frame enlarged).
-double devicePixel(cairo_t* cr) {
-  double dx = 1, dy = 0;
-  cairo_device_to_user_distance(cr, &dx, &dy);
-  return std::hypot(dx, dy);
+double devicePixel(const Canvas& canvas) {
+  const Point d = canvas.deviceToUserDistance({1, 0});
+  return std::hypot(d.x, d.y);
 }
 
 struct ClipBox {
@@ -88,43 +88,44 @@ std::vector<Ray> planeCurve(const AngularPlane& plane, Curve curve, double t0, d
   return rays;
 }
 
-void stroke(cairo_t* cr, const std::vector<Polyline>& pieces, const Style& style, double font_px) {
-  const double width = std::max(devicePixel(cr), style.width_em * font_px);
-  cairo_set_line_width(cr, width);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+void stroke(Canvas& canvas, const std::vector<Polyline>& pieces, const Style& style,
+            double font_px) {
+  const double width = std::max(devicePixel(canvas), style.width_em * font_px);
+  canvas.setLineWidth(width);
+  canvas.setLineJoin(LineJoin::kRound);
   const double dash[] = {4 * width, 3 * width};
-  cairo_set_dash(cr, dash, style.dashed ? 2 : 0, 0);
-  setColour(cr, style.colour, style.alpha);
+  canvas.setDash(style.dashed ? std::span<const double>(dash) : std::span<const double>());
+  canvas.setColour(style.colour, style.alpha);
   for (const Polyline& piece : pieces) {
     if (piece.size() < 2) continue;
-    cairo_move_to(cr, piece.front().x, piece.front().y);
-    for (const PixelPoint& p : piece) cairo_line_to(cr, p.x, p.y);
-    cairo_stroke(cr);
+    canvas.moveTo({piece.front().x, piece.front().y});
+    for (const PixelPoint& p : piece) canvas.lineTo({p.x, p.y});
+    canvas.stroke();
   }
-  cairo_set_dash(cr, nullptr, 0, 0);
+  canvas.setDash({});
 }
 
 // White text with a dark outline: legible on every colour of the map.
-void label(cairo_t* cr, double x, double y, const std::string& text, double font_px) {
-  selectFont(cr, labelFont(font_px));
-  cairo_move_to(cr, x, y);
-  cairo_text_path(cr, text.c_str());
-  setColour(cr, kLabelOutline);
-  cairo_set_line_width(cr, std::max(1.5 * devicePixel(cr), font_px / 6));
-  cairo_stroke_preserve(cr);
-  setColour(cr, kWhite);
-  cairo_fill(cr);
+void label(Canvas& canvas, double x, double y, const std::string& text, double font_px) {
+  selectFont(canvas, labelFont(font_px));
+  canvas.moveTo({x, y});
+  canvas.textPath(text);
+  canvas.setColour(kLabelOutline);
+  canvas.setLineWidth(std::max(1.5 * devicePixel(canvas), font_px / 6));
+  canvas.strokePreserve();
+  canvas.setColour(kWhite);
+  canvas.fill();
 }
 
 // A label at `at`, inside the picture and off the drawn `lines` (label_placement.h); nothing when
 // `at` is not a point (an axis end behind the camera).
-void labelOffLines(cairo_t* cr, const PixelPoint& at, const PixelPoint& away,
+void labelOffLines(Canvas& canvas, const PixelPoint& at, const PixelPoint& away,
                    const std::string& text, const ClipBox& box, double font_px,
                    const std::vector<Polyline>& lines) {
   if (!std::isfinite(at.x) || !std::isfinite(at.y)) return;
-  const PixelPoint p = placeLabel({at, away, textWidth(cr, text, labelFont(font_px)), font_px},
+  const PixelPoint p = placeLabel({at, away, textWidth(canvas, text, labelFont(font_px)), font_px},
                                   {box.x0, box.y0, box.x1, box.y1}, lines);
-  label(cr, p.x, p.y, text, font_px);
+  label(canvas, p.x, p.y, text, font_px);
 }
 
 PixelPoint unitAway(const PixelPoint& from, const PixelPoint& to) {
@@ -149,7 +150,7 @@ std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, co
 
 // The two axes of an ellipse as arcs (added to `lines`), then each labelled at its upper or right
 // end, off every line drawn (the other axis included).
-void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::string& prefix,
+void drawAxes(Canvas& canvas, const Overlay& o, const GlareEllipse& e, const std::string& prefix,
               const ClipBox& box, double font_px, std::vector<Polyline>& lines) {
   const AngularPlane plane(e.plane_centre);
   const Ellipse& ellipse = e.plane_ellipse;
@@ -164,7 +165,7 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::s
       return Point2{a.x + (b.x - a.x) * s, a.y + (b.y - a.y) * s};
     };
     const auto pieces = project(o.camera, planeCurve(plane, chord, 0, 1, kAxisPoints), box);
-    stroke(cr, pieces, kAxisStyle, font_px);
+    stroke(canvas, pieces, kAxisStyle, font_px);
     lines.insert(lines.end(), pieces.begin(), pieces.end());
     const bool is_major = t_end == 0.0;
     const bool vertical = e.majorIsVertical() == is_major;
@@ -183,16 +184,17 @@ void drawAxes(cairo_t* cr, const Overlay& o, const GlareEllipse& e, const std::s
                       unitAway(other, end),
                       fmt::format("{}{} {:.2f}\u00b0", prefix, vertical ? "V" : "H", length_deg)});
   }
-  for (const AxisLabel& l : labels) labelOffLines(cr, l.at, l.away, l.text, box, font_px, lines);
+  for (const AxisLabel& l : labels)
+    labelOffLines(canvas, l.at, l.away, l.text, box, font_px, lines);
 }
 
-void drawCircles(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_px) {
+void drawCircles(Canvas& canvas, const Overlay& o, const ClipBox& box, double font_px) {
   const AngularPlane plane(o.peak_ray);
   for (const double radius_deg : kReferenceCirclesDeg) {
     const auto circle = [&](double t) {
       return Point2{radius_deg * std::cos(t), radius_deg * std::sin(t)};
     };
-    stroke(cr,
+    stroke(canvas,
            project(o.camera, planeCurve(plane, circle, 0, 2 * std::numbers::pi, kCurvePoints), box),
            kCircleStyle, font_px);
     // Labelled at its lower-left point (135° in image coordinates, y down), away from the axis
@@ -202,17 +204,18 @@ void drawCircles(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_
     if (ray.z <= 0) continue;
     const PixelPoint p = o.camera.project(ray);
     const std::string text = fmt::format("r {:g}\u00b0", radius_deg);
-    const double x = p.x - textWidth(cr, text, labelFont(font_px * kSmallLabelEm)) - font_px * 0.2;
+    const double x =
+        p.x - textWidth(canvas, text, labelFont(font_px * kSmallLabelEm)) - font_px * 0.2;
     const double y = p.y + font_px * 0.9;
     if (x > box.x0 && p.x < box.x1 && y < box.y1 && p.y > box.y0)
-      label(cr, x, y, text, font_px * kSmallLabelEm);
+      label(canvas, x, y, text, font_px * kSmallLabelEm);
   }
 }
 
 // The legend only where it fits beside the spot: not on thumbnails.
 constexpr double kMinLegendWidthEm = 30, kMinLegendHeightEm = 12;
 
-void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_px) {
+void drawLegend(Canvas& canvas, const Overlay& o, const ClipBox& box, double font_px) {
   if (box.x1 - box.x0 < kMinLegendWidthEm * font_px ||
       box.y1 - box.y0 < kMinLegendHeightEm * font_px)
     return;
@@ -230,13 +233,13 @@ void drawLegend(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_p
   lines.push_back("circles: radius 1\u00b0, 5\u00b0, 10\u00b0, 20\u00b0 around the maximum");
   double y = box.y0 + font_px * 1.2;
   for (const std::string& line : lines) {
-    label(cr, box.x0 + font_px * 0.6, y, line, font_px * kSmallLabelEm);
+    label(canvas, box.x0 + font_px * 0.6, y, line, font_px * kSmallLabelEm);
     y += font_px * 1.2;
   }
 }
 
 // Each --thresholds ellipse, labelled with its level at its upper-right point, off `lines`.
-void drawThresholds(cairo_t* cr, const Overlay& o, const ClipBox& box, double font_px,
+void drawThresholds(Canvas& canvas, const Overlay& o, const ClipBox& box, double font_px,
                     const std::vector<Polyline>& lines) {
   for (const auto& [level_cd_m2, e] : o.thresholds) {
     const AngularPlane plane(e.plane_centre);
@@ -245,19 +248,19 @@ void drawThresholds(cairo_t* cr, const Overlay& o, const ClipBox& box, double fo
     if (ray.z <= 0) continue;
     const PixelPoint p = o.camera.project(ray);
     const PixelPoint centre = o.camera.project(plane.toRay({0, 0}));
-    labelOffLines(cr, {p.x + font_px * 0.3, p.y - font_px * 0.3}, unitAway(centre, p),
+    labelOffLines(canvas, {p.x + font_px * 0.3, p.y - font_px * 0.3}, unitAway(centre, p),
                   formatSiPrefixed(level_cd_m2), box, font_px * kSmallLabelEm, lines);
   }
 }
 
-void drawOverlay(cairo_t* cr, const Overlay& o, double font_px) {
-  ClipBox box{};
-  cairo_clip_extents(cr, &box.x0, &box.y0, &box.x1, &box.y1);
-  drawCircles(cr, o, box, font_px);
+void drawOverlay(Canvas& canvas, const Overlay& o, double font_px) {
+  const Box clip = canvas.clipExtents();
+  const ClipBox box{clip.x0, clip.y0, clip.x1, clip.y1};
+  drawCircles(canvas, o, box, font_px);
   // Every line first, then the labels, each kept off all of them.
   std::vector<Polyline> lines;
   const auto draw = [&](std::vector<Polyline> pieces, const Style& style) {
-    stroke(cr, pieces, style, font_px);
+    stroke(canvas, pieces, style, font_px);
     lines.insert(lines.end(), pieces.begin(), pieces.end());
   };
   for (const auto& [level, e] : o.thresholds) draw(ellipseOutline(o, e, box), kThresholdStyle);
@@ -270,12 +273,12 @@ void drawOverlay(cairo_t* cr, const Overlay& o, double font_px) {
   }
   // Axes of the limit ellipse, or of the FWHM ellipse when the module does not glare.
   if (o.limit) {
-    drawAxes(cr, o, *o.limit, "", box, font_px, lines);
+    drawAxes(canvas, o, *o.limit, "", box, font_px, lines);
   } else if (o.fwhm) {
-    drawAxes(cr, o, *o.fwhm, "FWHM ", box, font_px, lines);
+    drawAxes(canvas, o, *o.fwhm, "FWHM ", box, font_px, lines);
   }
-  drawThresholds(cr, o, box, font_px, lines);
-  drawLegend(cr, o, box, font_px);
+  drawThresholds(canvas, o, box, font_px, lines);
+  drawLegend(canvas, o, box, font_px);
 }
 
 }  // namespace
@@ -291,7 +294,7 @@ PictureOverlay glareOverlay(const GlareAnalysis& analysis, const calibration::Ca
   if (analysis.limit) overlay.limit = analysis.limit->ellipse;
   for (const EllipseMeasurement& m : analysis.thresholds)
     if (m.ellipse) overlay.thresholds.emplace_back(m.level_cd_m2, *m.ellipse);
-  return [overlay](cairo_t* cr, double font_px) { drawOverlay(cr, overlay, font_px); };
+  return [overlay](Canvas& canvas, double font_px) { drawOverlay(canvas, overlay, font_px); };
 }
 
 }  // namespace glarecam::pipeline

@@ -1,6 +1,5 @@
 #include "pipeline/render/hazard_chart.h"
 
-#include <cairo.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -13,7 +12,7 @@
 #include <vector>
 
 #include "core/version.h"
-#include "pipeline/render/cairo_handles.h"
+#include "pipeline/render/canvas.h"
 #include "pipeline/render/colour.h"
 #include "pipeline/render/line_style.h"
 #include "pipeline/render/markers.h"
@@ -23,6 +22,7 @@
 #include "pipeline/render/plot_axes.h"
 #include "pipeline/render/plot_legend.h"
 #include "pipeline/render/plot_series.h"
+#include "pipeline/render/rgb_surface.h"
 #include "pipeline/render/text.h"
 #include "pipeline/render/text_table.h"
 
@@ -205,32 +205,28 @@ CellRaster rasterise(const HazardChartContent& c, const HourRange& hours, int ma
   return raster;
 }
 
-std::uint32_t rgb24(const Rgb& colour) {
+using RgbBytes = std::array<std::uint8_t, 3>;
+
+RgbBytes rgbBytes(const Rgb& colour) {
   const auto byte = [](double v) {
-    return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
+    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
   };
-  return byte(colour.r) << 16 | byte(colour.g) << 8 | byte(colour.b);
+  return {byte(colour.r), byte(colour.g), byte(colour.b)};
 }
 
-// The raster's colours on an image surface of its size. A surface Cairo could not allocate is
-// returned in its error state: painting it puts the drawing in that state, which the page's
-// writer reports.
-CairoSurface rasterImage(const CellRaster& raster) {
-  CairoSurface surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, raster.columns, raster.rows));
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return surface;
-  std::array<std::uint32_t, kCellKinds> colours{};
+// The raster's colours as an image of its size.
+RgbImage rasterImage(const CellRaster& raster) {
+  std::array<RgbBytes, kCellKinds> colours{};
   for (int kind = 0; kind < kCellKinds; ++kind)
-    colours[kind] = rgb24(cellColour(static_cast<HazardCell>(kind)));
-  cairo_surface_flush(surface.get());
-  unsigned char* data = cairo_image_surface_get_data(surface.get());
-  const int stride = cairo_image_surface_get_stride(surface.get());
-  for (int row = 0; row < raster.rows; ++row) {
-    auto* out = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(row) * stride);
-    for (int column = 0; column < raster.columns; ++column)
-      out[column] = colours[static_cast<std::size_t>(raster.at(column, row))];
-  }
-  cairo_surface_mark_dirty(surface.get());
-  return surface;
+    colours[kind] = rgbBytes(cellColour(static_cast<HazardCell>(kind)));
+  RgbImage image{.width = raster.columns, .height = raster.rows, .rgb = {}};
+  image.rgb.reserve(static_cast<std::size_t>(raster.columns) * raster.rows * 3);
+  for (int row = 0; row < raster.rows; ++row)
+    for (int column = 0; column < raster.columns; ++column) {
+      const RgbBytes& colour = colours[static_cast<std::size_t>(raster.at(column, row))];
+      image.rgb.insert(image.rgb.end(), colour.begin(), colour.end());
+    }
+  return image;
 }
 
 // ---- Layout ----
@@ -247,15 +243,15 @@ Box snappedToPixels(const Box& box) {
   return {up(box.x0), up(box.y0), down(box.x1), down(box.y1)};
 }
 
-std::vector<std::string> subtitleLines(cairo_t* cr, const HazardChartContent& c, double width) {
+std::vector<std::string> subtitleLines(Canvas& canvas, const HazardChartContent& c, double width) {
   return c.subtitle.empty() ? std::vector<std::string>{}
-                            : wrapText(cr, c.subtitle, width, kSubtitleFont);
+                            : wrapText(canvas, c.subtitle, width, kSubtitleFont);
 }
 
-Layout pageLayout(cairo_t* cr, const HazardChartContent& c) {
+Layout pageLayout(Canvas& canvas, const HazardChartContent& c) {
   const Box page{kMarginPt, kMarginPt, kPage.width_pt - kMarginPt, kPage.height_pt - kMarginPt};
-  const double subtitle_pt =
-      static_cast<double>(subtitleLines(cr, c, page.width()).size()) * lineHeight(kSubtitleFont);
+  const double subtitle_pt = static_cast<double>(subtitleLines(canvas, c, page.width()).size()) *
+                             lineHeight(kSubtitleFont);
   const double header_bottom = page.y0 + lineHeight(kTitleFont) + subtitle_pt + kRuleGapPt;
   const double body_top = header_bottom + kGapPt;
   const double split = body_top + (page.y1 - body_top - kGapPt) * kUpperPanelShare;
@@ -266,20 +262,20 @@ Layout pageLayout(cairo_t* cr, const HazardChartContent& c) {
 
 // ---- Header ----
 
-void drawHeader(cairo_t* cr, const HazardChartContent& c, const Box& box) {
+void drawHeader(Canvas& canvas, const HazardChartContent& c, const Box& box) {
   const std::string stamp = fmt::format("glarecam {}", kVersion);
   const double title_baseline = box.y0 + kTitleFont.size;
-  drawText(cr, {box.x1, title_baseline}, stamp, {kSubtitleFont, kMutedInk, Align::kRight});
+  drawText(canvas, {box.x1, title_baseline}, stamp, {kSubtitleFont, kMutedInk, Align::kRight});
   const std::string title = c.title.empty() ? std::string("Glare hazard") : c.title;
-  const double room = box.width() - textWidth(cr, stamp, kSubtitleFont) - kStampGapPt;
-  const double scale = std::min(1.0, room / textWidth(cr, title, kTitleFont));
-  drawText(cr, {box.x0, title_baseline}, title, {{kTitleFont.size * scale, true}});
+  const double room = box.width() - textWidth(canvas, stamp, kSubtitleFont) - kStampGapPt;
+  const double scale = std::min(1.0, room / textWidth(canvas, title, kTitleFont));
+  drawText(canvas, {box.x0, title_baseline}, title, {{kTitleFont.size * scale, true}});
   double baseline = box.y0 + lineHeight(kTitleFont) + kSubtitleFont.size;
-  for (const std::string& line : subtitleLines(cr, c, box.width())) {
-    drawText(cr, {box.x0, baseline}, line, {kSubtitleFont, kMutedInk});
+  for (const std::string& line : subtitleLines(canvas, c, box.width())) {
+    drawText(canvas, {box.x0, baseline}, line, {kSubtitleFont, kMutedInk});
     baseline += lineHeight(kSubtitleFont);
   }
-  drawSegment(cr, {box.x0, box.y1}, {box.x1, box.y1}, kRuleStyle);
+  drawSegment(canvas, {box.x0, box.y1}, {box.x1, box.y1}, kRuleStyle);
 }
 
 // ---- Upper panel: the cells ----
@@ -318,7 +314,7 @@ std::vector<LegendEntry> cellLegend(const HazardChartContent& c, const CellRaste
   return legend;
 }
 
-void drawCellPanel(cairo_t* cr, const HazardChartContent& c, const Box& frame) {
+void drawCellPanel(Canvas& canvas, const HazardChartContent& c, const Box& frame) {
   const HourRange hours = shownHours(c);
   Plot plot{.area = snappedToPixels(plotArea(frame)),
             .x = dayAxis(c),
@@ -327,20 +323,19 @@ void drawCellPanel(cairo_t* cr, const HazardChartContent& c, const Box& frame) {
   // One pixel row of the PNG per raster row at most, so that each row shows in the PNG.
   const int max_rows = static_cast<int>(std::lround(plot.area.height() * kPngPixelsPerPt));
   const CellRaster raster = rasterise(c, hours, max_rows);
-  const CairoSurface image = rasterImage(raster);
+  const RgbImage image = rasterImage(raster);
 
   // The axes first: the cells hide the grid, which would hide a glaring pixel row.
-  drawAxes(cr, plot, {.x = "", .y = "time of day (local standard time)"});
+  drawAxes(canvas, plot, {.x = "", .y = "time of day (local standard time)"});
   const double top = plot.pageY(raster.to_h), bottom = plot.pageY(raster.from_h);
-  cairo_save(cr);
-  cairo_rectangle(cr, plot.area.x0, plot.area.y0, plot.area.width(), plot.area.height());
-  cairo_clip(cr);
-  cairo_translate(cr, plot.area.x0, top);
-  cairo_scale(cr, plot.area.width() / raster.columns, (bottom - top) / raster.rows);
-  cairo_set_source_surface(cr, image.get(), 0, 0);
-  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-  cairo_paint(cr);
-  cairo_restore(cr);
+  {
+    const Canvas::Saved saved = canvas.save();
+    canvas.rectangle(plot.area);
+    canvas.clip();
+    canvas.translate(plot.area.x0, top);
+    canvas.scale(plot.area.width() / raster.columns, (bottom - top) / raster.rows);
+    canvas.paintImage(image);
+  }
 
   const double column_pt = plot.area.width() / raster.columns;
   const double row_pt = (bottom - top) / raster.rows;
@@ -350,8 +345,8 @@ void drawCellPanel(cairo_t* cr, const HazardChartContent& c, const Box& frame) {
         plot.ink.push_back(
             {{plot.area.x0 + (column + 0.5) * column_pt, top + (row + 0.5) * row_pt}, weight});
 
-  drawFrame(cr, plot);
-  drawLegend(cr, plot, cellLegend(c, raster));
+  drawFrame(canvas, plot);
+  drawLegend(canvas, plot, cellLegend(c, raster));
 }
 
 // ---- Lower panel: minutes per day ----
@@ -372,7 +367,7 @@ std::string seriesLabel(const HazardChartSeries& s) {
                      total / kMinutesPerHour);
 }
 
-void drawMinutesPanel(cairo_t* cr, const HazardChartContent& c, const Box& frame) {
+void drawMinutesPanel(Canvas& canvas, const HazardChartContent& c, const Box& frame) {
   double most = 0;
   for (const HazardChartSeries& s : c.models)
     for (const double m : s.minutes_per_day) most = std::max(most, m);
@@ -382,18 +377,18 @@ void drawMinutesPanel(cairo_t* cr, const HazardChartContent& c, const Box& frame
   Plot plot{.area = snappedToPixels(plotArea(frame)),
             .x = dayAxis(c),
             .y = {.range = {0, top}, .step = niceStep(top)}};
-  drawAxes(cr, plot, {.x = fmt::format("day of the year {}", c.year), .y = "glare (min/day)"});
+  drawAxes(canvas, plot, {.x = fmt::format("day of the year {}", c.year), .y = "glare (min/day)"});
 
   const double limit = c.threshold_minutes_per_day;
   drawCurve(
-      cr, plot, [limit](double) { return limit; }, plot.x.range, kCriterionLineStyle);
+      canvas, plot, [limit](double) { return limit; }, plot.x.range, kCriterionLineStyle);
   const std::string limit_label = fmt::format("{} min/day", formatPlain(limit));
   const Point label_end{plot.area.x1 - kThresholdLabelGapPt,
                         plot.pageY(limit) - kThresholdLabelGapPt};
-  drawText(cr, label_end, limit_label, {kThresholdFont, kInk, Align::kRight});
+  drawText(canvas, label_end, limit_label, {kThresholdFont, kInk, Align::kRight});
   // The label is ink the legend keeps off, like a marker.
   constexpr double kLabelInkWeight = 12;
-  const double label_width = textWidth(cr, limit_label, kThresholdFont);
+  const double label_width = textWidth(canvas, limit_label, kThresholdFont);
   for (const double along : {0.0, 0.5, 1.0})
     plot.ink.push_back({{label_end.x - along * label_width, label_end.y - kThresholdFont.size / 2},
                         kLabelInkWeight});
@@ -406,23 +401,23 @@ void drawMinutesPanel(cairo_t* cr, const HazardChartContent& c, const Box& frame
     for (std::size_t day = 0; day < s.minutes_per_day.size(); ++day)
       points.push_back({static_cast<double>(day) + 0.5, s.minutes_per_day[day]});
     const LineStyle style{.colour = kModelColours[i], .width_pt = kSeriesWidthPt};
-    drawLine(cr, plot, points, style);
+    drawLine(canvas, plot, points, style);
   }
   for (std::size_t i = 0; i < c.models.size(); ++i)
     legend.push_back({seriesLabel(c.models[i]),
                       LineStyle{.colour = kModelColours[i], .width_pt = kSeriesWidthPt},
                       std::nullopt});
-  drawLegend(cr, plot, legend);
+  drawLegend(canvas, plot, legend);
 }
 
 // ---- The page ----
 
-void drawChart(cairo_t* cr, const HazardChartContent& c) {
-  paint(cr, kWhite);
-  const Layout layout = pageLayout(cr, c);
-  drawHeader(cr, c, layout.header);
-  drawCellPanel(cr, c, layout.upper);
-  drawMinutesPanel(cr, c, layout.lower);
+void drawChart(Canvas& canvas, const HazardChartContent& c) {
+  paint(canvas, kWhite);
+  const Layout layout = pageLayout(canvas, c);
+  drawHeader(canvas, c, layout.header);
+  drawCellPanel(canvas, c, layout.upper);
+  drawMinutesPanel(canvas, c, layout.lower);
 }
 
 // ---- Validation ----
@@ -471,7 +466,7 @@ Status validate(const HazardChartContent& c) {
 Status writeHazardChart(const HazardChartContent& content, const fs::path& png_path,
                         const fs::path& svg_path) {
   GLARECAM_CHECK(validate(content));
-  const PageDrawing draw = [&content](cairo_t* cr) { drawChart(cr, content); };
+  const PageDrawing draw = [&content](Canvas& canvas) { drawChart(canvas, content); };
   GLARECAM_CHECK(writePngPage(png_path, kPage, draw));
   return writeSvgPage(svg_path, kPage, draw);
 }

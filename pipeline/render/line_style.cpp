@@ -1,31 +1,32 @@
 #include "pipeline/render/line_style.h"
 
-#include <cairo.h>
-
 #include <array>
+#include <span>
+
+#include "pipeline/render/canvas.h"
 
 namespace glarecam::pipeline {
 
-void applyLineStyle(cairo_t* cr, const LineStyle& style) {
+void applyLineStyle(Canvas& canvas, const LineStyle& style) {
   static constexpr std::array<double, 2> kDashedPt = {4.0, 2.5};
   static constexpr std::array<double, 2> kLongDashedPt = {8.0, 3.0};
   static constexpr std::array<double, 2> kDottedPt = {0.0, 2.4};  // round caps make the dots
-  setColour(cr, style.colour);
-  cairo_set_line_width(cr, style.width_pt);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  cairo_set_line_cap(cr, style.dash == Dash::kDotted ? CAIRO_LINE_CAP_ROUND : CAIRO_LINE_CAP_BUTT);
+  canvas.setColour(style.colour);
+  canvas.setLineWidth(style.width_pt);
+  canvas.setLineJoin(LineJoin::kRound);
+  canvas.setLineCap(style.dash == Dash::kDotted ? LineCap::kRound : LineCap::kButt);
   const std::array<double, 2>* pattern = style.dash == Dash::kDashed       ? &kDashedPt
                                          : style.dash == Dash::kLongDashed ? &kLongDashedPt
                                          : style.dash == Dash::kDotted     ? &kDottedPt
                                                                            : nullptr;
-  cairo_set_dash(cr, pattern ? pattern->data() : nullptr, pattern ? 2 : 0, 0);
+  canvas.setDash(pattern ? std::span<const double>(*pattern) : std::span<const double>());
 }
 
-void drawSegment(cairo_t* cr, Point from, Point to, const LineStyle& style) {
-  applyLineStyle(cr, style);
-  cairo_move_to(cr, from.x, from.y);
-  cairo_line_to(cr, to.x, to.y);
-  cairo_stroke(cr);
+void drawSegment(Canvas& canvas, Point from, Point to, const LineStyle& style) {
+  applyLineStyle(canvas, style);
+  canvas.moveTo(from);
+  canvas.lineTo(to);
+  canvas.stroke();
 }
 
 }  // namespace glarecam::pipeline

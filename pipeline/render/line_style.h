@@ -17,8 +17,8 @@ struct LineStyle {
 
 // Sets colour, width, round joins, the dash pattern and its caps (dots are round caps on
 // zero-length dashes) for the next stroke.
-void applyLineStyle(cairo_t* cr, const LineStyle& style);
+void applyLineStyle(Canvas& canvas, const LineStyle& style);
 
-void drawSegment(cairo_t* cr, Point from, Point to, const LineStyle& style);
+void drawSegment(Canvas& canvas, Point from, Point to, const LineStyle& style);
 
 }  // namespace glarecam::pipeline

@@ -1,34 +1,34 @@
 #include "pipeline/render/markers.h"
 
-#include <cairo.h>
-
 #include <numbers>
+
+#include "pipeline/render/canvas.h"
 
 namespace glarecam::pipeline {
 
-void drawMarker(cairo_t* cr, Point centre, const MarkerStyle& style) {
+void drawMarker(Canvas& canvas, Point centre, const MarkerStyle& style) {
   constexpr double kOutlinePt = 0.6;  // the white ring; a hollow marker's outline is twice that
   const double half = style.size_pt / 2;
   if (style.shape == MarkerShape::kCircle) {
-    cairo_new_sub_path(cr);
-    cairo_arc(cr, centre.x, centre.y, half, 0, 2 * std::numbers::pi);
+    canvas.newSubPath();
+    canvas.arc(centre, half, 0, 2 * std::numbers::pi);
   } else {
-    cairo_rectangle(cr, centre.x - half, centre.y - half, style.size_pt, style.size_pt);
+    canvas.rectangle({centre.x - half, centre.y - half}, style.size_pt, style.size_pt);
   }
-  cairo_set_dash(cr, nullptr, 0, 0);
+  canvas.setDash({});
   if (style.hollow) {
-    setColour(cr, kWhite);
-    cairo_fill_preserve(cr);
-    cairo_set_line_width(cr, 2 * kOutlinePt);
-    setColour(cr, style.colour);
-    cairo_stroke(cr);
+    canvas.setColour(kWhite);
+    canvas.fillPreserve();
+    canvas.setLineWidth(2 * kOutlinePt);
+    canvas.setColour(style.colour);
+    canvas.stroke();
     return;
   }
-  setColour(cr, style.colour);
-  cairo_fill_preserve(cr);
-  cairo_set_line_width(cr, kOutlinePt);
-  setColour(cr, kWhite);
-  cairo_stroke(cr);
+  canvas.setColour(style.colour);
+  canvas.fillPreserve();
+  canvas.setLineWidth(kOutlinePt);
+  canvas.setColour(kWhite);
+  canvas.stroke();
 }
 
 }  // namespace glarecam::pipeline

@@ -17,6 +17,6 @@ struct MarkerStyle {
   bool hollow = false;
 };
 
-void drawMarker(cairo_t* cr, Point centre, const MarkerStyle& style);
+void drawMarker(Canvas& canvas, Point centre, const MarkerStyle& style);
 
 }  // namespace glarecam::pipeline

@@ -1,6 +1,6 @@
 // Points and boxes in a drawing's user space (Cairo's term): x to the right, y down, in the
-// context's units (PostScript points on the data sheet, whose raster preview scales the
-// context; pixels on the pictures).
+// canvas's units (PostScript points on the data sheet, whose raster preview scales the
+// canvas; pixels on the pictures).
 #pragma once
 
 namespace glarecam::pipeline {

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "core/atomic_file.h"
+#include "pipeline/render/canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -17,10 +18,12 @@ namespace fs = std::filesystem;
 
 // Draws the page on surface, `scale` device units per point; the drawing's first error.
 cairo_status_t drawOn(cairo_surface_t* surface, const PageDrawing& draw, double scale) {
-  const CairoContext cr(cairo_create(surface));
-  cairo_scale(cr.get(), scale, scale);
-  draw(cr.get());
-  return cairo_status(cr.get());
+  CairoContext context(cairo_create(surface));
+  cairo_t* const cr = context.get();
+  Canvas canvas(std::move(context));
+  canvas.scale(scale, scale);
+  draw(canvas);
+  return cairo_status(cr);
 }
 
 // Draws on a vector surface writing `file`, and finishes it (which writes the file).

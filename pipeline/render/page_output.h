@@ -11,9 +11,10 @@
 #include <string>
 
 #include "core/error.h"
-#include "pipeline/render/cairo_handles.h"
 
 namespace glarecam::pipeline {
+
+class Canvas;
 
 struct PageSize {
   double width_pt = 0, height_pt = 0;
@@ -22,8 +23,8 @@ struct PageSize {
 inline constexpr PageSize kA4Landscape{842, 595};  // 297 × 210 mm
 inline constexpr double kPngPixelsPerPt = 2;       // the raster previews at 144 dpi
 
-// Draws the whole page on a context whose user units are points (the PNG's context is scaled).
-using PageDrawing = std::function<void(cairo_t*)>;
+// Draws the whole page on a canvas whose user units are points (the PNG's canvas is scaled).
+using PageDrawing = std::function<void(Canvas&)>;
 
 struct PdfMetadata {
   std::string title, creator;

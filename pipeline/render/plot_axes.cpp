@@ -1,11 +1,10 @@
 #include "pipeline/render/plot_axes.h"
 
-#include <cairo.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "pipeline/render/canvas.h"
 #include "pipeline/render/number_format.h"
 #include "pipeline/render/text.h"
 
@@ -22,33 +21,33 @@ constexpr Font kTickFont{.size = 7.5};
 constexpr Font kAxisTitleFont{.size = 8};
 constexpr LineStyle kFrameStyle{.colour = kFrameColour, .width_pt = 0.7};
 
-void drawYTicks(cairo_t* cr, const Plot& plot) {
+void drawYTicks(Canvas& canvas, const Plot& plot) {
   const Box& a = plot.area;
   for (const Tick& tick : ticks(plot.y)) {
     const double y = plot.pageY(tick.value);
     const bool major = !tick.label.empty();
-    drawSegment(cr, {a.x0 - (major ? kTickLengthPt : kMinorTickLengthPt), y}, {a.x0, y},
+    drawSegment(canvas, {a.x0 - (major ? kTickLengthPt : kMinorTickLengthPt), y}, {a.x0, y},
                 kFrameStyle);
     if (!major) continue;
-    drawSegment(cr, {a.x0, y}, {a.x1, y}, kGridStyle);
+    drawSegment(canvas, {a.x0, y}, {a.x1, y}, kGridStyle);
     const double label_y = plot.pageY(tick.label_at.value_or(tick.value));
     drawText(
-        cr,
+        canvas,
         {a.x0 - kTickLengthPt - kTickLabelGapPt, label_y + kBaselineBelowMiddleEm * kTickFont.size},
         tick.label, {kTickFont, kInk, Align::kRight});
   }
 }
 
-void drawXTicks(cairo_t* cr, const Plot& plot) {
+void drawXTicks(Canvas& canvas, const Plot& plot) {
   const Box& a = plot.area;
   for (const Tick& tick : ticks(plot.x)) {
     const double x = plot.pageX(tick.value);
     const bool major = !tick.label.empty();
-    if (major) drawSegment(cr, {x, a.y0}, {x, a.y1}, kGridStyle);
-    drawSegment(cr, {x, a.y1}, {x, a.y1 + (major ? kTickLengthPt : kMinorTickLengthPt)},
+    if (major) drawSegment(canvas, {x, a.y0}, {x, a.y1}, kGridStyle);
+    drawSegment(canvas, {x, a.y1}, {x, a.y1 + (major ? kTickLengthPt : kMinorTickLengthPt)},
                 kFrameStyle);
     if (!major) continue;
-    drawText(cr,
+    drawText(canvas,
              {plot.pageX(tick.label_at.value_or(tick.value)),
               a.y1 + kTickLengthPt + kTickLabelGapPt + kTickFont.size},
              tick.label, {kTickFont, kInk, Align::kCentre});
@@ -133,22 +132,23 @@ Box plotArea(const Box& frame) {
           frame.y1 - kXAxisGutterPt};
 }
 
-void drawFrame(cairo_t* cr, const Plot& plot) {
+void drawFrame(Canvas& canvas, const Plot& plot) {
   const Box& a = plot.area;
-  applyLineStyle(cr, kFrameStyle);
-  cairo_rectangle(cr, a.x0, a.y0, a.width(), a.height());
-  cairo_stroke(cr);
+  applyLineStyle(canvas, kFrameStyle);
+  canvas.rectangle(a);
+  canvas.stroke();
 }
 
-void drawAxes(cairo_t* cr, const Plot& plot, const AxisTitles& titles) {
-  drawYTicks(cr, plot);
-  drawXTicks(cr, plot);
-  drawFrame(cr, plot);
+void drawAxes(Canvas& canvas, const Plot& plot, const AxisTitles& titles) {
+  drawYTicks(canvas, plot);
+  drawXTicks(canvas, plot);
+  drawFrame(canvas, plot);
   const Box& a = plot.area;
   const TextStyle title_style{kAxisTitleFont, kInk, Align::kCentre};
-  drawText(cr, {(a.x0 + a.x1) / 2, a.y1 + kXAxisGutterPt - kTickLabelGapPt}, titles.x, title_style);
-  drawVerticalText(cr, {a.x0 - kYAxisGutterPt + kAxisTitleFont.size, (a.y0 + a.y1) / 2}, titles.y,
-                   title_style);
+  drawText(canvas, {(a.x0 + a.x1) / 2, a.y1 + kXAxisGutterPt - kTickLabelGapPt}, titles.x,
+           title_style);
+  drawVerticalText(canvas, {a.x0 - kYAxisGutterPt + kAxisTitleFont.size, (a.y0 + a.y1) / 2},
+                   titles.y, title_style);
 }
 
 }  // namespace glarecam::pipeline

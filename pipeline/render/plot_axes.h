@@ -84,9 +84,9 @@ struct AxisTitles {
 };
 
 // Grid, ticks with their labels, the frame, and both axis titles (the y title reading upward).
-void drawAxes(cairo_t* cr, const Plot& plot, const AxisTitles& titles);
+void drawAxes(Canvas& canvas, const Plot& plot, const AxisTitles& titles);
 
 // The data area's frame alone: drawn again over what fills the area (an image hides the grid).
-void drawFrame(cairo_t* cr, const Plot& plot);
+void drawFrame(Canvas& canvas, const Plot& plot);
 
 }  // namespace glarecam::pipeline

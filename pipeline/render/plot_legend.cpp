@@ -1,10 +1,9 @@
 #include "pipeline/render/plot_legend.h"
 
-#include <cairo.h>
-
 #include <algorithm>
 #include <array>
 
+#include "pipeline/render/canvas.h"
 #include "pipeline/render/text.h"
 
 namespace glarecam::pipeline {
@@ -18,11 +17,11 @@ constexpr double kBackgroundAlpha = 0.88;
 constexpr Font kLegendFont{.size = 7};
 
 // An entry with its sample starting at `left`, the sample centred on `middle_y`.
-void drawLegendEntry(cairo_t* cr, double left, double middle_y, const LegendEntry& entry) {
+void drawLegendEntry(Canvas& canvas, double left, double middle_y, const LegendEntry& entry) {
   if (entry.line)
-    drawSegment(cr, {left, middle_y}, {left + kLegendSamplePt, middle_y}, *entry.line);
-  if (entry.marker) drawMarker(cr, {left + kLegendSamplePt / 2, middle_y}, *entry.marker);
-  drawText(cr,
+    drawSegment(canvas, {left, middle_y}, {left + kLegendSamplePt, middle_y}, *entry.line);
+  if (entry.marker) drawMarker(canvas, {left + kLegendSamplePt / 2, middle_y}, *entry.marker);
+  drawText(canvas,
            {left + kLegendSamplePt + kLegendPaddingPt,
             middle_y + kBaselineBelowMiddleEm * kLegendFont.size},
            entry.label, {kLegendFont});
@@ -50,21 +49,21 @@ Box legendBox(const Plot& plot, double width, double height) {
 
 }  // namespace
 
-void drawLegend(cairo_t* cr, const Plot& plot, const std::vector<LegendEntry>& entries) {
+void drawLegend(Canvas& canvas, const Plot& plot, const std::vector<LegendEntry>& entries) {
   const double row_pt = lineHeight(kLegendFont) + kLegendRowGapPt;
   double text_width = 0;
   for (const LegendEntry& e : entries)
-    text_width = std::max(text_width, textWidth(cr, e.label, kLegendFont));
+    text_width = std::max(text_width, textWidth(canvas, e.label, kLegendFont));
   const Box box = legendBox(plot, 3 * kLegendPaddingPt + kLegendSamplePt + text_width,
                             2 * kLegendPaddingPt + row_pt * entries.size());
-  cairo_rectangle(cr, box.x0, box.y0, box.width(), box.height());
-  setColour(cr, kWhite, kBackgroundAlpha);
-  cairo_fill_preserve(cr);
-  applyLineStyle(cr, kGridStyle);
-  cairo_stroke(cr);
+  canvas.rectangle(box);
+  canvas.setColour(kWhite, kBackgroundAlpha);
+  canvas.fillPreserve();
+  applyLineStyle(canvas, kGridStyle);
+  canvas.stroke();
   double middle_y = box.y0 + kLegendPaddingPt + row_pt / 2;
   for (const LegendEntry& entry : entries) {
-    drawLegendEntry(cr, box.x0 + kLegendPaddingPt, middle_y, entry);
+    drawLegendEntry(canvas, box.x0 + kLegendPaddingPt, middle_y, entry);
     middle_y += row_pt;
   }
 }

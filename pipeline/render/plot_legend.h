@@ -19,6 +19,6 @@ struct LegendEntry {
   std::optional<MarkerStyle> marker;  // drawn over the middle of the line sample
 };
 
-void drawLegend(cairo_t* cr, const Plot& plot, const std::vector<LegendEntry>& entries);
+void drawLegend(Canvas& canvas, const Plot& plot, const std::vector<LegendEntry>& entries);
 
 }  // namespace glarecam::pipeline

@@ -1,6 +1,6 @@
 #include "pipeline/render/plot_series.h"
 
-#include <cairo.h>
+#include "pipeline/render/canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -18,20 +18,20 @@ std::vector<double> sample(const PlotFunction& f, Range x) {
   return values;
 }
 
-void drawCurve(cairo_t* cr, Plot& plot, const PlotFunction& f, Range x, const LineStyle& style) {
+void drawCurve(Canvas& canvas, Plot& plot, const PlotFunction& f, Range x, const LineStyle& style) {
   const std::vector<double> values = sample(f, x);
   std::vector<DataPoint> points;
   for (std::size_t i = 0; i < values.size(); ++i)
     points.push_back({x.lo + (x.hi - x.lo) * i / kCurveSamples, values[i]});
-  drawLine(cr, plot, points, style);
+  drawLine(canvas, plot, points, style);
 }
 
-void drawLine(cairo_t* cr, Plot& plot, const std::vector<DataPoint>& points,
+void drawLine(Canvas& canvas, Plot& plot, const std::vector<DataPoint>& points,
               const LineStyle& style) {
-  cairo_save(cr);
-  cairo_rectangle(cr, plot.area.x0, plot.area.y0, plot.area.width(), plot.area.height());
-  cairo_clip(cr);
-  applyLineStyle(cr, style);
+  const Canvas::Saved saved = canvas.save();
+  canvas.rectangle(plot.area);
+  canvas.clip();
+  applyLineStyle(canvas, style);
   bool drawing = false;
   for (const DataPoint& point : points) {
     if (!plot.x.plottable(point.x) || !plot.y.plottable(point.y)) {
@@ -39,20 +39,19 @@ void drawLine(cairo_t* cr, Plot& plot, const std::vector<DataPoint>& points,
       continue;
     }
     const Point p = plot.page(point.x, point.y);
-    drawing ? cairo_line_to(cr, p.x, p.y) : cairo_move_to(cr, p.x, p.y);
+    drawing ? canvas.lineTo(p) : canvas.moveTo(p);
     drawing = true;
     plot.ink.push_back({p, kCurveInkWeight});
   }
-  cairo_stroke(cr);
-  cairo_restore(cr);
+  canvas.stroke();
 }
 
-void drawMarkers(cairo_t* cr, Plot& plot, const std::vector<DataPoint>& points,
+void drawMarkers(Canvas& canvas, Plot& plot, const std::vector<DataPoint>& points,
                  const MarkerStyle& style) {
   for (const DataPoint& point : points) {
     if (!plot.y.plottable(point.y)) continue;
     const Point p = plot.page(point.x, point.y);
-    drawMarker(cr, p, style);
+    drawMarker(canvas, p, style);
     plot.ink.push_back({p, kMarkerInkWeight});
   }
 }

@@ -24,7 +24,7 @@ inline constexpr int kCurveSamples = 240;
 std::vector<double> sample(const PlotFunction& f, Range x);
 
 // f over the x range as a line, broken where it is not plottable (NaN, or ≤ 0 on a log y axis).
-void drawCurve(cairo_t* cr, Plot& plot, const PlotFunction& f, Range x, const LineStyle& style);
+void drawCurve(Canvas& canvas, Plot& plot, const PlotFunction& f, Range x, const LineStyle& style);
 
 struct DataPoint {
   double x = 0, y = 0;
@@ -32,11 +32,11 @@ struct DataPoint {
 
 // The points in their order joined by straight lines, broken at a point that is not plottable;
 // every point is kept (a series is not resampled, so a one-day peak stays).
-void drawLine(cairo_t* cr, Plot& plot, const std::vector<DataPoint>& points,
+void drawLine(Canvas& canvas, Plot& plot, const std::vector<DataPoint>& points,
               const LineStyle& style);
 
 // A marker at each plottable point.
-void drawMarkers(cairo_t* cr, Plot& plot, const std::vector<DataPoint>& points,
+void drawMarkers(Canvas& canvas, Plot& plot, const std::vector<DataPoint>& points,
                  const MarkerStyle& style);
 
 }  // namespace glarecam::pipeline

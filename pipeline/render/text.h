@@ -1,6 +1,6 @@
 // Text on the pictures and the data sheet: one font family (DejaVu Sans, which the Debian
 // package fonts-dejavu-core installs), regular or bold, drawn on a baseline, measured, and
-// wrapped into lines. Sizes and lengths are in the context's user units: points on the data
+// wrapped into lines. Sizes and lengths are in the canvas's user units: points on the data
 // sheet, pixels on the pictures. Text is UTF-8.
 #pragma once
 
@@ -32,27 +32,28 @@ struct TextStyle {
   Align align = Align::kLeft;
 };
 
-// Makes `font` the context's font for the text drawn or measured next.
-void selectFont(cairo_t* cr, const Font& font);
+// Makes `font` the canvas's font for the text drawn or measured next.
+void selectFont(Canvas& canvas, const Font& font);
 
 // The advance of `text` in `font`: where text drawn right after it would start.
-double textWidth(cairo_t* cr, const std::string& text, const Font& font);
+double textWidth(Canvas& canvas, const std::string& text, const Font& font);
 
 double lineHeight(const Font& font);
 
-void drawText(cairo_t* cr, Point baseline, const std::string& text, const TextStyle& style);
+void drawText(Canvas& canvas, Point baseline, const std::string& text, const TextStyle& style);
 
 // Text centred on `centre` (its baseline through it), reading bottom to top.
-void drawVerticalText(cairo_t* cr, Point centre, const std::string& text, const TextStyle& style);
+void drawVerticalText(Canvas& canvas, Point centre, const std::string& text,
+                      const TextStyle& style);
 
 // Greedy word wrap at white space to lines no wider than `width` (but a word longer than that
 // stands alone on its line).
-std::vector<std::string> wrapText(cairo_t* cr, const std::string& text, double width,
+std::vector<std::string> wrapText(Canvas& canvas, const std::string& text, double width,
                                   const Font& font);
 
 // Each paragraph wrapped to `width`, the first baseline at first_baseline, one line height
 // apart; returns the height used.
-double drawParagraphs(cairo_t* cr, Point first_baseline, double width,
+double drawParagraphs(Canvas& canvas, Point first_baseline, double width,
                       const std::vector<std::string>& paragraphs, const TextStyle& style);
 
 }  // namespace glarecam::pipeline

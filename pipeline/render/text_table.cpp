@@ -1,8 +1,8 @@
 #include "pipeline/render/text_table.h"
 
-#include <cairo.h>
-
 #include <algorithm>
+
+#include "pipeline/render/canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -19,7 +19,7 @@ Font cellFont(const TextTable& table, std::size_t row, Font font) {
 
 double rowHeightPt(const Font& font) { return font.size * kRowHeightEm; }
 
-void drawTableRow(cairo_t* cr, const TextTable& table, std::size_t r,
+void drawTableRow(Canvas& canvas, const TextTable& table, std::size_t r,
                   const std::vector<double>& widths, Point top_left, const Font& font) {
   const double baseline = top_left.y + rowHeightPt(font) / 2 + kBaselineBelowMiddleEm * font.size;
   const double padding = kCellPaddingEm * font.size;
@@ -28,20 +28,21 @@ void drawTableRow(cairo_t* cr, const TextTable& table, std::size_t r,
   for (std::size_t c = 0; c < row.size(); ++c) {
     const bool left = c == 0 && table.first_column_left;
     const Point at{left ? x + padding : x + widths[c] - padding, baseline};
-    drawText(cr, at, row[c], {cellFont(table, r, font), kInk, left ? Align::kLeft : Align::kRight});
+    drawText(canvas, at, row[c],
+             {cellFont(table, r, font), kInk, left ? Align::kLeft : Align::kRight});
     x += widths[c];
   }
 }
 
 }  // namespace
 
-std::vector<double> columnWidthsPt(cairo_t* cr, const TextTable& table, const Font& font) {
+std::vector<double> columnWidthsPt(Canvas& canvas, const TextTable& table, const Font& font) {
   std::vector<double> widths;
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     const std::vector<std::string>& row = table.rows[r];
     widths.resize(std::max(widths.size(), row.size()), 0);
     for (std::size_t c = 0; c < row.size(); ++c)
-      widths[c] = std::max(widths[c], textWidth(cr, row[c], cellFont(table, r, font)) +
+      widths[c] = std::max(widths[c], textWidth(canvas, row[c], cellFont(table, r, font)) +
                                           2 * kCellPaddingEm * font.size);
   }
   return widths;
@@ -51,8 +52,8 @@ double tableHeightPt(const TextTable& table, const Font& font) {
   return table.rows.size() * rowHeightPt(font);
 }
 
-double drawTable(cairo_t* cr, const TextTable& table, const Box& box, const Font& font) {
-  std::vector<double> widths = columnWidthsPt(cr, table, font);
+double drawTable(Canvas& canvas, const TextTable& table, const Box& box, const Font& font) {
+  std::vector<double> widths = columnWidthsPt(canvas, table, font);
   double natural_width = 0;
   for (const double w : widths) natural_width += w;
   const double scale = std::max(kMinScale, std::min({1.0, box.width() / natural_width,
@@ -63,16 +64,16 @@ double drawTable(cairo_t* cr, const TextTable& table, const Box& box, const Font
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     const double top = box.y0 + r * row_pt;
     if (r >= table.header_rows && (r - table.header_rows) % 2 == 1) {
-      setColour(cr, kStripeColour);
-      cairo_rectangle(cr, box.x0, top, width, row_pt);
-      cairo_fill(cr);
+      canvas.setColour(kStripeColour);
+      canvas.rectangle({box.x0, top}, width, row_pt);
+      canvas.fill();
     }
-    drawTableRow(cr, table, r, widths, {box.x0, top}, fitted);
+    drawTableRow(canvas, table, r, widths, {box.x0, top}, fitted);
   }
   const double rule_y = box.y0 + table.header_rows * row_pt;
-  drawSegment(cr, {box.x0, rule_y}, {box.x0 + width, rule_y}, kRuleStyle);
+  drawSegment(canvas, {box.x0, rule_y}, {box.x0 + width, rule_y}, kRuleStyle);
   const double bottom = box.y0 + tableHeightPt(table, fitted);
-  drawSegment(cr, {box.x0, bottom}, {box.x0 + width, bottom}, kRuleStyle);
+  drawSegment(canvas, {box.x0, bottom}, {box.x0 + width, bottom}, kRuleStyle);
   return tableHeightPt(table, fitted);
 }
 

@@ -24,12 +24,12 @@ struct TextTable {
 inline constexpr LineStyle kRuleStyle{.colour = kFrameColour, .width_pt = 0.6};
 
 // Each column's width in `font` (the headings in its bold), padding included.
-std::vector<double> columnWidthsPt(cairo_t* cr, const TextTable& table, const Font& font);
+std::vector<double> columnWidthsPt(Canvas& canvas, const TextTable& table, const Font& font);
 
 double tableHeightPt(const TextTable& table, const Font& font);
 
 // The table at the top left of `box`, its font shrunk (never grown, and not below 30 %) so that
 // it fits the box. Returns the height drawn.
-double drawTable(cairo_t* cr, const TextTable& table, const Box& box, const Font& font);
+double drawTable(Canvas& canvas, const TextTable& table, const Box& box, const Font& font);
 
 }  // namespace glarecam::pipeline

@@ -5,9 +5,6 @@
 #include <type_traits>
 #include <utility>
 
-#include "canvas.h"
-#include "pipeline/render/text.h"
-
 namespace glarecam::pipeline {
 namespace {
 
@@ -66,27 +63,10 @@ TEST(CairoHandles, ReleaseHandsTheObjectBack) {
   EXPECT_EQ(destroyed, 1);
 }
 
-TEST(CairoHandles, ContextOnASurfaceDrawsWithoutError) {
-  const CairoSurface surface = createRgbSurface(8, 8).value();
-  const Result<CairoContext> context = createContext(surface.get());
-  ASSERT_TRUE(context) << context.error().message;
-  paint(context->get(), kWhite);
-  EXPECT_TRUE(drawingStatus(context->get()));
-}
-
 TEST(CairoHandles, ContextWithoutASurfaceIsAnError) {
   const Result<CairoContext> context = createContext(nullptr);
   ASSERT_FALSE(context);
   EXPECT_EQ(context.error().code, ErrorCode::kInternal);
-}
-
-TEST(CairoHandles, DrawingStatusKeepsTheFirstError) {
-  TestCanvas canvas(8, 8);
-  drawText(canvas.cr(), {1, 6}, "\xff not UTF-8", {{.size = 6}});
-  drawText(canvas.cr(), {1, 6}, "fine", {{.size = 6}});
-  const Status status = drawingStatus(canvas.cr());
-  ASSERT_FALSE(status);
-  EXPECT_NE(status.error().message.find("UTF-8"), std::string::npos) << status.error().message;
 }
 
 }  // namespace

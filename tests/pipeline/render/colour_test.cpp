@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "canvas.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -22,7 +22,7 @@ TEST(Colour, PaintFillsTheWholeSurface) {
   TestCanvas canvas(3, 3, {0.0, 1.0, 0.0});
   for (int y = 0; y < 3; ++y)
     for (int x = 0; x < 3; ++x) EXPECT_EQ(canvas.at(x, y), (CanvasPixel{0, 255, 0})) << x << y;
-  paint(canvas.cr(), kWhite);
+  paint(canvas.context(), kWhite);
   EXPECT_EQ(canvas.at(1, 1), kWhitePixel);
 }
 

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "canvas.h"
 #include "support/sim_support.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <vector>
 
-#include "canvas.h"
 #include "core/angles.h"
 #include "pipeline/glare_analysis.h"
 #include "support/sim_support.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "canvas.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -11,7 +11,7 @@ constexpr Rgb kBlack{0, 0, 0};
 
 TEST(LineStyle, SolidSegmentCoversItsWidthOnly) {
   TestCanvas canvas(100, 40);
-  drawSegment(canvas.cr(), {10, 20}, {90, 20}, {.colour = kBlack, .width_pt = 4});
+  drawSegment(canvas.context(), {10, 20}, {90, 20}, {.colour = kBlack, .width_pt = 4});
   for (int x = 10; x < 90; x += 7) EXPECT_EQ(canvas.at(x, 19), (CanvasPixel{0, 0, 0})) << x;
   EXPECT_EQ(canvas.at(50, 17), kWhitePixel);  // the line covers y 18 to 22
   EXPECT_EQ(canvas.at(50, 22), kWhitePixel);
@@ -22,13 +22,13 @@ TEST(LineStyle, SolidSegmentCoversItsWidthOnly) {
 TEST(LineStyle, DashedLeavesGapsAndTheNextSolidLineDoesNot) {
   TestCanvas canvas(100, 40);
   // Dashes of 4 pt, gaps of 2.5 pt from x = 10: [10, 14] ink, [14, 16.5] gap, [16.5, 20.5] ink.
-  drawSegment(canvas.cr(), {10, 10}, {90, 10},
+  drawSegment(canvas.context(), {10, 10}, {90, 10},
               {.colour = kBlack, .width_pt = 4, .dash = Dash::kDashed});
   EXPECT_EQ(canvas.at(11, 9), (CanvasPixel{0, 0, 0}));
   EXPECT_EQ(canvas.at(14, 9), kWhitePixel);
   EXPECT_EQ(canvas.at(15, 9), kWhitePixel);
   EXPECT_EQ(canvas.at(17, 9), (CanvasPixel{0, 0, 0}));
-  drawSegment(canvas.cr(), {10, 30}, {90, 30}, {.colour = kBlack, .width_pt = 4});
+  drawSegment(canvas.context(), {10, 30}, {90, 30}, {.colour = kBlack, .width_pt = 4});
   EXPECT_EQ(canvas.at(14, 29), (CanvasPixel{0, 0, 0}));
   EXPECT_EQ(canvas.at(15, 29), (CanvasPixel{0, 0, 0}));
 }
@@ -36,7 +36,7 @@ TEST(LineStyle, DashedLeavesGapsAndTheNextSolidLineDoesNot) {
 TEST(LineStyle, DottedDrawsRoundDotsApart) {
   TestCanvas canvas(100, 20);
   // Dots of the line's width every 2.4 pt: with a 1 pt line, ink and gaps alternate.
-  drawSegment(canvas.cr(), {10.5, 10.5}, {90, 10.5},
+  drawSegment(canvas.context(), {10.5, 10.5}, {90, 10.5},
               {.colour = kBlack, .width_pt = 1, .dash = Dash::kDotted});
   int inked = 0, blank = 0;
   for (int x = 10; x < 88; ++x) {
@@ -51,9 +51,9 @@ TEST(LineStyle, DottedDrawsRoundDotsApart) {
 
 TEST(LineStyle, LongDashesAreLongerThanDashes) {
   TestCanvas canvas(100, 40);
-  drawSegment(canvas.cr(), {10, 10}, {90, 10},
+  drawSegment(canvas.context(), {10, 10}, {90, 10},
               {.colour = kBlack, .width_pt = 4, .dash = Dash::kDashed});
-  drawSegment(canvas.cr(), {10, 30}, {90, 30},
+  drawSegment(canvas.context(), {10, 30}, {90, 30},
               {.colour = kBlack, .width_pt = 4, .dash = Dash::kLongDashed});
   EXPECT_EQ(canvas.at(15, 9), kWhitePixel);              // a dashed line's first gap
   EXPECT_EQ(canvas.at(15, 29), (CanvasPixel{0, 0, 0}));  // still the first long dash (8 pt)
@@ -61,7 +61,7 @@ TEST(LineStyle, LongDashesAreLongerThanDashes) {
 
 TEST(LineStyle, ColourAndWidthAreTheStyles) {
   TestCanvas canvas(40, 40);
-  drawSegment(canvas.cr(), {0, 20}, {40, 20}, {.colour = {1, 0, 0}, .width_pt = 10});
+  drawSegment(canvas.context(), {0, 20}, {40, 20}, {.colour = {1, 0, 0}, .width_pt = 10});
   EXPECT_EQ(canvas.at(20, 16), (CanvasPixel{255, 0, 0}));
   EXPECT_EQ(canvas.at(20, 24), (CanvasPixel{255, 0, 0}));
   EXPECT_EQ(canvas.at(20, 26), kWhitePixel);

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "canvas.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -12,7 +12,7 @@ constexpr CanvasPixel kRedPixel{255, 0, 0};
 
 TEST(Markers, FilledCircleIsRoundAndInItsColour) {
   TestCanvas canvas(40, 40);
-  drawMarker(canvas.cr(), {20, 20}, {.colour = kRed, .size_pt = 20});
+  drawMarker(canvas.context(), {20, 20}, {.colour = kRed, .size_pt = 20});
   EXPECT_EQ(canvas.at(20, 20), kRedPixel);
   EXPECT_EQ(canvas.at(12, 19), kRedPixel);    // inside, off centre
   EXPECT_EQ(canvas.at(11, 11), kWhitePixel);  // the bounding square's corner: outside
@@ -21,7 +21,8 @@ TEST(Markers, FilledCircleIsRoundAndInItsColour) {
 
 TEST(Markers, SquareFillsItsCorners) {
   TestCanvas canvas(40, 40);
-  drawMarker(canvas.cr(), {20, 20}, {.colour = kRed, .shape = MarkerShape::kSquare, .size_pt = 20});
+  drawMarker(canvas.context(), {20, 20},
+             {.colour = kRed, .shape = MarkerShape::kSquare, .size_pt = 20});
   EXPECT_EQ(canvas.at(11, 11), kRedPixel);
   EXPECT_EQ(canvas.at(28, 28), kRedPixel);
   EXPECT_EQ(canvas.at(8, 20), kWhitePixel);
@@ -29,7 +30,8 @@ TEST(Markers, SquareFillsItsCorners) {
 
 TEST(Markers, FilledMarkerHasAWhiteRing) {
   TestCanvas canvas(40, 40, {0, 0, 0});
-  drawMarker(canvas.cr(), {20, 20}, {.colour = kRed, .shape = MarkerShape::kSquare, .size_pt = 20});
+  drawMarker(canvas.context(), {20, 20},
+             {.colour = kRed, .shape = MarkerShape::kSquare, .size_pt = 20});
   // The square's edge at x = 10 carries the 0.6 pt white ring: that column turns light.
   const CanvasPixel edge = canvas.at(9, 20);
   EXPECT_GT(edge[1], 40);
@@ -38,7 +40,7 @@ TEST(Markers, FilledMarkerHasAWhiteRing) {
 
 TEST(Markers, HollowMarkerIsWhiteInsideWithAColouredOutline) {
   TestCanvas canvas(40, 40, {0, 0, 0});
-  drawMarker(canvas.cr(), {20, 20}, {.colour = kRed, .size_pt = 20, .hollow = true});
+  drawMarker(canvas.context(), {20, 20}, {.colour = kRed, .size_pt = 20, .hollow = true});
   EXPECT_EQ(canvas.at(20, 20), kWhitePixel);
   int reddest = 0;
   for (int x = 27; x <= 31; ++x)

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "canvas.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -104,7 +104,7 @@ TEST(PlotAxes, ALabelIsDrawnWhereItSaysNotAtItsTick) {
       .area = plotArea({0, 10, 400, 300}),
       .x = {.range = {0, 100}, .fixed_ticks = {{.value = 0, .label = "MMM", .label_at = 50}}},
       .y = {.range = {0, 1}, .step = 1}};
-  drawAxes(canvas.cr(), plot, {});
+  drawAxes(canvas.context(), plot, {});
   const int label_top = static_cast<int>(plot.area.y1) + 4, label_bottom = label_top + 10;
   const int middle = static_cast<int>(plot.pageX(50));
   EXPECT_TRUE(canvas.anyInk(middle - 6, label_top, middle + 6, label_bottom));
@@ -155,7 +155,7 @@ TEST(PlotAxes, GridAtLabelledTicksOnlyAndLabelsOutsideTheArea) {
   const Plot plot{.area = plotArea({0, 10.5, 400, 300}),  // the top frame line on pixel row 10
                   .x = {.range = {0, 90}, .step = 10},
                   .y = {.range = {1e4, 1e6}, .scale = Scale::kLog}};
-  drawAxes(canvas.cr(), plot, {.x = "x title", .y = "y title"});
+  drawAxes(canvas.context(), plot, {.x = "x title", .y = "y title"});
   const int row_inside = static_cast<int>(plot.pageY(3e4));
   const int grid_x = static_cast<int>(plot.pageX(40));  // a 0.5 pt line centred on it
   EXPECT_LT(canvas.at(grid_x, row_inside)[0], 255);

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "canvas.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -27,7 +27,7 @@ std::vector<bool> inkedQuadrants(const TestCanvas& canvas) {
 
 TEST(PlotLegend, AnEmptyPlotGetsItsLegendTopLeft) {
   TestCanvas canvas(300, 200);
-  drawLegend(canvas.cr(), emptyPlot(), kEntries);
+  drawLegend(canvas.context(), emptyPlot(), kEntries);
   EXPECT_EQ(inkedQuadrants(canvas), (std::vector<bool>{true, false, false, false}));
 }
 
@@ -35,13 +35,13 @@ TEST(PlotLegend, TheLegendAvoidsTheCornersWithInk) {
   TestCanvas canvas(300, 200);
   Plot plot = emptyPlot();
   plot.ink = {{{20, 20}, 12}, {{280, 20}, 12}, {{20, 180}, 1}, {{25, 180}, 1}, {{280, 180}, 1}};
-  drawLegend(canvas.cr(), plot, kEntries);  // the bottom right has the least ink
+  drawLegend(canvas.context(), plot, kEntries);  // the bottom right has the least ink
   EXPECT_EQ(inkedQuadrants(canvas), (std::vector<bool>{false, false, true, false}));
 }
 
 TEST(PlotLegend, BackgroundIsNearlyOpaqueWhite) {
   TestCanvas canvas(300, 200, {0, 0, 0});
-  drawLegend(canvas.cr(), emptyPlot(), kEntries);
+  drawLegend(canvas.context(), emptyPlot(), kEntries);
   // Inside the box's padding, left of the samples: 88 % white over black.
   const CanvasPixel inside = canvas.at(7, 7);
   EXPECT_NEAR(inside[0], 0.88 * 255, 2);
@@ -50,7 +50,7 @@ TEST(PlotLegend, BackgroundIsNearlyOpaqueWhite) {
 
 TEST(PlotLegend, SamplesShowTheEntriesStyles) {
   TestCanvas canvas(300, 200);
-  drawLegend(canvas.cr(), emptyPlot(), kEntries);
+  drawLegend(canvas.context(), emptyPlot(), kEntries);
   bool blue = false, red = false;
   const RgbImage image = canvas.image();
   for (int y = 0; y < 60; ++y) {

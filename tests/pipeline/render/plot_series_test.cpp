@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "canvas.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -32,7 +32,7 @@ TEST(PlotSeries, CurveFollowsTheFunctionOnThePage) {
   TestCanvas canvas(200, 200);
   Plot plot = linearPlot();
   drawCurve(
-      canvas.cr(), plot, [](double) { return 30.0; }, {0, 100}, kBlackLine);
+      canvas.context(), plot, [](double) { return 30.0; }, {0, 100}, kBlackLine);
   EXPECT_EQ(canvas.at(100, static_cast<int>(plot.pageY(30))), (CanvasPixel{0, 0, 0}));
   EXPECT_EQ(canvas.at(100, static_cast<int>(plot.pageY(40))), kWhitePixel);
   EXPECT_EQ(plot.ink.size(), static_cast<std::size_t>(kCurveSamples + 1));
@@ -42,7 +42,7 @@ TEST(PlotSeries, CurveBreaksWhereTheFunctionIsUndefined) {
   TestCanvas canvas(200, 200);
   Plot plot = linearPlot();
   const auto gap = [](double x) { return x > 40 && x < 60 ? kNaN : 50.0; };
-  drawCurve(canvas.cr(), plot, gap, {0, 100}, kBlackLine);
+  drawCurve(canvas.context(), plot, gap, {0, 100}, kBlackLine);
   const int y = static_cast<int>(plot.pageY(50));
   EXPECT_EQ(canvas.at(static_cast<int>(plot.pageX(20)), y), (CanvasPixel{0, 0, 0}));
   EXPECT_EQ(canvas.at(static_cast<int>(plot.pageX(50)), y), kWhitePixel);
@@ -54,7 +54,7 @@ TEST(PlotSeries, CurveIsClippedToTheDataArea) {
   TestCanvas canvas(200, 200);
   Plot plot = linearPlot();
   drawCurve(
-      canvas.cr(), plot, [](double x) { return 2 * x; }, {0, 100}, kBlackLine);
+      canvas.context(), plot, [](double x) { return 2 * x; }, {0, 100}, kBlackLine);
   EXPECT_EQ(canvas.at(static_cast<int>(plot.pageX(25)), static_cast<int>(plot.pageY(50))),
             (CanvasPixel{0, 0, 0}));
   // y = 2x leaves the area at x = 50; off the area nothing is drawn.
@@ -67,7 +67,7 @@ TEST(PlotSeries, NonPositiveValuesAreSkippedOnALogAxis) {
   Plot plot = linearPlot();
   plot.y = {.range = {1, 100}, .scale = Scale::kLog};
   drawCurve(
-      canvas.cr(), plot, [](double x) { return x - 50; }, {0, 100}, kBlackLine);
+      canvas.context(), plot, [](double x) { return x - 50; }, {0, 100}, kBlackLine);
   EXPECT_EQ(plot.ink.size(), static_cast<std::size_t>(kCurveSamples / 2));  // x > 50 only
   for (const Ink& ink : plot.ink) EXPECT_GT(ink.at.x, plot.pageX(50));
 }
@@ -76,9 +76,9 @@ TEST(PlotSeries, MarkersAtPlottablePointsWeighMoreThanCurves) {
   TestCanvas canvas(200, 200);
   Plot plot = linearPlot();
   drawCurve(
-      canvas.cr(), plot, [](double) { return 90.0; }, {0, 100}, kBlackLine);
+      canvas.context(), plot, [](double) { return 90.0; }, {0, 100}, kBlackLine);
   const std::size_t curve_ink = plot.ink.size();
-  drawMarkers(canvas.cr(), plot, {{20, 20}, {80, kNaN}, {60, 40}},
+  drawMarkers(canvas.context(), plot, {{20, 20}, {80, kNaN}, {60, 40}},
               {.colour = {1, 0, 0}, .size_pt = 10});
   ASSERT_EQ(plot.ink.size(), curve_ink + 2);
   EXPECT_GT(plot.ink.back().weight, plot.ink.front().weight);
@@ -95,7 +95,7 @@ TEST(PlotSeries, LineJoinsEveryPointAndBreaksAtUnplottableOnes) {
   std::vector<DataPoint> points;
   for (int x = 0; x <= 100; ++x) points.push_back({x + 0.0, x == 37 ? 80.0 : 10.0});
   points[70].y = kNaN;
-  drawLine(canvas.cr(), plot, points, kBlackLine);
+  drawLine(canvas.context(), plot, points, kBlackLine);
   EXPECT_EQ(plot.ink.size(), points.size() - 1);
   EXPECT_EQ(canvas.at(static_cast<int>(plot.pageX(37)), static_cast<int>(plot.pageY(79))),
             (CanvasPixel{0, 0, 0}));

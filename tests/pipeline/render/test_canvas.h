@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "pipeline/render/cairo_handles.h"
+#include "pipeline/render/canvas.h"
 #include "pipeline/render/colour.h"
 #include "pipeline/render/rgb_surface.h"
 
@@ -25,18 +25,18 @@ inline const std::uint8_t* rgbPixel(const RgbImage& image, int x, int y) {
 }
 
 struct TestCanvas {
-  CairoSurface surface;
-  CairoContext context;
+  RgbSurface surface;
+  Canvas canvas;
 
   TestCanvas(int width_px, int height_px, const Rgb& background = kWhite)
-      : surface(createRgbSurface(width_px, height_px).value()),
-        context(createContext(surface.get()).value()) {
-    paint(cr(), background);
+      : surface(RgbSurface::create(width_px, height_px).value()),
+        canvas(Canvas::onSurface(surface).value()) {
+    paint(canvas, background);
   }
 
-  cairo_t* cr() const { return context.get(); }
+  Canvas& context() { return canvas; }
 
-  RgbImage image() const { return copyRgb(surface.get()); }
+  RgbImage image() const { return surface.copyRgb(); }
 
   CanvasPixel at(int x, int y) const {
     const RgbImage pixels = image();

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "canvas.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -14,21 +14,21 @@ const TextTable kTable{
 
 TEST(TextTable, ColumnsAreAsWideAsTheirWidestCellPlusPadding) {
   TestCanvas canvas(10, 10);
-  const std::vector<double> widths = columnWidthsPt(canvas.cr(), kTable, kTableFont);
+  const std::vector<double> widths = columnWidthsPt(canvas.context(), kTable, kTableFont);
   ASSERT_EQ(widths.size(), 2u);
-  const double padding = widths[0] - textWidth(canvas.cr(), "second", kTableFont);
+  const double padding = widths[0] - textWidth(canvas.context(), "second", kTableFont);
   EXPECT_GT(padding, 0);
-  EXPECT_DOUBLE_EQ(widths[1], textWidth(canvas.cr(), "333 333", kTableFont) + padding);
+  EXPECT_DOUBLE_EQ(widths[1], textWidth(canvas.context(), "333 333", kTableFont) + padding);
   // Headings count in bold.
   const TextTable bold_header{.rows = {{"WWWW"}, {"WWWW"}}};
-  EXPECT_DOUBLE_EQ(columnWidthsPt(canvas.cr(), bold_header, kTableFont)[0],
-                   textWidth(canvas.cr(), "WWWW", {.size = 10, .bold = true}) + padding);
+  EXPECT_DOUBLE_EQ(columnWidthsPt(canvas.context(), bold_header, kTableFont)[0],
+                   textWidth(canvas.context(), "WWWW", {.size = 10, .bold = true}) + padding);
 }
 
 TEST(TextTable, RaggedRowsGetTheWidestRowsColumns) {
   TestCanvas canvas(10, 10);
   const TextTable ragged{.rows = {{"a"}, {"b", "c", "d"}, {"e", "f"}}};
-  const std::vector<double> widths = columnWidthsPt(canvas.cr(), ragged, kTableFont);
+  const std::vector<double> widths = columnWidthsPt(canvas.context(), ragged, kTableFont);
   ASSERT_EQ(widths.size(), 3u);
   EXPECT_GT(widths[2], 0);
 }
@@ -41,17 +41,18 @@ TEST(TextTable, HeightIsRowsTimesARowHeightScaledByTheFont) {
 
 TEST(TextTable, DrawnAtNaturalSizeWhenItFitsShrunkWhenNot) {
   TestCanvas canvas(400, 200);
-  EXPECT_DOUBLE_EQ(drawTable(canvas.cr(), kTable, {0, 0, 400, 200}, kTableFont), 48);
+  EXPECT_DOUBLE_EQ(drawTable(canvas.context(), kTable, {0, 0, 400, 200}, kTableFont), 48);
   double natural_width = 0;
-  for (const double w : columnWidthsPt(canvas.cr(), kTable, kTableFont)) natural_width += w;
-  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, natural_width / 2, 200}, kTableFont), 24, 1e-9);
-  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, 400, 36}, kTableFont), 36, 1e-9);
-  EXPECT_NEAR(drawTable(canvas.cr(), kTable, {0, 0, 1, 1}, kTableFont), 0.3 * 48, 1e-9);
+  for (const double w : columnWidthsPt(canvas.context(), kTable, kTableFont)) natural_width += w;
+  EXPECT_NEAR(drawTable(canvas.context(), kTable, {0, 0, natural_width / 2, 200}, kTableFont), 24,
+              1e-9);
+  EXPECT_NEAR(drawTable(canvas.context(), kTable, {0, 0, 400, 36}, kTableFont), 36, 1e-9);
+  EXPECT_NEAR(drawTable(canvas.context(), kTable, {0, 0, 1, 1}, kTableFont), 0.3 * 48, 1e-9);
 }
 
 TEST(TextTable, EveryOtherDataRowIsStripedAndRulesFrameTheData) {
   TestCanvas canvas(400, 200);
-  drawTable(canvas.cr(), kTable, {0, 0, 400, 200}, kTableFont);
+  drawTable(canvas.context(), kTable, {0, 0, 400, 200}, kTableFont);
   // Rows are 12 px: heading [0, 12], first [12, 24], second [24, 36], third [36, 48]. Column 0
   // is right-aligned, so its left padding is blank.
   EXPECT_EQ(canvas.at(1, 18), kWhitePixel);
@@ -67,10 +68,10 @@ TEST(TextTable, EveryOtherDataRowIsStripedAndRulesFrameTheData) {
 TEST(TextTable, FirstColumnLeftAlignedOnRequest) {
   TextTable table{.rows = {{"a much wider heading", "y"}, {"a", "1"}}};
   TestCanvas right(300, 40);
-  drawTable(right.cr(), table, {0, 0, 300, 40}, kTableFont);
+  drawTable(right.context(), table, {0, 0, 300, 40}, kTableFont);
   table.first_column_left = true;
   TestCanvas left(300, 40);
-  drawTable(left.cr(), table, {0, 0, 300, 40}, kTableFont);
+  drawTable(left.context(), table, {0, 0, 300, 40}, kTableFont);
   // The short cell "a" of the data row sits at its column's start, or by default at its end.
   EXPECT_TRUE(left.anyInk(0, 13, 20, 24));
   EXPECT_FALSE(right.anyInk(0, 13, 20, 24));

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "canvas.h"
+#include "test_canvas.h"
 
 namespace glarecam::pipeline {
 namespace {
@@ -27,16 +27,16 @@ std::pair<int, int> inkColumns(const TestCanvas& canvas) {
 
 TEST(Text, WidthGrowsWithTheTextTheSizeAndTheWeight) {
   TestCanvas canvas(10, 10);
-  EXPECT_EQ(textWidth(canvas.cr(), "", kTextFont), 0);
-  const double iiii = textWidth(canvas.cr(), "iiii", kTextFont);
-  const double wwww = textWidth(canvas.cr(), "WWWW", kTextFont);
+  EXPECT_EQ(textWidth(canvas.context(), "", kTextFont), 0);
+  const double iiii = textWidth(canvas.context(), "iiii", kTextFont);
+  const double wwww = textWidth(canvas.context(), "WWWW", kTextFont);
   EXPECT_GT(iiii, 0);
   EXPECT_GT(wwww, 2 * iiii);
-  const double small = textWidth(canvas.cr(), "Glare 10\u2074", {.size = 10});
-  const double large = textWidth(canvas.cr(), "Glare 10\u2074", {.size = 40});
+  const double small = textWidth(canvas.context(), "Glare 10\u2074", {.size = 10});
+  const double large = textWidth(canvas.context(), "Glare 10\u2074", {.size = 40});
   EXPECT_NEAR(large / small, 4, 0.4);
-  EXPECT_GT(textWidth(canvas.cr(), "Glare", {.size = 20, .bold = true}),
-            textWidth(canvas.cr(), "Glare", kTextFont));
+  EXPECT_GT(textWidth(canvas.context(), "Glare", {.size = 20, .bold = true}),
+            textWidth(canvas.context(), "Glare", kTextFont));
 }
 
 TEST(Text, LineHeightIsAFixedMultipleOfTheSize) {
@@ -47,7 +47,7 @@ TEST(Text, LineHeightIsAFixedMultipleOfTheSize) {
 TEST(Text, AlignmentPutsTheBaselinePointAtTheStartMiddleOrEnd) {
   for (const Align align : {Align::kLeft, Align::kCentre, Align::kRight}) {
     TestCanvas canvas(200, 40);
-    drawText(canvas.cr(), {100, 30}, "HHHH", {kTextFont, kInk, align});
+    drawText(canvas.context(), {100, 30}, "HHHH", {kTextFont, kInk, align});
     const auto [first, last] = inkColumns(canvas);
     ASSERT_GE(first, 0);
     const double middle = (first + last + 1) / 2.0;
@@ -63,7 +63,7 @@ TEST(Text, AlignmentPutsTheBaselinePointAtTheStartMiddleOrEnd) {
 
 TEST(Text, DrawnInItsColourOnTheBaseline) {
   TestCanvas canvas(100, 40);
-  drawText(canvas.cr(), {10, 30}, "H", {kTextFont, {1, 0, 0}});
+  drawText(canvas.context(), {10, 30}, "H", {kTextFont, {1, 0, 0}});
   EXPECT_FALSE(canvas.anyInk(0, 31, 100, 40));  // H has no descender
   EXPECT_TRUE(canvas.anyInk(0, 26, 100, 30));
   bool red = false;  // some pixel of a stem is all covered
@@ -74,7 +74,7 @@ TEST(Text, DrawnInItsColourOnTheBaseline) {
 
 TEST(Text, VerticalTextReadsUpwardCentredOnItsPoint) {
   TestCanvas canvas(60, 200);
-  drawVerticalText(canvas.cr(), {30, 100}, "HHHHHH", {kTextFont});
+  drawVerticalText(canvas.context(), {30, 100}, "HHHHHH", {kTextFont});
   const auto [first, last] = inkColumns(canvas);
   ASSERT_GE(first, 0);
   EXPECT_LE(last, 30);  // the baseline is at x = 30, the letters left of it
@@ -86,21 +86,21 @@ TEST(Text, VerticalTextReadsUpwardCentredOnItsPoint) {
 
 TEST(Text, WrapBreaksAtSpacesToTheWidth) {
   TestCanvas canvas(10, 10);
-  const double two_words = textWidth(canvas.cr(), "one two", kTextFont);
-  EXPECT_EQ(wrapText(canvas.cr(), "one two three", two_words, kTextFont),
+  const double two_words = textWidth(canvas.context(), "one two", kTextFont);
+  EXPECT_EQ(wrapText(canvas.context(), "one two three", two_words, kTextFont),
             (std::vector<std::string>{"one two", "three"}));
-  EXPECT_EQ(wrapText(canvas.cr(), "one  two\nthree", 1e6, kTextFont),
+  EXPECT_EQ(wrapText(canvas.context(), "one  two\nthree", 1e6, kTextFont),
             (std::vector<std::string>{"one two three"}));
-  EXPECT_EQ(wrapText(canvas.cr(), "a unbreakable b", 1, kTextFont),
+  EXPECT_EQ(wrapText(canvas.context(), "a unbreakable b", 1, kTextFont),
             (std::vector<std::string>{"a", "unbreakable", "b"}));
-  EXPECT_TRUE(wrapText(canvas.cr(), "   ", 100, kTextFont).empty());
+  EXPECT_TRUE(wrapText(canvas.context(), "   ", 100, kTextFont).empty());
 }
 
 TEST(Text, ParagraphsTakeALineHeightPerWrappedLine) {
   TestCanvas canvas(200, 200);
-  const double two_words = textWidth(canvas.cr(), "one two", kTextFont);
+  const double two_words = textWidth(canvas.context(), "one two", kTextFont);
   const double height =
-      drawParagraphs(canvas.cr(), {5, 20}, two_words, {"one two three", "four"}, {kTextFont});
+      drawParagraphs(canvas.context(), {5, 20}, two_words, {"one two three", "four"}, {kTextFont});
   EXPECT_DOUBLE_EQ(height, 3 * lineHeight(kTextFont));
   EXPECT_TRUE(canvas.anyInk(0, 20 + 2 * 26 - 15, 200, 20 + 2 * 26));  // the third line
   EXPECT_FALSE(canvas.anyInk(0, 20 + 3 * 26, 200, 200));

@@ -21,7 +21,7 @@
 #include "pipeline/glare_analysis.h"
 #include "pipeline/limit_curve.h"
 #include "pipeline/luminance_stats.h"
-#include "pipeline/render/false_colour.h"
+#include "pipeline/render/false_colour_picture.h"
 #include "pipeline/render/glare_picture.h"
 #include "pipeline/render/number_format.h"
 #include "pipeline/result.h"

@@ -1,6 +1,10 @@
 // Colours as red, green and blue, each from 0 to 1 (Cairo's source colours, sRGB), the neutral
-// inks the toolkit draws with by default, and painting a background.
+// inks the toolkit draws with by default, a colour as the bytes of a raster, and painting a
+// background.
 #pragma once
+
+#include <array>
+#include <cstdint>
 
 namespace glarecam::pipeline {
 
@@ -16,6 +20,9 @@ inline constexpr Rgb kFrameColour{0.45, 0.45, 0.48};  // plot frames, ticks, tab
 
 // `colour` moved toward white by `fraction` (0: unchanged, 1: white) of the way.
 Rgb lightened(const Rgb& colour, double fraction);
+
+// The colour as 8-bit red, green and blue, each rounded (and clamped to 0…255).
+std::array<std::uint8_t, 3> rgbBytes(const Rgb& colour);
 
 // Fills everything inside the current clip (the whole surface by default).
 void paint(Canvas& canvas, const Rgb& colour);

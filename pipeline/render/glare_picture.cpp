@@ -52,22 +52,26 @@ double devicePixel(const Canvas& canvas) {
   return std::hypot(d.x, d.y);
 }
 
-struct ClipBox {
-  double x0, y0, x1, y1;
-  bool near(const PixelPoint& p) const {  // within one picture size of the visible part
-    const double w = x1 - x0, h = y1 - y0;
-    return p.x > x0 - w && p.x < x1 + w && p.y > y0 - h && p.y < y1 + h;
-  }
-};
+// Whether `p` is within one picture size of the visible part `box`.
+bool nearPicture(const Box& box, const Point& p) {
+  const double w = box.x1 - box.x0, h = box.y1 - box.y0;
+  return p.x > box.x0 - w && p.x < box.x1 + w && p.y > box.y0 - h && p.y < box.y1 + h;
+}
+
+// Where a ray in front of the camera lands on the picture.
+Point pictureAt(const calibration::CameraModel& camera, const Ray& ray) {
+  const PixelPoint p = camera.project(ray);
+  return {p.x, p.y};
+}
 
 // Pixels of a curve given as rays, split where a ray is behind the camera or lands far outside
 // the picture (where a distortion polynomial means nothing).
 std::vector<Polyline> project(const calibration::CameraModel& camera, const std::vector<Ray>& rays,
-                              const ClipBox& box) {
+                              const Box& box) {
   std::vector<Polyline> pieces(1);
   for (const Ray& ray : rays) {
-    const PixelPoint p = ray.z > 0 ? camera.project(ray) : PixelPoint{NAN, NAN};
-    if (std::isfinite(p.x) && std::isfinite(p.y) && box.near(p)) {
+    const Point p = ray.z > 0 ? pictureAt(camera, ray) : Point{NAN, NAN};
+    if (std::isfinite(p.x) && std::isfinite(p.y) && nearPicture(box, p)) {
       pieces.back().push_back(p);
     } else if (!pieces.back().empty()) {
       pieces.emplace_back();
@@ -98,8 +102,8 @@ void stroke(Canvas& canvas, const std::vector<Polyline>& pieces, const Style& st
   canvas.setColour(style.colour, style.alpha);
   for (const Polyline& piece : pieces) {
     if (piece.size() < 2) continue;
-    canvas.moveTo({piece.front().x, piece.front().y});
-    for (const PixelPoint& p : piece) canvas.lineTo({p.x, p.y});
+    canvas.moveTo(piece.front());
+    for (const Point& p : piece) canvas.lineTo(p);
     canvas.stroke();
   }
   canvas.setDash({});
@@ -119,16 +123,15 @@ void label(Canvas& canvas, double x, double y, const std::string& text, double f
 
 // A label at `at`, inside the picture and off the drawn `lines` (label_placement.h); nothing when
 // `at` is not a point (an axis end behind the camera).
-void labelOffLines(Canvas& canvas, const PixelPoint& at, const PixelPoint& away,
-                   const std::string& text, const ClipBox& box, double font_px,
-                   const std::vector<Polyline>& lines) {
+void labelOffLines(Canvas& canvas, const Point& at, const Point& away, const std::string& text,
+                   const Box& box, double font_px, const std::vector<Polyline>& lines) {
   if (!std::isfinite(at.x) || !std::isfinite(at.y)) return;
-  const PixelPoint p = placeLabel({at, away, textWidth(canvas, text, labelFont(font_px)), font_px},
-                                  {box.x0, box.y0, box.x1, box.y1}, lines);
+  const Point p =
+      placeLabel({at, away, textWidth(canvas, text, labelFont(font_px)), font_px}, box, lines);
   label(canvas, p.x, p.y, text, font_px);
 }
 
-PixelPoint unitAway(const PixelPoint& from, const PixelPoint& to) {
+Point unitAway(const Point& from, const Point& to) {
   const double length = std::hypot(to.x - from.x, to.y - from.y);
   if (!(length > 0)) return {0, -1};
   return {(to.x - from.x) / length, (to.y - from.y) / length};
@@ -142,7 +145,7 @@ struct Overlay {
   std::vector<std::pair<double, GlareEllipse>> thresholds;  // level (cd/m²), ellipse
 };
 
-std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, const ClipBox& box) {
+std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, const Box& box) {
   const AngularPlane plane(e.plane_centre);
   const auto curve = [&](double t) { return e.plane_ellipse.pointAt(t); };
   return project(o.camera, planeCurve(plane, curve, 0, 2 * std::numbers::pi, kCurvePoints), box);
@@ -151,11 +154,11 @@ std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, co
 // The two axes of an ellipse as arcs (added to `lines`), then each labelled at its upper or right
 // end, off every line drawn (the other axis included).
 void drawAxes(Canvas& canvas, const Overlay& o, const GlareEllipse& e, const std::string& prefix,
-              const ClipBox& box, double font_px, std::vector<Polyline>& lines) {
+              const Box& box, double font_px, std::vector<Polyline>& lines) {
   const AngularPlane plane(e.plane_centre);
   const Ellipse& ellipse = e.plane_ellipse;
   struct AxisLabel {
-    PixelPoint at, away;
+    Point at, away;
     std::string text;
   };
   std::vector<AxisLabel> labels;
@@ -174,10 +177,10 @@ void drawAxes(Canvas& canvas, const Overlay& o, const GlareEllipse& e, const std
     // Only ends in front of the camera count (behind it, project() mirrors them).
     const Ray ra = plane.toRay({a.x, a.y}), rb = plane.toRay({b.x, b.y});
     if (ra.z <= 0 && rb.z <= 0) continue;
-    const PixelPoint pa = o.camera.project(ra.z > 0 ? ra : rb);
-    const PixelPoint pb = o.camera.project(rb.z > 0 ? rb : ra);
+    const Point pa = pictureAt(o.camera, ra.z > 0 ? ra : rb);
+    const Point pb = pictureAt(o.camera, rb.z > 0 ? rb : ra);
     const bool a_end = vertical ? pa.y < pb.y : pa.x > pb.x;
-    const PixelPoint end = a_end ? pa : pb, other = a_end ? pb : pa;
+    const Point end = a_end ? pa : pb, other = a_end ? pb : pa;
     const double dx = vertical ? font_px * 0.3 : font_px * 0.4;
     const double dy = vertical ? -font_px * 0.4 : font_px * 0.35;
     labels.push_back({{end.x + dx, end.y + dy},
@@ -188,7 +191,7 @@ void drawAxes(Canvas& canvas, const Overlay& o, const GlareEllipse& e, const std
     labelOffLines(canvas, l.at, l.away, l.text, box, font_px, lines);
 }
 
-void drawCircles(Canvas& canvas, const Overlay& o, const ClipBox& box, double font_px) {
+void drawCircles(Canvas& canvas, const Overlay& o, const Box& box, double font_px) {
   const AngularPlane plane(o.peak_ray);
   for (const double radius_deg : kReferenceCirclesDeg) {
     const auto circle = [&](double t) {
@@ -202,7 +205,7 @@ void drawCircles(Canvas& canvas, const Overlay& o, const ClipBox& box, double fo
     const Point2 at = circle(3 * std::numbers::pi / 4);
     const Ray ray = plane.toRay({at.x, at.y});
     if (ray.z <= 0) continue;
-    const PixelPoint p = o.camera.project(ray);
+    const Point p = pictureAt(o.camera, ray);
     const std::string text = fmt::format("r {:g}\u00b0", radius_deg);
     const double x =
         p.x - textWidth(canvas, text, labelFont(font_px * kSmallLabelEm)) - font_px * 0.2;
@@ -215,7 +218,7 @@ void drawCircles(Canvas& canvas, const Overlay& o, const ClipBox& box, double fo
 // The legend only where it fits beside the spot: not on thumbnails.
 constexpr double kMinLegendWidthEm = 30, kMinLegendHeightEm = 12;
 
-void drawLegend(Canvas& canvas, const Overlay& o, const ClipBox& box, double font_px) {
+void drawLegend(Canvas& canvas, const Overlay& o, const Box& box, double font_px) {
   if (box.x1 - box.x0 < kMinLegendWidthEm * font_px ||
       box.y1 - box.y0 < kMinLegendHeightEm * font_px)
     return;
@@ -239,23 +242,22 @@ void drawLegend(Canvas& canvas, const Overlay& o, const ClipBox& box, double fon
 }
 
 // Each --thresholds ellipse, labelled with its level at its upper-right point, off `lines`.
-void drawThresholds(Canvas& canvas, const Overlay& o, const ClipBox& box, double font_px,
+void drawThresholds(Canvas& canvas, const Overlay& o, const Box& box, double font_px,
                     const std::vector<Polyline>& lines) {
   for (const auto& [level_cd_m2, e] : o.thresholds) {
     const AngularPlane plane(e.plane_centre);
     const Point2 at = e.plane_ellipse.pointAt(std::numbers::pi / 4);
     const Ray ray = plane.toRay({at.x, at.y});
     if (ray.z <= 0) continue;
-    const PixelPoint p = o.camera.project(ray);
-    const PixelPoint centre = o.camera.project(plane.toRay({0, 0}));
+    const Point p = pictureAt(o.camera, ray);
+    const Point centre = pictureAt(o.camera, plane.toRay({0, 0}));
     labelOffLines(canvas, {p.x + font_px * 0.3, p.y - font_px * 0.3}, unitAway(centre, p),
                   formatSiPrefixed(level_cd_m2), box, font_px * kSmallLabelEm, lines);
   }
 }
 
 void drawOverlay(Canvas& canvas, const Overlay& o, double font_px) {
-  const Box clip = canvas.clipExtents();
-  const ClipBox box{clip.x0, clip.y0, clip.x1, clip.y1};
+  const Box box = canvas.clipExtents();
   drawCircles(canvas, o, box, font_px);
   // Every line first, then the labels, each kept off all of them.
   std::vector<Polyline> lines;
@@ -266,7 +268,8 @@ void drawOverlay(Canvas& canvas, const Overlay& o, double font_px) {
   for (const auto& [level, e] : o.thresholds) draw(ellipseOutline(o, e, box), kThresholdStyle);
   if (o.fwhm) draw(ellipseOutline(o, *o.fwhm, box), kFwhmFitStyle);
   if (o.limit) {
-    Polyline contour(o.limit->contour_px.begin(), o.limit->contour_px.end());
+    Polyline contour;
+    for (const PixelPoint& p : o.limit->contour_px) contour.push_back({p.x, p.y});
     if (!contour.empty()) contour.push_back(contour.front());
     draw({contour}, kContourStyle);
     draw(ellipseOutline(o, *o.limit, box), kLimitFitStyle);

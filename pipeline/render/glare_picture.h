@@ -7,7 +7,7 @@
 
 #include "calibration/camera_model.h"
 #include "pipeline/glare_analysis.h"
-#include "pipeline/render/false_colour.h"
+#include "pipeline/render/false_colour_picture.h"
 
 namespace glarecam::pipeline {
 

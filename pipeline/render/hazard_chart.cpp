@@ -205,25 +205,17 @@ CellRaster rasterise(const HazardChartContent& c, const HourRange& hours, int ma
   return raster;
 }
 
-using RgbBytes = std::array<std::uint8_t, 3>;
-
-RgbBytes rgbBytes(const Rgb& colour) {
-  const auto byte = [](double v) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
-  };
-  return {byte(colour.r), byte(colour.g), byte(colour.b)};
-}
-
 // The raster's colours as an image of its size.
 RgbImage rasterImage(const CellRaster& raster) {
-  std::array<RgbBytes, kCellKinds> colours{};
+  std::array<std::array<std::uint8_t, 3>, kCellKinds> colours{};
   for (int kind = 0; kind < kCellKinds; ++kind)
     colours[kind] = rgbBytes(cellColour(static_cast<HazardCell>(kind)));
   RgbImage image{.width = raster.columns, .height = raster.rows, .rgb = {}};
   image.rgb.reserve(static_cast<std::size_t>(raster.columns) * raster.rows * 3);
   for (int row = 0; row < raster.rows; ++row)
     for (int column = 0; column < raster.columns; ++column) {
-      const RgbBytes& colour = colours[static_cast<std::size_t>(raster.at(column, row))];
+      const std::array<std::uint8_t, 3>& colour =
+          colours[static_cast<std::size_t>(raster.at(column, row))];
       image.rgb.insert(image.rgb.end(), colour.begin(), colour.end());
     }
   return image;

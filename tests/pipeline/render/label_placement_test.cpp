@@ -5,8 +5,6 @@
 namespace glarecam::pipeline {
 namespace {
 
-using calibration::PixelPoint;
-
 // A horizontal line through y, from x0 to x1, a point per pixel.
 Polyline horizontal(double y, double x0, double x1) {
   Polyline line;
@@ -14,11 +12,11 @@ Polyline horizontal(double y, double x0, double x1) {
   return line;
 }
 
-constexpr PictureBox kBox{0, 0, 400, 300};
+constexpr Box kBox{0, 0, 400, 300};
 
 TEST(LabelPlacement, StaysWhereItIsWhenItCoversNoLine) {
   const LabelSpec label{{100, 150}, {0, -1}, 60, 12};
-  const PixelPoint p = placeLabel(label, kBox, {horizontal(50, 0, 400)});
+  const Point p = placeLabel(label, kBox, {horizontal(50, 0, 400)});
   EXPECT_DOUBLE_EQ(p.x, 100);
   EXPECT_DOUBLE_EQ(p.y, 150);
 }
@@ -29,7 +27,7 @@ TEST(LabelPlacement, MovesAwayFromALineItWouldCover) {
   const LabelSpec label{{100, 150}, {0, -1}, 60, 12};
   const std::vector<Polyline> lines{horizontal(146, 0, 400)};
   ASSERT_TRUE(labelCovers(label.at, label.width_px, label.font_px, lines));
-  const PixelPoint p = placeLabel(label, kBox, lines);
+  const Point p = placeLabel(label, kBox, lines);
   EXPECT_DOUBLE_EQ(p.x, 100);
   EXPECT_LT(p.y, 150);
   EXPECT_FALSE(labelCovers(p, label.width_px, label.font_px, lines));
@@ -41,12 +39,12 @@ TEST(LabelPlacement, MovesAwayFromALineItWouldCover) {
 TEST(LabelPlacement, StaysInsideThePictureAndFallsBackWhenNoPlaceIsClear) {
   // Pushed towards the top edge: kept inside (baseline at least 1.1 em down).
   const LabelSpec high{{100, 5}, {0, -1}, 60, 12};
-  const PixelPoint top = placeLabel(high, kBox, {});
+  const Point top = placeLabel(high, kBox, {});
   EXPECT_DOUBLE_EQ(top.y, 1.1 * 12);
   // Lines everywhere: the preferred place, inside the picture.
   std::vector<Polyline> everywhere;
   for (double y = 0; y <= 300; y += 2) everywhere.push_back(horizontal(y, 0, 400));
-  const PixelPoint p = placeLabel({{390, 150}, {1, 0}, 60, 12}, kBox, everywhere);
+  const Point p = placeLabel({{390, 150}, {1, 0}, 60, 12}, kBox, everywhere);
   EXPECT_DOUBLE_EQ(p.x, 400 - 60 - 0.2 * 12);
   EXPECT_DOUBLE_EQ(p.y, 150);
 }

@@ -19,7 +19,7 @@
 
 #include "core/error.h"
 #include "core/time.h"
-#include "pipeline/render/datasheet.h"  // kDatasheetPng
+#include "pipeline/datasheet.h"  // kDatasheetPng
 
 namespace glarecam::daemon {
 

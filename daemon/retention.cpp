@@ -14,6 +14,7 @@
 #include "core/stack_io.h"
 #include "core/time.h"
 #include "daemon/day_products.h"
+#include "daemon/stack_worker.h"  // kFailedSuffix
 #include "pipeline/process_stack.h"
 #include "pipeline/result.h"
 #include "pipeline/sweep.h"

@@ -197,11 +197,11 @@ std::string eventsCsv(const HazardReport& report) {
   return csv;
 }
 
-pipeline::HazardChartContent chartContent(const HazardReport& report, std::size_t o) {
+HazardChartContent chartContent(const HazardReport& report, std::size_t o) {
   const Scene& scene = *report.scene;
   const HazardResult& result = *report.result;
   const HazardOptions& options = *report.options;
-  pipeline::HazardChartContent content;
+  HazardChartContent content;
   const Observer& observer = scene.observers[o];
   content.title = "Glare at " + observer.name + ", " + std::to_string(result.year);
   std::string profiles;
@@ -231,17 +231,17 @@ pipeline::HazardChartContent chartContent(const HazardReport& report, std::size_
   content.cells.resize(steps.size());
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const std::uint8_t mask = steps[i];
-    pipeline::HazardCell cell = pipeline::HazardCell::kNone;
+    HazardCell cell = HazardCell::kNone;
     if (mask & kSunDownBit) {
-      cell = pipeline::HazardCell::kSunDown;
+      cell = HazardCell::kSunDown;
     } else if (mask & kOutsideHoursBit) {
-      cell = pipeline::HazardCell::kOutsideHours;
+      cell = HazardCell::kOutsideHours;
     } else {
       const bool first = (mask & 1u) != 0, second = shown > 1 && (mask & 2u) != 0;
-      cell = first && second ? pipeline::HazardCell::kBoth
-             : first         ? pipeline::HazardCell::kFirstOnly
-             : second        ? pipeline::HazardCell::kSecondOnly
-                             : pipeline::HazardCell::kNone;
+      cell = first && second ? HazardCell::kBoth
+             : first         ? HazardCell::kFirstOnly
+             : second        ? HazardCell::kSecondOnly
+                             : HazardCell::kNone;
     }
     content.cells[i] = cell;
   }
@@ -304,8 +304,8 @@ Status writeHazardOutputs(const HazardReport& report, const std::filesystem::pat
   GLARECAM_CHECK(ensureDirectory(directory));
   for (std::size_t o = 0; o < report.scene->observers.size(); ++o) {
     const std::string& stem = report.picture_stems[o];
-    GLARECAM_CHECK(pipeline::writeHazardChart(chartContent(report, o), directory / (stem + ".png"),
-                                              directory / (stem + ".svg")));
+    GLARECAM_CHECK(writeHazardChart(chartContent(report, o), directory / (stem + ".png"),
+                                    directory / (stem + ".svg")));
   }
   GLARECAM_CHECK(writeFileAtomic(directory / kEventsCsv, eventsCsv(report)));
   GLARECAM_CHECK(writeFileAtomic(directory / kHazardJson, jsonText(hazardJson(report))));

@@ -1,6 +1,6 @@
 // What `glarecam hazard` writes (docs/hazard.md, "Outputs"): hazard.json (glarecam.hazard/1),
-// events.csv, one picture per observer (PNG and SVG, pipeline/render/hazard_chart.h), and the
-// short table printed on stdout. Times are local standard time, "YYYY-MM-DDTHH:MM+HH:MM".
+// events.csv, one picture per observer (PNG and SVG, hazard_chart.h), and the short table printed
+// on stdout. Times are local standard time, "YYYY-MM-DDTHH:MM+HH:MM".
 #pragma once
 
 #include <filesystem>
@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "hazard/hazard_calculation.h"
+#include "hazard/hazard_chart.h"
 #include "hazard/profile_table.h"
 #include "hazard/scene.h"
-#include "pipeline/render/hazard_chart.h"
 
 namespace glarecam::hazard {
 
@@ -37,7 +37,7 @@ std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_off
 
 nlohmann::json hazardJson(const HazardReport& report);
 std::string eventsCsv(const HazardReport& report);
-pipeline::HazardChartContent chartContent(const HazardReport& report, std::size_t observer);
+HazardChartContent chartContent(const HazardReport& report, std::size_t observer);
 // Per observer and model: minutes/year, days, largest day, each criterion's verdict.
 std::string summaryText(const HazardReport& report);
 

@@ -1,4 +1,4 @@
-// Publishing a sweep: the data sheet (datasheet.pdf/.svg/.png, render/datasheet.h) and the
+// Publishing a sweep: the data sheet (datasheet.pdf/.svg/.png, datasheet.h) and the
 // machine-readable glare profile (glare-profile.json, glare_profile.h) of one fitted sweep table,
 // written together into one directory, each file atomically. `glarecam datasheet` publishes a
 // sweep table through publishSweepTable(); glarecamd's per-day sheets through publishDatasheet().
@@ -9,9 +9,9 @@
 #include <string>
 
 #include "core/error.h"
+#include "pipeline/datasheet.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/glare_profile.h"
-#include "pipeline/render/datasheet.h"
 
 namespace glarecam::pipeline {
 
@@ -44,6 +44,6 @@ Result<std::string> sheetDate(const std::optional<std::string>& date);
 // `threshold_cd_m2` may confirm. A different threshold is kBadInput naming `sweep`: the sheet's
 // axes would be those at another limit than it shows (make the table with sweep --threshold).
 Result<GlareLimit> sheetLimit(const std::string& sweep, const SweepTable& table,
-                      const std::optional<double>& threshold_cd_m2);
+                              const std::optional<double>& threshold_cd_m2);
 
 }  // namespace glarecam::pipeline

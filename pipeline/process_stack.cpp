@@ -19,13 +19,13 @@
 #include "core/sha256.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
+#include "pipeline/false_colour_picture.h"
 #include "pipeline/glare_analysis.h"
+#include "pipeline/glare_picture.h"
 #include "pipeline/limit_curve.h"
 #include "pipeline/luminance_stats.h"
-#include "pipeline/render/false_colour.h"
-#include "pipeline/render/glare_picture.h"
-#include "pipeline/render/number_format.h"
 #include "pipeline/result.h"
+#include "render/number_format.h"
 
 namespace glarecam::pipeline {
 namespace fs = std::filesystem;
@@ -247,8 +247,8 @@ std::vector<std::string> pictureCaption(const StackResult& result) {
   return {
       result.stack,
       fmt::format("Lmax {}{} cd/m\u00b2", bound,
-                  formatGrouped(luminance.max_cd_m2, kCaptionDigits)),
-      limit ? fmt::format("limit {} cd/m\u00b2", formatGrouped(*limit, kCaptionDigits))
+                  render::formatGrouped(luminance.max_cd_m2, kCaptionDigits)),
+      limit ? fmt::format("limit {} cd/m\u00b2", render::formatGrouped(*limit, kCaptionDigits))
             : std::string("no limit"),
       result.glare ? (*result.glare ? "glare: yes" : "glare: no") : std::string("glare: \u2013")};
 }
@@ -271,7 +271,7 @@ Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
       [&] { return writeLuminanceExr(out / "luminance.exr", merged, options.float32); },
       [&] { return writeQualityExr(out / "quality.exr", merged, options.float32); },
       [&]() -> Status {
-        RgbImage picture;
+        render::RgbImage picture;
         GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
         return writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb);
       }};

@@ -19,9 +19,9 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/stack_manifest.h"
+#include "pipeline/datasheet.h"
 #include "pipeline/glare_profile.h"
 #include "pipeline/process_stack.h"
-#include "pipeline/render/datasheet.h"
 
 namespace glarecam::pipeline {
 

@@ -129,12 +129,12 @@ TEST_F(HazardReportOutputs, EventsCsvHasOneRowPerEvent) {
 }
 
 TEST_F(HazardReportOutputs, ChartCellsShowWhichModelGlares) {
-  const pipeline::HazardChartContent content = chartContent(report_, 0);
+  const HazardChartContent content = chartContent(report_, 0);
   ASSERT_EQ(content.models.size(), 2u);
   EXPECT_EQ(content.models[0].label, "ellipse");
-  EXPECT_EQ(content.cells[79 * 1440 + 1080], pipeline::HazardCell::kFirstOnly);
-  EXPECT_EQ(content.cells[79 * 1440 + 1081], pipeline::HazardCell::kBoth);
-  EXPECT_EQ(content.cells[0], pipeline::HazardCell::kNone);
+  EXPECT_EQ(content.cells[79 * 1440 + 1080], HazardCell::kFirstOnly);
+  EXPECT_EQ(content.cells[79 * 1440 + 1081], HazardCell::kBoth);
+  EXPECT_EQ(content.cells[0], HazardCell::kNone);
   EXPECT_EQ(content.threshold_minutes_per_day, 30);
 }
 

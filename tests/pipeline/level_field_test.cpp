@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "support/sim_support.h"
 #include "support/test_support.h"
 
 namespace glarecam::pipeline {

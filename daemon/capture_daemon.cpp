@@ -5,11 +5,10 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cmath>
 
 #include "capture/camera_registry.h"
+#include "daemon/earlier_run.h"
 #include "daemon/journal_sink.h"
-#include "daemon/result_brief.h"
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"
 
@@ -67,7 +66,8 @@ CaptureDaemon::CaptureDaemon(DaemonOptions options, DaemonServices services, Con
               [this] { return rig_ ? rig_->sceneAlphaDeg() : std::nullopt; }),
       schedule_(config_.daemon.schedule),
       health_(clock_, *services_.notifier, *services_.disk),
-      output_(config_.daemon.output.root) {}
+      output_(config_.daemon.output.root),
+      retention_(clock_, config_.daemon.output, siteLongitude()) {}
 
 CaptureDaemon::~CaptureDaemon() { stop(); }
 
@@ -95,16 +95,18 @@ Status CaptureDaemon::start() {
   applyConfig();
   spdlog::info("glarecamd: {} with camera {}, output {}", schedule_.describe(), *config_.rig.camera,
                output_.root().string());
-  applyRetention(std::nullopt);  // before the recall: what it deletes is not shown
-  recallEarlierRun();
-  catchUp();
+  retention_.apply(state_);  // before the recall: what it deletes is not shown
+  EarlierRun earlier = EarlierRun::read(output_, clock_.utcNow(), siteLongitude());
+  earlier.recordInto(state_);
+  // Catch-up: the stacks an earlier run left unprocessed go to the worker first.
+  for (std::filesystem::path& stack : earlier.unprocessed) worker_->submitWritten(std::move(stack));
   publishStatus();
   return {};
 }
 
 Status CaptureDaemon::step() {
   const SteadyTime now = clock_.now();
-  feedWatchdog();
+  if (watchdog_.feed(workerBusySince())) ++state_.watchdog_pings;
   if (now >= health_.nextDiskCheck()) {
     checkDisk();
     checkClock();
@@ -189,7 +191,7 @@ void CaptureDaemon::handleWorker(const WorkerEvent& event) {
   ScopedLogFields fields(LogFields{{"GLARECAM_STACK", event.stack_id}});
   recordWorkerEvent(state_, event, worker_->hasParked());
   // A stack done is a stack that retention may now take, and one more for the budget.
-  if (event.last && !event.error) applyRetention(std::nullopt);
+  if (event.last && !event.error) retention_.apply(state_);
   if (event.last && event.captured && options_.max_stacks &&
       ++stacks_done_ >= *options_.max_stacks && !stopping_) {
     spdlog::info("glarecamd: {} stacks done: stopping", stacks_done_);
@@ -255,6 +257,7 @@ void CaptureDaemon::applyConfig() {
                                 .longitude_deg = siteLongitude()},
                         .threads = daemon.output.processing_threads});
   output_ = OutputTree(daemon.output.root);
+  retention_.configure(daemon.output, siteLongitude());
   schedule_.reconfigure(daemon.schedule);  // the slots taken so far stay taken
   prepareOutput(false);
   closeGpio();
@@ -335,26 +338,6 @@ std::optional<double> CaptureDaemon::siteLongitude() const {
   return config_.rig.site ? std::optional(config_.rig.site->longitude_deg) : std::nullopt;
 }
 
-void CaptureDaemon::recallEarlierRun() {
-  if (auto last = newestResult(output_.results())) {
-    spdlog::info("glarecamd: last result {} (from an earlier run)", last->stack_id);
-    state_.last_result = std::move(*last);
-  }
-  const std::string today = solarDay(clock_.utcNow(), siteLongitude());
-  const auto day =
-      readDayProducts({.root = output_.root(), .longitude_deg = siteLongitude()}, today);
-  if (!day) return;
-  recordDay(state_, *day);
-  spdlog::info("glarecamd: day {} (from an earlier run)", state_.day);
-}
-
-void CaptureDaemon::catchUp() {
-  std::vector<std::filesystem::path> stacks = output_.unprocessedStacks();
-  if (!stacks.empty())
-    spdlog::info("glarecamd: processing {} stacks of an earlier run", stacks.size());
-  for (std::filesystem::path& stack : stacks) worker_->submitWritten(std::move(stack));
-}
-
 Status CaptureDaemon::reopenCamera(SteadyTime now) {
   const auto opened = camera_.acquire(now);
   if (!opened) {
@@ -425,12 +408,13 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   state_.skip_reason.clear();
   state_.capturing = true;
   publishStatus();
-  feedWatchdog(expectedBracket(settings));
+  // The loop cannot ping during the bracket: a ping due before its expected end goes now.
+  if (watchdog_.feedBeforeBracket(settings, workerBusySince())) ++state_.watchdog_pings;
   const UtcTime start = clock_.utcNow();
   settings.start_time = start;
   const SteadyTime bracket_start = clock_.now();
   auto stack = capture::captureStack(**acquired, settings);
-  if (stack) last_bracket_ = clock_.now() - bracket_start;  // a failed one says nothing of length
+  if (stack) watchdog_.recordBracket(clock_.now() - bracket_start);
   const UtcTime end = clock_.utcNow();
   state_.capturing = false;
   if (!stack) {
@@ -535,12 +519,8 @@ void CaptureDaemon::checkWallClock() {
 }
 
 void CaptureDaemon::checkDisk() {
-  const OutputConfig& output = config_.daemon.output;
-  HealthMonitor::DiskCheck disk = health_.checkDisk(output.root, output.reserve_bytes);
-  // Below the reserve with a space budget set: retention frees what it may, then a second look.
-  if (!disk.pause_reason.empty() && disk.state && !disk.state->read_only &&
-      output.retention.max_use_bytes && applyRetention(disk.state) > 0)
-    disk = health_.checkDisk(output.root, output.reserve_bytes);
+  // Below the reserve with a space budget set, retention frees what it may first.
+  const HealthMonitor::DiskCheck disk = retention_.checkDisk(health_, state_);
   if (disk.state) state_.disk = disk.state;
   std::string reason = disk.pause_reason;
   const bool kept = worker_ && worker_->hasParked();
@@ -561,29 +541,6 @@ void CaptureDaemon::checkDisk() {
   state_.disk_fault = std::move(reason);
 }
 
-std::size_t CaptureDaemon::applyRetention(const std::optional<DiskState>& disk) {
-  const OutputConfig& output = config_.daemon.output;
-  if (!output.retention.enabled()) return 0;
-  // Ages are told by the clock: an unsynchronised one that ran ahead would delete a season.
-  if (!clock_.clockStatus().synchronised) return 0;
-  ScopedLogFields fields(LogFields{{"GLARECAM_EVENT", "retention"}});
-  const RetentionSummary summary = daemon::applyRetention(output_, output.retention,
-                                                          {.now = clock_.utcNow(),
-                                                           .longitude_deg = siteLongitude(),
-                                                           .disk = disk,
-                                                           .reserve_bytes = output.reserve_bytes});
-  for (const RetentionDeletion& deleted : summary.deleted) {
-    ScopedLogFields deletion(LogFields{{"GLARECAM_DELETED", deleted.name},
-                                       {"GLARECAM_DELETED_KIND", deleted.kind},
-                                       {"GLARECAM_DELETED_BYTES", std::to_string(deleted.bytes)}});
-    spdlog::info("glarecamd: retention deleted {} {} ({}): {}", deleted.kind, deleted.name,
-                 formatBytes(deleted.bytes), deleted.reason);
-  }
-  recordRetention(state_, summary, disk.has_value());
-  if (!summary.deleted.empty()) state_.retention_last_time = clock_.utcNow();
-  return summary.deleted.size();
-}
-
 void CaptureDaemon::checkClock() {
   if (!config_.rig.site) return;  // only the sun's position needs the wall clock
   std::string warning = health_.clockWarning();
@@ -592,25 +549,8 @@ void CaptureDaemon::checkClock() {
   state_.clock_warning = std::move(warning);
 }
 
-void CaptureDaemon::feedWatchdog(std::chrono::nanoseconds away) {
-  if (health_.feedWatchdog(worker_ ? worker_->busySince() : std::nullopt, away))
-    ++state_.watchdog_pings;
-}
-
-// Longer than any watchdog interval: a bracket of unknown length gets a ping before it.
-constexpr std::chrono::nanoseconds kUnknownBracket = std::chrono::hours(24);
-
-std::chrono::nanoseconds CaptureDaemon::expectedBracket(
-    const capture::CaptureSettings& settings) const {
-  double exposures_us = 0;
-  for (const double exposure_us : settings.exposures_us.value_or(std::vector<double>{}))
-    exposures_us += exposure_us;
-  const std::chrono::nanoseconds exposures(std::llround(exposures_us * 1e3));
-  if (!last_bracket_) return exposures_us > 0 ? exposures : kUnknownBracket;
-  // A bracket can run longer than the last one (an auto-bracket's re-bracket, a slower
-  // transfer): half as long again.
-  const auto last = std::chrono::duration_cast<std::chrono::nanoseconds>(*last_bracket_ * 1.5);
-  return std::max(exposures, last);
+std::optional<SteadyTime> CaptureDaemon::workerBusySince() const {
+  return worker_ ? worker_->busySince() : std::nullopt;
 }
 
 void CaptureDaemon::publishStatus() {
@@ -631,15 +571,6 @@ void CaptureDaemon::publishStatus() {
 
 StatusSnapshot CaptureDaemon::snapshot() const {
   const OutputConfig& output = config_.daemon.output;
-  const RetentionPolicy& retention = output.retention;
-  std::string policy;
-  const auto add = [&policy](const std::string& part) {
-    policy += (policy.empty() ? "" : ", ") + part;
-  };
-  if (retention.keep_stacks_days) add(fmt::format("stacks {} days", *retention.keep_stacks_days));
-  if (retention.keep_results_days)
-    add(fmt::format("results {} days", *retention.keep_results_days));
-  if (retention.max_use_bytes) add("within " + formatBytes(*retention.max_use_bytes));
   const UtcTime now = clock_.utcNow();
   return {.state = state_,
           .schedule = schedule_.describe(),
@@ -649,7 +580,7 @@ StatusSnapshot CaptureDaemon::snapshot() const {
           .clock_synchronised = clock_.clockStatus().synchronised,
           .output_root = output.root,
           .reserve_bytes = output.reserve_bytes,
-          .retention_policy = policy.empty() ? "off (nothing is deleted)" : policy,
+          .retention_policy = retention_.policyText(),
           .now = now,
           .today = solarDay(now, siteLongitude())};
 }

@@ -13,14 +13,17 @@
 //   clock             not synchronised: said in STATUS, and every stack flagged
 //
 // systemd (service_notifier.h): READY=1 once the camera is open, STATUS= whenever the status
-// line changes, WATCHDOG=1 from the loop itself (health_monitor.h), STOPPING=1 on SIGTERM, after
-// which queued stacks are written and run() returns. SIGHUP reloads the config (a bad one is
-// reported and the old one kept).
+// line changes, WATCHDOG=1 from the loop itself (health_monitor.h) and before a bracket in which
+// one would fall due (bracket_watchdog.h), STOPPING=1 on SIGTERM, after which queued stacks are
+// written and run() returns. SIGHUP reloads the config (a bad one is reported and the old one
+// kept).
 //
-// The daemon owns the loop (run, step, handle) and one capture; the schedule, the rig session,
-// the health checks and the output tree are each their own class. Everything it touches is
-// injected (DaemonServices): tests run it on a manual clock with a scripted camera, disk and
-// notifier, one thread, no sleeping.
+// The daemon owns the loop (run, step, handle) and one capture: it schedules and dispatches. The
+// schedule, the rig session, the health checks, the watchdog's bracket estimate
+// (bracket_watchdog.h), when retention runs (retention_scheduler.h), what a restart recalls of the
+// run before it (earlier_run.h) and the output tree are each their own class. Everything it
+// touches is injected (DaemonServices): tests run it on a manual clock with a scripted camera,
+// disk and notifier, one thread, no sleeping.
 #pragma once
 
 #include <chrono>
@@ -34,6 +37,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "daemon/bracket_watchdog.h"
 #include "daemon/camera_supervisor.h"
 #include "daemon/capture_schedule.h"
 #include "daemon/daemon_clock.h"
@@ -43,6 +47,7 @@
 #include "daemon/disk_space.h"
 #include "daemon/health_monitor.h"
 #include "daemon/output_tree.h"
+#include "daemon/retention_scheduler.h"
 #include "daemon/rig_session.h"
 #include "daemon/service_notifier.h"
 #include "daemon/stack_worker.h"
@@ -119,10 +124,6 @@ class CaptureDaemon {
   void openGpio();
   void closeGpio();
   void prepareOutput(bool clean);
-  // What the status shows of an earlier run until this one has its own: the newest result, and
-  // on a start during a day the day's count and sheet from days/<today>/.
-  void recallEarlierRun();
-  void catchUp();
   Status reopenCamera(SteadyTime now);
   Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
 
@@ -137,14 +138,9 @@ class CaptureDaemon {
   void planNext(bool slot_taken);
   void checkWallClock();
   void checkDisk();
-  // [output] retention (retention.h), `disk` for its reserve rule; how many entries it deleted.
-  std::size_t applyRetention(const std::optional<DiskState>& disk);
   void checkClock();
-  // `away`: how long the loop is about to be busy (HealthMonitor::feedWatchdog).
-  void feedWatchdog(std::chrono::nanoseconds away = {});
-  // How long the next bracket will keep the loop: the last good one's length and half as much
-  // again, at least its exposures; unknown (the first auto-bracket) is "long": ping before it.
-  std::chrono::nanoseconds expectedBracket(const capture::CaptureSettings& settings) const;
+  // The running worker job's start, for the watchdog (none: idle, or no worker yet).
+  std::optional<SteadyTime> workerBusySince() const;
   void publishStatus();
   StatusSnapshot snapshot() const;
   std::optional<double> siteLongitude() const;  // [site] longitude: days are its solar days
@@ -162,15 +158,15 @@ class CaptureDaemon {
   std::unique_ptr<StackWorker> worker_;
   CaptureSchedule schedule_;
   HealthMonitor health_;
+  BracketWatchdog watchdog_{health_};
   OutputTree output_;
+  RetentionScheduler retention_;
 
   std::optional<SteadyTime> inclinometer_retry_at_;
   std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;
   std::optional<SteadyTime> last_publish_;  // for the time paused
-  // The last good bracket's length, for the watchdog; none before the first.
-  std::optional<std::chrono::nanoseconds> last_bracket_;
 };
 
 }  // namespace glarecam::daemon

@@ -7,7 +7,6 @@
 
 #include "core/atomic_file.h"
 #include "daemon/day_products.h"
-#include "daemon/stack_worker.h"
 #include "pipeline/process_stack.h"
 
 namespace glarecam::daemon {

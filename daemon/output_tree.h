@@ -12,6 +12,9 @@
 
 namespace glarecam::daemon {
 
+// Beside results/<id>/: the stack could not be processed (its reason inside).
+inline constexpr const char* kFailedSuffix = ".failed";
+
 class OutputTree {
  public:
   explicit OutputTree(std::filesystem::path root = {}) : root_(std::move(root)) {}

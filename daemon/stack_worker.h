@@ -37,8 +37,6 @@ namespace glarecam::daemon {
 inline constexpr int kWorkerNice = 10;
 // Writes of one kept stack tried while the disk looks fine, before it is given up.
 inline constexpr int kMaxWriteAttempts = 10;
-// Beside results/<id>/: the stack could not be processed (its reason inside).
-inline constexpr const char* kFailedSuffix = ".failed";
 
 struct WorkerOptions {
   DayProductsOptions day;

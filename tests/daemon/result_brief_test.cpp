@@ -8,25 +8,17 @@
 
 #include "core/json.h"
 #include "support/test_support.h"
+#include "tests/pipeline/result_fixture.h"
 
 namespace glarecam::daemon {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A result as `process` writes it, with Lmax `lmax_cd_m2` and the rest at its defaults.
-pipeline::StackResult someResult(double lmax_cd_m2) {
-  pipeline::StackResult result;
-  result.stack = "20260621T080000Z-a40.00";
-  result.width = 320;
-  result.height = 256;
-  result.calibration.luminance_factor = 1500;
-  result.luminance.max_cd_m2 = lmax_cd_m2;
-  return result;
-}
+using testing::minimalResult;
 
 TEST(ResultBrief, TakesWhatTheResultSays) {
-  pipeline::StackResult result = someResult(5.4e5);
+  pipeline::StackResult result = minimalResult(5.4e5);
   result.alpha_deg = 42.3;
   result.alpha_source = "manifest";
   result.glare = true;
@@ -40,7 +32,7 @@ TEST(ResultBrief, TakesWhatTheResultSays) {
   EXPECT_EQ(full.lmax_bound, "lower");
   EXPECT_EQ(full.limit_cd_m2, 3e4);
   EXPECT_EQ(full.glare, true);
-  const ResultBrief bare = resultBrief(someResult(700));
+  const ResultBrief bare = resultBrief(minimalResult(700));
   EXPECT_FALSE(bare.alpha_deg);
   EXPECT_EQ(bare.lmax_cd_m2, 700);
   EXPECT_EQ(bare.lmax_bound, "");
@@ -59,7 +51,7 @@ TEST(ResultBrief, NewestIsTheGreatestIdWithAResult) {
     testing::writeText(results / id / "result.json", text);
   };
   const auto result = [&](const std::string& id, double lmax_cd_m2) {
-    write(id, jsonText(pipeline::toJson(someResult(lmax_cd_m2))));
+    write(id, jsonText(pipeline::toJson(minimalResult(lmax_cd_m2))));
   };
   result(".tmp-20260621T070000Z-a39.00-x1y2", 500);
   EXPECT_FALSE(newestResult(results));  // a result being staged is none yet
@@ -78,7 +70,7 @@ TEST(ResultBrief, NewestIsTheGreatestIdWithAResult) {
   write("20260622T080000Z-a40.00", "{ not json");
   EXPECT_FALSE(newestResult(results));  // the newest cannot be read: none, not an older one
   // Nor one that is JSON but not a valid result (a key renamed by another tool).
-  nlohmann::json renamed = pipeline::toJson(someResult(4000));
+  nlohmann::json renamed = pipeline::toJson(minimalResult(4000));
   renamed["luminance"]["max_cd"] = renamed["luminance"]["max_cd_m2"];
   renamed["luminance"].erase("max_cd_m2");
   write("20260622T080000Z-a40.00", renamed.dump());

@@ -11,33 +11,20 @@
 
 #include "core/atomic_file.h"
 #include "core/time.h"
+#include "daemon/output_test_support.h"
 #include "support/test_support.h"
 
 namespace glarecam::daemon {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::makeGlarecamResult;
+using testing::makeGlarecamStack;
+using testing::makeProcessed;
 using testing::TempDir;
 using testing::writeText;
 
 constexpr std::uint64_t kMiB = 1 << 20;
-
-// A stack as glarecam writes it (its manifest) with `bytes` of frame data.
-void makeGlarecamStack(const fs::path& directory, std::uint64_t bytes = 1000) {
-  fs::create_directories(directory);
-  writeText(directory / "stack.json", R"({"schema": "glarecam.stack/1"})");
-  writeText(directory / "frame-0.png", std::string(bytes, 'x'));
-}
-void makeGlarecamResult(const fs::path& directory) {
-  fs::create_directories(directory);
-  writeText(directory / "result.json", R"({"schema": "glarecam.result/1"})");
-  writeText(directory / "luminance.exr", std::string(500, 'y'));
-}
-// A processed stack of `id`: the stack and its complete result.
-void makeProcessed(const OutputTree& tree, const std::string& id, std::uint64_t bytes = 1000) {
-  makeGlarecamStack(tree.stacks() / id, bytes);
-  makeGlarecamResult(tree.results() / id);
-}
 
 UtcTime utcAt(const char* iso) { return parseIsoTime(iso).value(); }
 

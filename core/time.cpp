@@ -224,6 +224,15 @@ std::optional<UtcDay> isoDayOf(std::string_view text) {
   return leadingDay(text);
 }
 
+int daysInYear(int year) { return std::chrono::year{year}.is_leap() ? 366 : 365; }
+
+int daysInMonth(int year, int month) {
+  const std::chrono::year_month_day_last last{std::chrono::year{year} /
+                                              std::chrono::month{static_cast<unsigned>(month)} /
+                                              std::chrono::last};
+  return static_cast<int>(static_cast<unsigned>(last.day()));
+}
+
 std::string formatIsoDay(UtcDay day) {
   const year_month_day date{day};
   char text[32];

@@ -50,6 +50,10 @@ std::optional<UtcDay> isoDayOf(std::string_view text);
 // "2026-06-21"; parseIsoDay(formatIsoDay(d)) == d for the years 0000 to 9999.
 std::string formatIsoDay(UtcDay day);
 
+// Days in a year, and in a month (1 to 12) of it, in the proleptic Gregorian calendar.
+int daysInYear(int year);
+int daysInMonth(int year, int month);
+
 // The stack-id stamp: "20260621T101503Z", kStackStampLength characters.
 inline constexpr std::size_t kStackStampLength = 16;
 std::string formatStackStamp(UtcTime utc);

@@ -10,6 +10,7 @@
 
 #include "core/angles.h"
 #include "core/parallel.h"
+#include "core/time.h"
 #include "hazard/glare_region.h"
 #include "sun/solar_track.h"
 
@@ -311,11 +312,6 @@ std::vector<GlareEvent> joinEvents(std::vector<GlareEvent> events) {
 }
 
 }  // namespace
-
-int daysInYear(int year) {
-  const std::chrono::year y{year};
-  return y.is_leap() ? 366 : 365;
-}
 
 Status HazardOptions::validate() const {
   if (year < kFirstYear || year > kLastYear) {

@@ -85,7 +85,4 @@ Result<HazardResult> computeHazard(const Scene& scene,
                                    const HazardOptions& options,
                                    const HazardProgress& progress = {});
 
-// Days in a year of the proleptic Gregorian calendar.
-int daysInYear(int year);
-
 }  // namespace glarecam::hazard

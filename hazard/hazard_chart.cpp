@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/time.h"
 #include "core/version.h"
 #include "render/canvas.h"
 #include "render/colour.h"
@@ -135,19 +136,14 @@ double inkWeight(HazardCell cell) {
 
 // ---- Calendar ----
 
-bool isLeapYear(int year) { return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0; }
-
-int daysInYear(int year) { return isLeapYear(year) ? 366 : 365; }
-
 // Ticks at the first day of each month, each month's name centred between its ticks.
 std::vector<Tick> monthTicks(int year) {
   constexpr std::array<const char*, 12> kNames = {"Jan", "Feb", "Mar", "Apr", "May", "Jun",
                                                   "Jul", "Aug", "Sep", "Oct", "Nov", "Dec"};
-  constexpr std::array<int, 12> kLengths = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
   std::vector<Tick> ticks;
   int first_day = 0;
   for (std::size_t m = 0; m < kNames.size(); ++m) {
-    const int length = kLengths[m] + (m == 1 && isLeapYear(year) ? 1 : 0);
+    const int length = daysInMonth(year, static_cast<int>(m) + 1);
     ticks.push_back({.value = static_cast<double>(first_day),
                      .label = kNames[m],
                      .label_at = first_day + length / 2.0});

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "core/progress.h"
+#include "core/time.h"
 #include "hazard/hazard_report.h"
 #include "hazard/profile_table.h"
 #include "hazard/scene.h"

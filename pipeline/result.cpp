@@ -14,9 +14,6 @@ using nlohmann::json;
 
 // Counts (pixels, points, regions): whole numbers far below 2^53.
 constexpr long long kMaxCount = 1LL << 53;
-// A full ellipse axis is an angle between two rays; an orientation is within ±90°.
-constexpr double kMaxAxisDeg = 180.0;
-constexpr double kMaxOrientationDeg = 90.0;
 // A solid angle is at most the whole sphere.
 constexpr double kMaxSolidAngleSr = 4 * 3.14159265358979323846;
 

@@ -29,6 +29,11 @@ namespace glarecam::pipeline {
 
 inline constexpr std::string_view kResultSchema = "glarecam.result/1";
 
+// The bounds the readers of measured ellipses hold them to (result.json, the sweep table): a full
+// axis is an angle between two rays, at most 180°; an orientation is within ±90°.
+inline constexpr double kMaxAxisDeg = 180.0;
+inline constexpr double kMaxOrientationDeg = 90.0;
+
 // One measured ellipse (glare_ellipse.h's GlareEllipse as written): full axes in degrees, the
 // centre in pixels and as a direction, the fit's quality and the standard uncertainties.
 struct ResultEllipse {

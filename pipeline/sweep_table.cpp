@@ -75,10 +75,9 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "stack_id",
                                                              "stack"};
 
-// Physical bounds: no reflection is brighter than the sun's disk (about 1.6e9 cd/m²), and a full
-// ellipse axis is an angle between two rays, at most 180°.
+// Physical bound: no reflection is brighter than the sun's disk (about 1.6e9 cd/m²). The axes'
+// bound is the result's (result.h, kMaxAxisDeg).
 constexpr double kMaxLuminanceCdM2 = 1e10;
-constexpr double kMaxAxisDeg = 180.0;
 
 // α is the angle from the module normal; at 90° the cosine function is undefined.
 constexpr double kMaxAlphaDeg = 90.0;

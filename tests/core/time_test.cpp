@@ -131,6 +131,22 @@ TEST(IsoDay, FormatsAndRoundTrips) {
     EXPECT_EQ(parseIsoDay(formatIsoDay(day)).value(), day);
 }
 
+TEST(Calendar, DaysInTheYearAndTheMonth) {
+  EXPECT_EQ(daysInYear(2027), 365);
+  EXPECT_EQ(daysInYear(2028), 366);
+  EXPECT_EQ(daysInYear(2100), 365);  // a century is not a leap year
+  EXPECT_EQ(daysInYear(2000), 366);  // unless it divides by 400
+  EXPECT_EQ(daysInMonth(2027, 2), 28);
+  EXPECT_EQ(daysInMonth(2028, 2), 29);
+  EXPECT_EQ(daysInMonth(2100, 2), 28);
+  EXPECT_EQ(daysInMonth(2026, 1), 31);
+  EXPECT_EQ(daysInMonth(2026, 4), 30);
+  EXPECT_EQ(daysInMonth(2026, 12), 31);
+  int year_days = 0;
+  for (int m = 1; m <= 12; ++m) year_days += daysInMonth(2028, m);
+  EXPECT_EQ(year_days, daysInYear(2028));
+}
+
 TEST(IsoDay, OfADateTimeIsItsDatePart) {
   using namespace std::chrono;
   EXPECT_EQ(isoDayOf("2026-06-21T23:15:03-05:00"), UtcDay{2026y / 6 / 21});

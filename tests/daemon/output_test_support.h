@@ -9,6 +9,7 @@
 
 #include "core/json.h"
 #include "daemon/output_tree.h"
+#include "pipeline/process_stack.h"  // kResultFileName
 #include "pipeline/result.h"
 #include "support/test_support.h"
 #include "tests/pipeline/result_fixture.h"

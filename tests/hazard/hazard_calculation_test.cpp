@@ -458,12 +458,5 @@ TEST(HazardCalculation, RefusesBadOptions) {
   EXPECT_EQ(computeHazard(scene, {&profile}, options).error().code, ErrorCode::kBadInput);
 }
 
-TEST(HazardCalculation, DaysOfTheYear) {
-  EXPECT_EQ(daysInYear(2027), 365);
-  EXPECT_EQ(daysInYear(2028), 366);
-  EXPECT_EQ(daysInYear(2100), 365);
-  EXPECT_EQ(daysInYear(2000), 366);
-}
-
 }  // namespace
 }  // namespace glarecam::hazard

@@ -124,13 +124,13 @@ struct Written {
 };
 
 Written write(const HazardChartContent& content) {
-  testing::TempDir dir;
+  glarecam::testing::TempDir dir;
   const auto status = writeHazardChart(content, dir / "chart.png", dir / "chart.svg");
   EXPECT_TRUE(status) << status.error().message;
   if (!status) return {};
   for (const auto& entry : fs::directory_iterator(dir.path()))
     EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
-  return {readPng(dir / "chart.png"), testing::readText(dir / "chart.svg")};
+  return {readPng(dir / "chart.png"), glarecam::testing::readText(dir / "chart.svg")};
 }
 
 TEST(HazardChart, WritesAPngPageAndAnSvgDocument) {
@@ -208,7 +208,7 @@ TEST(HazardChart, BadContentIsRefusedWithNothingWritten) {
   variant("a second model's glare with one model", [](auto& c) { c.models.pop_back(); });
   for (const auto& [name, content] : bad) {
     SCOPED_TRACE(name);
-    testing::TempDir dir;
+    glarecam::testing::TempDir dir;
     const auto status = writeHazardChart(content, dir / "chart.png", dir / "chart.svg");
     ASSERT_FALSE(status);
     EXPECT_EQ(status.error().code, ErrorCode::kBadInput) << status.error().message;
@@ -223,8 +223,8 @@ TEST(HazardChart, BadContentIsRefusedWithNothingWritten) {
 }
 
 TEST(HazardChart, AnUnwritablePathIsAnErrorNotACrash) {
-  testing::TempDir dir;
-  testing::writeText(dir / "file", "not a directory");
+  glarecam::testing::TempDir dir;
+  glarecam::testing::writeText(dir / "file", "not a directory");
   const HazardChartContent c = markedYear(24);
   const auto png_failed = writeHazardChart(c, dir / "file" / "chart.png", dir / "chart.svg");
   ASSERT_FALSE(png_failed);

@@ -16,9 +16,6 @@ static_assert(std::is_nothrow_move_constructible_v<Canvas> &&
 static_assert(!std::is_copy_constructible_v<Canvas::Saved> &&
               !std::is_move_constructible_v<Canvas::Saved>);
 
-constexpr CanvasPixel kBlackPixel{0, 0, 0};
-constexpr CanvasPixel kRedPixel{255, 0, 0};
-
 TEST(Canvas, OnASurfaceDrawsWithoutError) {
   RgbSurface surface = RgbSurface::create(8, 8).value();
   Result<Canvas> canvas = Canvas::onSurface(surface);

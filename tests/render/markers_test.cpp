@@ -8,7 +8,6 @@ namespace glarecam::render {
 namespace {
 
 constexpr Rgb kRed{1, 0, 0};
-constexpr CanvasPixel kRedPixel{255, 0, 0};
 
 TEST(Markers, FilledCircleIsRoundAndInItsColour) {
   TestCanvas canvas(40, 40);

@@ -56,5 +56,7 @@ struct TestCanvas {
 };
 
 inline constexpr CanvasPixel kWhitePixel{255, 255, 255};
+inline constexpr CanvasPixel kBlackPixel{0, 0, 0};
+inline constexpr CanvasPixel kRedPixel{255, 0, 0};
 
 }  // namespace glarecam::render

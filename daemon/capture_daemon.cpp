@@ -7,7 +7,7 @@
 #include <algorithm>
 
 #include "capture/camera_registry.h"
-#include "daemon/earlier_run.h"
+#include "daemon/storage/earlier_run.h"
 #include "daemon/journal_sink.h"
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"

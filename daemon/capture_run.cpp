@@ -10,7 +10,7 @@
 #include "capture/sim/sim_camera.h"
 #include "core/atomic_file.h"
 #include "daemon/daemon_config.h"
-#include "daemon/rig_session.h"
+#include "daemon/hardware/rig_session.h"
 
 namespace glarecam::daemon {
 

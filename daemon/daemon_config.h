@@ -18,8 +18,8 @@
 
 #include "capture/capture_config.h"
 #include "core/error.h"
-#include "daemon/listen_address.h"
-#include "daemon/retention.h"
+#include "daemon/status/listen_address.h"
+#include "daemon/storage/retention.h"
 #include "pipeline/limit_curve.h"
 #include "rig/rig_config.h"
 

@@ -14,7 +14,7 @@
 
 #include "core/error.h"
 #include "daemon/daemon_clock.h"
-#include "daemon/result_brief.h"
+#include "daemon/status/result_brief.h"
 
 namespace glarecam::daemon {
 

@@ -4,9 +4,9 @@
 
 #include <memory>
 
-#include "daemon/log_ring.h"
+#include "daemon/status/log_ring.h"
 #include "daemon/signal_forwarder.h"
-#include "daemon/status_server.h"
+#include "daemon/status/status_server.h"
 
 namespace glarecam::daemon {
 

@@ -17,7 +17,7 @@
 #include "core/error.h"
 #include "core/time.h"
 #include "daemon/capture_daemon.h"
-#include "daemon/simulated_rig.h"
+#include "daemon/hardware/simulated_rig.h"
 
 namespace glarecam::daemon {
 

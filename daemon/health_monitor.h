@@ -18,7 +18,7 @@
 #include <string>
 
 #include "daemon/daemon_clock.h"
-#include "daemon/disk_space.h"
+#include "daemon/storage/disk_space.h"
 #include "daemon/service_notifier.h"
 
 namespace glarecam::daemon {

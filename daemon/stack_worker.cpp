@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/atomic_file.h"
-#include "daemon/output_tree.h"
+#include "daemon/storage/output_tree.h"
 #include "pipeline/process_stack.h"
 
 namespace glarecam::daemon {

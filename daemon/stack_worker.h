@@ -29,7 +29,7 @@
 #include "capture/bracketer.h"
 #include "daemon/daemon_clock.h"
 #include "daemon/daemon_events.h"
-#include "daemon/day_products.h"
+#include "daemon/storage/day_products.h"
 #include "pipeline/process_stack.h"
 
 namespace glarecam::daemon {

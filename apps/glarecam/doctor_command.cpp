@@ -1,11 +1,11 @@
-// glarecam doctor: is this rig ready for glarecamd? (daemon/rig_doctor.h)
+// glarecam doctor: is this rig ready for glarecamd? (daemon/hardware/rig_doctor.h)
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "apps/glarecam/commands.h"
 #include "core/json.h"
-#include "daemon/rig_doctor.h"
+#include "daemon/hardware/rig_doctor.h"
 #include "rig/rig_config.h"
 
 namespace glarecam::apps {

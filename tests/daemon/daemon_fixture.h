@@ -19,7 +19,7 @@
 #include "core/json.h"
 #include "daemon/capture_daemon.h"
 #include "daemon/daemon_test_support.h"
-#include "daemon/day_products.h"
+#include "daemon/storage/day_products.h"
 #include "support/test_support.h"
 
 namespace glarecam::daemon {

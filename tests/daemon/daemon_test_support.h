@@ -21,7 +21,7 @@
 #include "core/time.h"
 #include "daemon/capture_daemon.h"
 #include "daemon/daemon_clock.h"
-#include "daemon/disk_space.h"
+#include "daemon/storage/disk_space.h"
 #include "daemon/service_notifier.h"
 
 namespace glarecam::testing {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/json.h"
-#include "daemon/output_tree.h"
+#include "daemon/storage/output_tree.h"
 #include "pipeline/process_stack.h"  // kResultFileName
 #include "pipeline/result.h"
 #include "support/test_support.h"

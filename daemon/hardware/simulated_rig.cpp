@@ -1,0 +1,73 @@
+#include "daemon/hardware/simulated_rig.h"
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "rig/inclinometer/zero_offset_file.h"
+
+namespace glarecam::daemon {
+
+UtcTime defaultSimulationStart(bool alpha_targets) {
+  using namespace std::chrono;
+  const auto day = sys_days(year(2026) / June / 21);
+  return time_point_cast<microseconds>(alpha_targets ? day + hours(5) + minutes(25)
+                                                     : day + hours(6) + minutes(30));
+}
+
+Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options) {
+  GLARECAM_CHECK(ensureDirectory(options.output));
+  const std::string schedule =
+      options.interval
+          ? fmt::format("mode = \"interval\"\ninterval_s = {}", options.interval->count())
+          : std::string("mode = \"alpha-targets\"");
+  const std::string text = fmt::format(
+      R"(# glarecamd --simulate: the simulated rig (docs/operator.md). Written by glarecamd at each
+# start; edit a copy and run glarecamd --config on it to try other settings.
+camera = "{camera}"
+calibration = "{calibration}"
+
+[site]
+latitude_deg = {latitude}
+longitude_deg = {longitude}
+altitude_m = 278
+
+[module]
+azimuth_deg = 180
+
+[inclinometer]
+uri = "sim:{tilt}"
+samples = 10
+
+[gpio]
+chip = "sim"
+led = 27
+button = 22
+
+[schedule]
+{schedule}
+
+[output]
+root = "."
+reserve_mb = 64
+module = "simulated standard module"
+max_use_gib = {budget_gib}   # a small budget, so that a second simulated day shows retention
+)",
+      fmt::arg("camera", options.camera), fmt::arg("calibration", kSimulatedCalibrationFileName),
+      fmt::arg("latitude", kSimulatedLatitudeDeg), fmt::arg("longitude", kSimulatedLongitudeDeg),
+      fmt::arg("tilt", kSimulatedTiltDeg), fmt::arg("schedule", schedule),
+      fmt::arg("budget_gib", kSimulatedMaxUseGib));
+  // The simulated sensor is mounted without error: its zero offset is zero, known exactly.
+  const rig::InclinometerZeroOffset zero{.offset = {0.0, 0.0},
+                                         .uncertainty_deg = 0.0,
+                                         .measured_with = fmt::format("sim:{}", kSimulatedTiltDeg)};
+  const std::filesystem::path calibration = options.output / kSimulatedCalibrationFileName;
+  std::error_code error;
+  std::filesystem::remove(calibration, error);
+  GLARECAM_CHECK(rig::writeZeroOffset(
+      calibration, zero, {{"method", "simulated: the sensor is mounted without error"}}));
+  const std::filesystem::path path = options.output / kSimulatedRigFileName;
+  GLARECAM_CHECK(writeFileAtomic(path, text));
+  return path;
+}
+
+}  // namespace glarecam::daemon

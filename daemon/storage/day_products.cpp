@@ -1,0 +1,114 @@
+#include "daemon/storage/day_products.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "core/atomic_file.h"
+#include "core/json.h"
+#include "core/time.h"
+#include "pipeline/datasheet_publish.h"
+#include "pipeline/glare_fits.h"
+#include "pipeline/process_stack.h"
+#include "pipeline/sweep.h"
+#include "pipeline/sweep_table.h"
+
+namespace glarecam::daemon {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kDegreesPerHour = 15.0;  // the Earth turns 360° in 24 h
+
+// The rows of the day's processed stacks, with a note for each result that gives none.
+pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::string& day) {
+  pipeline::SweepTable table;
+  std::error_code error;
+  const fs::path results = options.root / kResultsDirectory;
+  std::vector<fs::path> entries;
+  for (const auto& entry : fs::directory_iterator(results, error)) entries.push_back(entry.path());
+  std::sort(entries.begin(), entries.end());
+  for (const fs::path& entry : entries) {
+    const std::string id = entry.filename().string();
+    if (stackDay(id, options.longitude_deg) != day) continue;
+    const fs::path result_file = entry / pipeline::kResultFileName;
+    if (!fs::is_regular_file(result_file, error)) continue;  // being processed
+    const auto result = pipeline::readResult(result_file);
+    auto row = result ? pipeline::sweepRowFromResult(
+                            *result, (options.root / kStacksDirectory / id).string())
+                      : Result<pipeline::SweepRow>(std::unexpected(result.error()));
+    if (!row) {
+      table.notes.push_back(fmt::format("skipped {}: {}", id, row.error().message));
+      continue;
+    }
+    table.rows.push_back(std::move(*row));
+  }
+  pipeline::sortByAlpha(table);
+  return table;
+}
+
+}  // namespace
+
+std::optional<std::string> stackDay(std::string_view stack_id,
+                                    std::optional<double> longitude_deg) {
+  const auto utc = parseStackStamp(stack_id);
+  if (!utc) return std::nullopt;
+  return solarDay(*utc, longitude_deg);
+}
+
+std::string solarDay(UtcTime utc, std::optional<double> longitude_deg) {
+  const auto offset =
+      std::chrono::seconds(std::lround(longitude_deg.value_or(0.0) / kDegreesPerHour * 3600.0));
+  const std::chrono::year_month_day date{std::chrono::floor<std::chrono::days>(utc + offset)};
+  return fmt::format("{:04}-{:02}-{:02}", int(date.year()), unsigned(date.month()),
+                     unsigned(date.day()));
+}
+
+Result<DaySummary> updateDayProducts(const DayProductsOptions& options, const std::string& day) {
+  DaySummary summary{.day = day, .directory = options.root / kDaysDirectory / day};
+  const pipeline::SweepTable table = dayTable(options, day);
+  summary.stacks = table.rows.size();
+  GLARECAM_CHECK(ensureDirectory(summary.directory));
+  GLARECAM_CHECK(writeFileAtomic(summary.directory / pipeline::kSweepTableFileName,
+                                 pipeline::formatSweepTable(table)));
+  const auto fits = pipeline::fitSweep(table);
+  if (!fits) {
+    summary.detail =
+        fmt::format("{} stacks; no data sheet yet: {}", summary.stacks, fits.error().message);
+    return summary;
+  }
+  GLARECAM_CHECK(
+      writeFileAtomic(summary.directory / kFitsFileName, jsonText(pipeline::fitsJson(*fits))));
+  GLARECAM_CHECK(pipeline::publishDatasheet(
+      {.module = options.module,
+       .date = day,
+       .table = &table,
+       .fits = &*fits,
+       .model_beta_deg = std::nullopt,
+       .limit = pipeline::inferGlareLimit(table)},
+      (summary.directory / pipeline::kSweepTableFileName).string(), summary.directory));
+  summary.datasheet = true;
+  summary.detail = fmt::format("{} stacks, data sheet updated", summary.stacks);
+  return summary;
+}
+
+std::optional<DaySummary> readDayProducts(const DayProductsOptions& options,
+                                          const std::string& day) {
+  DaySummary summary{.day = day, .directory = options.root / kDaysDirectory / day};
+  const auto table = pipeline::readSweepTable(summary.directory / pipeline::kSweepTableFileName);
+  if (!table) return std::nullopt;
+  summary.stacks = table->rows.size();
+  std::error_code error;
+  summary.datasheet = fs::is_regular_file(summary.directory / kFitsFileName, error) &&
+                      fs::is_regular_file(summary.directory / kDatasheetPictureName, error);
+  summary.detail = summary.datasheet
+                       ? fmt::format("{} stacks, data sheet of an earlier run", summary.stacks)
+                       : fmt::format("{} stacks; no data sheet yet", summary.stacks);
+  return summary;
+}
+
+}  // namespace glarecam::daemon

@@ -7,8 +7,8 @@
 #include <algorithm>
 
 #include "capture/camera_registry.h"
-#include "daemon/storage/earlier_run.h"
 #include "daemon/journal_sink.h"
+#include "daemon/storage/earlier_run.h"
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"
 

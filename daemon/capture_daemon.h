@@ -38,20 +38,20 @@
 
 #include "core/error.h"
 #include "daemon/bracket_watchdog.h"
-#include "daemon/hardware/camera_supervisor.h"
 #include "daemon/capture_schedule.h"
 #include "daemon/daemon_clock.h"
 #include "daemon/daemon_config.h"
 #include "daemon/daemon_events.h"
-#include "daemon/status/daemon_status.h"
-#include "daemon/storage/disk_space.h"
-#include "daemon/health_monitor.h"
-#include "daemon/storage/output_tree.h"
-#include "daemon/storage/retention_scheduler.h"
+#include "daemon/hardware/camera_supervisor.h"
 #include "daemon/hardware/rig_session.h"
+#include "daemon/health_monitor.h"
 #include "daemon/service_notifier.h"
 #include "daemon/stack_worker.h"
+#include "daemon/status/daemon_status.h"
 #include "daemon/status/status_board.h"
+#include "daemon/storage/disk_space.h"
+#include "daemon/storage/output_tree.h"
+#include "daemon/storage/retention_scheduler.h"
 
 namespace glarecam::daemon {
 

@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "daemon/status/log_ring.h"
 #include "daemon/signal_forwarder.h"
+#include "daemon/status/log_ring.h"
 #include "daemon/status/status_server.h"
 
 namespace glarecam::daemon {

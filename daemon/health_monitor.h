@@ -18,8 +18,8 @@
 #include <string>
 
 #include "daemon/daemon_clock.h"
-#include "daemon/storage/disk_space.h"
 #include "daemon/service_notifier.h"
+#include "daemon/storage/disk_space.h"
 
 namespace glarecam::daemon {
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/time.h"
+#include "daemon/stack_worker.h"
 #include "daemon/storage/day_products.h"
 #include "daemon/storage/retention.h"
-#include "daemon/stack_worker.h"
 #include "rig/gpio/status_led.h"
 
 namespace glarecam::daemon {

@@ -21,9 +21,9 @@
 
 #include "core/time.h"
 #include "daemon/status/daemon_status.h"
+#include "daemon/status/result_brief.h"
 #include "daemon/storage/day_products.h"
 #include "daemon/storage/output_tree.h"
-#include "daemon/status/result_brief.h"
 
 namespace glarecam::daemon {
 

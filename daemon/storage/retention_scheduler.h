@@ -22,9 +22,9 @@
 
 #include "daemon/daemon_clock.h"
 #include "daemon/daemon_config.h"
+#include "daemon/health_monitor.h"
 #include "daemon/status/daemon_status.h"
 #include "daemon/storage/disk_space.h"
-#include "daemon/health_monitor.h"
 #include "daemon/storage/output_tree.h"
 
 namespace glarecam::daemon {

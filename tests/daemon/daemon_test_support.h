@@ -21,8 +21,8 @@
 #include "core/time.h"
 #include "daemon/capture_daemon.h"
 #include "daemon/daemon_clock.h"
-#include "daemon/storage/disk_space.h"
 #include "daemon/service_notifier.h"
+#include "daemon/storage/disk_space.h"
 
 namespace glarecam::testing {
 

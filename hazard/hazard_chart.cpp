@@ -30,33 +30,8 @@
 namespace glarecam::hazard {
 namespace {
 
-using render::Align;
-using render::Axis;
-using render::Box;
-using render::Canvas;
-using render::Dash;
-using render::DataPoint;
-using render::Font;
-using render::formatFixed;
-using render::formatPlain;
-using render::kA4Landscape;
-using render::kFrameColour;
-using render::kInk;
-using render::kPngPixelsPerPt;
-using render::kRuleStyle;
-using render::kWhite;
-using render::LegendEntry;
-using render::LineStyle;
-using render::MarkerShape;
-using render::MarkerStyle;
-using render::niceStep;
-using render::PageDrawing;
-using render::PageSize;
-using render::Plot;
-using render::Point;
-using render::Rgb;
-using render::RgbImage;
-using render::Tick;
+// Drawn with the plotting toolkit (render/): its vocabulary is this file's.
+using namespace render;
 
 namespace fs = std::filesystem;
 

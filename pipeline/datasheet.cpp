@@ -30,38 +30,8 @@
 namespace glarecam::pipeline {
 namespace {
 
-using render::Align;
-using render::Axis;
-using render::Box;
-using render::Canvas;
-using render::Dash;
-using render::DataPoint;
-using render::Font;
-using render::formatFixed;
-using render::formatGrouped;
-using render::formatSignificant;
-using render::formatToUncertainty;
-using render::kA4Landscape;
-using render::kBaselineBelowMiddleEm;
-using render::kInk;
-using render::kNoValue;
-using render::kRuleStyle;
-using render::kWhite;
-using render::LegendEntry;
-using render::linearAxisFromZero;
-using render::LineStyle;
-using render::MarkerShape;
-using render::MarkerStyle;
-using render::PageDrawing;
-using render::PdfMetadata;
-using render::Plot;
-using render::plotArea;
-using render::PlotFunction;
-using render::Range;
-using render::Rgb;
-using render::sample;
-using render::TextStyle;
-using render::TextTable;
+// Drawn with the plotting toolkit (render/): its vocabulary is this file's.
+using namespace render;
 
 namespace fs = std::filesystem;
 

@@ -13,20 +13,8 @@
 namespace glarecam::pipeline {
 namespace {
 
-using render::Align;
-using render::Canvas;
-using render::Font;
-using render::formatSiPrefixed;
-using render::kBaselineBelowMiddleEm;
-using render::kLineSpacingEm;
-using render::kWhite;
-using render::LogScale;
-using render::MarkColours;
-using render::Rgb;
-using render::RgbImage;
-using render::RgbSurface;
-using render::TextStyle;
-using render::turboColour;
+// Drawn with the plotting toolkit (render/): its vocabulary is this file's.
+using namespace render;
 
 constexpr double kMaxDecades = 6.0;      // the scale never spans more than this
 constexpr double kLowPercentile = 0.01;  // default bottom of the scale

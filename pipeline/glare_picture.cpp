@@ -17,15 +17,8 @@
 namespace glarecam::pipeline {
 namespace {
 
-using render::Box;
-using render::Canvas;
-using render::Font;
-using render::formatSiPrefixed;
-using render::kWhite;
-using render::LineJoin;
-using render::Point;
-using render::Polyline;
-using render::Rgb;
+// Drawn with the plotting toolkit (render/): its vocabulary is this file's.
+using namespace render;
 
 using calibration::AngularPlane;
 using calibration::PixelPoint;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <memory>
 #include <string>
 
 #include "rig/gpio/gpio_test_support.h"
@@ -82,13 +83,20 @@ TEST(WiringCheck, ALedPatternPlaysAndLeavesTheLedDark) {
 }
 
 TEST(WiringCheck, AButtonPressIsSeenWithinTheTimeout) {
-  SimRigIo io(allLines());
+  // The button's script runs on a clock of its own that moves a millisecond at each read: the
+  // first 10 reads see it released, then it is pressed and held. So the wait sees the press begin
+  // however late a loaded machine starts it (a button already held when the wait begins is no
+  // press); in real time on a 50 ms script it once started after the press, and waited out 10 s.
+  const RigClock::time_point t0{};
+  auto reads = std::make_shared<int>(0);
+  SimRigIo io(allLines(), [t0, reads] { return t0 + std::chrono::milliseconds(++*reads); });
+  io.scriptButton({{t0 + 11ms, true}});
   const RigClock::time_point now = RigClock::now();
-  io.scriptButton({{now + 50ms, true}});  // pressed from 50 ms on, and held
   const auto pressed = waitForButtonWithin(io, 20ms, 10s);
   ASSERT_TRUE(pressed) << pressed.error().message;
   EXPECT_TRUE(*pressed);
-  EXPECT_GE(RigClock::now() - now, 70ms);  // pressed, then held through the debounce
+  EXPECT_GT(io.buttonReads(), 10);         // released first, then pressed
+  EXPECT_GE(RigClock::now() - now, 20ms);  // held through the debounce
 
   SimRigIo idle(allLines());
   const auto start = RigClock::now();

@@ -1,6 +1,7 @@
 #include "daemon/hardware/rig_doctor.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -121,15 +122,9 @@ DoctorCheck checkDisk(const Config& config, DiskProbe& disk) {
                                 formatBytes(config.daemon.output.reserve_bytes)));
 }
 
-std::string joined(const std::vector<std::string>& parts) {
-  std::string text;
-  for (const std::string& part : parts) text += (text.empty() ? "" : "; ") + part;
-  return text;
-}
-
 DoctorCheck checkPermissions(const Config& config) {
   const std::vector<std::string> problems = permissionProblems(config);
-  if (!problems.empty()) return failed("permissions", joined(problems));
+  if (!problems.empty()) return failed("permissions", fmt::format("{}", fmt::join(problems, "; ")));
   return ok("permissions",
             fmt::format("uid {} reaches the output, calibration and devices", getuid()));
 }

@@ -1,6 +1,7 @@
 #include "daemon/status/daemon_status.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -102,12 +103,6 @@ std::string seconds(UtcTime time) {
   return formatIsoTime(std::chrono::floor<std::chrono::seconds>(time));
 }
 
-std::string joined(const std::vector<std::string>& parts) {
-  std::string line;
-  for (const std::string& part : parts) line += (line.empty() ? "" : "; ") + part;
-  return line;
-}
-
 const char* phase(const DaemonState& state) {
   if (state.stopping) return "stopping";
   if (!state.ready) return "starting";
@@ -141,7 +136,7 @@ std::vector<std::string> statusFaults(const DaemonState& state) {
 }
 
 RigActivity rigActivity(const DaemonState& state) {
-  const std::string reason = joined(statusFaults(state));
+  const std::string reason = fmt::format("{}", fmt::join(statusFaults(state), "; "));
   if (state.stopping) return {"stopping", reason};
   if (!state.camera_fault.empty()) return {"fault", reason};
   if (capturePaused(state)) return {"paused", reason};
@@ -179,7 +174,7 @@ std::string statusLine(const DaemonState& state, const std::string& schedule) {
   parts.insert(parts.end(), faults.begin(), faults.end());
   if (!state.skip_reason.empty()) parts.push_back("skipped: " + state.skip_reason);
   if (retention) parts.push_back(std::move(*retention));
-  return joined(parts);
+  return fmt::format("{}", fmt::join(parts, "; "));
 }
 
 rig::RigState ledState(const DaemonState& state, bool capturing) {

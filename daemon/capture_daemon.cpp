@@ -112,7 +112,8 @@ Status CaptureDaemon::step() {
     checkClock();
     checkWallClock();
   }
-  if (inclinometer_retry_at_ && now >= *inclinometer_retry_at_) retryInclinometer();
+  if (inclinometer_.retryAt() && now >= *inclinometer_.retryAt())
+    inclinometer_.retry(*rig_, config_.daemon.faults, state_);
   const auto retry = camera_.retryAt();
   if (!camera_.camera() && (!retry || now >= *retry)) GLARECAM_CHECK(reopenCamera(now));
   if (schedule_.replanAt() && now >= *schedule_.replanAt()) planNext(false);
@@ -215,7 +216,7 @@ SteadyTime CaptureDaemon::nextDeadline(SteadyTime now) const {
   if (mayCapture() && !requests_.empty()) earliest(now);
   if (!camera_.camera()) earliest(camera_.retryAt().value_or(now));
   earliest(schedule_.replanAt());
-  earliest(inclinometer_retry_at_);
+  earliest(inclinometer_.retryAt());
   return std::max(deadline, now);
 }
 
@@ -264,7 +265,7 @@ void CaptureDaemon::applyConfig() {
   rig_ = std::make_unique<RigSession>(
       config_.rig,
       RigSessionOptions{.faults = daemon.faults, .open_rig_io = services_.open_rig_io});
-  openSensors();
+  inclinometer_.open(*rig_, state_);
   openGpio();
   checkClock();
   planNext(false);
@@ -291,17 +292,6 @@ void CaptureDaemon::reload() {
   ++state_.reloads;
   applyConfig();
   spdlog::info("glarecamd: reloaded {}", options_.config_path.string());
-}
-
-void CaptureDaemon::openSensors() {
-  const Status opened = rig_->openSensors();
-  if (opened) {
-    state_.inclinometer_fault.clear();
-    return;
-  }
-  if (opened.error().message != state_.inclinometer_fault)
-    spdlog::error("glarecamd: {}", opened.error().message);
-  state_.inclinometer_fault = opened.error().message;
 }
 
 void CaptureDaemon::openGpio() {
@@ -393,9 +383,10 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   if (config_.daemon.output.module != kUnnamedModule)
     settings.module = config_.daemon.output.module;
   settings.alpha_from_scene = !rig_->measuresAlpha();
-  bool pause = false;
-  const std::optional<rig::RigGeometry> geometry = measureGeometry(settings, pause);
-  if (pause) return skip("capture paused for the inclinometer");
+  const InclinometerFaults::Measured measured =
+      inclinometer_.measure(*rig_, config_.daemon.faults, state_, settings);
+  if (measured.pause) return skip("capture paused for the inclinometer");
+  const std::optional<rig::RigGeometry>& geometry = measured.geometry;
   if (trigger == CaptureTrigger::kSchedule && geometry) {
     if (geometry->sun && geometry->sun->elevation_deg <= 0) return skip("the sun is down");
     if (!target_deg && geometry->alpha_deg >= config_.daemon.schedule.max_alpha_deg)
@@ -442,39 +433,6 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   }
   if (!worker_->submit(std::move(*stack))) spdlog::error("glarecamd: the worker refused a stack");
   return {};
-}
-
-// The geometry for a stack, into `settings`; on a fault, per [faults] inclinometer, the stack's α
-// is unknown or capture pauses (`pause`), and the inclinometer is read again in
-// kInclinometerRetry.
-std::optional<rig::RigGeometry> CaptureDaemon::measureGeometry(capture::CaptureSettings& settings,
-                                                               bool& pause) {
-  pause = false;
-  if (!rig_->measuresAlpha()) return std::nullopt;
-  const Result<rig::RigGeometry> measured = rig_->measure(clock_.utcNow(), clock_.clockStatus());
-  const FaultConfig& faults = config_.daemon.faults;
-  state_.inclinometer_pauses = faults.inclinometer == InclinometerFaultPolicy::kPause;
-  RigSession::record(measured, settings);
-  if (measured) {
-    if (!state_.inclinometer_fault.empty()) spdlog::info("glarecamd: the inclinometer reads again");
-    state_.inclinometer_fault.clear();
-    inclinometer_retry_at_.reset();
-    return *measured;
-  }
-  pause = state_.inclinometer_pauses;
-  if (measured.error().message != state_.inclinometer_fault)
-    spdlog::error("glarecamd: {}; {}", measured.error().message,
-                  pause ? "capture pauses" : "the stack's α is unknown");
-  state_.inclinometer_fault = measured.error().message;
-  inclinometer_retry_at_ = clock_.now() + kInclinometerRetry;
-  return std::nullopt;
-}
-
-void CaptureDaemon::retryInclinometer() {
-  inclinometer_retry_at_.reset();
-  capture::CaptureSettings unused;
-  bool pause = false;
-  measureGeometry(unused, pause);  // clears the fault when it reads, else sets the next retry
 }
 
 void CaptureDaemon::finishStack(capture::CapturedStack& stack,

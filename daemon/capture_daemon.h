@@ -20,8 +20,9 @@
 //
 // The daemon owns the loop (run, step, handle) and one capture: it schedules and dispatches. The
 // schedule, the rig session, the health checks, the watchdog's bracket estimate
-// (bracket_watchdog.h), when retention runs (retention_scheduler.h), what a restart recalls of the
-// run before it (earlier_run.h) and the output tree are each their own class. Everything it
+// (bracket_watchdog.h), what an inclinometer fault means for capture (inclinometer_faults.h), when
+// retention runs (retention_scheduler.h), what a restart recalls of the run before it
+// (earlier_run.h) and the output tree are each their own class. Everything it
 // touches is injected (DaemonServices): tests run it on a manual clock with a scripted camera,
 // disk and notifier, one thread, no sleeping.
 #pragma once
@@ -43,6 +44,7 @@
 #include "daemon/daemon_config.h"
 #include "daemon/daemon_events.h"
 #include "daemon/hardware/camera_supervisor.h"
+#include "daemon/hardware/inclinometer_faults.h"
 #include "daemon/hardware/rig_session.h"
 #include "daemon/health_monitor.h"
 #include "daemon/service_notifier.h"
@@ -77,9 +79,6 @@ struct DaemonOptions {
 
 // The config with the command line's overrides applied: the one place they are.
 Config effectiveConfig(Config config, const DaemonOptions& options);
-
-// While paused by the inclinometer, how soon it is read again.
-inline constexpr std::chrono::seconds kInclinometerRetry{30};
 
 // What asked for a stack: the schedule, the operator's button or SIGUSR1.
 enum class CaptureTrigger { kSchedule, kButton, kSignal };
@@ -120,7 +119,6 @@ class CaptureDaemon {
   Status checkReloadedCamera(const Config& config);
   void applyConfig();
   void reload();
-  void openSensors();
   void openGpio();
   void closeGpio();
   void prepareOutput(bool clean);
@@ -129,8 +127,6 @@ class CaptureDaemon {
 
   // One capture.
   Status capture(CaptureTrigger trigger);
-  std::optional<rig::RigGeometry> measureGeometry(capture::CaptureSettings& settings, bool& pause);
-  void retryInclinometer();
   void finishStack(capture::CapturedStack& stack, const std::optional<rig::RigGeometry>& geometry,
                    CaptureTrigger trigger, UtcTime bracket_start, UtcTime bracket_end);
 
@@ -159,10 +155,10 @@ class CaptureDaemon {
   CaptureSchedule schedule_;
   HealthMonitor health_;
   BracketWatchdog watchdog_{health_};
+  InclinometerFaults inclinometer_{clock_};
   OutputTree output_;
   RetentionScheduler retention_;
 
-  std::optional<SteadyTime> inclinometer_retry_at_;
   std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;
   bool stopping_ = false;

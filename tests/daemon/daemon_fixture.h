@@ -1,7 +1,8 @@
 // The fixture of glarecamd's core on the test doubles (daemon_test_support.h): a config written
 // for the lab rig of the tests, and the daemon made on the manual clock, the recording notifier,
 // the scripted disk and cameras, its output read back. Shared by the tests of the daemon loop
-// (capture_daemon_test.cpp) and of its config (daemon_config_test.cpp).
+// (capture_daemon_test.cpp), of its config (daemon_config_test.cpp) and of the rig around the
+// camera (hardware/).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -50,6 +51,15 @@ inline std::string rigToml(const RigSpec& spec) {
   text += "[schedule]\n" + spec.schedule + "\n";
   text += "[faults]\n" + spec.faults + "\n";
   return text + spec.extra;
+}
+
+// The config of `spec`, written into `directory` as glarecam.toml and read back (a failure to
+// read it fails the test, and gives the default config).
+inline Config labConfig(const std::filesystem::path& directory, const RigSpec& spec = {}) {
+  testing::writeText(directory / "glarecam.toml", rigToml(spec));
+  const auto config = readConfig(directory / "glarecam.toml");
+  EXPECT_TRUE(config) << config.error().message;
+  return config.value_or(Config{});
 }
 
 class DaemonTest : public ::testing::Test {

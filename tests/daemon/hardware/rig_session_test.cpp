@@ -17,14 +17,6 @@ namespace {
 
 using testing::TempDir;
 
-// The config of `spec` (daemon_fixture.h's lab rig), written into `dir` and read.
-Config readLabConfig(const TempDir& dir, const RigSpec& spec = {}) {
-  testing::writeText(dir / "glarecam.toml", rigToml(spec));
-  const auto config = readConfig(dir / "glarecam.toml");
-  EXPECT_TRUE(config) << config.error().message;
-  return config.value_or(Config{});
-}
-
 RigSession labSession(const Config& config) {
   return RigSession(config.rig, {.faults = config.daemon.faults, .log_name = "test"});
 }
@@ -54,7 +46,7 @@ TEST(RigSession, ATiltOutsideTheFaultsRangeIsImplausible) {
 
 TEST(RigSession, MeasuresAlphaFromTheConfigsRig) {
   TempDir dir;
-  RigSession session = labSession(readLabConfig(dir));
+  RigSession session = labSession(labConfig(dir.path()));
   EXPECT_TRUE(session.measuresAlpha());
   EXPECT_FALSE(session.sceneAlphaDeg());
   ASSERT_TRUE(session.openSensors());
@@ -70,7 +62,7 @@ TEST(RigSession, MeasuresAlphaFromTheConfigsRig) {
 
 TEST(RigSession, AnImplausibleTiltIsAFaultNeverAnAlpha) {
   TempDir dir;
-  RigSession session = labSession(readLabConfig(dir, {.faults = "max_tilt_deg = 45"}));
+  RigSession session = labSession(labConfig(dir.path(), {.faults = "max_tilt_deg = 45"}));
   const auto geometry = session.measure(utcNow(), std::nullopt);  // opens the sensors itself
   ASSERT_FALSE(geometry);
   EXPECT_EQ(geometry.error().code, ErrorCode::kHardware);
@@ -82,7 +74,7 @@ TEST(RigSession, AnImplausibleTiltIsAFaultNeverAnAlpha) {
 
 TEST(RigSession, RecordsAlphaOrWhyItIsUnknown) {
   TempDir dir;
-  RigSession session = labSession(readLabConfig(dir));
+  RigSession session = labSession(labConfig(dir.path()));
   const auto measured = session.measure(utcNow(), std::nullopt);
   ASSERT_TRUE(measured) << measured.error().message;
   capture::CaptureSettings settings;
@@ -117,7 +109,7 @@ TEST(RigSession, AConfigThatGivesNoAlphaMeasuresNothing) {
 
 TEST(RigSession, OpensTheConfigsGpio) {
   TempDir dir;
-  RigSession session = labSession(readLabConfig(dir));
+  RigSession session = labSession(labConfig(dir.path()));
   ASSERT_TRUE(session.openGpio());
   ASSERT_NE(session.io(), nullptr);
   EXPECT_TRUE(session.io()->hasLed());
@@ -128,7 +120,7 @@ TEST(RigSession, OpensTheConfigsGpio) {
 
 TEST(RigSession, AsASeriesRigItMeasuresBeforeEachStack) {
   TempDir dir;
-  RigSession session = labSession(readLabConfig(dir));
+  RigSession session = labSession(labConfig(dir.path()));
   capture::CaptureSettings settings;
   const auto first = session.prepareStack(settings, 0);
   ASSERT_TRUE(first) << first.error().message;
@@ -137,7 +129,7 @@ TEST(RigSession, AsASeriesRigItMeasuresBeforeEachStack) {
   EXPECT_NEAR(*settings.alpha_deg, 40.0, 0.05);
   EXPECT_TRUE(settings.geometry);
 
-  RigSession implausible = labSession(readLabConfig(dir, {.faults = "max_tilt_deg = 45"}));
+  RigSession implausible = labSession(labConfig(dir.path(), {.faults = "max_tilt_deg = 45"}));
   capture::CaptureSettings refused;
   const auto prepared = implausible.prepareStack(refused, 0);
   ASSERT_FALSE(prepared);

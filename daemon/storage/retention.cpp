@@ -13,7 +13,6 @@
 #include "core/json.h"
 #include "core/stack_io.h"
 #include "core/time.h"
-#include "daemon/stack_worker.h"  // kFailedSuffix
 #include "daemon/storage/day_products.h"
 #include "pipeline/process_stack.h"
 #include "pipeline/result.h"

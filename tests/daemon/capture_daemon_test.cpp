@@ -659,6 +659,30 @@ TEST_F(DaemonTest, RetentionDeletesNothingWhileTheClockIsUnsynchronised) {
   EXPECT_EQ(daemon->state().stacks_deleted, 0u);
 }
 
+// Retention's policy follows a reload: off for two days, then a day's stacks kept from the reload
+// on; the next stack done deletes what is older.
+TEST_F(DaemonTest, AReloadThatTurnsRetentionOnTakesEffect) {
+  const std::string schedule = "mode = \"interval\"\ninterval_s = 21600";
+  writeConfig({.schedule = schedule});
+  auto daemon = makeDaemon();
+  std::uint64_t deleted_before_reload = 1;
+  std::size_t stacks_before_reload = 0;
+  clock_.at(48h, [&] {
+    deleted_before_reload = daemon->state().stacks_deleted;
+    stacks_before_reload = stacks().size();
+    writeConfig({.schedule = schedule, .output = "keep_stacks_days = 1"});
+  });
+  signalAt(48h, *daemon, SIGHUP);
+  terminateAt(72h + 1s, *daemon);  // from 2026-06-21 08:00 to 2026-06-24 08:00 UTC
+  ASSERT_TRUE(daemon->run());
+  EXPECT_EQ(daemon->state().reloads, 1u);
+  EXPECT_EQ(deleted_before_reload, 0u);
+  EXPECT_GE(stacks_before_reload, 8u);  // every stack of the first two days was kept
+  EXPECT_GT(daemon->state().stacks_deleted, 0u);
+  for (const fs::path& stack : stacks())  // nothing of the 21st or 22nd is left
+    EXPECT_GE(stack.filename().string().substr(0, 8), "20260623") << stack;
+}
+
 // A disk whose free space is what the output tree leaves of a fixed capacity: deleting frees it.
 class TreeSizedDisk final : public DiskProbe {
  public:

@@ -313,6 +313,17 @@ std::vector<GlareEvent> joinEvents(std::vector<GlareEvent> events) {
 
 }  // namespace
 
+std::optional<std::string> HazardOptions::yearWarning() const {
+  if (year >= kLikelyFirstYear && year <= kLikelyLastYear) return std::nullopt;
+  constexpr int kCentury = 2000;  // "27": a two-digit year of this century
+  const std::string typo = year >= 0 && year < 100
+                               ? " (did you mean " + std::to_string(kCentury + year) + "?)"
+                               : std::string();
+  return "--year " + std::to_string(year) + " is outside " + std::to_string(kLikelyFirstYear) +
+         "\u2013" + std::to_string(kLikelyLastYear) + typo + "; computed for the year " +
+         std::to_string(year) + " as given";
+}
+
 Status HazardOptions::validate() const {
   if (year < kFirstYear || year > kLastYear) {
     return badInput("--year " + std::to_string(year) + " is outside the sun's range [" +

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -38,7 +39,15 @@ struct HazardOptions {
   int first_day = 0, day_count = 0;
 
   Status validate() const;  // kBadInput naming the option
+  // A warning for a year that is valid but unlikely meant (outside kLikelyYears: "27" for 2027, a
+  // historical year), nullopt otherwise. The year is computed as given either way.
+  std::optional<std::string> yearWarning() const;
 };
+
+// The years a glare assessment is likely made for: from when ΔT is measured (SPA's table starts
+// its observed values in the 20th century) to well past a plant's life. Outside, --year is
+// accepted (the sun's range is far wider) but warned about.
+inline constexpr int kLikelyFirstYear = 1950, kLikelyLastYear = 2200;
 
 // One step of one observer, as a bit mask: bit m set when model m glares there (union over the
 // arrays); kOutsideHoursBit / kSunDownBit when the step does not count.

@@ -36,6 +36,15 @@ check "json" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --st
 expect "--json prints hazard.json" grep -q '"schema": "glarecam.hazard/1"' "$WORK/out"
 expect "--json has the cone" grep -q '"cone:0.5"' "$WORK/out"
 
+# A year valid for the sun but unlikely meant: computed, and warned about on stderr.
+check "two-digit year" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 27 --step-s 3600 \
+  --out "$WORK/y" --no-progress
+expect "two-digit year warned" grep -qF "warning: --year 27 is outside 1950" "$WORK/err"
+expect "two-digit year: did you mean" grep -qF "did you mean 2027?" "$WORK/err"
+check "a usual year" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --step-s 3600 \
+  --out "$WORK/y2" --no-progress
+expect "a usual year is not warned about" bash -c "! grep -q -- '--year' '$WORK/err'"
+
 # An array's own profile, relative to the scene file.
 mkdir -p "$WORK/own/profiles"
 cp "$PROFILE" "$WORK/own/profiles/p.json"

@@ -458,5 +458,24 @@ TEST(HazardCalculation, RefusesBadOptions) {
   EXPECT_EQ(computeHazard(scene, {&profile}, options).error().code, ErrorCode::kBadInput);
 }
 
+TEST(HazardOptions, AYearFarFromNowIsComputedButWarnedAbout) {
+  HazardOptions options;
+  for (int year : {kLikelyFirstYear, 2027, kLikelyLastYear}) {
+    options.year = year;
+    EXPECT_FALSE(options.yearWarning()) << year;
+  }
+  options.year = 27;  // a two-digit year
+  ASSERT_TRUE(options.validate());
+  EXPECT_EQ(options.yearWarning(),
+            "--year 27 is outside 1950\u20132200 (did you mean 2027?); computed for the year 27 "
+            "as given");
+  options.year = 1800;  // a historical year: no guess
+  ASSERT_TRUE(options.validate());
+  EXPECT_EQ(options.yearWarning(),
+            "--year 1800 is outside 1950\u20132200; computed for the year 1800 as given");
+  options.year = 2201;
+  EXPECT_TRUE(options.yearWarning());
+}
+
 }  // namespace
 }  // namespace glarecam::hazard

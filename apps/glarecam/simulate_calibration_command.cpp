@@ -19,6 +19,7 @@ namespace {
 struct SimulateTargetArgs {
   std::string target, out, seed = "1", sensor_seed = "1";
   std::optional<std::string> size;
+  bool no_progress = false;
 };
 
 Status runSimulateTarget(const SimulateTargetArgs& args) {
@@ -35,7 +36,8 @@ Status runSimulateTarget(const SimulateTargetArgs& args) {
   std::vector<capture::CalibrationTargetStack> stacks;
   GLARECAM_ASSIGN(stacks, capture::simulateCalibrationTarget(options));
   std::vector<std::filesystem::path> written;
-  GLARECAM_ASSIGN(written, capture::writeCalibrationTargetStacks(args.out, options.target, stacks));
+  GLARECAM_ASSIGN(written, capture::writeCalibrationTargetStacks(args.out, options.target, stacks,
+                                                                 !args.no_progress));
   for (const std::filesystem::path& path : written) std::printf("%s\n", path.c_str());
   return {};
 }
@@ -60,6 +62,7 @@ void addSimulateCalibrationCommand(CLI::App& app, Action& action) {
                   "places the sensor's defects (dark: 12 hot pixels, a 0.5 DN fixed pattern); "
                   "`simulate --sensor-seed` with the same seed and size has the same (default 1)")
       ->type_name("UINT");
+  sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
   sub->callback([args, &action] { action = [args] { return runSimulateTarget(*args); }; });
 }
 

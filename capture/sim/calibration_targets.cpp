@@ -11,6 +11,7 @@
 #include "capture/sim/simulated_stack.h"
 #include "core/angles.h"
 #include "core/json.h"
+#include "core/progress.h"
 #include "core/stack_io.h"
 
 namespace glarecam::capture {
@@ -438,9 +439,10 @@ Result<std::vector<CalibrationTargetStack>> simulateCalibrationTarget(
 
 Result<std::vector<fs::path>> writeCalibrationTargetStacks(
     const fs::path& directory, CalibrationTarget target,
-    const std::vector<CalibrationTargetStack>& stacks) {
+    const std::vector<CalibrationTargetStack>& stacks, bool show_progress) {
   std::vector<fs::path> written;
   const std::string name(calibrationTargetName(target));
+  Progress progress("writing " + name, static_cast<int>(stacks.size()), show_progress);
   for (std::size_t i = 0; i < stacks.size(); ++i) {
     const fs::path path =
         directory / (stacks.size() == 1 ? name : fmt::format("{}-{:02}", name, i));
@@ -450,7 +452,9 @@ Result<std::vector<fs::path>> writeCalibrationTargetStacks(
     request.text_files.emplace_back("truth.json", jsonText(stacks[i].truth));
     GLARECAM_CHECK(writeStack(path, request));
     written.push_back(path);
+    progress.advance(path.filename().string());
   }
+  progress.finish();
   return written;
 }
 

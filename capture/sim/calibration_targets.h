@@ -67,9 +67,10 @@ Result<std::vector<CalibrationTargetStack>> simulateCalibrationTarget(
     const CalibrationTargetOptions& options);
 
 // Writes the stacks as <directory>/<target>[-NN], each with its truth.json; returns their paths.
+// `show_progress`: a progress line over the stacks on stderr (the board's 12 views take a while).
 Result<std::vector<std::filesystem::path>> writeCalibrationTargetStacks(
     const std::filesystem::path& directory, CalibrationTarget target,
-    const std::vector<CalibrationTargetStack>& stacks);
+    const std::vector<CalibrationTargetStack>& stacks, bool show_progress = false);
 
 // What a target puts in front of the lens, in cd/m² (the `sim:target=NAME` camera looks at it):
 // the scene only, without the recorded stacks' sensor defects (fixed pattern, hot pixels, the

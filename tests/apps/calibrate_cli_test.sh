@@ -17,6 +17,10 @@ for target in dark flat linearity noise luminance board; do
   check "simulate-calibration $target" 0 "$GLARECAM" simulate-calibration "$target" --out "$T"
 done
 expect "board: 12 view stacks" test "$(ls -d "$T"/board-* | wc -l)" -eq 12
+# --no-progress, as every command with a long operation takes it.
+check "simulate-calibration --no-progress" 0 "$GLARECAM" simulate-calibration dark --out "$WORK/np" \
+  --no-progress
+expect "simulate-calibration --no-progress: stderr quiet" test ! -s "$WORK/err"
 
 # Dark: black level 64 DN, 12 hot pixels (tolerances: tests/calibration/calibration_procedures_test.cpp).
 check "calibrate dark" 0 "$GLARECAM" calibrate dark "$T/dark" --out "$C/dark.json" --no-progress

@@ -24,6 +24,20 @@ for command in simulate simulate-calibration process sweep fit datasheet model c
   expect "$command --help names every option's value" \
     sh -c "! grep -E '^ +-[^ ]+ TEXT' '$WORK/help'"
 done
+# glarecam --help's "Docs:" list names every user guide in docs/ (not the developers' pages, nor
+# the copied spec); the commands' own lines name theirs too, so only that list is read.
+check "help lists the docs" 0 "$GLARECAM" --help
+sed -n '/^Docs:/,/^Usage:/p' "$WORK/out" >"$WORK/docs-list"
+for doc in "$(dirname "$0")"/../../docs/*.md; do
+  name=docs/$(basename "$doc")
+  case $name in docs/architecture.md | docs/fuzzing.md | docs/hazard-method.md) continue ;; esac
+  expect "--help's Docs: list names $name" grep -qF "$name" "$WORK/docs-list"
+done
+# docs/process.md quotes the usage error as it is printed.
+check "usage error" 2 "$GLARECAM" process --bogus
+quoted=$(grep -o 'glarecam: [^`]*--bogus[^`]*' "$(dirname "$0")/../../docs/process.md")
+expect "docs/process.md quotes a usage error" test -n "$quoted"
+expect "usage error as docs/process.md quotes it" grep -qxF "$quoted" "$WORK/err"
 check "no command" 2 "$GLARECAM"
 check "unknown command" 2 "$GLARECAM" frobnicate
 check "unknown option" 2 "$GLARECAM" process --frobnicate x

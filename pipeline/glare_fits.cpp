@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <Eigen/Dense>
@@ -591,11 +592,23 @@ Result<SweepFits> fitSweep(const SweepTable& all, const FitOptions& options) {
       table.rows.push_back(row);
   }
   const int rows = static_cast<int>(table.rows.size());
-  if (rows < kLogisticParameters)
+  if (rows < kLogisticParameters) {
+    std::string left_out;  // the suspect rows, by α and stack, and how to fit them anyway
+    if (suspects > 0) {
+      std::vector<std::string> named;
+      for (const SweepRow& row : all.rows) {
+        if (row.isSuspect())
+          named.push_back(fmt::format("\u03b1 {:g}\u00b0 {}", row.alpha_deg,
+                                      row.stack_id.empty() ? row.stack : row.stack_id));
+      }
+      left_out = fmt::format(" of {} ({} suspect left out: {}; --include-suspect fits them)",
+                             all.rows.size(), suspects, fmt::join(named, ", "));
+    }
     return badInput(
-        fmt::format("{} rows: the fits need at least {} (the logistic has {} "
+        fmt::format("{} rows{}: the fits need at least {} (the logistic has {} "
                     "parameters)",
-                    rows, kLogisticParameters, kLogisticParameters));
+                    rows, left_out, kLogisticParameters, kLogisticParameters));
+  }
   // Repeated stacks at one α (a rig that does not move) do not make a function of α.
   std::set<long> distinct_alpha;
   for (const SweepRow& row : table.rows)

@@ -219,6 +219,26 @@ TEST(GlareFits, SweepWithFewerRowsThanParametersIsBadInput) {
   EXPECT_NE(fits.error().message.find("at least 4"), std::string::npos);
 }
 
+// A table whose rows are all suspect: the error names them and the option that fits them.
+TEST(GlareFits, TooFewRowsOnceTheSuspectAreLeftOutNamesThem) {
+  SweepTable table = tableIII();
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    table.rows[i].suspect = "frames disagree with the merge";
+    table.rows[i].stack_id = fmt::format("s{}", i);
+  }
+  table.rows[0].suspect.clear();  // one row is fine: 1 of 9 left
+  const auto fits = fitSweep(table);
+  ASSERT_FALSE(fits);
+  EXPECT_EQ(fits.error().code, ErrorCode::kBadInput);
+  const std::string& message = fits.error().message;
+  EXPECT_EQ(message.find("1 rows of 9 (8 suspect left out: \u03b1 "), 0u) << message;
+  EXPECT_NE(message.find("\u00b0 s1, "), std::string::npos) << message;
+  EXPECT_NE(message.find("\u00b0 s8; --include-suspect fits them): the fits need at least 4"),
+            std::string::npos)
+      << message;
+  EXPECT_TRUE(fitSweep(table, {.include_suspect = true}));
+}
+
 TEST(GlareFits, AxisWithoutEnoughEllipsesIsLeftUnfittedWithAWarning) {
   // A module that glares only at flat angles: luminance fits on all rows, axes on three.
   auto fits = fitSweep(rows({{5, 2e4, 0, 0},

@@ -2,8 +2,10 @@
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -38,11 +40,23 @@ Status SweepPublishOptions::validate() const {
   return {};
 }
 
+std::optional<std::string> moduleMismatch(const std::string& module, const SweepTable& table) {
+  if (module == SweepPublishOptions{}.module) return std::nullopt;  // not given
+  const std::vector<std::string> modules = tableModules(table);
+  if (modules.empty() || std::ranges::find(modules, module) != modules.end()) return std::nullopt;
+  return fmt::format(
+      "--module \"{}\" is not the module the stacks were recorded of (\"{}\"); "
+      "the sheet says \"{}\"",
+      module, fmt::join(modules, "\", \""), module);
+}
+
 Result<fs::path> publishSweepTable(const SweepPublishOptions& options) {
   GLARECAM_CHECK(options.validate());
   SweepTable table;
   SweepFits fits;
   GLARECAM_ASSIGN(fits, readAndFitSweep(options.sweep, table, options.fit));
+  if (const auto mismatch = moduleMismatch(options.module, table))
+    spdlog::warn("{}: {}", options.sweep.string(), *mismatch);
   GlareLimit limit;
   GLARECAM_ASSIGN(limit, sheetLimit(options.sweep.string(), table, options.threshold_cd_m2));
   const fs::path out = options.out.value_or(options.sweep.parent_path());

@@ -33,7 +33,13 @@ struct SweepPublishOptions {
   Status validate() const;
 };
 
+// When `module` (--module, given: not the default) names none of the modules the table's stacks
+// were recorded of (tableModules), the warning that says so; nullopt when it does, when the
+// stacks name no module, or when --module was not given.
+std::optional<std::string> moduleMismatch(const std::string& module, const SweepTable& table);
+
 // Reads and fits the sweep table and publishes its sheet and profile; the PDF's path.
+// Warns (moduleMismatch) when --module disagrees with the stacks' own module.
 Result<std::filesystem::path> publishSweepTable(const SweepPublishOptions& options);
 
 // The sheet's date: `date` (YYYY-MM-DD, checked), else SOURCE_DATE_EPOCH (reproducible builds),

@@ -174,12 +174,20 @@ std::vector<FrameCheck> checkFrames(const Stack& stack, const calibration::Merge
     checks.push_back({stack.manifest.frames[i].file, agreement[i]});
     if (agreement[i].agrees()) continue;
     spdlog::warn(
-        "{}: frames[{}] ({}) reads {:+.0f} % against the other frames (median of {} pixel "
-        "pairs): swapped files, a wrong exposure_us, gain_db, nd_transmission or saturation_dn, "
-        "or a scene that changed during the bracket? Every luminance and ellipse of this stack "
-        "is suspect",
+        "{}: frames[{}] ({}) reads {} the other frames (median of {} pixel pairs): swapped "
+        "files, a wrong exposure_us, gain_db, nd_transmission or saturation_dn, or a scene that "
+        "changed during the bracket? Every luminance and ellipse of this stack is suspect",
         (stack.directory / kManifestFileName).string(), i, stack.manifest.frames[i].file,
-        100.0 * (agreement[i].median_ratio - 1.0), agreement[i].samples);
+        formatFrameRatio(agreement[i].median_ratio), agreement[i].samples);
+  }
+  std::vector<double> ratios;
+  for (const auto& frame : agreement) ratios.push_back(frame.median_ratio);
+  for (const auto& [i, j] : swappedFramePairs(ratios)) {
+    spdlog::warn(
+        "{}: frames[{}] ({}) and frames[{}] ({}) look swapped: each reads about what the "
+        "other's exposure would",
+        (stack.directory / kManifestFileName).string(), i, stack.manifest.frames[i].file, j,
+        stack.manifest.frames[j].file);
   }
   return checks;
 }

@@ -104,6 +104,16 @@ struct ResultFrame {
   bool operator==(const ResultFrame&) const = default;
 };
 
+// A frame's median ratio against the other frames in words: "+9 %" or "-40 %" within a factor of
+// 2 of them, else the factor: "17.1 times" or "1/500 of" (what a wrong or swapped exposure gives).
+std::string formatFrameRatio(double median_ratio);
+
+// The pairs of frames (indices into `median_ratios`, first < second) that look swapped: both
+// disagree with the others by more than a factor of 2, in opposite directions and by the same
+// factor to within 25 % (a swap makes one read r and the other about 1/r).
+std::vector<std::pair<std::size_t, std::size_t>> swappedFramePairs(
+    const std::vector<double>& median_ratios);
+
 // A part of the calibration (dark, flat, luminance, ...): when and how it was measured.
 struct CalibrationPart {
   std::optional<std::string> measured_at = std::nullopt;  // ISO 8601

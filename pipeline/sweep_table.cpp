@@ -330,15 +330,14 @@ Status validateSweepAlpha(std::optional<double> alpha_deg) {
 
 namespace {
 
-// "frames disagree: frame-03.png reads +1610 %, ..." from result.json's frames check.
+// "frames disagree: frame-03.png reads 17.1 times, ..." from result.json's frames check.
 std::string disagreeingFrames(const StackResult& result) {
   std::string reason = "frames disagree with the merge";
   std::string sep = ": ";
   for (const ResultFrame& frame : result.frames) {
     if (frame.agrees != false) continue;
     reason += sep + frame.file;
-    if (frame.median_ratio)
-      reason += fmt::format(" reads {:+.0f} %", 100 * (*frame.median_ratio - 1));
+    if (frame.median_ratio) reason += " reads " + formatFrameRatio(*frame.median_ratio);
     sep = ", ";
   }
   return reason;

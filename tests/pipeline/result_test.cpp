@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <sstream>
 
@@ -241,6 +242,25 @@ TEST(Result, ReadingAFileNamesIt) {
   EXPECT_TRUE(hasResultSchema(json::parse("{\"schema\": \"glarecam.result/1\"}")));
   EXPECT_FALSE(hasResultSchema(json::parse("{\"my\": \"own results\"}")));
   EXPECT_FALSE(hasResultSchema(json::array()));
+}
+
+TEST(FrameRatio, APercentageNearTheOthersAFactorFarFromThem) {
+  EXPECT_EQ(formatFrameRatio(1.09), "+9 %");
+  EXPECT_EQ(formatFrameRatio(0.6), "-40 %");
+  EXPECT_EQ(formatFrameRatio(17.1), "17.1 times");
+  EXPECT_EQ(formatFrameRatio(0.002), "1/500 of");  // a 500th: not "-100 %"
+  EXPECT_EQ(formatFrameRatio(2), "2 times");
+}
+
+TEST(FrameRatio, TwoFramesThatReadEachOthersExposureLookSwapped) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Frames 1 and 3 swapped across a bracket step of 500: one reads 500, the other 1/500.
+  EXPECT_EQ(swappedFramePairs({1, 498, 1, 0.00201, 1}),
+            (std::vector<std::pair<std::size_t, std::size_t>>{{1, 3}}));
+  EXPECT_TRUE(swappedFramePairs({1, 1.3, 0.8, 1}).empty());    // within a factor of 2
+  EXPECT_TRUE(swappedFramePairs({1, 10, 1, 0.5, 1}).empty());  // not the same factor
+  EXPECT_TRUE(swappedFramePairs({1, 10, 1, 20}).empty());      // the same direction
+  EXPECT_TRUE(swappedFramePairs({1, nan, 1, 0.002}).empty());  // one not judged
 }
 
 }  // namespace

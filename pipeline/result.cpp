@@ -520,24 +520,31 @@ bool hasResultSchema(const json& document) {
   return document.is_object() && document.value("schema", "") == kResultSchema;
 }
 
+namespace {
+
+// A frame that reads this factor or more above or below the others is far off: its reading is
+// said as the factor, and it may be one of a swapped pair.
+constexpr double kFarOffFactor = 2;
+
+bool farAbove(double ratio) { return ratio >= kFarOffFactor; }
+bool farBelow(double ratio) { return ratio > 0 && ratio <= 1 / kFarOffFactor; }
+
+}  // namespace
+
 std::string formatFrameRatio(double median_ratio) {
-  constexpr double kFactor = 2;  // beyond it a percentage says less than the factor
-  if (median_ratio >= kFactor) return fmt::format("{:.3g} times", median_ratio);
-  if (median_ratio > 0 && median_ratio <= 1 / kFactor)
-    return fmt::format("1/{:.3g} of", 1 / median_ratio);
+  if (farAbove(median_ratio)) return fmt::format("{:.3g} times", median_ratio);
+  if (farBelow(median_ratio)) return fmt::format("1/{:.3g} of", 1 / median_ratio);
   return fmt::format("{:+.0f} %", 100 * (median_ratio - 1));
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> swappedFramePairs(
     const std::vector<double>& median_ratios) {
-  constexpr double kFactor = 2;         // as formatFrameRatio: far from the others
   constexpr double kReciprocal = 1.25;  // r and 1/r to within 25 %
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   for (std::size_t i = 0; i < median_ratios.size(); ++i) {
     for (std::size_t j = i + 1; j < median_ratios.size(); ++j) {
       const double a = median_ratios[i], b = median_ratios[j];
-      if (!(a > 0 && b > 0)) continue;  // NaN: not judged
-      const bool apart = (a >= kFactor && b <= 1 / kFactor) || (b >= kFactor && a <= 1 / kFactor);
+      const bool apart = (farAbove(a) && farBelow(b)) || (farAbove(b) && farBelow(a));  // NaN: no
       if (apart && a * b <= kReciprocal && a * b >= 1 / kReciprocal) pairs.emplace_back(i, j);
     }
   }

@@ -42,16 +42,20 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPageWidthPt = kA4Landscape.width_pt;
 constexpr double kPageHeightPt = kA4Landscape.height_pt;
 constexpr double kMarginPt = 28;
-constexpr double kHeaderHeightPt = 40;
-constexpr double kGapPt = 10;         // between blocks
-constexpr double kSectionGapPt = 15;  // between the two tables
-constexpr double kColumnGapPt = 22;   // between the plots and the tables
+constexpr double kTitleBlockHeightPt =
+    31;                                 // the title's line, down to the subtitle's first baseline
+constexpr double kHeaderRuleGapPt = 9;  // the last subtitle line's baseline to the rule
+constexpr double kGapPt = 10;           // between blocks
+constexpr double kSectionGapPt = 15;    // between the two tables
+constexpr double kColumnGapPt = 22;     // between the plots and the tables
 constexpr double kPlotColumnWidthPt = 400;
 constexpr double kBlockTitleHeightPt = 18;  // a plot's or table's title, above it
 
 // ---- Type ----
 
 constexpr Font kTitleFont{.size = 16, .bold = true};
+// The subtitle wraps to as many lines as it needs at this size, never shrinks: the camera and
+// calibration text of a real sheet made one line of it about 2 pt high.
 constexpr Font kSubtitleFont{.size = 7.5};
 constexpr Font kSectionFont{.size = 9.5, .bold = true};
 constexpr Font kTableFont{.size = 8.5};
@@ -448,48 +452,6 @@ const std::vector<std::string>& fitNotes() {
 
 // ---- Page ----
 
-struct Layout {
-  Box header, lmax_plot, axes_plot, right_column, warnings;
-};
-
-constexpr std::size_t kMaxWarningLines = 6;
-
-std::vector<std::string> warningLines(Canvas& canvas, const std::vector<std::string>& warnings,
-                                      double width_pt) {
-  std::vector<std::string> lines;
-  std::size_t shown = 0;
-  for (const std::string& warning : warnings) {
-    const std::vector<std::string> wrapped =
-        wrapText(canvas, "\u2022 " + warning, width_pt, kNoteFont);
-    if (lines.size() + wrapped.size() > kMaxWarningLines) break;
-    lines.insert(lines.end(), wrapped.begin(), wrapped.end());
-    ++shown;
-  }
-  if (shown < warnings.size())
-    lines.push_back(fmt::format("\u2026 and {} more", warnings.size() - shown));
-  return lines;
-}
-
-double warningsHeightPt(Canvas& canvas, const std::vector<std::string>& warnings, double width_pt) {
-  if (warnings.empty()) return 0;
-  return lineHeight(kSectionFont) +
-         warningLines(canvas, warnings, width_pt).size() * lineHeight(kNoteFont);
-}
-
-Layout pageLayout(Canvas& canvas, const DatasheetContent& content) {
-  const Box page{kMarginPt, kMarginPt, kPageWidthPt - kMarginPt, kPageHeightPt - kMarginPt};
-  const double plot_right = page.x0 + kPlotColumnWidthPt;
-  const double warnings_pt = warningsHeightPt(canvas, content.fits->warnings, kPlotColumnWidthPt);
-  const double body_top = page.y0 + kHeaderHeightPt + kGapPt;
-  const double plots_bottom = page.y1 - (warnings_pt > 0 ? warnings_pt + kGapPt : 0);
-  const double plot_split = (body_top + plots_bottom) / 2;
-  return {.header = {page.x0, page.y0, page.x1, page.y0 + kHeaderHeightPt},
-          .lmax_plot = {page.x0, body_top, plot_right, plot_split - kGapPt / 2},
-          .axes_plot = {page.x0, plot_split + kGapPt / 2, plot_right, plots_bottom},
-          .right_column = {plot_right + kColumnGapPt, body_top, page.x1, page.y1},
-          .warnings = {page.x0, page.y1 - warnings_pt, plot_right, page.y1}};
-}
-
 // "by the fits it glares for α 49.7–80.0°", or that it does not.
 std::string glareRangesText(const DatasheetContent& content) {
   const std::vector<AlphaRange> ranges = glareRanges(*content.fits, content.limit);
@@ -542,7 +504,8 @@ std::string subtitle(const DatasheetContent& content) {
       glareRangesText(content), measured_with);
 }
 
-void drawHeader(Canvas& canvas, const DatasheetContent& content, const Box& box) {
+void drawHeader(Canvas& canvas, const DatasheetContent& content, const Box& box,
+                const std::vector<std::string>& subtitle_lines) {
   const std::string version = fmt::format("glarecam {}", kVersion);
   const std::string stamp =
       content.date.empty() ? version : fmt::format("{}   \u00b7   {}", content.date, version);
@@ -554,11 +517,61 @@ void drawHeader(Canvas& canvas, const DatasheetContent& content, const Box& box)
   const double room = box.width() - textWidth(canvas, stamp, kSubtitleFont) - kColumnGapPt;
   const double scale = std::min(1.0, room / textWidth(canvas, title, kTitleFont));
   drawText(canvas, {box.x0, title_baseline}, title, {{kTitleFont.size * scale, true}});
-  const std::string line = subtitle(content);
-  const double sub_scale = std::min(1.0, box.width() / textWidth(canvas, line, kSubtitleFont));
-  drawText(canvas, {box.x0, title_baseline + 2 * kSubtitleFont.size}, line,
-           {{kSubtitleFont.size * sub_scale}, kMutedInk});
+  double baseline = box.y0 + kTitleBlockHeightPt;
+  for (const std::string& line : subtitle_lines) {
+    drawText(canvas, {box.x0, baseline}, line, {kSubtitleFont, kMutedInk});
+    baseline += lineHeight(kSubtitleFont);
+  }
   drawSegment(canvas, {box.x0, box.y1}, {box.x1, box.y1}, kRuleStyle);
+}
+
+struct Layout {
+  Box header, lmax_plot, axes_plot, right_column, warnings;
+  std::vector<std::string> subtitle_lines;  // wrapped to the header's width
+};
+
+constexpr std::size_t kMaxWarningLines = 6;
+
+std::vector<std::string> warningLines(Canvas& canvas, const std::vector<std::string>& warnings,
+                                      double width_pt) {
+  std::vector<std::string> lines;
+  std::size_t shown = 0;
+  for (const std::string& warning : warnings) {
+    const std::vector<std::string> wrapped =
+        wrapText(canvas, "\u2022 " + warning, width_pt, kNoteFont);
+    if (lines.size() + wrapped.size() > kMaxWarningLines) break;
+    lines.insert(lines.end(), wrapped.begin(), wrapped.end());
+    ++shown;
+  }
+  if (shown < warnings.size())
+    lines.push_back(fmt::format("\u2026 and {} more", warnings.size() - shown));
+  return lines;
+}
+
+double warningsHeightPt(Canvas& canvas, const std::vector<std::string>& warnings, double width_pt) {
+  if (warnings.empty()) return 0;
+  return lineHeight(kSectionFont) +
+         warningLines(canvas, warnings, width_pt).size() * lineHeight(kNoteFont);
+}
+
+Layout pageLayout(Canvas& canvas, const DatasheetContent& content) {
+  const Box page{kMarginPt, kMarginPt, kPageWidthPt - kMarginPt, kPageHeightPt - kMarginPt};
+  const double plot_right = page.x0 + kPlotColumnWidthPt;
+  const double warnings_pt = warningsHeightPt(canvas, content.fits->warnings, kPlotColumnWidthPt);
+  std::vector<std::string> subtitle_lines =
+      wrapText(canvas, subtitle(content), page.width(), kSubtitleFont);
+  const double header_pt = kTitleBlockHeightPt +
+                           (subtitle_lines.size() - 1) * lineHeight(kSubtitleFont) +
+                           kHeaderRuleGapPt;
+  const double body_top = page.y0 + header_pt + kGapPt;
+  const double plots_bottom = page.y1 - (warnings_pt > 0 ? warnings_pt + kGapPt : 0);
+  const double plot_split = (body_top + plots_bottom) / 2;
+  return {.header = {page.x0, page.y0, page.x1, page.y0 + header_pt},
+          .lmax_plot = {page.x0, body_top, plot_right, plot_split - kGapPt / 2},
+          .axes_plot = {page.x0, plot_split + kGapPt / 2, plot_right, plots_bottom},
+          .right_column = {plot_right + kColumnGapPt, body_top, page.x1, page.y1},
+          .warnings = {page.x0, page.y1 - warnings_pt, plot_right, page.y1},
+          .subtitle_lines = std::move(subtitle_lines)};
 }
 
 double notesHeightPt(Canvas& canvas, double width_pt) {
@@ -616,7 +629,7 @@ void drawDatasheet(Canvas& canvas, const DatasheetContent& content) {
   paint(canvas, kWhite);
   if (isSimulated(*content.table)) drawSimulatedMark(canvas);
   const Layout layout = pageLayout(canvas, content);
-  drawHeader(canvas, content, layout.header);
+  drawHeader(canvas, content, layout.header, layout.subtitle_lines);
   drawLmaxPlot(canvas, content, layout.lmax_plot);
   drawAxesPlot(canvas, content, layout.axes_plot);
   drawTables(canvas, content, layout.right_column);

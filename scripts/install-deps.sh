@@ -25,8 +25,8 @@ PACKAGES=(
   dpkg-dev lintian
   # systemd-analyze (the units' tests)
   systemd
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks (pdftotext: the data sheet's rendering test reads the PDF's words)
+  libgtest-dev libgmock-dev libbenchmark-dev poppler-utils
   # the status page in a browser (glarecamd_tests: headless Chromium takes a screenshot)
   chromium
   # the sanitizer build and its fuzz targets (libFuzzer: libclang-rt-19-dev)

@@ -5,13 +5,22 @@ JOBS           ?= $(shell nproc)
 DEMO_DIR       ?= demo-out
 CMAKE_FLAGS    ?=
 
-.PHONY: deps configure build test test-asan fuzz soak demo bench install package coverage-check clean format
+.PHONY: deps demo-deps configure build test test-asan fuzz soak demo bench install package coverage-check clean format
 
 deps:
 	bash scripts/install-deps.sh
 
+# Only what the demo builds and runs (scripts/install-deps.sh --demo): no test, benchmark,
+# packaging or sanitizer toolchain.
+demo-deps:
+	bash scripts/install-deps.sh --demo
+
+CONFIGURE = cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+
+# The suite and the benchmark are asked for by name: a build directory the demo configured
+# without them gets them back.
 configure: deps
-	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_FLAGS)
+	$(CONFIGURE) -DGLARECAM_BUILD_TESTS=ON -DGLARECAM_BUILD_BENCH=ON $(CMAKE_FLAGS)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
@@ -45,10 +54,12 @@ fuzz: deps
 	cmake --build $(ASAN_BUILD_DIR) -j $(JOBS) --target fuzz_targets
 	python3 scripts/fuzz --seconds $(FUZZ_SECONDS) $(ASAN_BUILD_DIR)/bin
 
-# Builds only what the demo runs: the tests and the benchmark are most of the objects, and the
-# demo runs neither (`make build` builds everything).
+# Installs and builds only what the demo runs: the tests and the benchmark are most of the objects
+# and of the packages, and the demo runs neither (`make build` builds everything). AUTO: the
+# suite and the benchmark stay configured where `make deps` installed their packages.
 DEMO_TARGETS = glarecam glarecamd
-demo: configure
+demo: demo-deps
+	$(CONFIGURE) -DGLARECAM_BUILD_TESTS=AUTO -DGLARECAM_BUILD_BENCH=AUTO $(CMAKE_FLAGS)
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target $(DEMO_TARGETS)
 	bash scripts/demo.sh $(BUILD_DIR)/bin $(DEMO_DIR)
 

@@ -1,14 +1,39 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package glarecam needs to build, test, benchmark and run,
-# for all parts of the project (hardware backends included). Idempotent: re-running
-# only refreshes the package lists and installs what is missing.
+# Installs the Debian 12 packages glarecam needs, and only the missing ones (idempotent:
+# re-running refreshes nothing and installs nothing when all are present).
+#
+#   scripts/install-deps.sh          everything: build, test, benchmark, package, fuzz (make deps)
+#   scripts/install-deps.sh --demo   what `make demo` needs: build glarecam and glarecamd (every
+#                                    hardware backend included) and run scripts/demo.sh
+#   --list                           print the packages, one a line, and install nothing
 set -euo pipefail
 
-PACKAGES=(
+usage() {
+  echo "usage: scripts/install-deps.sh [--demo] [--list]" >&2
+  exit 2
+}
+
+profile=all
+list=false
+for arg in "$@"; do
+  case "$arg" in
+    --demo) profile=demo ;;
+    --list) list=true ;;
+    -h | --help)
+      sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'
+      exit 0
+      ;;
+    *)
+      echo "install-deps: unknown argument '$arg'" >&2
+      usage
+      ;;
+  esac
+done
+
+# What the programs are built from and run with: `make demo` installs only these.
+DEMO_PACKAGES=(
   # toolchain
-  build-essential cmake ninja-build pkg-config git ca-certificates clang-format
-  # scripts/check-layering
-  python3
+  build-essential cmake ninja-build pkg-config ca-certificates
   # core: images, data formats, logging, CLI
   libpng-dev libdeflate-dev libtiff-dev libopenexr-dev nlohmann-json3-dev libtomlplusplus-dev
   libspdlog-dev libfmt-dev libcli11-dev
@@ -16,11 +41,22 @@ PACKAGES=(
   libopencv-dev libeigen3-dev libceres-dev
   # pictures and data sheets
   libcairo2-dev fonts-dejavu-core
-  # rig hardware: cameras, GPIO, I2C, sun position, systemd
-  libaravis-dev libusb-1.0-0-dev aravis-tools aravis-tools-cli libcamera-dev libgpiod-dev
-  libi2c-dev libnova-dev libsystemd-dev
+  # rig hardware: cameras, GPIO, I2C, systemd (the backends are built when their package is
+  # found: a demo build without them would stay without them, CMake keeps the first answer)
+  libaravis-dev libusb-1.0-0-dev libcamera-dev libgpiod-dev libi2c-dev libsystemd-dev
   # glarecamd's status page
   libcpp-httplib-dev
+)
+
+# What only the tests, the benchmark, the package and the fuzzing need.
+DEVELOPER_PACKAGES=(
+  git clang-format
+  # scripts/check-layering, doc-examples, uncertainty-coverage
+  python3
+  # the fake GenICam camera (arv-fake-gv-camera-0.8) and arv-tool for the Aravis tests
+  aravis-tools aravis-tools-cli
+  # the benchmark's peer of the sun position
+  libnova-dev
   # make package: CPack DEB (dpkg-shlibdeps), lintian
   dpkg-dev lintian
   # systemd-analyze (the units' tests)
@@ -32,6 +68,16 @@ PACKAGES=(
   # the sanitizer build and its fuzz targets (libFuzzer: libclang-rt-19-dev)
   clang-19 libclang-rt-19-dev
 )
+
+PACKAGES=("${DEMO_PACKAGES[@]}")
+if [[ $profile == all ]]; then
+  PACKAGES+=("${DEVELOPER_PACKAGES[@]}")
+fi
+
+if $list; then
+  printf '%s\n' "${PACKAGES[@]}"
+  exit 0
+fi
 
 if [[ $(id -u) -ne 0 ]]; then
   SUDO=sudo
@@ -47,7 +93,7 @@ for pkg in "${PACKAGES[@]}"; do
 done
 
 if [[ ${#missing[@]} -eq 0 ]]; then
-  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  echo "install-deps: all ${#PACKAGES[@]} packages present ($profile)"
   exit 0
 fi
 

@@ -444,14 +444,14 @@ TEST_F(DaemonTest, OnAWorkerThreadAStackTheDiskRefusedIsWrittenOnceItTakesIt) {
   signalAt(10s, *daemon, SIGUSR1);
   clock_.at(100s, [&] { fs::remove(out() / kStacksDirectory); });
   // From 200 s on, every 10 s of the manual clock, 1 ms of real time for the worker, until the
-  // stack has landed (kept, retried at a disk check, written) or 20 s of real time have passed.
-  // The loop runs on meanwhile: a wait inside one alarm would stop the disk checks that retry a
-  // stack whose refusal came late.
-  int rounds = 0;
+  // stack has landed (kept, retried at a disk check, written) or 20 s of real time have passed:
+  // a budget of time, not of rounds (a loaded machine sleeps longer than asked: 20 000 rounds of
+  // "1 ms" took minutes). The loop runs on meanwhile: a wait inside one alarm would stop the disk
+  // checks that retry a stack whose refusal came late.
+  const auto give_up = std::chrono::steady_clock::now() + 20s;
   std::function<void()> untilLanded = [&] {
-    constexpr int kMaxRounds = 20000;
     if (fs::exists(out() / kStacksDirectory / "20260621T080010Z-a40.00" / "stack.json") ||
-        ++rounds > kMaxRounds) {
+        std::chrono::steady_clock::now() > give_up) {
       daemon->events().post(SignalEvent{SIGTERM});
       return;
     }

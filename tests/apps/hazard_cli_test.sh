@@ -73,9 +73,11 @@ bad "text coordinate" "arrays[0].vertices_m[1][0] must be a number, not" \
   "$(edit text 's/\[6, 0, 9\]/["6", 0, 9]/')" --profile "$PROFILE"
 bad "two vertices" "has 2 vertices" \
   "$(edit two 's/\[\[-6, 0, 9\], \[6, 0, 9\], \[6, 5.2, 6\], \[-6, 5.2, 6\]\]/[[-6, 0, 9], [6, 0, 9]]/')" --profile "$PROFILE"
-bad "self-intersecting" "crosses itself" \
+bad "self-intersecting" "crosses itself (edges 1–2 and 3–0 cross)" \
   "$(edit cross 's/\[6, 5.2, 6\], \[-6, 5.2, 6\]/[-6, 5.2, 6], [3, 5.2, 6]/')" --profile "$PROFILE"
-bad "not planar" "is not planar" "$(edit planar 's/\[6, 5.2, 6\]/[6, 5.2, 6.5]/')" --profile "$PROFILE"
+# Vertex 2 moved 0.5 m along the roof's normal (0, 0.5, 0.866): named, not vertex 0.
+bad "not planar" "is not planar (vertex 2 lies 0.500 m off the plane of the others)" \
+  "$(edit planar 's/\[6, 5.2, 6\]/[6, 5.45, 6.433]/')" --profile "$PROFILE"
 bad "duplicate observer" "repeats the observer name" "$(edit dup 's/window-west/window-3/')" --profile "$PROFILE"
 bad "no observers" "observers is empty" \
   "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["observers"]=[]; print(json.dumps(d))' "$SCENE" >"$WORK/noobs.json"; echo "$WORK/noobs.json")" --profile "$PROFILE"

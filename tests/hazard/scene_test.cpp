@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <functional>
 
 #include "tests/hazard/hazard_fixtures.h"
@@ -58,6 +59,47 @@ TEST(HazardScene, ReadsTheMethodDocsExample) {
   EXPECT_EQ(scene->observers[1].from_h, 0);  // the whole day by default
   EXPECT_EQ(scene->observers[1].to_h, 24);
   EXPECT_TRUE(scene->warnings.empty());
+}
+TEST(HazardScene, NamesTheVertexThatIsOffThePlane) {
+  // The example roof with one vertex at a time moved 0.5 m out of its plane: the message names
+  // that vertex and its distance from the plane of the others. (The plane of all four leans
+  // toward it and passes a quarter of that from every vertex, so that the first was named.)
+  const double length = std::hypot(3.0, 5.2);
+  const double normal[3] = {0, 3 / length, 5.2 / length};
+  for (std::size_t moved = 0; moved < 4; ++moved) {
+    json scene = goodScene();
+    json& vertex = scene["arrays"][0]["vertices_m"][moved];
+    for (std::size_t axis = 0; axis < 3; ++axis)
+      vertex[axis] = vertex[axis].get<double>() + 0.5 * normal[axis];
+    char expected[128];
+    std::snprintf(expected, sizeof expected,
+                  "scene.json: arrays[0].vertices_m is not planar (vertex %zu lies 0.500 m off "
+                  "the plane of the others)",
+                  moved);
+    EXPECT_EQ(errorOf(scene), expected);
+  }
+  // A hexagon with its vertex 4 lifted: the plane through them all leans toward it.
+  json hexagon = goodScene();
+  hexagon["arrays"][0]["vertices_m"] = {{2, 0, 0},  {1, 1.7, 0},     {-1, 1.7, 0},
+                                        {-2, 0, 0}, {-1, -1.7, 0.3}, {1, -1.7, 0}};
+  EXPECT_NE(errorOf(hexagon).find("(vertex 4 lies 0.300 m off the plane of the others)"),
+            std::string::npos)
+      << errorOf(hexagon);
+}
+
+TEST(HazardScene, ABowTieCrossesItselfNamingTheEdges) {
+  json scene = goodScene();
+  // Symmetric: its two lobes cancel, so that it encloses no area by the signed sum.
+  scene["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_EQ(errorOf(scene),
+            "scene.json: arrays[0].vertices_m crosses itself (edges 0\u20131 and 2\u20133 cross)");
+  // The same standing up (in the plane x = 0), and a quadrilateral whose last edge crosses its
+  // second.
+  scene["arrays"][0]["vertices_m"] = {{0, 0, 0}, {0, 1, 1}, {0, 1, 0}, {0, 0, 1}};
+  EXPECT_NE(errorOf(scene).find("crosses itself (edges 0\u20131 and 2\u20133 cross)"),
+            std::string::npos);
+  scene["arrays"][0]["vertices_m"] = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {3, 1, 0}};
+  EXPECT_NE(errorOf(scene).find("crosses itself"), std::string::npos) << errorOf(scene);
 }
 
 TEST(HazardScene, ALevelArrayFacesUpAndSlopesNorth) {
@@ -137,7 +179,7 @@ TEST(HazardScene, RefusesEachBadInputNamingTheField) {
        [](json& s) {
          s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
        },
-       "is degenerate"},
+       "crosses itself"},
       {"collinear",
        [](json& s) {
          s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};

@@ -120,6 +120,8 @@ Result<Vec3> readPoint(const JsonReader& value) {
 Status readSite(const JsonReader& document, HazardSite& site) {
   JsonReader json;
   GLARECAM_ASSIGN(json, document.objectMember("site"));
+  GLARECAM_CHECK(json.onlyKeys({"latitude_deg", "longitude_deg", "elevation_m", "utc_offset_h",
+                                "pressure_hpa", "temperature_c"}));
   sun::SiteLocation& location = site.location;
   GLARECAM_ASSIGN(location.latitude_deg, json.numberIn("latitude_deg", -90, 90, "°"));
   GLARECAM_ASSIGN(location.longitude_deg, json.numberIn("longitude_deg", -180, 180, "°"));
@@ -159,7 +161,7 @@ Status readArrays(const JsonReader& document, const std::filesystem::path& base,
   std::set<std::string> names;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader json = list.element(i);
-    GLARECAM_CHECK(json.object());
+    GLARECAM_CHECK(json.onlyKeys({"name", "vertices_m", "profile"}));
     std::string name;
     GLARECAM_ASSIGN(name, readName(json, names, "array"));
     JsonReader vertices_json;
@@ -196,7 +198,7 @@ Status readObservers(const JsonReader& document, Scene& scene) {
   std::set<std::string> names;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader json = list.element(i);
-    GLARECAM_CHECK(json.object());
+    GLARECAM_CHECK(json.onlyKeys({"name", "position_m", "hours"}));
     Observer observer;
     GLARECAM_ASSIGN(observer.name, readName(json, names, "observer"));
     JsonReader position;
@@ -318,6 +320,9 @@ Result<Scene> parseScene(const nlohmann::json& document, const std::string& file
                          const std::filesystem::path& base) {
   const JsonReader fields(document, file);
   GLARECAM_CHECK(fields.schema(kSceneSchema, "a hazard scene"));
+  // Every object's keys are checked: a typo in an optional key ("profil", "hour") must never
+  // silently change the result.
+  GLARECAM_CHECK(fields.onlyKeys({"schema", "site", "arrays", "observers"}));
   Scene scene;
   GLARECAM_CHECK(readSite(fields, scene.site));
   GLARECAM_CHECK(readArrays(fields, base, scene));

@@ -78,6 +78,12 @@ bad "self-intersecting" "crosses itself (edges 1–2 and 3–0 cross)" \
 # Vertex 2 moved 0.5 m along the roof's normal (0, 0.5, 0.866): named, not vertex 0.
 bad "not planar" "is not planar (vertex 2 lies 0.500 m off the plane of the others)" \
   "$(edit planar 's/\[6, 5.2, 6\]/[6, 5.45, 6.433]/')" --profile "$PROFILE"
+bad "unknown array key" 'arrays[0] has an unknown key "profil" (did you mean "profile"?)' \
+  "$(edit profil 's/"vertices_m"/"profil": "p.json", "vertices_m"/')" --profile "$PROFILE"
+bad "unknown observer key" 'observers[0] has an unknown key "hour" (did you mean "hours"?)' \
+  "$(edit hour 's/"hours"/"hour"/')" --profile "$PROFILE"
+bad "unknown site key" 'site has an unknown key "elevation" (did you mean "elevation_m"?)' \
+  "$(edit elevation 's/"elevation_m"/"elevation"/')" --profile "$PROFILE"
 bad "duplicate observer" "repeats the observer name" "$(edit dup 's/window-west/window-3/')" --profile "$PROFILE"
 bad "no observers" "observers is empty" \
   "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["observers"]=[]; print(json.dumps(d))' "$SCENE" >"$WORK/noobs.json"; echo "$WORK/noobs.json")" --profile "$PROFILE"

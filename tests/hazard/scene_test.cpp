@@ -60,6 +60,34 @@ TEST(HazardScene, ReadsTheMethodDocsExample) {
   EXPECT_EQ(scene->observers[1].to_h, 24);
   EXPECT_TRUE(scene->warnings.empty());
 }
+TEST(HazardScene, RefusesUnknownKeysAtEveryLevelSuggestingTheClosest) {
+  const std::vector<std::pair<std::function<void(json&)>, std::string>> cases{
+      {[](json& s) { s["arrays"][0]["profil"] = s["arrays"][0]["profile"]; },
+       "scene.json: arrays[0] has an unknown key \"profil\" (did you mean \"profile\"?)"},
+      {[](json& s) {
+         s["observers"][1]["hour"] = {6, 22};
+       },
+       "scene.json: observers[1] has an unknown key \"hour\" (did you mean \"hours\"?)"},
+      {[](json& s) { s["site"]["elevation"] = 410; },
+       "scene.json: site has an unknown key \"elevation\" (did you mean \"elevation_m\"?)"},
+      {[](json& s) { s["observer"] = s["observers"]; },
+       "scene.json: the document has an unknown key \"observer\" (did you mean "
+       "\"observers\"?)"},
+      {[](json& s) { s["site"]["timezone"] = "Europe/Zurich"; },
+       "scene.json: site has an unknown key \"timezone\" (known: latitude_deg, longitude_deg, "
+       "elevation_m, utc_offset_h, pressure_hpa, temperature_c)"},
+      // A key of a later version is no key of version 1.
+      {[](json& s) { s["observers"][0]["facing_azimuth_deg"] = 180; },
+       "scene.json: observers[0] has an unknown key \"facing_azimuth_deg\" (known: name, "
+       "position_m, hours)"},
+  };
+  for (const auto& [change, expected] : cases) {
+    json scene = goodScene();
+    change(scene);
+    EXPECT_EQ(errorOf(scene), expected);
+  }
+}
+
 TEST(HazardScene, NamesTheVertexThatIsOffThePlane) {
   // The example roof with one vertex at a time moved 0.5 m out of its plane: the message names
   // that vertex and its distance from the plane of the others. (The plane of all four leans

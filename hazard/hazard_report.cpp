@@ -1,6 +1,7 @@
 #include "hazard/hazard_report.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -46,6 +47,23 @@ std::string formatNumber(const char* format, double value) {
   char text[48];
   std::snprintf(text, sizeof text, format, value);
   return text;
+}
+
+// "faces 180° (S), tilt 30.0°, 72.0 m²": which way the front looks, so that a polygon listed
+// the wrong way round shows.
+std::string arrayFacingText(const ArrayPolygon& array) {
+  constexpr std::array<const char*, 8> kCompass = {"N", "NE", "E", "SE", "S", "SW", "W", "NW"};
+  const std::optional<double> azimuth_deg = facingAzimuthDeg(array);
+  const double tilt_deg = tiltDeg(array);
+  std::string faces;
+  if (azimuth_deg) {
+    const auto point = static_cast<std::size_t>(std::lround(*azimuth_deg / 45)) % kCompass.size();
+    faces = formatNumber("%.0f°", *azimuth_deg) + " (" + kCompass[point] + ")";
+  } else {
+    faces = tilt_deg < 90 ? "up (level)" : "down (level)";
+  }
+  return "faces " + faces + ", tilt " + formatNumber("%.1f°", tilt_deg) + ", " +
+         formatNumber("%.1f m²", array.area_m2);
 }
 
 }  // namespace
@@ -103,7 +121,9 @@ json hazardJson(const HazardReport& report) {
   for (const ArrayPolygon& array : scene.arrays) {
     arrays.push_back({{"name", array.name},
                       {"area_m2", array.area_m2},
-                      {"normal", {array.normal.x, array.normal.y, array.normal.z}}});
+                      {"normal", {array.normal.x, array.normal.y, array.normal.z}},
+                      {"facing_azimuth_deg", jsonOrNull(facingAzimuthDeg(array))},
+                      {"tilt_deg", tiltDeg(array)}});
   }
 
   json observers = json::array();
@@ -274,7 +294,11 @@ std::string summaryText(const HazardReport& report) {
   for (const auto& row : rows)
     for (std::size_t c = 0; c < row.size(); ++c)
       widths[c] = std::max(widths[c], displayWidth(row[c]));
+  // The arrays first: which way each faces, so that a reversed polygon is obvious.
   std::string text;
+  for (const ArrayPolygon& array : scene.arrays)
+    text += "array " + array.name + ": " + arrayFacingText(array) + "\n";
+  if (!scene.arrays.empty()) text += "\n";
   for (const auto& row : rows) {
     std::string line;
     for (std::size_t c = 0; c < row.size(); ++c) {

@@ -38,7 +38,8 @@ std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_off
 nlohmann::json hazardJson(const HazardReport& report);
 std::string eventsCsv(const HazardReport& report);
 HazardChartContent chartContent(const HazardReport& report, std::size_t observer);
-// Per observer and model: minutes/year, days, largest day, each criterion's verdict.
+// Per observer and model: minutes/year, days, largest day, each criterion's verdict; before it
+// each array's facing, tilt and area.
 std::string summaryText(const HazardReport& report);
 
 // Writes every output into `directory` (created if missing), each file atomically.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "core/angles.h"
 #include "core/json.h"
 
 namespace glarecam::hazard {
@@ -218,6 +219,24 @@ Status readObservers(const JsonReader& document, Scene& scene) {
   return {};
 }
 
+// An observer behind an array's plane, or on it, never sees its front: the array can add no
+// minute there. Inside the building, on the roof, or a facade listed the wrong way round.
+void warnHiddenFronts(const std::string& file, Scene& scene) {
+  for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
+    const ArrayPolygon& array = scene.arrays[a];
+    for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+      const Observer& observer = scene.observers[o];
+      if (seesFront(array, observer.position_m)) continue;
+      scene.warnings.push_back(
+          file + ": observer \"" + observer.name + "\" (observers[" + std::to_string(o) +
+          "]) is behind or on the plane of array \"" + array.name + "\" (arrays[" +
+          std::to_string(a) +
+          "]) and never sees its front, so that array adds no glare there (are the array's "
+          "vertices listed the wrong way round?)");
+    }
+  }
+}
+
 }  // namespace
 
 Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertices_m,
@@ -303,6 +322,20 @@ Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertic
   return array;
 }
 
+bool seesFront(const ArrayPolygon& array, Vec3 point_m) {
+  return dot(point_m - array.centroid_m, array.normal) > kPlanarityToleranceM;
+}
+
+std::optional<double> facingAzimuthDeg(const ArrayPolygon& array) {
+  if (std::hypot(array.normal.x, array.normal.y) < kLevelTolerance) return std::nullopt;
+  const double azimuth_deg = degrees(std::atan2(array.normal.x, array.normal.y));
+  return azimuth_deg < 0 ? azimuth_deg + 360 : azimuth_deg;
+}
+
+double tiltDeg(const ArrayPolygon& array) {
+  return degrees(angleBetweenRad(array.normal, Vec3{0, 0, 1}));
+}
+
 bool containsPlanePoint(const ArrayPolygon& array, Vec3 point_m) {
   const Vec3 d = point_m - array.centroid_m;
   const double u = dot(d, array.axis_u), w = dot(d, array.axis_w);
@@ -327,6 +360,7 @@ Result<Scene> parseScene(const nlohmann::json& document, const std::string& file
   GLARECAM_CHECK(readSite(fields, scene.site));
   GLARECAM_CHECK(readArrays(fields, base, scene));
   GLARECAM_CHECK(readObservers(fields, scene));
+  warnHiddenFronts(file, scene);
   return scene;
 }
 

@@ -30,6 +30,16 @@ expect "table gives verdicts" grep -q "significant" "$WORK/out"
 expect "events.csv header" grep -q "^observer,array,model,start_local,end_local,duration_min" "$WORK/h/events.csv"
 expect "hazard.json schema" grep -q '"schema": "glarecam.hazard/1"' "$WORK/h/hazard.json"
 expect "hazard.json names the profile's module" grep -q '"module": "Standard module"' "$WORK/h/hazard.json"
+expect "summary gives the array's facing" grep -qxF "array roof-north: faces 0° (N), tilt 30.0°, 72.0 m²" "$WORK/out"
+
+# Observers that can never see an array's front: computed (0 minutes), warned naming both.
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["observers"].append({"name": "in-the-house", "position_m": [0, 2, 5]}); json.dump(d,open(sys.argv[2],"w"))' \
+  "$SCENE" "$WORK/behind.json"
+check "observer behind the array" 0 "$GLARECAM" hazard "$WORK/behind.json" --profile "$PROFILE" \
+  --year 2027 --step-s 3600 --out "$WORK/behind" --no-progress
+expect "observer behind: warned naming both" grep -qF \
+  'warning: '"$WORK"'/behind.json: observer "in-the-house" (observers[2]) is behind or on the plane of array "roof-north" (arrays[0])' "$WORK/err"
+expect "observer behind: in hazard.json" grep -qF 'observer \"in-the-house\" (observers[2]) is behind' "$WORK/behind/hazard.json"
 
 check "json" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --step-s 3600 \
   --out "$WORK/j" --json --models cone:0.5 --criteria ch --no-progress

@@ -128,6 +128,23 @@ TEST_F(HazardReportOutputs, EventsCsvHasOneRowPerEvent) {
             "window,roof,circle,2027-03-21T18:01+01:00,2027-03-21T18:02+01:00,1,61.30,61.30,\n");
 }
 
+TEST_F(HazardReportOutputs, SummaryGivesEachArraysFacingTiltAndArea) {
+  // A roof tilted 30° facing south (its normal 60° above the southern horizon), and a level one.
+  scene_.arrays = {testing::squareArray("south", {0, 0, 0}, testing::unitToward(60, 180), 10),
+                   testing::squareArray("flat", {0, 0, 0}, {0, 0, 1}, 2)};
+  report_.profiles = {&profile_, &profile_};
+  const std::string text = summaryText(report_);
+  EXPECT_TRUE(
+      text.starts_with("array south: faces 180° (S), tilt 30.0°, 100.0 m²\n"
+                       "array flat: faces up (level), tilt 0.0°, 4.0 m²\n\n"
+                       "observer "))
+      << text;
+  const nlohmann::json arrays = hazardJson(report_)["inputs"]["arrays"];
+  EXPECT_NEAR(arrays[0]["facing_azimuth_deg"].get<double>(), 180, 1e-9);
+  EXPECT_NEAR(arrays[0]["tilt_deg"].get<double>(), 30, 1e-9);
+  EXPECT_TRUE(arrays[1]["facing_azimuth_deg"].is_null());
+}
+
 TEST_F(HazardReportOutputs, ChartCellsShowWhichModelGlares) {
   const HazardChartContent content = chartContent(report_, 0);
   ASSERT_EQ(content.models.size(), 2u);

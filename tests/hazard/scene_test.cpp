@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <functional>
 
+#include "core/angles.h"
 #include "tests/hazard/hazard_fixtures.h"
 #include "tests/support/test_support.h"
 
@@ -58,8 +59,60 @@ TEST(HazardScene, ReadsTheMethodDocsExample) {
   EXPECT_EQ(scene->observers[0].to_h, 22);
   EXPECT_EQ(scene->observers[1].from_h, 0);  // the whole day by default
   EXPECT_EQ(scene->observers[1].to_h, 24);
-  EXPECT_TRUE(scene->warnings.empty());
+  // The terrace lies south of the north-facing roof and below it: it never sees the front.
+  ASSERT_EQ(scene->warnings.size(), 1u);
+  EXPECT_EQ(scene->warnings[0],
+            "scene.json: observer \"terrace\" (observers[1]) is behind or on the plane of array "
+            "\"roof-north\" (arrays[0]) and never sees its front, so that array adds no glare "
+            "there (are the array's vertices listed the wrong way round?)");
 }
+
+TEST(HazardScene, WarnsForEveryObserverThatNeverSeesAnArraysFront) {
+  json scene = goodScene();
+  scene["observers"] = json::parse(R"([
+    {"name": "window-3", "position_m": [0, 30, 12]},
+    {"name": "inside", "position_m": [0, 2, 5]},
+    {"name": "on-the-roof", "position_m": [0, 2.6, 7.5]},
+    {"name": "street", "position_m": [20, 30, 1.6]}])");
+  // A facade at y = 0 listed the wrong way round: its normal points south, into the building,
+  // and, vertical, it never faces downward, so nothing else warns about it.
+  scene["arrays"].push_back(
+      {{"name", "facade"}, {"vertices_m", {{10, 0, 0}, {10, 0, 3}, {0, 0, 3}, {0, 0, 0}}}});
+  const Result<Scene> read = parseScene(scene, "scene.json", "/base");
+  ASSERT_TRUE(read) << read.error().message;
+  std::vector<std::string> pairs;
+  for (const std::string& warning : read->warnings) {
+    const auto quoted = [&](std::size_t from) {
+      const std::size_t start = warning.find('"', from) + 1;
+      return warning.substr(start, warning.find('"', start) - start);
+    };
+    const std::string observer = quoted(0);
+    pairs.push_back(observer + "/" + quoted(warning.find("array \"")));
+  }
+  EXPECT_EQ(pairs, (std::vector<std::string>{"inside/roof-north", "on-the-roof/roof-north",
+                                             "window-3/facade", "inside/facade",
+                                             "on-the-roof/facade", "street/facade"}));
+  EXPECT_NE(read->warnings[0].find("(observers[1])"), std::string::npos) << read->warnings[0];
+  EXPECT_NE(read->warnings[2].find("(arrays[1])"), std::string::npos) << read->warnings[2];
+  // The facade is vertical: no "faces downward" warning, and the facing says where it looks.
+  EXPECT_EQ(read->arrays[1].normal.y, -1);
+  EXPECT_NEAR(*facingAzimuthDeg(read->arrays[1]), 180, 1e-9);
+  EXPECT_NEAR(tiltDeg(read->arrays[1]), 90, 1e-9);
+}
+
+TEST(HazardScene, FacingAzimuthAndTiltOfTheFront) {
+  const Result<Scene> scene = parseScene(goodScene(), "scene.json", "/base");
+  ASSERT_TRUE(scene) << scene.error().message;
+  // The roof slopes 30° down to the north (rise 3 m over 5.2 m): it faces north, tilted 30°.
+  EXPECT_NEAR(*facingAzimuthDeg(scene->arrays[0]), 0, 1e-9);
+  EXPECT_NEAR(tiltDeg(scene->arrays[0]), degrees(std::atan2(3, 5.2)), 1e-9);
+  const ArrayPolygon west = testing::squareArray("west", {0, 0, 5}, {-1, 0, 0}, 2);
+  EXPECT_NEAR(*facingAzimuthDeg(west), 270, 1e-9);
+  const ArrayPolygon level = testing::squareArray("flat", {0, 0, 5}, {0, 0, 1}, 2);
+  EXPECT_FALSE(facingAzimuthDeg(level));
+  EXPECT_NEAR(tiltDeg(level), 0, 1e-9);
+}
+
 TEST(HazardScene, RefusesUnknownKeysAtEveryLevelSuggestingTheClosest) {
   const std::vector<std::pair<std::function<void(json&)>, std::string>> cases{
       {[](json& s) { s["arrays"][0]["profil"] = s["arrays"][0]["profile"]; },
@@ -141,9 +194,11 @@ TEST(HazardScene, WarnsWhenAnArrayFacesDownward) {
   scene["arrays"][0]["vertices_m"] = {{-6, 5.2, 6}, {6, 5.2, 6}, {6, 0, 9}, {-6, 0, 9}};
   const Result<Scene> read = parseScene(scene, "scene.json", "/base");
   ASSERT_TRUE(read);
-  ASSERT_EQ(read->warnings.size(), 1u);
+  // Then window-3 is behind it (warned about too).
+  ASSERT_EQ(read->warnings.size(), 2u);
   EXPECT_NE(read->warnings[0].find("roof-north"), std::string::npos);
   EXPECT_NE(read->warnings[0].find("downward"), std::string::npos);
+  EXPECT_NE(read->warnings[1].find("observer \"window-3\""), std::string::npos);
 }
 
 TEST(HazardScene, ContainsPlanePointsOfANonConvexPolygon) {

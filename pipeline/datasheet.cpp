@@ -607,8 +607,7 @@ void drawSimulatedMark(Canvas& canvas) {
   canvas.rotate(-kSimulatedMarkAngleRad);
   drawText(canvas, {0, kSimulatedMarkFont.size * kBaselineBelowMiddleEm}, "SIMULATED",
            {kSimulatedMarkFont, kSimulatedMarkColour, Align::kCentre});
-  drawText(canvas, {0, kSimulatedMarkFont.size * 0.75},
-           "stacks of the simulated camera: not a measurement",
+  drawText(canvas, {0, kSimulatedMarkFont.size * 0.75}, kSimulatedNote,
            {kSectionFont, kSimulatedMarkColour, Align::kCentre});
 }
 

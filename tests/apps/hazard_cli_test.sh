@@ -31,6 +31,18 @@ expect "events.csv header" grep -q "^observer,array,model,start_local,end_local,
 expect "hazard.json schema" grep -q '"schema": "glarecam.hazard/1"' "$WORK/h/hazard.json"
 expect "hazard.json names the profile's module" grep -q '"module": "Standard module"' "$WORK/h/hazard.json"
 expect "summary gives the array's facing" grep -qxF "array roof-north: faces 0° (N), tilt 30.0°, 72.0 m²" "$WORK/out"
+expect "a measured profile: no SIMULATED" bash -c "! grep -q SIMULATED '$WORK/out' '$WORK/err' '$WORK/h/events.csv'"
+expect "a measured profile: events not simulated" grep -q ',false$' "$WORK/h/events.csv"
+
+# A profile from simulated stacks: marked on stderr, in the table, in every event and hazard.json.
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["simulated"]=True; json.dump(d,open(sys.argv[2],"w"))' \
+  "$PROFILE" "$WORK/sim-profile.json"
+check "simulated profile" 0 "$GLARECAM" hazard "$SCENE" --profile "$WORK/sim-profile.json" --year 2027 \
+  --step-s 600 --out "$WORK/sim" --no-progress
+expect "simulated: warned on stderr" grep -qF "warning: SIMULATED profile of module \"Standard module\"" "$WORK/err"
+expect "simulated: the table's first line" bash -c "head -1 '$WORK/out' | grep -qF 'SIMULATED profile of module'"
+expect "simulated: every event" bash -c "! grep -v ',true\$' '$WORK/sim/events.csv' | tail -n +2 | grep -q ."
+expect "simulated: hazard.json's warnings" grep -qF '"SIMULATED profile of module' "$WORK/sim/hazard.json"
 
 # Observers that can never see an array's front: computed (0 minutes), warned naming both.
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["observers"].append({"name": "in-the-house", "position_m": [0, 2, 5]}); json.dump(d,open(sys.argv[2],"w"))' \

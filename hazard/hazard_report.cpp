@@ -269,6 +269,10 @@ HazardChartContent chartContent(const HazardReport& report, std::size_t o) {
   char site[160];
   std::snprintf(site, sizeof site, "%.4f°, %.4f°", scene.site.location.latitude_deg,
                 scene.site.location.longitude_deg);
+  if (anySimulated(report)) {
+    content.mark = "SIMULATED";
+    content.mark_note = pipeline::kSimulatedNote;
+  }
   const std::string simulated =
       anySimulated(report) ? std::string("SIMULATED: ") + pipeline::kSimulatedNote + " · " : "";
   content.subtitle = simulated + scene.path.filename().string() + " · " + profiles + " · " + site +

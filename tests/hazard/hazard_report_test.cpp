@@ -156,12 +156,17 @@ TEST_F(HazardReportOutputs, ASimulatedProfileIsMarkedInEveryOutput) {
       subtitle.starts_with("SIMULATED: stacks of the simulated camera: not a measurement \u00b7 "))
       << subtitle;
   EXPECT_NE(subtitle.find("test module (SIMULATED)"), std::string::npos) << subtitle;
+  // And across the picture, as on the data sheet.
+  EXPECT_EQ(chartContent(report_, 0).mark, "SIMULATED");
+  EXPECT_EQ(chartContent(report_, 0).mark_note,
+            "stacks of the simulated camera: not a measurement");
 }
 
 TEST_F(HazardReportOutputs, AMeasuredProfileIsNotMarked) {
   EXPECT_TRUE(reportWarnings(report_).empty());
   EXPECT_EQ(summaryText(report_).find("SIMULATED"), std::string::npos);
   EXPECT_EQ(chartContent(report_, 0).subtitle.find("SIMULATED"), std::string::npos);
+  EXPECT_TRUE(chartContent(report_, 0).mark.empty());
 }
 
 TEST_F(HazardReportOutputs, SummaryGivesEachArraysFacingTiltAndArea) {

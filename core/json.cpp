@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/spelling.h"
 
 namespace glarecam {
 
@@ -117,6 +118,20 @@ Result<std::optional<JsonReader>> JsonReader::optionalMember(std::string_view ke
   const auto it = value_->find(key);
   if (it == value_->end() || it->is_null()) return std::optional<JsonReader>{};
   return std::optional<JsonReader>(JsonReader(*it, file_, childPath(key)));
+}
+
+Status JsonReader::onlyKeys(std::initializer_list<std::string_view> known) const {
+  GLARECAM_CHECK(object());
+  for (const auto& [key, value] : value_->items()) {
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    const std::vector<std::string> candidates(known.begin(), known.end());
+    const std::optional<std::string> suggestion = closestSpelling(key, candidates);
+    const std::string hint = suggestion
+                                 ? " (did you mean " + jsonSnippet(*suggestion) + "?)"
+                                 : " (known: " + fmt::format("{}", fmt::join(known, ", ")) + ")";
+    return fail("has an unknown key " + jsonSnippet(key) + hint);
+  }
+  return {};
 }
 
 Result<JsonReader> JsonReader::objectMember(std::string_view key) const {

@@ -127,6 +127,11 @@ class JsonReader {
   Result<std::optional<std::string>> optionalWord(
       std::string_view key, std::initializer_list<std::string_view> words) const;
 
+  // Refuses a member whose key is not among `known` (call object() first), since a misspelt
+  // optional key would otherwise be read as absent: "FILE: PATH has an unknown key "profil" (did
+  // you mean "profile"?)", or the known keys listed when none is close (core/spelling.h).
+  Status onlyKeys(std::initializer_list<std::string_view> known) const;
+
   // The document's "schema": `expected`, or one of the older `accepted` ones. `what` names the
   // kind of document in the message ("a glare profile").
   Result<std::string> schema(std::string_view expected, std::string_view what,

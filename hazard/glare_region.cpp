@@ -174,8 +174,7 @@ double normalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes, 
 PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m) {
   PolygonView view;
   view.observer_m = observer_m;
-  // Within the plane's own tolerance of it the observer sees the array edge-on.
-  view.in_front = dot(observer_m - array.centroid_m, array.normal) > kPlanarityToleranceM;
+  view.in_front = seesFront(array, observer_m);
   view.centre_direction = normalised(array.centroid_m - observer_m);
   for (const Vec3& vertex : array.vertices_m) {
     const Vec3 direction = normalised(vertex - observer_m);

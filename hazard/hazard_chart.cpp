@@ -409,6 +409,8 @@ void drawChart(Canvas& canvas, const HazardChartContent& c) {
   drawHeader(canvas, c, layout.header);
   drawCellPanel(canvas, c, layout.upper);
   drawMinutesPanel(canvas, c, layout.lower);
+  // Over everything: the cell panel is an opaque raster that would hide a mark drawn under it.
+  if (!c.mark.empty()) drawPageMark(canvas, kPage, c.mark, c.mark_note, /*over=*/true);
 }
 
 // ---- Validation ----

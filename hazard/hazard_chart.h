@@ -13,7 +13,8 @@
 // (both > first > second > none > outside hours > sun down), so that even a single glaring
 // 10-s step colours at least one pixel.
 // Lower panel: each model's minutes per day against the day, and the criteria's daily limit as
-// a dashed line. Title and subtitle on top of an A4 landscape page.
+// a dashed line. Title and subtitle on top of an A4 landscape page; a mark (SIMULATED) across it
+// when the content has one.
 //
 // Output: the page as PNG and SVG (page_output.h), each written atomically. Errors: kBadInput
 // for content that does not describe a year (below), kIo when a file cannot be written.
@@ -53,6 +54,9 @@ struct HazardChartContent {
   std::vector<HazardCell> cells{};
   std::vector<HazardChartSeries> models{};  // 1 or 2; models[0] is "first", models[1] "second"
   double threshold_minutes_per_day = 30;    // the criteria's daily limit, drawn as a dashed line
+  // When not empty, across the page's face over everything, translucent (render::drawPageMark):
+  // "SIMULATED" and its note for a chart from a profile of simulated stacks.
+  std::string mark{}, mark_note{};
 };
 
 // Writes the chart as PNG and SVG, each atomically. kBadInput, with nothing written, when

@@ -1,6 +1,7 @@
 #include "hazard/hazard_report.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "core/csv.h"
 #include "core/json.h"
 #include "core/version.h"
+#include "pipeline/sweep_table.h"
 
 namespace glarecam::hazard {
 namespace {
@@ -48,7 +50,60 @@ std::string formatNumber(const char* format, double value) {
   return text;
 }
 
+// "faces 180° (S), tilt 30.0°, 72.0 m²": which way the front looks, so that a polygon listed
+// the wrong way round shows.
+std::string arrayFacingText(const ArrayPolygon& array) {
+  constexpr std::array<const char*, 8> kCompass = {"N", "NE", "E", "SE", "S", "SW", "W", "NW"};
+  const std::optional<double> azimuth_deg = facingAzimuthDeg(array);
+  const double tilt_deg = tiltDeg(array);
+  std::string faces;
+  if (azimuth_deg) {
+    const auto point = static_cast<std::size_t>(std::lround(*azimuth_deg / 45)) % kCompass.size();
+    faces = formatNumber("%.0f°", *azimuth_deg) + " (" + kCompass[point] + ")";
+  } else {
+    faces = tilt_deg < 90 ? "up (level)" : "down (level)";
+  }
+  return "faces " + faces + ", tilt " + formatNumber("%.1f°", tilt_deg) + ", " +
+         formatNumber("%.1f m²", array.area_m2);
+}
+
+// The profiles made from stacks of the simulated camera, each once: "module "M" (PATH), for
+// array "roof-north"".
+std::vector<std::string> simulatedProfiles(const HazardReport& report) {
+  std::vector<std::string> profiles;
+  for (std::size_t a = 0; a < report.profiles.size(); ++a) {
+    const ProfileTable& profile = *report.profiles[a];
+    if (!profile.simulated()) continue;
+    bool first_use = true;
+    for (std::size_t earlier = 0; earlier < a; ++earlier)
+      first_use = first_use && report.profiles[earlier] != &profile;
+    if (!first_use) continue;
+    std::string arrays;
+    for (std::size_t user = a; user < report.profiles.size(); ++user) {
+      if (report.profiles[user] != &profile) continue;
+      arrays += (arrays.empty() ? "\"" : ", \"") + report.scene->arrays[user].name + "\"";
+    }
+    profiles.push_back("module \"" + profile.module() + "\" (" + profile.path().string() +
+                       "), for array" + (arrays.find(',') == std::string::npos ? " " : "s ") +
+                       arrays);
+  }
+  return profiles;
+}
+
+bool anySimulated(const HazardReport& report) {
+  return std::any_of(report.profiles.begin(), report.profiles.end(),
+                     [](const ProfileTable* profile) { return profile->simulated(); });
+}
+
 }  // namespace
+
+std::vector<std::string> reportWarnings(const HazardReport& report) {
+  std::vector<std::string> warnings = report.scene->warnings;
+  for (const std::string& profile : simulatedProfiles(report))
+    warnings.push_back("SIMULATED profile of " + profile + ": " + pipeline::kSimulatedNote);
+  if (auto year = report.options->yearWarning()) warnings.push_back(std::move(*year));
+  return warnings;
+}
 
 std::vector<std::string> pictureStems(const Scene& scene) {
   std::vector<std::string> stems;
@@ -103,7 +158,9 @@ json hazardJson(const HazardReport& report) {
   for (const ArrayPolygon& array : scene.arrays) {
     arrays.push_back({{"name", array.name},
                       {"area_m2", array.area_m2},
-                      {"normal", {array.normal.x, array.normal.y, array.normal.z}}});
+                      {"normal", {array.normal.x, array.normal.y, array.normal.z}},
+                      {"facing_azimuth_deg", jsonOrNull(facingAzimuthDeg(array))},
+                      {"tilt_deg", tiltDeg(array)}});
   }
 
   json observers = json::array();
@@ -168,7 +225,7 @@ json hazardJson(const HazardReport& report) {
             {"step_s", result.step_s},
             {"models", models},
             {"criteria", criteria}}},
-          {"warnings", scene.warnings},
+          {"warnings", reportWarnings(report)},
           {"observers", observers},
           {"events", {{"count", result.events.size()}, {"csv", kEventsCsv}}}};
 }
@@ -179,7 +236,7 @@ std::string eventsCsv(const HazardReport& report) {
   const bool with_seconds = result.step_s % 60 != 0;
   std::string csv =
       "observer,array,model,start_local,end_local,duration_min,alpha_min_deg,alpha_max_deg,"
-      "peak_luminance_cd_m2\n";
+      "peak_luminance_cd_m2,simulated\n";
   for (const GlareEvent& event : result.events) {
     const std::int64_t start_s = event.first_step * result.step_s;
     const std::int64_t end_s = event.end_step * result.step_s;
@@ -192,7 +249,7 @@ std::string eventsCsv(const HazardReport& report) {
            formatNumber("%.2f", event.alpha_min_deg) + "," +
            formatNumber("%.2f", event.alpha_max_deg) + "," +
            (event.peak_luminance_cd_m2 ? formatNumber("%.4g", *event.peak_luminance_cd_m2) : "") +
-           "\n";
+           (report.profiles[event.array]->simulated() ? ",true\n" : ",false\n");
   }
   return csv;
 }
@@ -206,12 +263,19 @@ HazardChartContent chartContent(const HazardReport& report, std::size_t o) {
   content.title = "Glare at " + observer.name + ", " + std::to_string(result.year);
   std::string profiles;
   std::set<std::string> modules;
-  for (const ProfileTable* profile : report.profiles) modules.insert(profile->module());
+  for (const ProfileTable* profile : report.profiles)
+    modules.insert(profile->module() + (profile->simulated() ? " (SIMULATED)" : ""));
   for (const std::string& module : modules) profiles += (profiles.empty() ? "" : ", ") + module;
   char site[160];
   std::snprintf(site, sizeof site, "%.4f°, %.4f°", scene.site.location.latitude_deg,
                 scene.site.location.longitude_deg);
-  content.subtitle = scene.path.filename().string() + " · " + profiles + " · " + site +
+  if (anySimulated(report)) {
+    content.mark = "SIMULATED";
+    content.mark_note = pipeline::kSimulatedNote;
+  }
+  const std::string simulated =
+      anySimulated(report) ? std::string("SIMULATED: ") + pipeline::kSimulatedNote + " · " : "";
+  content.subtitle = simulated + scene.path.filename().string() + " · " + profiles + " · " + site +
                      " · local standard time UTC" + offsetText(scene.site.utc_offset_h) + " · " +
                      std::to_string(result.step_s) + "-s steps";
   content.year = result.year;
@@ -274,7 +338,14 @@ std::string summaryText(const HazardReport& report) {
   for (const auto& row : rows)
     for (std::size_t c = 0; c < row.size(); ++c)
       widths[c] = std::max(widths[c], displayWidth(row[c]));
+  // A simulated profile's mark first, then the arrays: which way each faces, so that a reversed
+  // polygon is obvious.
   std::string text;
+  for (const std::string& profile : simulatedProfiles(report))
+    text += "SIMULATED profile of " + profile + ": " + pipeline::kSimulatedNote + "\n";
+  for (const ArrayPolygon& array : scene.arrays)
+    text += "array " + array.name + ": " + arrayFacingText(array) + "\n";
+  if (!scene.arrays.empty()) text += "\n";
   for (const auto& row : rows) {
     std::string line;
     for (std::size_t c = 0; c < row.size(); ++c) {

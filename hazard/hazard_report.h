@@ -35,10 +35,16 @@ std::vector<std::string> pictureStems(const Scene& scene);
 std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_offset_h,
                           bool with_seconds);
 
+// Every warning of the run, as stderr and hazard.json's "warnings" give them: the scene's (an
+// array facing downward, an observer that never sees an array's front), each SIMULATED profile
+// (made from stacks of the simulated camera: not a measurement), an unlikely --year.
+std::vector<std::string> reportWarnings(const HazardReport& report);
+
 nlohmann::json hazardJson(const HazardReport& report);
 std::string eventsCsv(const HazardReport& report);
 HazardChartContent chartContent(const HazardReport& report, std::size_t observer);
-// Per observer and model: minutes/year, days, largest day, each criterion's verdict.
+// Per observer and model: minutes/year, days, largest day, each criterion's verdict; before it a
+// SIMULATED line per simulated profile and each array's facing, tilt and area.
 std::string summaryText(const HazardReport& report);
 
 // Writes every output into `directory` (created if missing), each file atomically.

@@ -57,10 +57,9 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
                       .result = &result,
                       .picture_stems = pictureStems(scene)};
   GLARECAM_CHECK(writeHazardOutputs(report, options.out));
-  std::vector<std::string> warnings = scene.warnings;
-  if (auto year = options.hazard.yearWarning()) warnings.push_back(std::move(*year));
-  return HazardRunSummary{
-      .document = hazardJson(report), .table = summaryText(report), .warnings = warnings};
+  return HazardRunSummary{.document = hazardJson(report),
+                          .table = summaryText(report),
+                          .warnings = reportWarnings(report)};
 }
 
 }  // namespace glarecam::hazard

@@ -28,7 +28,7 @@ std::optional<double> lerpLog(std::optional<double> a, std::optional<double> b, 
 }  // namespace
 
 ProfileTable::ProfileTable(const pipeline::GlareProfile& profile)
-    : module_(profile.module), ranges_(profile.glare_ranges) {
+    : module_(profile.module), simulated_(profile.simulated), ranges_(profile.glare_ranges) {
   identity_ = {{"module", profile.module},
                {"simulated", profile.simulated},
                {"calibrations", profile.calibrations}};

@@ -69,6 +69,8 @@ class ProfileTable {
 
   const std::filesystem::path& path() const { return path_; }
   const std::string& module() const { return module_; }
+  // Made from stacks of the simulated camera: not a measurement (pipeline/sweep_table.h).
+  bool simulated() const { return simulated_; }
   // Identity for the report: module, simulated and calibrations, date and source when the file
   // has them, and the path it was read from.
   const nlohmann::json& identity() const { return identity_; }
@@ -82,6 +84,7 @@ class ProfileTable {
 
   std::filesystem::path path_;
   std::string module_;
+  bool simulated_ = false;
   nlohmann::json identity_;
   std::vector<pipeline::AlphaRange> ranges_;
   std::array<Row, pipeline::kProfileAlphaMaxDeg + 1> rows_{};

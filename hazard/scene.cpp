@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "core/angles.h"
 #include "core/json.h"
 
 namespace glarecam::hazard {
@@ -40,6 +41,74 @@ bool segmentsMeet(Point2 a, Point2 b, Point2 c, Point2 d, double epsilon) {
   return false;
 }
 
+constexpr std::size_t kAllVertices = static_cast<std::size_t>(-1);
+
+// Newell's vector of the polygon of the vertices but `skip`: normal to their plane, oriented by
+// the right-hand rule, twice the area it encloses in length.
+Vec3 newellVector(const std::vector<Vec3>& vertices, std::size_t skip) {
+  std::vector<Vec3> kept;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    if (i != skip) kept.push_back(vertices[i]);
+  Vec3 newell;
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const Vec3 a = kept[i], b = kept[(i + 1) % kept.size()];
+    newell = newell +
+             Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+  }
+  return newell;
+}
+
+struct VertexPlane {
+  Vec3 point_m;  // the centroid of the vertices
+  Vec3 normal;   // unit; zero when the vertices lie on one line
+};
+
+// The plane of the vertices but `skip`, through their centroid: Newell's normal when they enclose
+// area as a polygon; else (lobes that cancel, a symmetric bow-tie) the largest cross product of
+// two of them about the centroid, which any two vertices off a common line give.
+VertexPlane fitPlane(const std::vector<Vec3>& vertices, std::size_t skip) {
+  VertexPlane plane;
+  double kept = 0;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    if (i == skip) continue;
+    plane.point_m = plane.point_m + vertices[i];
+    kept += 1;
+  }
+  plane.point_m = (1.0 / kept) * plane.point_m;
+  const Vec3 newell = newellVector(vertices, skip);
+  if (norm(newell) / 2 >= kMinArrayAreaM2) {
+    plane.normal = normalised(newell);
+    return plane;
+  }
+  Vec3 largest;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    for (std::size_t j = i + 1; j < vertices.size(); ++j) {
+      if (i == skip || j == skip) continue;
+      const Vec3 spanned = cross(vertices[i] - plane.point_m, vertices[j] - plane.point_m);
+      if (norm(spanned) > norm(largest)) largest = spanned;
+    }
+  }
+  if (norm(largest) / 2 >= kMinArrayAreaM2) plane.normal = normalised(largest);
+  return plane;
+}
+
+struct OffPlaneVertex {
+  std::size_t index = 0;
+  double distance_m = 0;
+};
+
+// The vertex farthest from the plane through the others: the one a typing error moved.
+OffPlaneVertex farthestOffPlane(const std::vector<Vec3>& vertices) {
+  OffPlaneVertex farthest;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const VertexPlane others = fitPlane(vertices, i);
+    if (others.normal == Vec3{}) continue;  // the others on one line: any plane holds them
+    const double distance_m = std::abs(dot(vertices[i] - others.point_m, others.normal));
+    if (distance_m > farthest.distance_m) farthest = {i, distance_m};
+  }
+  return farthest;
+}
+
 Result<Vec3> readPoint(const JsonReader& value) {
   GLARECAM_CHECK(value.array());
   if (value.size() != 3) return value.fail("is not [x, y, z] (3 numbers in metres)");
@@ -52,6 +121,8 @@ Result<Vec3> readPoint(const JsonReader& value) {
 Status readSite(const JsonReader& document, HazardSite& site) {
   JsonReader json;
   GLARECAM_ASSIGN(json, document.objectMember("site"));
+  GLARECAM_CHECK(json.onlyKeys({"latitude_deg", "longitude_deg", "elevation_m", "utc_offset_h",
+                                "pressure_hpa", "temperature_c"}));
   sun::SiteLocation& location = site.location;
   GLARECAM_ASSIGN(location.latitude_deg, json.numberIn("latitude_deg", -90, 90, "°"));
   GLARECAM_ASSIGN(location.longitude_deg, json.numberIn("longitude_deg", -180, 180, "°"));
@@ -91,7 +162,7 @@ Status readArrays(const JsonReader& document, const std::filesystem::path& base,
   std::set<std::string> names;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader json = list.element(i);
-    GLARECAM_CHECK(json.object());
+    GLARECAM_CHECK(json.onlyKeys({"name", "vertices_m", "profile"}));
     std::string name;
     GLARECAM_ASSIGN(name, readName(json, names, "array"));
     JsonReader vertices_json;
@@ -128,7 +199,7 @@ Status readObservers(const JsonReader& document, Scene& scene) {
   std::set<std::string> names;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader json = list.element(i);
-    GLARECAM_CHECK(json.object());
+    GLARECAM_CHECK(json.onlyKeys({"name", "position_m", "hours"}));
     Observer observer;
     GLARECAM_ASSIGN(observer.name, readName(json, names, "observer"));
     JsonReader position;
@@ -146,6 +217,24 @@ Status readObservers(const JsonReader& document, Scene& scene) {
     scene.observers.push_back(std::move(observer));
   }
   return {};
+}
+
+// An observer behind an array's plane, or on it, never sees its front: the array can add no
+// minute there. Inside the building, on the roof, or a facade listed the wrong way round.
+void warnHiddenFronts(const std::string& file, Scene& scene) {
+  for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
+    const ArrayPolygon& array = scene.arrays[a];
+    for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+      const Observer& observer = scene.observers[o];
+      if (seesFront(array, observer.position_m)) continue;
+      scene.warnings.push_back(
+          file + ": observer \"" + observer.name + "\" (observers[" + std::to_string(o) +
+          "]) is behind or on the plane of array \"" + array.name + "\" (arrays[" +
+          std::to_string(a) +
+          "]) and never sees its front, so that array adds no glare there (are the array's "
+          "vertices listed the wrong way round?)");
+    }
+  }
 }
 
 }  // namespace
@@ -166,25 +255,24 @@ Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertic
   }
   ArrayPolygon array;
   array.name = std::move(name);
-  Vec3 newell, sum;
-  for (std::size_t i = 0; i < count; ++i) {
-    const Vec3 a = vertices_m[i], b = vertices_m[(i + 1) % count];
-    newell = newell +
-             Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-    sum = sum + a;
-  }
+  const Vec3 newell = newellVector(vertices_m, kAllVertices);
   array.area_m2 = norm(newell) / 2;
   if (!std::isfinite(array.area_m2)) return fail("has coordinates too large to use");
-  if (!(array.area_m2 >= kMinArrayAreaM2))
-    return fail("is degenerate (its vertices enclose no area)");
-  array.normal = normalised(newell);
-  array.centroid_m = (1.0 / static_cast<double>(count)) * sum;
+  // Newell's normal, the front (the side from which the vertices run counter-clockwise), when
+  // they enclose area; else a bow-tie's plane, for the checks below to say what is wrong.
+  const VertexPlane plane = fitPlane(vertices_m, kAllVertices);
+  if (plane.normal == Vec3{}) return fail("is degenerate (its vertices lie on one line)");
+  array.normal = plane.normal;
+  array.centroid_m = plane.point_m;
   for (std::size_t i = 0; i < count; ++i) {
-    const double off_plane_m = std::abs(dot(vertices_m[i] - array.centroid_m, array.normal));
-    if (!(off_plane_m <= kPlanarityToleranceM)) {
-      char text[96];
-      std::snprintf(text, sizeof text, "is not planar (vertex %zu lies %.3f m off the plane)", i,
-                    off_plane_m);
+    if (!(std::abs(dot(vertices_m[i] - array.centroid_m, array.normal)) <= kPlanarityToleranceM)) {
+      // Off the plane of them all: blame the vertex farthest from the plane of the others (the
+      // plane of them all leans toward the one that is off, and may pass farther from another).
+      const OffPlaneVertex off = farthestOffPlane(vertices_m);
+      char text[128];
+      std::snprintf(text, sizeof text,
+                    "is not planar (vertex %zu lies %.3f m off the plane of the others)", off.index,
+                    off.distance_m);
       return fail(text);
     }
     array.radius_m = std::max(array.radius_m, norm(vertices_m[i] - array.centroid_m));
@@ -199,36 +287,53 @@ Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertic
     const Vec3 d = vertex - array.centroid_m;
     array.outline.push_back({dot(d, array.axis_u), dot(d, array.axis_w)});
   }
-  // Self-intersection: any two edges that meet other than at their shared vertex, and adjacent
-  // edges that fold back over each other.
+  // Self-intersection before the area: a bow-tie's lobes cancel in the area, and "crosses
+  // itself" is what is wrong with it. Any two edges that meet other than at their shared vertex,
+  // and adjacent edges that fold back over each other.
   const double epsilon = 1e-12 * array.radius_m * array.radius_m;
   const auto& outline = array.outline;
+  const auto edge = [count](std::size_t i) {
+    return std::to_string(i) + "\u2013" + std::to_string((i + 1) % count);
+  };
   for (std::size_t i = 0; i < count; ++i) {
     const Point2 a = outline[i], b = outline[(i + 1) % count];
     for (std::size_t j = i + 1; j < count; ++j) {
       const Point2 c = outline[j], d = outline[(j + 1) % count];
       const bool adjacent = j == i + 1 || (i == 0 && j == count - 1);
-      bool meet = false;
       if (!adjacent) {
-        meet = segmentsMeet(a, b, c, d, epsilon);
-      } else {
-        // Shared vertex; they cross elsewhere only when collinear and doubling back.
-        const Point2 shared = j == i + 1 ? b : a;
-        const Point2 p = j == i + 1 ? a : b;
-        const Point2 q = j == i + 1 ? d : c;
-        const double turn = cross2(shared, p, q);
-        const double along =
-            (p[0] - shared[0]) * (q[0] - shared[0]) + (p[1] - shared[1]) * (q[1] - shared[1]);
-        meet = std::abs(turn) <= epsilon && along > 0;
+        if (segmentsMeet(a, b, c, d, epsilon))
+          return fail("crosses itself (edges " + edge(i) + " and " + edge(j) + " cross)");
+        continue;
       }
-      if (meet) {
-        return fail("crosses itself (edges " + std::to_string(i) + " and " + std::to_string(j) +
-                    " meet)");
-      }
+      // Shared vertex; they cross elsewhere only when collinear and doubling back.
+      const Point2 shared = j == i + 1 ? b : a;
+      const Point2 p = j == i + 1 ? a : b;
+      const Point2 q = j == i + 1 ? d : c;
+      const double turn = cross2(shared, p, q);
+      const double along =
+          (p[0] - shared[0]) * (q[0] - shared[0]) + (p[1] - shared[1]) * (q[1] - shared[1]);
+      if (std::abs(turn) <= epsilon && along > 0)
+        return fail("crosses itself (edges " + edge(i) + " and " + edge(j) + " overlap)");
     }
   }
+  if (!(array.area_m2 >= kMinArrayAreaM2))
+    return fail("is degenerate (its vertices enclose no area)");
   array.vertices_m = std::move(vertices_m);
   return array;
+}
+
+bool seesFront(const ArrayPolygon& array, Vec3 point_m) {
+  return dot(point_m - array.centroid_m, array.normal) > kPlanarityToleranceM;
+}
+
+std::optional<double> facingAzimuthDeg(const ArrayPolygon& array) {
+  if (std::hypot(array.normal.x, array.normal.y) < kLevelTolerance) return std::nullopt;
+  const double azimuth_deg = degrees(std::atan2(array.normal.x, array.normal.y));
+  return azimuth_deg < 0 ? azimuth_deg + 360 : azimuth_deg;
+}
+
+double tiltDeg(const ArrayPolygon& array) {
+  return degrees(angleBetweenRad(array.normal, Vec3{0, 0, 1}));
 }
 
 bool containsPlanePoint(const ArrayPolygon& array, Vec3 point_m) {
@@ -248,10 +353,14 @@ Result<Scene> parseScene(const nlohmann::json& document, const std::string& file
                          const std::filesystem::path& base) {
   const JsonReader fields(document, file);
   GLARECAM_CHECK(fields.schema(kSceneSchema, "a hazard scene"));
+  // Every object's keys are checked: a typo in an optional key ("profil", "hour") must never
+  // silently change the result.
+  GLARECAM_CHECK(fields.onlyKeys({"schema", "site", "arrays", "observers"}));
   Scene scene;
   GLARECAM_CHECK(readSite(fields, scene.site));
   GLARECAM_CHECK(readArrays(fields, base, scene));
   GLARECAM_CHECK(readObservers(fields, scene));
+  warnHiddenFronts(file, scene);
   return scene;
 }
 

@@ -2,8 +2,12 @@
 // site, the arrays (planar polygons in local east–north–up metres, each optionally with its own
 // glare profile) and the observers (a point and the local hours in which glare counts there).
 // Reading validates everything the calculation relies on and refuses the first problem with one
-// line naming the file and the field; an array is refused when it has fewer than 3 vertices, is
-// not planar within kPlanarityToleranceM, has zero area, repeats a vertex or crosses itself.
+// line naming the file and the field: a key the format does not define, at any level (with the
+// closest known one); an array with fewer than 3 vertices, a repeated vertex, all on one line,
+// not planar within kPlanarityToleranceM (naming the vertex farthest from the plane of the
+// others), crossing itself (naming two edges that cross) or of zero area. What is valid but
+// surely unmeant is warned about (Scene::warnings): an array facing downward, an observer that
+// never sees an array's front.
 #pragma once
 
 #include <array>
@@ -62,7 +66,8 @@ struct Scene {
   HazardSite site;
   std::vector<ArrayPolygon> arrays;
   std::vector<Observer> observers;
-  std::vector<std::string> warnings;  // e.g. an array facing downward
+  // e.g. an array facing downward, an observer that never sees an array's front
+  std::vector<std::string> warnings;
 };
 
 // Reads and validates a scene file. An array's relative `profile` path is taken relative to the
@@ -76,6 +81,17 @@ Result<Scene> parseScene(const nlohmann::json& document, const std::string& file
 // name it in messages ("scene.json", "arrays[0].vertices_m").
 Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertices_m,
                                       const std::string& file, const std::string& field);
+
+// Whether a point sees the array's front: more than kPlanarityToleranceM in front of its plane
+// (hazard.md step 2; behind it, or within the tolerance, where it sees the array edge-on, the
+// array never glares there).
+bool seesFront(const ArrayPolygon& array, Vec3 point_m);
+
+// The compass direction the array's front faces: the azimuth of its normal's horizontal part,
+// clockwise from north, [0, 360); nullopt for a level array.
+std::optional<double> facingAzimuthDeg(const ArrayPolygon& array);
+// The normal's angle from straight up: 0 level facing up, 90 vertical, 180 facing straight down.
+double tiltDeg(const ArrayPolygon& array);
 
 // Whether a point of the array's plane lies inside its polygon (even–odd rule; the boundary
 // counts as inside within rounding).

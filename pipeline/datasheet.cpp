@@ -81,10 +81,6 @@ constexpr LineStyle kModelEwStyle{.colour = kModelGrey, .width_pt = 0.8, .dash =
 constexpr LineStyle kExtrapolationKeyStyle{
     .colour = kModelGrey, .width_pt = 1.0, .dash = Dash::kDotted};
 
-constexpr Font kSimulatedMarkFont{.size = 120, .bold = true};
-constexpr double kSimulatedMarkAngleRad = 0.5;        // ~29°, bottom left to top right
-constexpr Rgb kSimulatedMarkColour{1.0, 0.78, 0.78};  // pale: the plots stay readable over it
-
 constexpr MarkerStyle kLmaxMarker{.colour = kInk};
 constexpr MarkerStyle kLmaxBoundMarker{.colour = kInk, .hollow = true};  // Lmax only a bound
 constexpr MarkerStyle kSuspectMarker{.colour = kRed, .hollow = true};    // frames disagree
@@ -611,23 +607,13 @@ void drawWarnings(Canvas& canvas, const std::vector<std::string>& warnings, cons
   }
 }
 
-// Across the page's face, pale red under everything drawn after it: a sheet of the simulated
-// camera's stacks can never pass for a measurement, whatever is cut from it. (Opaque pale red
-// drawn first rather than translucent red drawn last: the same look, and no group surface.)
-void drawSimulatedMark(Canvas& canvas) {
-  const Canvas::Saved saved = canvas.save();
-  canvas.translate(kPageWidthPt / 2, kPageHeightPt / 2);
-  canvas.rotate(-kSimulatedMarkAngleRad);
-  drawText(canvas, {0, kSimulatedMarkFont.size * kBaselineBelowMiddleEm}, "SIMULATED",
-           {kSimulatedMarkFont, kSimulatedMarkColour, Align::kCentre});
-  drawText(canvas, {0, kSimulatedMarkFont.size * 0.75},
-           "stacks of the simulated camera: not a measurement",
-           {kSectionFont, kSimulatedMarkColour, Align::kCentre});
-}
-
 void drawDatasheet(Canvas& canvas, const DatasheetContent& content) {
   paint(canvas, kWhite);
-  if (isSimulated(*content.table)) drawSimulatedMark(canvas);
+  // Across the page's face, pale red under everything drawn after it: a sheet of the simulated
+  // camera's stacks can never pass for a measurement, whatever is cut from it. (Opaque pale red
+  // drawn first rather than translucent red drawn last: the same look, and no group surface.)
+  if (isSimulated(*content.table))
+    drawPageMark(canvas, kA4Landscape, "SIMULATED", kSimulatedNote, /*over=*/false);
   const Layout layout = pageLayout(canvas, content);
   drawHeader(canvas, content, layout.header, layout.subtitle_lines);
   drawLmaxPlot(canvas, content, layout.lmax_plot);

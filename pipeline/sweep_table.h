@@ -68,6 +68,8 @@ GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning = nullp
 // True when any row was measured with the simulated camera (camera_backend "sim"): a sheet or
 // profile made from it must say so, so that it can never pass for a measurement.
 bool isSimulated(const SweepTable& table);
+// What every output made from such rows says beside its SIMULATED mark.
+inline constexpr const char* kSimulatedNote = "stacks of the simulated camera: not a measurement";
 
 // The distinct cameras ("sim SIM-0001"), frame sizes ("320x256"), calibration ids and modules of
 // the rows, in order, empty ones left out.

@@ -9,6 +9,7 @@
 
 #include "render/colour.h"
 #include "render/page_geometry.h"
+#include "render/page_output.h"
 
 namespace glarecam::render {
 
@@ -30,6 +31,7 @@ struct TextStyle {
   Font font;
   Rgb colour = kInk;
   Align align = Align::kLeft;
+  double opacity = 1;  // 0 to 1: what lies under the text shows through
 };
 
 // Makes `font` the canvas's font for the text drawn or measured next.
@@ -55,5 +57,13 @@ std::vector<std::string> wrapText(Canvas& canvas, const std::string& text, doubl
 // apart; returns the height used.
 double drawParagraphs(Canvas& canvas, Point first_baseline, double width,
                       const std::vector<std::string>& paragraphs, const TextStyle& style);
+
+// A word across a page's face, bottom left to top right, with a note in small type under it, in
+// pale red: the mark of a page that must never pass for what it is not ("SIMULATED": stacks of
+// the simulated camera), whatever is cut from it. `over` false: opaque pale red, to be drawn
+// first, under everything; true: translucent red that gives the same pale red on white, drawn
+// last, over everything, so that a page covered by opaque rasters shows it and them.
+void drawPageMark(Canvas& canvas, const PageSize& page, const std::string& word,
+                  const std::string& note, bool over);
 
 }  // namespace glarecam::render

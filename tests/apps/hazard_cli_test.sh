@@ -30,6 +30,28 @@ expect "table gives verdicts" grep -q "significant" "$WORK/out"
 expect "events.csv header" grep -q "^observer,array,model,start_local,end_local,duration_min" "$WORK/h/events.csv"
 expect "hazard.json schema" grep -q '"schema": "glarecam.hazard/1"' "$WORK/h/hazard.json"
 expect "hazard.json names the profile's module" grep -q '"module": "Standard module"' "$WORK/h/hazard.json"
+expect "summary gives the array's facing" grep -qxF "array roof-north: faces 0° (N), tilt 30.0°, 72.0 m²" "$WORK/out"
+expect "a measured profile: no SIMULATED" bash -c "! grep -q SIMULATED '$WORK/out' '$WORK/err' '$WORK/h/events.csv'"
+expect "a measured profile: events not simulated" grep -q ',false$' "$WORK/h/events.csv"
+
+# A profile from simulated stacks: marked on stderr, in the table, in every event and hazard.json.
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["simulated"]=True; json.dump(d,open(sys.argv[2],"w"))' \
+  "$PROFILE" "$WORK/sim-profile.json"
+check "simulated profile" 0 "$GLARECAM" hazard "$SCENE" --profile "$WORK/sim-profile.json" --year 2027 \
+  --step-s 600 --out "$WORK/sim" --no-progress
+expect "simulated: warned on stderr" grep -qF "warning: SIMULATED profile of module \"Standard module\"" "$WORK/err"
+expect "simulated: the table's first line" bash -c "head -1 '$WORK/out' | grep -qF 'SIMULATED profile of module'"
+expect "simulated: every event" bash -c "! grep -v ',true\$' '$WORK/sim/events.csv' | tail -n +2 | grep -q ."
+expect "simulated: hazard.json's warnings" grep -qF '"SIMULATED profile of module' "$WORK/sim/hazard.json"
+
+# Observers that can never see an array's front: computed (0 minutes), warned naming both.
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["observers"].append({"name": "in-the-house", "position_m": [0, 2, 5]}); json.dump(d,open(sys.argv[2],"w"))' \
+  "$SCENE" "$WORK/behind.json"
+check "observer behind the array" 0 "$GLARECAM" hazard "$WORK/behind.json" --profile "$PROFILE" \
+  --year 2027 --step-s 3600 --out "$WORK/behind" --no-progress
+expect "observer behind: warned naming both" grep -qF \
+  'warning: '"$WORK"'/behind.json: observer "in-the-house" (observers[2]) is behind or on the plane of array "roof-north" (arrays[0])' "$WORK/err"
+expect "observer behind: in hazard.json" grep -qF 'observer \"in-the-house\" (observers[2]) is behind' "$WORK/behind/hazard.json"
 
 check "json" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --step-s 3600 \
   --out "$WORK/j" --json --models cone:0.5 --criteria ch --no-progress
@@ -73,9 +95,17 @@ bad "text coordinate" "arrays[0].vertices_m[1][0] must be a number, not" \
   "$(edit text 's/\[6, 0, 9\]/["6", 0, 9]/')" --profile "$PROFILE"
 bad "two vertices" "has 2 vertices" \
   "$(edit two 's/\[\[-6, 0, 9\], \[6, 0, 9\], \[6, 5.2, 6\], \[-6, 5.2, 6\]\]/[[-6, 0, 9], [6, 0, 9]]/')" --profile "$PROFILE"
-bad "self-intersecting" "crosses itself" \
+bad "self-intersecting" "crosses itself (edges 1–2 and 3–0 cross)" \
   "$(edit cross 's/\[6, 5.2, 6\], \[-6, 5.2, 6\]/[-6, 5.2, 6], [3, 5.2, 6]/')" --profile "$PROFILE"
-bad "not planar" "is not planar" "$(edit planar 's/\[6, 5.2, 6\]/[6, 5.2, 6.5]/')" --profile "$PROFILE"
+# Vertex 2 moved 0.5 m along the roof's normal (0, 0.5, 0.866): named, not vertex 0.
+bad "not planar" "is not planar (vertex 2 lies 0.500 m off the plane of the others)" \
+  "$(edit planar 's/\[6, 5.2, 6\]/[6, 5.45, 6.433]/')" --profile "$PROFILE"
+bad "unknown array key" 'arrays[0] has an unknown key "profil" (did you mean "profile"?)' \
+  "$(edit profil 's/"vertices_m"/"profil": "p.json", "vertices_m"/')" --profile "$PROFILE"
+bad "unknown observer key" 'observers[0] has an unknown key "hour" (did you mean "hours"?)' \
+  "$(edit hour 's/"hours"/"hour"/')" --profile "$PROFILE"
+bad "unknown site key" 'site has an unknown key "elevation" (did you mean "elevation_m"?)' \
+  "$(edit elevation 's/"elevation_m"/"elevation"/')" --profile "$PROFILE"
 bad "duplicate observer" "repeats the observer name" "$(edit dup 's/window-west/window-3/')" --profile "$PROFILE"
 bad "no observers" "observers is empty" \
   "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["observers"]=[]; print(json.dumps(d))' "$SCENE" >"$WORK/noobs.json"; echo "$WORK/noobs.json")" --profile "$PROFILE"

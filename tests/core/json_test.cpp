@@ -154,6 +154,21 @@ TEST(JsonReader, AWordIsOneOfItsList) {
   EXPECT_EQ(r.optionalWord("none", {"a", "b"}).value(), std::nullopt);
 }
 
+TEST(JsonReader, OnlyKnownKeysAndTheClosestOneSuggested) {
+  const JsonReader root(kScene, "scene.json");
+  const JsonReader site = *root.member("site");
+  EXPECT_TRUE(site.onlyKeys({"latitude_deg", "name", "flat", "empty"}));
+  // A null member is still a key written, and a misspelt one.
+  EXPECT_EQ(errorOf(site.onlyKeys({"latitude_deg", "name", "flat", "empty_m"})),
+            "scene.json: site has an unknown key \"empty\" (did you mean \"empty_m\"?)");
+  EXPECT_EQ(errorOf(root.onlyKeys({"schema", "site", "arrays"})),
+            "scene.json: the document has an unknown key \"count\" (known: schema, site, arrays)");
+  EXPECT_EQ(errorOf(root.member("arrays")->element(0).onlyKeys({"vertex_m"})),
+            "scene.json: arrays[0] has an unknown key \"vertices_m\" (did you mean \"vertex_m\"?)");
+  EXPECT_EQ(errorOf(root.member("count")->onlyKeys({"a"})),
+            "scene.json: count must be an object, not 3.5");
+}
+
 TEST(JsonReader, SchemaIsTheExpectedOneOrAnAcceptedOlderOne) {
   const JsonReader root(kScene, "scene.json");
   EXPECT_EQ(root.schema("demo/2", "a demo").value(), "demo/2");

@@ -158,6 +158,34 @@ TEST(HazardChart, AGlaringCellShowsInItsModelsColourAtItsDayAndTime) {
   EXPECT_FALSE(colourNear(png, panel.at(250, 18.5), kOrange, kRadius));
 }
 
+// A mark (SIMULATED) goes over everything, the opaque cell panel too, as translucent red: the
+// panel's white cells under it turn the pale red of the data sheet's mark, and glare still shows.
+TEST(HazardChart, AMarkCrossesThePageOverTheCells) {
+  HazardChartContent c = markedYear(1440);
+  const Png plain = write(c).png;
+  c.mark = "SIMULATED";
+  c.mark_note = "stacks of the simulated camera: not a measurement";
+  const Png marked = write(c).png;
+  const Panel panel = findPanel(marked);
+  ASSERT_GT(panel.x1 - panel.x0, kPngWidth * 3 / 4);
+  // White (1, 1, 1) under red at 22 % opacity: (255, 199, 199), within rounding.
+  const auto pale = [](const Pixel& p) {
+    return p[0] == 255 && p[1] >= 196 && p[1] <= 201 && p[2] == p[1];
+  };
+  std::size_t pale_in_panel = 0, pale_before = 0;
+  for (int y = panel.y0 + 2; y < panel.y1 - 2; ++y) {
+    for (int x = panel.x0 + 2; x < panel.x1 - 2; ++x) {
+      pale_in_panel += pale(marked.at(x, y)) ? 1 : 0;
+      pale_before += pale(plain.at(x, y)) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(pale_before, 0u);
+  // The 120-pt letters cover tens of thousands of the panel's pixels.
+  EXPECT_GT(pale_in_panel, 10000u);
+  // The glaring first and last days still show through it at their edges.
+  EXPECT_EQ(marked.at(panel.x0 + 1, (panel.y0 + panel.y1) / 2), kVermillion);
+}
+
 // At 10-s steps a pixel row of the panel aggregates some 15 steps: one glaring step among them
 // still colours it (glare wins), and so does one among sun-down steps.
 TEST(HazardChart, ASingleGlaringStepStillShows) {

@@ -122,10 +122,68 @@ TEST_F(HazardReportOutputs, EventsCsvHasOneRowPerEvent) {
   const std::string csv = eventsCsv(report_);
   EXPECT_EQ(csv,
             "observer,array,model,start_local,end_local,duration_min,alpha_min_deg,alpha_max_deg,"
-            "peak_luminance_cd_m2\n"
+            "peak_luminance_cd_m2,simulated\n"
             "window,roof,ellipse,2027-03-21T18:00+01:00,2027-03-21T18:02+01:00,2,61.20,61.31,"
-            "1.235e+05\n"
-            "window,roof,circle,2027-03-21T18:01+01:00,2027-03-21T18:02+01:00,1,61.30,61.30,\n");
+            "1.235e+05,false\n"
+            "window,roof,circle,2027-03-21T18:01+01:00,2027-03-21T18:02+01:00,1,61.30,61.30,,"
+            "false\n");
+}
+
+TEST_F(HazardReportOutputs, ASimulatedProfileIsMarkedInEveryOutput) {
+  nlohmann::json document = testing::constantProfileJson(6, 4);
+  document["simulated"] = true;
+  glarecam::testing::TempDir dir;
+  const std::filesystem::path path = dir / "glare-profile.json";
+  glarecam::testing::writeText(path, document.dump());
+  const ProfileTable simulated = *ProfileTable::read(path);
+  report_.profiles = {&simulated};
+  const std::string mark = "SIMULATED profile of module \"test module\" (" + path.string() +
+                           "), for array \"roof\": stacks of the simulated camera: not a "
+                           "measurement";
+  // stderr and hazard.json's warnings.
+  EXPECT_EQ(reportWarnings(report_), std::vector<std::string>{mark});
+  EXPECT_EQ(hazardJson(report_)["warnings"], nlohmann::json::array({mark}));
+  // The table's first line.
+  const std::string text = summaryText(report_);
+  EXPECT_TRUE(text.starts_with(mark + "\n")) << text;
+  // Every event's row.
+  const std::string csv = eventsCsv(report_);
+  EXPECT_NE(csv.find(",1.235e+05,true\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",61.30,,true\n"), std::string::npos) << csv;
+  // The picture's subtitle, and the module in it.
+  const std::string subtitle = chartContent(report_, 0).subtitle;
+  EXPECT_TRUE(
+      subtitle.starts_with("SIMULATED: stacks of the simulated camera: not a measurement \u00b7 "))
+      << subtitle;
+  EXPECT_NE(subtitle.find("test module (SIMULATED)"), std::string::npos) << subtitle;
+  // And across the picture, as on the data sheet.
+  EXPECT_EQ(chartContent(report_, 0).mark, "SIMULATED");
+  EXPECT_EQ(chartContent(report_, 0).mark_note,
+            "stacks of the simulated camera: not a measurement");
+}
+
+TEST_F(HazardReportOutputs, AMeasuredProfileIsNotMarked) {
+  EXPECT_TRUE(reportWarnings(report_).empty());
+  EXPECT_EQ(summaryText(report_).find("SIMULATED"), std::string::npos);
+  EXPECT_EQ(chartContent(report_, 0).subtitle.find("SIMULATED"), std::string::npos);
+  EXPECT_TRUE(chartContent(report_, 0).mark.empty());
+}
+
+TEST_F(HazardReportOutputs, SummaryGivesEachArraysFacingTiltAndArea) {
+  // A roof tilted 30° facing south (its normal 60° above the southern horizon), and a level one.
+  scene_.arrays = {testing::squareArray("south", {0, 0, 0}, testing::unitToward(60, 180), 10),
+                   testing::squareArray("flat", {0, 0, 0}, {0, 0, 1}, 2)};
+  report_.profiles = {&profile_, &profile_};
+  const std::string text = summaryText(report_);
+  EXPECT_TRUE(
+      text.starts_with("array south: faces 180° (S), tilt 30.0°, 100.0 m²\n"
+                       "array flat: faces up (level), tilt 0.0°, 4.0 m²\n\n"
+                       "observer "))
+      << text;
+  const nlohmann::json arrays = hazardJson(report_)["inputs"]["arrays"];
+  EXPECT_NEAR(arrays[0]["facing_azimuth_deg"].get<double>(), 180, 1e-9);
+  EXPECT_NEAR(arrays[0]["tilt_deg"].get<double>(), 30, 1e-9);
+  EXPECT_TRUE(arrays[1]["facing_azimuth_deg"].is_null());
 }
 
 TEST_F(HazardReportOutputs, ChartCellsShowWhichModelGlares) {

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <functional>
 
+#include "core/angles.h"
 #include "tests/hazard/hazard_fixtures.h"
 #include "tests/support/test_support.h"
 
@@ -57,7 +59,128 @@ TEST(HazardScene, ReadsTheMethodDocsExample) {
   EXPECT_EQ(scene->observers[0].to_h, 22);
   EXPECT_EQ(scene->observers[1].from_h, 0);  // the whole day by default
   EXPECT_EQ(scene->observers[1].to_h, 24);
-  EXPECT_TRUE(scene->warnings.empty());
+  // The terrace lies south of the north-facing roof and below it: it never sees the front.
+  ASSERT_EQ(scene->warnings.size(), 1u);
+  EXPECT_EQ(scene->warnings[0],
+            "scene.json: observer \"terrace\" (observers[1]) is behind or on the plane of array "
+            "\"roof-north\" (arrays[0]) and never sees its front, so that array adds no glare "
+            "there (are the array's vertices listed the wrong way round?)");
+}
+
+TEST(HazardScene, WarnsForEveryObserverThatNeverSeesAnArraysFront) {
+  json scene = goodScene();
+  scene["observers"] = json::parse(R"([
+    {"name": "window-3", "position_m": [0, 30, 12]},
+    {"name": "inside", "position_m": [0, 2, 5]},
+    {"name": "on-the-roof", "position_m": [0, 2.6, 7.5]},
+    {"name": "street", "position_m": [20, 30, 1.6]}])");
+  // A facade at y = 0 listed the wrong way round: its normal points south, into the building,
+  // and, vertical, it never faces downward, so nothing else warns about it.
+  scene["arrays"].push_back(
+      {{"name", "facade"}, {"vertices_m", {{10, 0, 0}, {10, 0, 3}, {0, 0, 3}, {0, 0, 0}}}});
+  const Result<Scene> read = parseScene(scene, "scene.json", "/base");
+  ASSERT_TRUE(read) << read.error().message;
+  std::vector<std::string> pairs;
+  for (const std::string& warning : read->warnings) {
+    const auto quoted = [&](std::size_t from) {
+      const std::size_t start = warning.find('"', from) + 1;
+      return warning.substr(start, warning.find('"', start) - start);
+    };
+    const std::string observer = quoted(0);
+    pairs.push_back(observer + "/" + quoted(warning.find("array \"")));
+  }
+  EXPECT_EQ(pairs, (std::vector<std::string>{"inside/roof-north", "on-the-roof/roof-north",
+                                             "window-3/facade", "inside/facade",
+                                             "on-the-roof/facade", "street/facade"}));
+  EXPECT_NE(read->warnings[0].find("(observers[1])"), std::string::npos) << read->warnings[0];
+  EXPECT_NE(read->warnings[2].find("(arrays[1])"), std::string::npos) << read->warnings[2];
+  // The facade is vertical: no "faces downward" warning, and the facing says where it looks.
+  EXPECT_EQ(read->arrays[1].normal.y, -1);
+  EXPECT_NEAR(*facingAzimuthDeg(read->arrays[1]), 180, 1e-9);
+  EXPECT_NEAR(tiltDeg(read->arrays[1]), 90, 1e-9);
+}
+
+TEST(HazardScene, FacingAzimuthAndTiltOfTheFront) {
+  const Result<Scene> scene = parseScene(goodScene(), "scene.json", "/base");
+  ASSERT_TRUE(scene) << scene.error().message;
+  // The roof slopes 30° down to the north (rise 3 m over 5.2 m): it faces north, tilted 30°.
+  EXPECT_NEAR(*facingAzimuthDeg(scene->arrays[0]), 0, 1e-9);
+  EXPECT_NEAR(tiltDeg(scene->arrays[0]), degrees(std::atan2(3, 5.2)), 1e-9);
+  const ArrayPolygon west = testing::squareArray("west", {0, 0, 5}, {-1, 0, 0}, 2);
+  EXPECT_NEAR(*facingAzimuthDeg(west), 270, 1e-9);
+  const ArrayPolygon level = testing::squareArray("flat", {0, 0, 5}, {0, 0, 1}, 2);
+  EXPECT_FALSE(facingAzimuthDeg(level));
+  EXPECT_NEAR(tiltDeg(level), 0, 1e-9);
+}
+
+TEST(HazardScene, RefusesUnknownKeysAtEveryLevelSuggestingTheClosest) {
+  const std::vector<std::pair<std::function<void(json&)>, std::string>> cases{
+      {[](json& s) { s["arrays"][0]["profil"] = s["arrays"][0]["profile"]; },
+       "scene.json: arrays[0] has an unknown key \"profil\" (did you mean \"profile\"?)"},
+      {[](json& s) {
+         s["observers"][1]["hour"] = {6, 22};
+       },
+       "scene.json: observers[1] has an unknown key \"hour\" (did you mean \"hours\"?)"},
+      {[](json& s) { s["site"]["elevation"] = 410; },
+       "scene.json: site has an unknown key \"elevation\" (did you mean \"elevation_m\"?)"},
+      {[](json& s) { s["observer"] = s["observers"]; },
+       "scene.json: the document has an unknown key \"observer\" (did you mean "
+       "\"observers\"?)"},
+      {[](json& s) { s["site"]["timezone"] = "Europe/Zurich"; },
+       "scene.json: site has an unknown key \"timezone\" (known: latitude_deg, longitude_deg, "
+       "elevation_m, utc_offset_h, pressure_hpa, temperature_c)"},
+      // A key of a later version is no key of version 1.
+      {[](json& s) { s["observers"][0]["facing_azimuth_deg"] = 180; },
+       "scene.json: observers[0] has an unknown key \"facing_azimuth_deg\" (known: name, "
+       "position_m, hours)"},
+  };
+  for (const auto& [change, expected] : cases) {
+    json scene = goodScene();
+    change(scene);
+    EXPECT_EQ(errorOf(scene), expected);
+  }
+}
+
+TEST(HazardScene, NamesTheVertexThatIsOffThePlane) {
+  // The example roof with one vertex at a time moved 0.5 m out of its plane: the message names
+  // that vertex and its distance from the plane of the others. (The plane of all four leans
+  // toward it and passes a quarter of that from every vertex, so that the first was named.)
+  const double length = std::hypot(3.0, 5.2);
+  const double normal[3] = {0, 3 / length, 5.2 / length};
+  for (std::size_t moved = 0; moved < 4; ++moved) {
+    json scene = goodScene();
+    json& vertex = scene["arrays"][0]["vertices_m"][moved];
+    for (std::size_t axis = 0; axis < 3; ++axis)
+      vertex[axis] = vertex[axis].get<double>() + 0.5 * normal[axis];
+    char expected[128];
+    std::snprintf(expected, sizeof expected,
+                  "scene.json: arrays[0].vertices_m is not planar (vertex %zu lies 0.500 m off "
+                  "the plane of the others)",
+                  moved);
+    EXPECT_EQ(errorOf(scene), expected);
+  }
+  // A hexagon with its vertex 4 lifted: the plane through them all leans toward it.
+  json hexagon = goodScene();
+  hexagon["arrays"][0]["vertices_m"] = {{2, 0, 0},  {1, 1.7, 0},     {-1, 1.7, 0},
+                                        {-2, 0, 0}, {-1, -1.7, 0.3}, {1, -1.7, 0}};
+  EXPECT_NE(errorOf(hexagon).find("(vertex 4 lies 0.300 m off the plane of the others)"),
+            std::string::npos)
+      << errorOf(hexagon);
+}
+
+TEST(HazardScene, ABowTieCrossesItselfNamingTheEdges) {
+  json scene = goodScene();
+  // Symmetric: its two lobes cancel, so that it encloses no area by the signed sum.
+  scene["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_EQ(errorOf(scene),
+            "scene.json: arrays[0].vertices_m crosses itself (edges 0\u20131 and 2\u20133 cross)");
+  // The same standing up (in the plane x = 0), and a quadrilateral whose last edge crosses its
+  // second.
+  scene["arrays"][0]["vertices_m"] = {{0, 0, 0}, {0, 1, 1}, {0, 1, 0}, {0, 0, 1}};
+  EXPECT_NE(errorOf(scene).find("crosses itself (edges 0\u20131 and 2\u20133 cross)"),
+            std::string::npos);
+  scene["arrays"][0]["vertices_m"] = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {3, 1, 0}};
+  EXPECT_NE(errorOf(scene).find("crosses itself"), std::string::npos) << errorOf(scene);
 }
 
 TEST(HazardScene, ALevelArrayFacesUpAndSlopesNorth) {
@@ -71,9 +194,11 @@ TEST(HazardScene, WarnsWhenAnArrayFacesDownward) {
   scene["arrays"][0]["vertices_m"] = {{-6, 5.2, 6}, {6, 5.2, 6}, {6, 0, 9}, {-6, 0, 9}};
   const Result<Scene> read = parseScene(scene, "scene.json", "/base");
   ASSERT_TRUE(read);
-  ASSERT_EQ(read->warnings.size(), 1u);
+  // Then window-3 is behind it (warned about too).
+  ASSERT_EQ(read->warnings.size(), 2u);
   EXPECT_NE(read->warnings[0].find("roof-north"), std::string::npos);
   EXPECT_NE(read->warnings[0].find("downward"), std::string::npos);
+  EXPECT_NE(read->warnings[1].find("observer \"window-3\""), std::string::npos);
 }
 
 TEST(HazardScene, ContainsPlanePointsOfANonConvexPolygon) {
@@ -137,7 +262,7 @@ TEST(HazardScene, RefusesEachBadInputNamingTheField) {
        [](json& s) {
          s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
        },
-       "is degenerate"},
+       "crosses itself"},
       {"collinear",
        [](json& s) {
          s["arrays"][0]["vertices_m"] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};

@@ -84,6 +84,39 @@ TEST(Text, VerticalTextReadsUpwardCentredOnItsPoint) {
   EXPECT_FALSE(canvas.anyInk(0, 0, 60, 40));
 }
 
+// Pixels of a canvas in each of two kinds: the pale red of a page mark on white, (255, 199, 199)
+// within rounding, and dark red (a translucent mark over black).
+std::pair<int, int> markPixels(const TestCanvas& canvas) {
+  const RgbImage image = canvas.image();
+  int pale = 0, dark = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint8_t* p = rgbPixel(image, x, y);
+      pale += p[0] == 255 && p[1] >= 196 && p[1] <= 201 && p[2] == p[1];
+      dark += p[0] >= 50 && p[0] <= 62 && p[1] == 0 && p[2] == 0;
+    }
+  }
+  return {pale, dark};
+}
+
+TEST(Text, APageMarkIsPaleRedDrawnUnderOrOver) {
+  constexpr PageSize kPage{300, 200};
+  TestCanvas under(300, 200), over(300, 200), over_black(300, 200, {0, 0, 0});
+  drawPageMark(under.context(), kPage, "SIMULATED", "not a measurement", /*over=*/false);
+  drawPageMark(over.context(), kPage, "SIMULATED", "not a measurement", /*over=*/true);
+  drawPageMark(over_black.context(), kPage, "SIMULATED", "not a measurement", /*over=*/true);
+  // On white, one look: the letters' pixels (anti-aliased edges aside) pale red either way.
+  const int pale = markPixels(under).first;
+  EXPECT_GT(pale, 2000);
+  EXPECT_NEAR(markPixels(over).first, pale, pale / 50);
+  // Drawn over, it lets what is under it show: over black, 22 % red.
+  EXPECT_EQ(markPixels(over_black).first, 0);
+  EXPECT_NEAR(markPixels(over_black).second, pale, pale / 50);
+  // Across the page, bottom left to top right, centred.
+  EXPECT_TRUE(under.anyInk(130, 80, 170, 120, 220));
+  EXPECT_FALSE(under.anyInk(0, 0, 60, 40, 220));
+}
+
 TEST(Text, WrapBreaksAtSpacesToTheWidth) {
   TestCanvas canvas(10, 10);
   const double two_words = textWidth(canvas.context(), "one two", kTextFont);

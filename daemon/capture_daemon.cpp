@@ -383,8 +383,11 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   if (config_.daemon.output.module != kUnnamedModule)
     settings.module = config_.daemon.output.module;
   settings.alpha_from_scene = !rig_->measuresAlpha();
+  // The stack's time: α measured at its start (a simulated camera draws that α), the bracket
+  // timed on it (a time lapse runs it at real rate: daemon_clock.h).
+  const StackTimeline timeline(clock_);
   const InclinometerFaults::Measured measured =
-      inclinometer_.measure(*rig_, config_.daemon.faults, state_, settings);
+      inclinometer_.measure(*rig_, config_.daemon.faults, state_, settings, timeline.begun());
   if (measured.pause) return skip("capture paused for the inclinometer");
   const std::optional<rig::RigGeometry>& geometry = measured.geometry;
   if (trigger == CaptureTrigger::kSchedule && geometry) {
@@ -401,12 +404,12 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   publishStatus();
   // The loop cannot ping during the bracket: a ping due before its expected end goes now.
   if (watchdog_.feedBeforeBracket(settings, workerBusySince())) ++state_.watchdog_pings;
-  const UtcTime start = clock_.utcNow();
+  const UtcTime start = timeline.now();
   settings.start_time = start;
   const SteadyTime bracket_start = clock_.now();
   auto stack = capture::captureStack(**acquired, settings);
   if (stack) watchdog_.recordBracket(clock_.now() - bracket_start);
-  const UtcTime end = clock_.utcNow();
+  const UtcTime end = timeline.now();
   state_.capturing = false;
   if (!stack) {
     const ErrorCode code = stack.error().code;

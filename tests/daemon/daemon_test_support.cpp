@@ -179,7 +179,8 @@ std::optional<Error> ScriptedCameras::beforeCapture(
   if (exposure_clock_) {
     double exposures_us = 0;
     for (const capture::ExposureRequest& request : requests) exposures_us += request.exposure_us;
-    exposure_clock_->advance(std::chrono::nanoseconds(std::llround(exposures_us * 1e3)));
+    exposure_clock_->advance(std::chrono::nanoseconds(std::llround(exposures_us * 1e3)) +
+                             capture_time_);
   }
   if (wedge_at_ && call == *wedge_at_) {
     wedged_ = true;
@@ -228,6 +229,12 @@ void ScriptedCameras::release() {
 void ScriptedCameras::takeExposureTime(ManualClock& clock) {
   const std::lock_guard lock(mutex_);
   exposure_clock_ = &clock;
+}
+
+void ScriptedCameras::takeCaptureTime(ManualClock& clock, std::chrono::nanoseconds per_capture) {
+  const std::lock_guard lock(mutex_);
+  exposure_clock_ = &clock;
+  capture_time_ = per_capture;
 }
 
 }  // namespace glarecam::testing

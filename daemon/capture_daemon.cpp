@@ -116,7 +116,7 @@ Status CaptureDaemon::step() {
     inclinometer_.retry(*rig_, config_.daemon.faults, state_);
   const auto retry = camera_.retryAt();
   if (!camera_.camera() && (!retry || now >= *retry)) GLARECAM_CHECK(reopenCamera(now));
-  if (schedule_.replanAt() && now >= *schedule_.replanAt()) planNext(false);
+  if (schedule_.replanAt() && now >= *schedule_.replanAt()) planNext(std::nullopt);
   if (mayCapture()) {
     if (!requests_.empty()) {
       const CaptureTrigger trigger = requests_.front();
@@ -268,7 +268,7 @@ void CaptureDaemon::applyConfig() {
   inclinometer_.open(*rig_, state_);
   openGpio();
   checkClock();
-  planNext(false);
+  planNext(std::nullopt);
 }
 
 void CaptureDaemon::reload() {
@@ -363,11 +363,23 @@ Status CaptureDaemon::cameraFailed(const Error& error, SteadyTime now, bool mid_
 Status CaptureDaemon::capture(CaptureTrigger trigger) {
   ScopedLogFields fields(
       LogFields{{"GLARECAM_EVENT", "capture"}, {"GLARECAM_TRIGGER", triggerName(trigger)}});
-  const std::optional<double> target_deg = schedule_.nextTargetDeg();
-  if (trigger == CaptureTrigger::kSchedule) {  // this slot is used, or skipped for good
-    schedule_.take(clock_.utcNow());
-    planNext(true);
+  // The stack's time: α measured at its start (a simulated camera draws that α), the bracket
+  // timed on it (a time lapse runs it at real rate: daemon_clock.h).
+  const StackTimeline timeline(clock_);
+  const std::optional<double> target_deg =
+      trigger == CaptureTrigger::kSchedule ? schedule_.nextTargetDeg() : std::nullopt;
+  const Status taken = takeStack(trigger, timeline, target_deg);
+  // The slot is used, or skipped for good, once its stack is done: until then it is the one the
+  // status names next, and a target the sun crossed meanwhile is still owed.
+  if (trigger == CaptureTrigger::kSchedule) {
+    schedule_.take(timeline.begun());
+    planNext(timeline.begun());
   }
+  return taken;
+}
+
+Status CaptureDaemon::takeStack(CaptureTrigger trigger, const StackTimeline& timeline,
+                                std::optional<double> target_deg) {
   const auto skip = [this](std::string reason) -> Status {
     ++state_.captures_skipped;
     if (reason != state_.skip_reason) spdlog::warn("glarecamd: no stack: {}", reason);
@@ -383,9 +395,6 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   if (config_.daemon.output.module != kUnnamedModule)
     settings.module = config_.daemon.output.module;
   settings.alpha_from_scene = !rig_->measuresAlpha();
-  // The stack's time: α measured at its start (a simulated camera draws that α), the bracket
-  // timed on it (a time lapse runs it at real rate: daemon_clock.h).
-  const StackTimeline timeline(clock_);
   const InclinometerFaults::Measured measured =
       inclinometer_.measure(*rig_, config_.daemon.faults, state_, settings, timeline.begun());
   if (measured.pause) return skip("capture paused for the inclinometer");
@@ -422,8 +431,7 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   }
   camera_.succeeded();
   finishStack(*stack, geometry, trigger, start, end);
-  if (trigger == CaptureTrigger::kSchedule && target_deg)
-    stack->manifest.source["daemon"]["target_alpha_deg"] = *target_deg;
+  if (target_deg) stack->manifest.source["daemon"]["target_alpha_deg"] = *target_deg;
   state_.last_stack = stackTag(*stack);
   state_.last_alpha_deg = stack->manifest.alpha_deg;
   state_.last_capture_time = start;
@@ -455,7 +463,7 @@ void CaptureDaemon::finishStack(capture::CapturedStack& stack,
 
 // ---- the schedule and the checks --------------------------------------------------------------
 
-void CaptureDaemon::planNext(bool slot_taken) {
+void CaptureDaemon::planNext(std::optional<UtcTime> slot_taken) {
   CaptureSchedule::Geometry geometry{.site = config_.rig.site, .module = std::nullopt};
   if (schedule_.config().mode == ScheduleMode::kAlphaTargets) {
     // The module's orientation from the last measurement, else one now.
@@ -476,7 +484,7 @@ void CaptureDaemon::checkWallClock() {
   if (!jumped) return;
   spdlog::warn("glarecamd: the wall clock jumped by {:.0f} s; the α targets are planned again",
                std::chrono::duration<double>(*jumped).count());
-  planNext(false);
+  planNext(std::nullopt);
 }
 
 void CaptureDaemon::checkDisk() {

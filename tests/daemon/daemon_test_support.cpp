@@ -175,6 +175,7 @@ daemon::CameraOpener ScriptedCameras::opener() {
 std::optional<Error> ScriptedCameras::beforeCapture(
     std::span<const capture::ExposureRequest> requests) {
   const int call = ++calls_;
+  if (capture_hook_) capture_hook_();
   std::unique_lock lock(mutex_);
   if (exposure_clock_) {
     double exposures_us = 0;
@@ -229,6 +230,11 @@ void ScriptedCameras::release() {
 void ScriptedCameras::takeExposureTime(ManualClock& clock) {
   const std::lock_guard lock(mutex_);
   exposure_clock_ = &clock;
+}
+
+void ScriptedCameras::onCapture(std::function<void()> hook) {
+  const std::lock_guard lock(mutex_);
+  capture_hook_ = std::move(hook);
 }
 
 void ScriptedCameras::takeCaptureTime(ManualClock& clock, std::chrono::nanoseconds per_capture) {

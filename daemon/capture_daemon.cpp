@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "capture/camera_registry.h"
+#include "daemon/hardware/simulated_rig.h"
 #include "daemon/journal_sink.h"
 #include "daemon/storage/earlier_run.h"
 #include "rig/gpio/button_debouncer.h"
@@ -512,10 +513,14 @@ void CaptureDaemon::checkDisk() {
 
 void CaptureDaemon::checkClock() {
   if (!config_.rig.site) return;  // only the sun's position needs the wall clock
-  std::string warning = health_.clockWarning();
+  std::string warning = HealthMonitor::clockWarning(clockStatus());
   if (warning != state_.clock_warning && !warning.empty())
     spdlog::warn("glarecamd: clock {}", warning);
   state_.clock_warning = std::move(warning);
+}
+
+sun::ClockStatus CaptureDaemon::clockStatus() const {
+  return rigClockStatus(config_.rig, clock_.clockStatus());
 }
 
 std::optional<SteadyTime> CaptureDaemon::workerBusySince() const {
@@ -546,7 +551,8 @@ StatusSnapshot CaptureDaemon::snapshot() const {
           .camera_uri = config_.rig.camera.value_or(""),
           .camera_open = camera_.camera() != nullptr,
           .inclinometer_uri = config_.rig.inclinometer ? config_.rig.inclinometer->uri : "",
-          .clock_synchronised = clock_.clockStatus().synchronised,
+          .clock_synchronised = clockStatus().synchronised,
+          .simulated_time = clock_.simulated(),
           .output_root = output.root,
           .reserve_bytes = output.reserve_bytes,
           .retention_policy = retention_.policyText(),

@@ -139,6 +139,8 @@ class CaptureDaemon {
   void checkWallClock();
   void checkDisk();
   void checkClock();
+  // The rig's clock's state (rigClockStatus): the status, /metrics and the stacks' flags.
+  sun::ClockStatus clockStatus() const;
   // The running worker job's start, for the watchdog (none: idle, or no worker yet).
   std::optional<SteadyTime> workerBusySince() const;
   void publishStatus();

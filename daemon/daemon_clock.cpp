@@ -28,9 +28,13 @@ UtcTime TimeLapseClock::utcNow() const {
   return start_utc_ + std::chrono::duration_cast<std::chrono::microseconds>(real * factor_);
 }
 
-sun::ClockStatus TimeLapseClock::clockStatus() const {
-  return {.synchronised = true, .detail = "simulated time"};
+sun::ClockStatus simulatedClockStatus() {
+  return {
+      .synchronised = true,
+      .detail = "simulated: the simulated sun, α and scene all follow the simulated rig's clock"};
 }
+
+sun::ClockStatus TimeLapseClock::clockStatus() const { return simulatedClockStatus(); }
 
 UtcTime TimeLapseClock::stackUtcNow(const ClockInstant& begun) const {
   return begun.utc + std::chrono::duration_cast<std::chrono::microseconds>(now() - begun.steady);

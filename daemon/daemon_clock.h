@@ -44,6 +44,8 @@ class DaemonClock {
   // The wall time now on the time line of a stack begun at `begun` (StackTimeline): by default
   // the wall clock's.
   virtual UtcTime stackUtcNow(const ClockInstant& begun) const;
+  // Whether the wall clock is a simulated one (a time lapse): its times are not the machine's.
+  virtual bool simulated() const { return false; }
   // Waits until `deadline` or until `ready()` (checked first, and after every wake-up). By
   // default in real time on the steady clock.
   virtual void waitUntil(std::unique_lock<std::mutex>& lock, std::condition_variable& wake,
@@ -58,6 +60,10 @@ class SystemDaemonClock final : public DaemonClock {
   SteadyTime steadyAt(UtcTime utc) const override;
 };
 
+// The state of a simulated clock (a time lapse, the simulated rig's: simulated_rig.h): synchronised
+// by construction, for the simulated sun, the α measured and the scene drawn all follow it.
+sun::ClockStatus simulatedClockStatus();
+
 // Wall time = `start` + `factor` × (steady time since construction), on the steady time (and
 // the waits) of the machine, or of another clock (`steady`: tests run it on a manual clock);
 // always synchronised. A stack's time line runs at real rate from its start.
@@ -70,6 +76,7 @@ class TimeLapseClock final : public DaemonClock {
   sun::ClockStatus clockStatus() const override;
   SteadyTime steadyAt(UtcTime utc) const override;
   UtcTime stackUtcNow(const ClockInstant& begun) const override;
+  bool simulated() const override { return true; }
   void waitUntil(std::unique_lock<std::mutex>& lock, std::condition_variable& wake,
                  SteadyTime deadline, const std::function<bool()>& ready) override;
 

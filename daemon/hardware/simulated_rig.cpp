@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "daemon/daemon_clock.h"
 #include "rig/inclinometer/zero_offset_file.h"
 
 namespace glarecam::daemon {
@@ -12,6 +13,16 @@ UtcTime defaultSimulationStart(bool alpha_targets) {
   const auto day = sys_days(year(2026) / June / 21);
   return time_point_cast<microseconds>(alpha_targets ? day + hours(5) + minutes(25)
                                                      : day + hours(6) + minutes(30));
+}
+
+bool isSimulatedRig(const rig::RigConfig& rig) {
+  return rig.path.filename() == kSimulatedRigFileName && rig.camera &&
+         rig.camera->starts_with("sim:") && rig.inclinometer &&
+         rig.inclinometer->uri.starts_with("sim:");
+}
+
+sun::ClockStatus rigClockStatus(const rig::RigConfig& rig, const sun::ClockStatus& clock) {
+  return isSimulatedRig(rig) ? simulatedClockStatus() : clock;
 }
 
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options) {

@@ -14,6 +14,8 @@
 
 #include "core/error.h"
 #include "core/time.h"
+#include "rig/rig_config.h"
+#include "sun/clock_sync.h"
 
 namespace glarecam::daemon {
 
@@ -38,6 +40,15 @@ struct SimulatedRigOptions {
 // The simulated clock's start on 2026-06-21: for the α targets 05:25 UTC, ten minutes of sun
 // before α falls through 80° at the site; for a fixed interval 06:30 UTC, α already below 70°.
 UtcTime defaultSimulationStart(bool alpha_targets);
+
+// Whether `rig` is the simulated rig glarecamd --simulate writes (kSimulatedRigFileName, with the
+// sim: camera and the simulated inclinometer), which runs on its own simulated clock.
+bool isSimulatedRig(const rig::RigConfig& rig);
+
+// Whether the clock α is computed from is synchronised, as glarecamd's status page, /metrics, the
+// stacks' flags and `glarecam doctor` all say it: on a real rig the wall clock's state (`clock`:
+// the kernel's), on the simulated rig synchronised by construction (simulatedClockStatus()).
+sun::ClockStatus rigClockStatus(const rig::RigConfig& rig, const sun::ClockStatus& clock);
 
 // Writes OUTPUT/glarecamd-simulated.toml (atomically) and returns its path.
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options);

@@ -61,11 +61,15 @@ button = 22
 root = "."
 reserve_mb = 64
 module = "simulated standard module"
-max_use_gib = {budget_gib}   # a small budget, so that a second simulated day shows retention
+keep_stacks_days = {keep_stacks}    # a stack a day: the next simulated day deletes it
+keep_results_days = {keep_results}   # results and day sheets two days
+max_use_gib = {budget_gib}        # what a simulated day and the day before's results take, and more
 )",
       fmt::arg("camera", options.camera), fmt::arg("calibration", kSimulatedCalibrationFileName),
       fmt::arg("latitude", kSimulatedLatitudeDeg), fmt::arg("longitude", kSimulatedLongitudeDeg),
       fmt::arg("tilt", kSimulatedTiltDeg), fmt::arg("schedule", schedule),
+      fmt::arg("keep_stacks", kSimulatedKeepStacksDays),
+      fmt::arg("keep_results", kSimulatedKeepResultsDays),
       fmt::arg("budget_gib", kSimulatedMaxUseGib));
   // The simulated sensor is mounted without error: its zero offset is zero, known exactly.
   const rig::InclinometerZeroOffset zero{.offset = {0.0, 0.0},

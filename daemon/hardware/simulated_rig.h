@@ -25,9 +25,14 @@ inline constexpr double kSimulatedLatitudeDeg = 48.0;
 inline constexpr double kSimulatedLongitudeDeg = 7.85;
 inline constexpr double kSimulatedTiltDeg = 24.5;
 inline constexpr double kDefaultTimeLapse = 120.0;  // 2 minutes of sun a second
-// [output] max_use_gib of the simulated rig: a morning's 16 stacks and results (about 175 MB)
-// fit, a second morning's make retention delete the first's oldest stacks (docs/operator.md).
-inline constexpr double kSimulatedMaxUseGib = 0.2;
+// The simulated rig's retention ([output], docs/operator.md): a stack is kept a day, its result and
+// the day's sheets two, within a budget that a day of its stacks (32: α falls through the 16
+// targets in the morning and rises through them in the afternoon, about 11.5 MB a stack and its
+// result with the default camera) and the day before's results fit with a margin, so that the
+// default run, left going for days, never overruns it (SimulatedRigTest checks the arithmetic).
+inline constexpr int kSimulatedKeepStacksDays = 1;
+inline constexpr int kSimulatedKeepResultsDays = 2;
+inline constexpr double kSimulatedMaxUseGib = 0.6;
 inline constexpr const char* kSimulatedRigFileName = "glarecamd-simulated.toml";
 inline constexpr const char* kSimulatedCalibrationFileName = "glarecamd-simulated-calibration.json";
 

@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "core/json.h"
+#include "daemon/alpha_schedule.h"
 #include "daemon/daemon_fixture.h"
 #include "daemon/hardware/rig_doctor.h"
 #include "daemon/status/status_page.h"
@@ -18,6 +19,7 @@ namespace glarecam::daemon {
 namespace {
 
 using namespace std::chrono_literals;
+using testing::utc;
 
 class SimulatedRigTest : public DaemonTest {
  protected:
@@ -60,6 +62,60 @@ TEST_F(SimulatedRigTest, EveryStackOfAMorningRecordsTheAlphaItsSceneWasDrawnAt) 
     EXPECT_NEAR(recorded["alpha_deg"].get<double>(), (*truth)["alpha_deg"].get<double>(), 0.05)
         << stack.filename() << ": the manifest's α against the scene's";
   }
+}
+
+// Bytes under `directory`, recursively.
+std::uint64_t bytesUnder(const std::filesystem::path& directory) {
+  std::uint64_t bytes = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(directory))
+    if (entry.is_regular_file()) bytes += entry.file_size();
+  return bytes;
+}
+
+// The docs' first example, `glarecamd --simulate --output DIR` left running, overran its own
+// 0.2 GiB budget in the first afternoon (today's stacks never go). Its worst day: a day's stacks
+// (kept keep_stacks_days) and results (keep_results_days), each as large as the largest, the
+// stack at α 10° taken here with the default camera (α 5° … 80°: 6.0 … 6.9 MB, results 4.6 MB),
+// and a day's sheets, must fit the budget with a tenth to spare.
+TEST_F(SimulatedRigTest, TheDefaultRunsWorstDayFitsItsBudget) {
+  const auto path = writeSimulatedRigConfig({.output = out(), .interval = std::nullopt});
+  ASSERT_TRUE(path) << path.error().message;
+  const auto config = readConfig(*path);
+  ASSERT_TRUE(config) << config.error().message;
+  const RetentionPolicy& retention = config->daemon.output.retention;
+  ASSERT_TRUE(retention.max_use_bytes) << "no budget";
+  ASSERT_TRUE(retention.keep_stacks_days && retention.keep_results_days)
+      << "without ages, the results of every day stay";
+  // The stacks of a day: each α target crossed while the sun is up, from the simulated start on.
+  const UtcTime start = defaultSimulationStart(true);
+  const auto crossings =
+      alphaCrossings(*config->rig.site, {.tilt_deg = kSimulatedTiltDeg, .azimuth_deg = 180}, start,
+                     std::chrono::hours(24), config->daemon.schedule.alpha_targets_deg);
+  ASSERT_TRUE(crossings) << crossings.error().message;
+  const std::uint64_t stacks_a_day = crossings->size();
+  EXPECT_EQ(stacks_a_day, 32u);
+  // One stack and its result at α 10°, on the simulated rig as it is written (no small camera).
+  TimeLapseClock time_lapse(utc("2026-06-21T10:44:00Z"), kDefaultTimeLapse, clock_);
+  auto daemon = CaptureDaemon::create({.config_path = *path, .max_stacks = 1},
+                                      {.clock = &time_lapse,
+                                       .notifier = &notifier_,
+                                       .disk = &disk_,
+                                       .worker_mode = StackWorker::Mode::kInline,
+                                       .watch_button = false});
+  ASSERT_TRUE(daemon) << daemon.error().message;
+  ASSERT_TRUE((*daemon)->run());
+  ASSERT_EQ(stacks().size(), 1u);
+  const std::uint64_t stack_bytes = bytesUnder(out() / kStacksDirectory);
+  const std::uint64_t result_bytes = bytesUnder(out() / kResultsDirectory);
+  constexpr std::uint64_t kDaySheetsBytes = 2ull << 20;  // a day's sweep, fits and sheets: 0.9 MB
+  const double worst_day_bytes =
+      static_cast<double>(stacks_a_day) *
+          static_cast<double>(stack_bytes * *retention.keep_stacks_days +
+                              result_bytes * *retention.keep_results_days) +
+      static_cast<double>(kDaySheetsBytes * *retention.keep_results_days);
+  EXPECT_LT(1.1 * worst_day_bytes, static_cast<double>(*retention.max_use_bytes))
+      << stacks_a_day << " stacks a day of " << stack_bytes << " bytes, results of " << result_bytes
+      << " bytes";
 }
 
 // The status page and /metrics said the simulated rig's clock was synchronised, glarecam doctor on

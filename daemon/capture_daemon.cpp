@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "capture/camera_registry.h"
+#include "daemon/hardware/simulated_rig.h"
 #include "daemon/journal_sink.h"
 #include "daemon/storage/earlier_run.h"
 #include "rig/gpio/button_debouncer.h"
@@ -116,7 +117,7 @@ Status CaptureDaemon::step() {
     inclinometer_.retry(*rig_, config_.daemon.faults, state_);
   const auto retry = camera_.retryAt();
   if (!camera_.camera() && (!retry || now >= *retry)) GLARECAM_CHECK(reopenCamera(now));
-  if (schedule_.replanAt() && now >= *schedule_.replanAt()) planNext(false);
+  if (schedule_.replanAt() && now >= *schedule_.replanAt()) planNext(std::nullopt);
   if (mayCapture()) {
     if (!requests_.empty()) {
       const CaptureTrigger trigger = requests_.front();
@@ -268,7 +269,7 @@ void CaptureDaemon::applyConfig() {
   inclinometer_.open(*rig_, state_);
   openGpio();
   checkClock();
-  planNext(false);
+  planNext(std::nullopt);
 }
 
 void CaptureDaemon::reload() {
@@ -363,11 +364,23 @@ Status CaptureDaemon::cameraFailed(const Error& error, SteadyTime now, bool mid_
 Status CaptureDaemon::capture(CaptureTrigger trigger) {
   ScopedLogFields fields(
       LogFields{{"GLARECAM_EVENT", "capture"}, {"GLARECAM_TRIGGER", triggerName(trigger)}});
-  const std::optional<double> target_deg = schedule_.nextTargetDeg();
-  if (trigger == CaptureTrigger::kSchedule) {  // this slot is used, or skipped for good
-    schedule_.take(clock_.utcNow());
-    planNext(true);
+  // The stack's time: α measured at its start (a simulated camera draws that α), the bracket
+  // timed on it (a time lapse runs it at real rate: daemon_clock.h).
+  const StackTimeline timeline(clock_);
+  const std::optional<double> target_deg =
+      trigger == CaptureTrigger::kSchedule ? schedule_.nextTargetDeg() : std::nullopt;
+  const Status taken = takeStack(trigger, timeline, target_deg);
+  // The slot is used, or skipped for good, once its stack is done: until then it is the one the
+  // status names next, and a target the sun crossed meanwhile is still owed.
+  if (trigger == CaptureTrigger::kSchedule) {
+    schedule_.take(timeline.begun());
+    planNext(timeline.begun());
   }
+  return taken;
+}
+
+Status CaptureDaemon::takeStack(CaptureTrigger trigger, const StackTimeline& timeline,
+                                std::optional<double> target_deg) {
   const auto skip = [this](std::string reason) -> Status {
     ++state_.captures_skipped;
     if (reason != state_.skip_reason) spdlog::warn("glarecamd: no stack: {}", reason);
@@ -384,7 +397,7 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
     settings.module = config_.daemon.output.module;
   settings.alpha_from_scene = !rig_->measuresAlpha();
   const InclinometerFaults::Measured measured =
-      inclinometer_.measure(*rig_, config_.daemon.faults, state_, settings);
+      inclinometer_.measure(*rig_, config_.daemon.faults, state_, settings, timeline.begun());
   if (measured.pause) return skip("capture paused for the inclinometer");
   const std::optional<rig::RigGeometry>& geometry = measured.geometry;
   if (trigger == CaptureTrigger::kSchedule && geometry) {
@@ -401,12 +414,12 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   publishStatus();
   // The loop cannot ping during the bracket: a ping due before its expected end goes now.
   if (watchdog_.feedBeforeBracket(settings, workerBusySince())) ++state_.watchdog_pings;
-  const UtcTime start = clock_.utcNow();
+  const UtcTime start = timeline.now();
   settings.start_time = start;
   const SteadyTime bracket_start = clock_.now();
   auto stack = capture::captureStack(**acquired, settings);
   if (stack) watchdog_.recordBracket(clock_.now() - bracket_start);
-  const UtcTime end = clock_.utcNow();
+  const UtcTime end = timeline.now();
   state_.capturing = false;
   if (!stack) {
     const ErrorCode code = stack.error().code;
@@ -419,8 +432,7 @@ Status CaptureDaemon::capture(CaptureTrigger trigger) {
   }
   camera_.succeeded();
   finishStack(*stack, geometry, trigger, start, end);
-  if (trigger == CaptureTrigger::kSchedule && target_deg)
-    stack->manifest.source["daemon"]["target_alpha_deg"] = *target_deg;
+  if (target_deg) stack->manifest.source["daemon"]["target_alpha_deg"] = *target_deg;
   state_.last_stack = stackTag(*stack);
   state_.last_alpha_deg = stack->manifest.alpha_deg;
   state_.last_capture_time = start;
@@ -452,7 +464,7 @@ void CaptureDaemon::finishStack(capture::CapturedStack& stack,
 
 // ---- the schedule and the checks --------------------------------------------------------------
 
-void CaptureDaemon::planNext(bool slot_taken) {
+void CaptureDaemon::planNext(std::optional<UtcTime> slot_taken) {
   CaptureSchedule::Geometry geometry{.site = config_.rig.site, .module = std::nullopt};
   if (schedule_.config().mode == ScheduleMode::kAlphaTargets) {
     // The module's orientation from the last measurement, else one now.
@@ -473,7 +485,7 @@ void CaptureDaemon::checkWallClock() {
   if (!jumped) return;
   spdlog::warn("glarecamd: the wall clock jumped by {:.0f} s; the α targets are planned again",
                std::chrono::duration<double>(*jumped).count());
-  planNext(false);
+  planNext(std::nullopt);
 }
 
 void CaptureDaemon::checkDisk() {
@@ -501,10 +513,14 @@ void CaptureDaemon::checkDisk() {
 
 void CaptureDaemon::checkClock() {
   if (!config_.rig.site) return;  // only the sun's position needs the wall clock
-  std::string warning = health_.clockWarning();
+  std::string warning = HealthMonitor::clockWarning(clockStatus());
   if (warning != state_.clock_warning && !warning.empty())
     spdlog::warn("glarecamd: clock {}", warning);
   state_.clock_warning = std::move(warning);
+}
+
+sun::ClockStatus CaptureDaemon::clockStatus() const {
+  return rigClockStatus(config_.rig, clock_.clockStatus());
 }
 
 std::optional<SteadyTime> CaptureDaemon::workerBusySince() const {
@@ -535,7 +551,8 @@ StatusSnapshot CaptureDaemon::snapshot() const {
           .camera_uri = config_.rig.camera.value_or(""),
           .camera_open = camera_.camera() != nullptr,
           .inclinometer_uri = config_.rig.inclinometer ? config_.rig.inclinometer->uri : "",
-          .clock_synchronised = clock_.clockStatus().synchronised,
+          .clock_synchronised = clockStatus().synchronised,
+          .simulated_time = clock_.simulated(),
           .output_root = output.root,
           .reserve_bytes = output.reserve_bytes,
           .retention_policy = retention_.policyText(),

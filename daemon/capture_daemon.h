@@ -125,16 +125,22 @@ class CaptureDaemon {
   Status reopenCamera(SteadyTime now);
   Status cameraFailed(const Error& error, SteadyTime now, bool mid_bracket);
 
-  // One capture.
+  // One capture: the stack, then (a scheduled one) the next slot planned.
   Status capture(CaptureTrigger trigger);
+  // The stack itself, or why not (`target_deg`: the scheduled slot's α target).
+  Status takeStack(CaptureTrigger trigger, const StackTimeline& timeline,
+                   std::optional<double> target_deg);
   void finishStack(capture::CapturedStack& stack, const std::optional<rig::RigGeometry>& geometry,
                    CaptureTrigger trigger, UtcTime bracket_start, UtcTime bracket_end);
 
   // The schedule and the checks.
-  void planNext(bool slot_taken);
+  // `slot_taken`: the start of the scheduled stack just done (CaptureSchedule::plan).
+  void planNext(std::optional<UtcTime> slot_taken);
   void checkWallClock();
   void checkDisk();
   void checkClock();
+  // The rig's clock's state (rigClockStatus): the status, /metrics and the stacks' flags.
+  sun::ClockStatus clockStatus() const;
   // The running worker job's start, for the watchdog (none: idle, or no worker yet).
   std::optional<SteadyTime> workerBusySince() const;
   void publishStatus();

@@ -20,16 +20,18 @@ std::string CaptureSchedule::describe() const {
   return "on the button and SIGUSR1";
 }
 
-void CaptureSchedule::plan(const DaemonClock& clock, bool slot_taken, const Geometry& geometry) {
+void CaptureSchedule::plan(const DaemonClock& clock, std::optional<UtcTime> slot_taken,
+                           const Geometry& geometry) {
   replan_at_.reset();
   unplanned_reason_.clear();
   next_target_deg_.reset();
   switch (config_.mode) {
     case ScheduleMode::kInterval:
-      planInterval(clock.now(), slot_taken);
+      planInterval(clock.now(), slot_taken.has_value());
       break;
     case ScheduleMode::kAlphaTargets:
-      planAlphaTargets(clock, geometry);
+      planAlphaTargets(clock, std::min(slot_taken.value_or(clock.utcNow()), clock.utcNow()),
+                       geometry);
       break;
     case ScheduleMode::kButton:
       next_.reset();
@@ -46,13 +48,14 @@ void CaptureSchedule::planInterval(SteadyTime now, bool slot_taken) {
   if (!slot_taken) next_ = std::min(*next_, now + config_.interval);
 }
 
-void CaptureSchedule::planAlphaTargets(const DaemonClock& clock, const Geometry& geometry) {
+void CaptureSchedule::planAlphaTargets(const DaemonClock& clock, UtcTime from,
+                                       const Geometry& geometry) {
   next_.reset();
   planned_crossing_.reset();
   if (!geometry.site || !geometry.module)
     return unplanned(clock, "α targets need the module's tilt");
-  const auto crossings = alphaCrossings(*geometry.site, *geometry.module, clock.utcNow(),
-                                        kAlphaPlanHorizon, config_.alpha_targets_deg);
+  const auto crossings = alphaCrossings(*geometry.site, *geometry.module, from, kAlphaPlanHorizon,
+                                        config_.alpha_targets_deg);
   if (!crossings) return unplanned(clock, crossings.error().message);
   for (const AlphaCrossing& crossing : *crossings) {
     const auto taken = taken_targets_.find(crossing.target_deg);

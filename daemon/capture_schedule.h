@@ -51,9 +51,12 @@ class CaptureSchedule {
     std::optional<sun::ModuleOrientation> module;
   };
 
-  // Plans the next slot. `slot_taken`: the slot due now was just used (or skipped for good), so
-  // the next one is wanted; otherwise the plan is made again from now (a reload, a retry).
-  void plan(const DaemonClock& clock, bool slot_taken, const Geometry& geometry);
+  // Plans the next slot. `slot_taken`: the wall time at which the stack of the due slot began
+  // (its α measured), once that stack is done (taken, or skipped for good): the next slot is
+  // wanted, and an α target crossed since that time is still owed (due at once: a bracket that
+  // took longer than the sun to reach the next target does not skip it). Without it the plan is
+  // made again from now (a reload, a retry).
+  void plan(const DaemonClock& clock, std::optional<UtcTime> slot_taken, const Geometry& geometry);
   // The due slot is used now: its α target is remembered against the repeat guard.
   void take(UtcTime now);
 
@@ -72,7 +75,7 @@ class CaptureSchedule {
 
  private:
   void planInterval(SteadyTime now, bool slot_taken);
-  void planAlphaTargets(const DaemonClock& clock, const Geometry& geometry);
+  void planAlphaTargets(const DaemonClock& clock, UtcTime from, const Geometry& geometry);
   void unplanned(const DaemonClock& clock, std::string why);
 
   ScheduleConfig config_;

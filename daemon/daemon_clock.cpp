@@ -9,6 +9,8 @@ void DaemonClock::waitUntil(std::unique_lock<std::mutex>& lock, std::condition_v
   wake.wait_until(lock, deadline, ready);
 }
 
+UtcTime DaemonClock::stackUtcNow(const ClockInstant&) const { return utcNow(); }
+
 UtcTime SystemDaemonClock::utcNow() const { return glarecam::utcNow(); }
 
 SteadyTime SystemDaemonClock::steadyAt(UtcTime utc) const {
@@ -16,15 +18,31 @@ SteadyTime SystemDaemonClock::steadyAt(UtcTime utc) const {
 }
 
 TimeLapseClock::TimeLapseClock(UtcTime start, double factor)
-    : start_utc_(start), start_steady_(std::chrono::steady_clock::now()), factor_(factor) {}
+    : TimeLapseClock(start, factor, machine_) {}
+
+TimeLapseClock::TimeLapseClock(UtcTime start, double factor, DaemonClock& steady)
+    : steady_(steady), start_utc_(start), start_steady_(steady.now()), factor_(factor) {}
 
 UtcTime TimeLapseClock::utcNow() const {
   const std::chrono::duration<double> real = now() - start_steady_;
   return start_utc_ + std::chrono::duration_cast<std::chrono::microseconds>(real * factor_);
 }
 
-sun::ClockStatus TimeLapseClock::clockStatus() const {
-  return {.synchronised = true, .detail = "simulated time"};
+sun::ClockStatus simulatedClockStatus() {
+  return {
+      .synchronised = true,
+      .detail = "simulated: the simulated sun, α and scene all follow the simulated rig's clock"};
+}
+
+sun::ClockStatus TimeLapseClock::clockStatus() const { return simulatedClockStatus(); }
+
+UtcTime TimeLapseClock::stackUtcNow(const ClockInstant& begun) const {
+  return begun.utc + std::chrono::duration_cast<std::chrono::microseconds>(now() - begun.steady);
+}
+
+void TimeLapseClock::waitUntil(std::unique_lock<std::mutex>& lock, std::condition_variable& wake,
+                               SteadyTime deadline, const std::function<bool()>& ready) {
+  steady_.waitUntil(lock, wake, deadline, ready);
 }
 
 SteadyTime TimeLapseClock::steadyAt(UtcTime utc) const {

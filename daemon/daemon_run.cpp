@@ -37,11 +37,13 @@ namespace {
 
 // The status page, when the config asks for one. One that cannot listen is an error in the log
 // and on no page, not a reason to stop measuring.
-std::unique_ptr<StatusServer> startStatusPage(const Config& config, const StatusBoard& board) {
+std::unique_ptr<StatusServer> startStatusPage(const Config& config, const StatusBoard& board,
+                                              const DaemonClock& clock) {
   const auto& listen = config.daemon.status.listen;
   if (!listen) return nullptr;
-  // The page's log: a sink beside the journal's, added while this is the only thread.
-  auto log = std::make_shared<LogRing>();
+  // The page's log: a sink beside the journal's, added while this is the only thread. On a
+  // simulated clock each entry carries its time too.
+  auto log = std::make_shared<LogRing>(kStatusLogEntries, clock.simulated() ? &clock : nullptr);
   spdlog::default_logger()->sinks().push_back(log);
   auto server = StatusServer::start(*listen, board, std::move(log));
   if (!server) {
@@ -78,7 +80,7 @@ Status runDaemon(const DaemonRig& rig) {
                                                               .notifier = notifier.get(),
                                                               .disk = disk.get(),
                                                               .status_board = &board}));
-  const std::unique_ptr<StatusServer> page = startStatusPage(daemon->config(), board);
+  const std::unique_ptr<StatusServer> page = startStatusPage(daemon->config(), board, *rig.clock);
   const SignalForwarder signals(daemon->events());
   return daemon->run();
 }

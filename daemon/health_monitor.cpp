@@ -17,8 +17,7 @@ HealthMonitor::DiskCheck HealthMonitor::checkDisk(const std::filesystem::path& r
   return {.pause_reason = diskPauseReason(*state, reserve_bytes, root), .state = *state};
 }
 
-std::string HealthMonitor::clockWarning() const {
-  const sun::ClockStatus clock = clock_.clockStatus();
+std::string HealthMonitor::clockWarning(const sun::ClockStatus& clock) {
   if (clock.synchronised) return {};
   return fmt::format("not synchronised ({}); stacks are flagged", clock.detail);
 }

@@ -46,7 +46,8 @@ class HealthMonitor {
   SteadyTime nextDiskCheck() const { return next_disk_check_; }
 
   // Why the wall clock cannot be trusted ("not synchronised (...); stacks are flagged"), or empty.
-  std::string clockWarning() const;
+  // `clock`: the rig's clock's state (rigClockStatus, simulated_rig.h).
+  static std::string clockWarning(const sun::ClockStatus& clock);
 
   // Sends WATCHDOG=1 when a ping is due and the worker is not stuck (`worker_busy_since`: when
   // its running job started); true when it sent one. `away`: how long the loop is about to be

@@ -141,10 +141,10 @@ fi
 echo "glarecamd:       $daemon_stacks stacks in $OUT/daemon/stacks/, results in $OUT/daemon/results/,"
 echo "                 the day's sheet $day/datasheet.pdf (sweep.csv, fits.json beside it)"
 
-# The next morning, retention: the simulated rig keeps its output within a 0.2 GiB budget
-# ([output] max_use_gib), so eight more stacks make glarecamd delete the first morning's oldest
-# stacks, once processed; their results and the day's sheet stay.
-echo "demo: the next morning, within the simulated rig's 0.2 GiB budget (retention)" >&2
+# The next morning, retention: the simulated rig keeps a stack a day and its result two
+# ([output] keep_stacks_days, keep_results_days, within max_use_gib 0.6), so the next day
+# glarecamd deletes the first morning's processed stacks; their results and the day's sheet stay.
+echo "demo: the next morning: retention deletes the first morning's stacks, a day old" >&2
 "$BIN/glarecamd" --simulate --output "$OUT/daemon" --count 8 --time-lapse 300 -q \
   --camera "sim:module=$MODULE" --start 2026-06-22T05:25:00Z
 count_stacks() { find "$OUT/daemon/stacks" -mindepth 1 -maxdepth 1 -type d -name "$1*" | wc -l; }
@@ -154,8 +154,8 @@ if [[ $second -ne 8 || $first_left -ge 16 || ! -s $day/datasheet.pdf ]]; then
   echo "demo: retention did not act: $first_left stacks of the 21st left, $second of the 22nd" >&2
   exit 1
 fi
-echo "retention:       $((16 - first_left)) of the 21st's stacks deleted (oldest first) to keep" \
-  "$(du -sh "$OUT/daemon" | cut -f1) within 0.2 GiB; all 16 results and the 21st's sheet kept"
+echo "retention:       $((16 - first_left)) of the 21st's stacks deleted (a day old); the output" \
+  "$(du -sh "$OUT/daemon" | cut -f1) within 0.6 GiB; all 16 results and the 21st's sheet kept"
 
 # What the measurement is for: glare minutes at two neighbours' windows north of a roof in Zürich
 # (docs/examples/hazard-scene.json) from the profile just measured, by the measured elliptical,

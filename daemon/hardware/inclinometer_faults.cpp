@@ -17,9 +17,10 @@ void InclinometerFaults::open(RigSession& rig, DaemonState& state) {
 
 InclinometerFaults::Measured InclinometerFaults::measure(RigSession& rig, const FaultConfig& faults,
                                                          DaemonState& state,
-                                                         capture::CaptureSettings& settings) {
+                                                         capture::CaptureSettings& settings,
+                                                         UtcTime time) {
   if (!rig.measuresAlpha()) return {};
-  const Result<rig::RigGeometry> measured = rig.measure(clock_.utcNow(), clock_.clockStatus());
+  const Result<rig::RigGeometry> measured = rig.measure(time, clock_.clockStatus());
   state.inclinometer_pauses = faults.inclinometer == InclinometerFaultPolicy::kPause;
   RigSession::record(measured, settings);
   if (measured) {
@@ -40,7 +41,7 @@ InclinometerFaults::Measured InclinometerFaults::measure(RigSession& rig, const 
 void InclinometerFaults::retry(RigSession& rig, const FaultConfig& faults, DaemonState& state) {
   retry_at_.reset();
   capture::CaptureSettings unused;
-  measure(rig, faults, state, unused);
+  measure(rig, faults, state, unused, clock_.utcNow());
 }
 
 }  // namespace glarecam::daemon

@@ -37,10 +37,11 @@ class InclinometerFaults {
     std::optional<rig::RigGeometry> geometry{};  // none: α unknown (or not measured)
     bool pause = false;                          // no stack now ([faults] inclinometer = "pause")
   };
-  // The geometry for a stack, measured now and recorded in `settings` (RigSession::record); on a
-  // fault, per `faults`, α unknown or a pause, and the next read kInclinometerRetry from now.
+  // The geometry for a stack at `time` (the sun's; measured now), recorded in `settings`
+  // (RigSession::record); on a fault, per `faults`, α unknown or a pause, and the next read
+  // kInclinometerRetry from now.
   Measured measure(RigSession& rig, const FaultConfig& faults, DaemonState& state,
-                   capture::CaptureSettings& settings);
+                   capture::CaptureSettings& settings, UtcTime time);
 
   // When the faulted inclinometer is read again (none: no fault).
   std::optional<SteadyTime> retryAt() const { return retry_at_; }

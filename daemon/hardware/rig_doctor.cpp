@@ -12,6 +12,7 @@
 #include "capture/bracketing.h"
 #include "capture/camera_registry.h"
 #include "core/time.h"
+#include "daemon/hardware/simulated_rig.h"
 #include "pipeline/limit_curve.h"
 #include "rig/rig_config.h"
 #include "rig/rig_geometry.h"
@@ -129,22 +130,11 @@ DoctorCheck checkPermissions(const Config& config) {
             fmt::format("uid {} reaches the output, calibration and devices", getuid()));
 }
 
-// The simulated rig (glarecamd --simulate's config, docs/operator.md): the sim: camera and the
-// simulated inclinometer, whose α glarecamd takes from its own time-lapse clock.
-bool isSimulatedRig(const Config& config) {
-  return config.rig.camera && config.rig.camera->starts_with("sim:") && config.rig.inclinometer &&
-         config.rig.inclinometer->uri.starts_with("sim:");
-}
-
 DoctorCheck checkClock(const Config& config, const sun::ClockStatus& clock) {
+  if (clock.synchronised && isSimulatedRig(config.rig)) return ok("clock", clock.detail);
   if (clock.synchronised)
     return ok("clock",
               fmt::format("synchronised (estimated error {:.3f} s)", clock.estimated_error_s));
-  if (config.rig.site && isSimulatedRig(config)) {
-    return warn("clock", "not synchronised: " + clock.detail +
-                             " (a simulated rig: glarecamd --simulate runs on its own time-lapse "
-                             "clock; on a real rig with [site] this fails)");
-  }
   if (config.rig.site)
     return failed("clock", "not synchronised: " + clock.detail + "; a wrong clock is a wrong α");
   return warn("clock", "not synchronised: " + clock.detail + " (α here does not depend on it)");
@@ -217,7 +207,7 @@ void checkRig(const Config& config, DoctorOptions& options, bool daemon_running,
                                   : checkCamera(config, options.open_camera, scene_alpha_deg));
   checks.push_back(std::move(sensors.inclinometer));
   checks.push_back(std::move(sensors.sun));
-  checks.push_back(checkClock(config, options.clock_status()));
+  checks.push_back(checkClock(config, rigClockStatus(config.rig, options.clock_status())));
   checks.push_back(checkDisk(config, *options.disk));
   checks.push_back(checkPermissions(config));
 }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <mutex>
 
+#include "daemon/hardware/simulated_rig.h"
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"
 
@@ -39,7 +40,9 @@ Status RigSession::openSensors() {
 
 Result<rig::RigGeometry> RigSession::read(UtcTime time,
                                           const std::optional<sun::ClockStatus>& clock) {
-  return sensors_->measureShowingProgress(time, clock, options_.show_progress);
+  const std::optional<sun::ClockStatus> rig_clock =
+      clock ? std::optional(rigClockStatus(config_, *clock)) : std::nullopt;
+  return sensors_->measureShowingProgress(time, rig_clock, options_.show_progress);
 }
 
 Result<rig::RigGeometry> RigSession::measure(UtcTime time,

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "daemon/daemon_clock.h"
 #include "rig/inclinometer/zero_offset_file.h"
 
 namespace glarecam::daemon {
@@ -12,6 +13,16 @@ UtcTime defaultSimulationStart(bool alpha_targets) {
   const auto day = sys_days(year(2026) / June / 21);
   return time_point_cast<microseconds>(alpha_targets ? day + hours(5) + minutes(25)
                                                      : day + hours(6) + minutes(30));
+}
+
+bool isSimulatedRig(const rig::RigConfig& rig) {
+  return rig.path.filename() == kSimulatedRigFileName && rig.camera &&
+         rig.camera->starts_with("sim:") && rig.inclinometer &&
+         rig.inclinometer->uri.starts_with("sim:");
+}
+
+sun::ClockStatus rigClockStatus(const rig::RigConfig& rig, const sun::ClockStatus& clock) {
+  return isSimulatedRig(rig) ? simulatedClockStatus() : clock;
 }
 
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options) {
@@ -50,11 +61,15 @@ button = 22
 root = "."
 reserve_mb = 64
 module = "simulated standard module"
-max_use_gib = {budget_gib}   # a small budget, so that a second simulated day shows retention
+keep_stacks_days = {keep_stacks}    # a stack a day: the next simulated day deletes it
+keep_results_days = {keep_results}   # results and day sheets two days
+max_use_gib = {budget_gib}        # what a simulated day and the day before's results take, and more
 )",
       fmt::arg("camera", options.camera), fmt::arg("calibration", kSimulatedCalibrationFileName),
       fmt::arg("latitude", kSimulatedLatitudeDeg), fmt::arg("longitude", kSimulatedLongitudeDeg),
       fmt::arg("tilt", kSimulatedTiltDeg), fmt::arg("schedule", schedule),
+      fmt::arg("keep_stacks", kSimulatedKeepStacksDays),
+      fmt::arg("keep_results", kSimulatedKeepResultsDays),
       fmt::arg("budget_gib", kSimulatedMaxUseGib));
   // The simulated sensor is mounted without error: its zero offset is zero, known exactly.
   const rig::InclinometerZeroOffset zero{.offset = {0.0, 0.0},

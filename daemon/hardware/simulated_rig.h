@@ -14,6 +14,8 @@
 
 #include "core/error.h"
 #include "core/time.h"
+#include "rig/rig_config.h"
+#include "sun/clock_sync.h"
 
 namespace glarecam::daemon {
 
@@ -23,9 +25,14 @@ inline constexpr double kSimulatedLatitudeDeg = 48.0;
 inline constexpr double kSimulatedLongitudeDeg = 7.85;
 inline constexpr double kSimulatedTiltDeg = 24.5;
 inline constexpr double kDefaultTimeLapse = 120.0;  // 2 minutes of sun a second
-// [output] max_use_gib of the simulated rig: a morning's 16 stacks and results (about 175 MB)
-// fit, a second morning's make retention delete the first's oldest stacks (docs/operator.md).
-inline constexpr double kSimulatedMaxUseGib = 0.2;
+// The simulated rig's retention ([output], docs/operator.md): a stack is kept a day, its result and
+// the day's sheets two, within a budget that a day of its stacks (32: α falls through the 16
+// targets in the morning and rises through them in the afternoon, about 11.5 MB a stack and its
+// result with the default camera) and the day before's results fit with a margin, so that the
+// default run, left going for days, never overruns it (SimulatedRigTest checks the arithmetic).
+inline constexpr int kSimulatedKeepStacksDays = 1;
+inline constexpr int kSimulatedKeepResultsDays = 2;
+inline constexpr double kSimulatedMaxUseGib = 0.6;
 inline constexpr const char* kSimulatedRigFileName = "glarecamd-simulated.toml";
 inline constexpr const char* kSimulatedCalibrationFileName = "glarecamd-simulated-calibration.json";
 
@@ -38,6 +45,15 @@ struct SimulatedRigOptions {
 // The simulated clock's start on 2026-06-21: for the α targets 05:25 UTC, ten minutes of sun
 // before α falls through 80° at the site; for a fixed interval 06:30 UTC, α already below 70°.
 UtcTime defaultSimulationStart(bool alpha_targets);
+
+// Whether `rig` is the simulated rig glarecamd --simulate writes (kSimulatedRigFileName, with the
+// sim: camera and the simulated inclinometer), which runs on its own simulated clock.
+bool isSimulatedRig(const rig::RigConfig& rig);
+
+// Whether the clock α is computed from is synchronised, as glarecamd's status page, /metrics, the
+// stacks' flags and `glarecam doctor` all say it: on a real rig the wall clock's state (`clock`:
+// the kernel's), on the simulated rig synchronised by construction (simulatedClockStatus()).
+sun::ClockStatus rigClockStatus(const rig::RigConfig& rig, const sun::ClockStatus& clock);
 
 // Writes OUTPUT/glarecamd-simulated.toml (atomically) and returns its path.
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options);

@@ -11,9 +11,11 @@ void LogRing::sink_it_(const spdlog::details::log_msg& message) {
   if (capacity_ == 0) return;
   if (entries_.size() == capacity_) entries_.pop_front();
   const auto level = spdlog::level::to_string_view(message.level);
-  entries_.push_back({.time = message.time,
-                      .level = std::string(level.data(), level.size()),
-                      .text = std::string(message.payload.data(), message.payload.size())});
+  entries_.push_back(
+      {.time = message.time,
+       .simulated_time = simulated_ ? std::optional(simulated_->utcNow()) : std::nullopt,
+       .level = std::string(level.data(), level.size()),
+       .text = std::string(message.payload.data(), message.payload.size())});
 }
 
 }  // namespace glarecam::daemon

@@ -9,8 +9,12 @@
 #include <cstddef>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "core/time.h"
+#include "daemon/daemon_clock.h"
 
 namespace glarecam::daemon {
 
@@ -18,14 +22,18 @@ namespace glarecam::daemon {
 inline constexpr std::size_t kStatusLogEntries = 50;
 
 struct LogEntry {
-  std::chrono::system_clock::time_point time;
-  std::string level;  // spdlog's: "info", "warning", "error", ...
+  std::chrono::system_clock::time_point time;  // the machine's clock
+  std::optional<UtcTime> simulated_time{};     // the simulated clock's (glarecamd --simulate)
+  std::string level;                           // spdlog's: "info", "warning", "error", ...
   std::string text;
 };
 
 class LogRing final : public spdlog::sinks::base_sink<std::mutex> {
  public:
-  explicit LogRing(std::size_t capacity = kStatusLogEntries) : capacity_(capacity) {}
+  // `simulated`: the daemon's clock when it is a simulated one (DaemonClock::simulated()), whose
+  // time each entry records beside the machine's.
+  explicit LogRing(std::size_t capacity = kStatusLogEntries, const DaemonClock* simulated = nullptr)
+      : capacity_(capacity), simulated_(simulated) {}
   // Oldest first.
   std::vector<LogEntry> entries();
 
@@ -35,6 +43,7 @@ class LogRing final : public spdlog::sinks::base_sink<std::mutex> {
 
  private:
   std::size_t capacity_;
+  const DaemonClock* simulated_;
   std::deque<LogEntry> entries_;  // guarded by base_sink's mutex_
 };
 

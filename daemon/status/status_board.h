@@ -22,8 +22,9 @@ struct StatusSnapshot {
   std::string schedule;  // "at α targets", "every 600 s", "on the button"
   std::string camera_uri;
   bool camera_open = false;
-  std::string inclinometer_uri;  // empty: the rig has none
-  bool clock_synchronised = false;
+  std::string inclinometer_uri;     // empty: the rig has none
+  bool clock_synchronised = false;  // rigClockStatus (simulated_rig.h), as glarecam doctor says
+  bool simulated_time = false;      // the daemon's times are a time lapse's (glarecamd --simulate)
   std::filesystem::path output_root;
   std::uint64_t reserve_bytes = 0;
   std::string retention_policy;  // "stacks 30 days, results 365 days, 50.0 GiB", or "off"

@@ -28,6 +28,19 @@ std::string isoSeconds(std::chrono::system_clock::time_point time) {
   return isoSeconds(std::chrono::time_point_cast<std::chrono::microseconds>(time));
 }
 
+// A time of the daemon's clock as the page shows it: marked "sim" when it is a time lapse's
+// (glarecamd --simulate), which the machine's times of the log are not.
+std::string daemonTime(const StatusSnapshot& s, UtcTime time) {
+  return isoSeconds(time) + (s.simulated_time ? " sim" : "");
+}
+
+// A log entry's time: the machine's, and the simulated clock's beside it, marked.
+std::string logTime(const LogEntry& entry) {
+  std::string text = isoSeconds(entry.time);
+  if (entry.simulated_time) text += " (sim " + isoSeconds(*entry.simulated_time) + ")";
+  return text;
+}
+
 json optionalText(const std::string& text) { return text.empty() ? json(nullptr) : json(text); }
 
 double unixSeconds(UtcTime time) {
@@ -124,12 +137,16 @@ json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
     disk["free_bytes"] = disk["total_bytes"] = disk["read_only"] = nullptr;
   }
   json entries = json::array();
-  for (const LogEntry& e : log)
-    entries.push_back({{"time", isoSeconds(e.time)}, {"level", e.level}, {"text", e.text}});
+  for (const LogEntry& e : log) {
+    json entry = {{"time", isoSeconds(e.time)}, {"level", e.level}, {"text", e.text}};
+    if (e.simulated_time) entry["simulated_time"] = isoSeconds(*e.simulated_time);
+    entries.push_back(std::move(entry));
+  }
   return {
       {"schema", kStatusSchema},
       {"version", kVersion},
       {"time", isoSeconds(s.now)},
+      {"simulated_time", s.simulated_time},
       {"state", activity.state},
       {"reason", optionalText(activity.reason)},
       {"status_line", st.status},
@@ -275,12 +292,12 @@ img {{ max-width: 100%; height: auto; border: 1px solid #ccc; }}
   if (!activity.reason.empty())
     html += fmt::format("<p class=\"reason\">{}</p>\n", e(activity.reason));
   html += fmt::format("<p class=\"line\">{} · {} · glarecam {}</p>\n<div class=\"grid\">\n",
-                      e(st.status), e(isoSeconds(s.now)), e(kVersion));
+                      e(st.status), e(daemonTime(s, s.now)), e(kVersion));
 
   html += "<section id=\"last-stack\">\n<h2>Last stack</h2>\n<table>\n";
   if (st.last_stack) {
     html += row("captured", *st.last_stack);
-    if (st.last_capture_time) html += row("at", isoSeconds(*st.last_capture_time));
+    if (st.last_capture_time) html += row("at", daemonTime(s, *st.last_capture_time));
     html += row("α", st.last_alpha_deg ? fmt::format("{:.2f}°", *st.last_alpha_deg) : "unknown");
   } else {
     html += row("captured", "none yet since glarecamd started");
@@ -317,13 +334,14 @@ img {{ max-width: 100%; height: auto; border: 1px solid #ccc; }}
   html += row("schedule", s.schedule);
   if (st.next_capture_time)
     html += row("next stack",
-                isoSeconds(*st.next_capture_time) +
+                daemonTime(s, *st.next_capture_time) +
                     (st.next_target_deg ? fmt::format(" (α {:g}°)", *st.next_target_deg) : ""));
   html += row("camera", s.camera_uri + (s.camera_open ? " (open)" : " (closed)"));
   if (!st.camera_fault.empty()) html += row("camera fault", st.camera_fault);
   html += row("inclinometer", s.inclinometer_uri.empty() ? "none" : s.inclinometer_uri);
   if (!st.inclinometer_fault.empty()) html += row("inclinometer fault", st.inclinometer_fault);
-  html += row("clock", s.clock_synchronised ? "synchronised" : "not synchronised");
+  html += row("clock", std::string(s.clock_synchronised ? "synchronised" : "not synchronised") +
+                           (s.simulated_time ? " (the simulated clock)" : ""));
   if (!st.clock_warning.empty()) html += row("clock warning", st.clock_warning);
   if (!st.gpio_fault.empty()) html += row("GPIO", st.gpio_fault);
   if (!st.worker_fault.empty()) html += row("last failure", st.worker_fault);
@@ -347,16 +365,20 @@ img {{ max-width: 100%; height: auto; border: 1px solid #ccc; }}
               st.retention_last.empty()
                   ? std::string("none")
                   : st.retention_last + (st.retention_last_time
-                                             ? " at " + isoSeconds(*st.retention_last_time)
+                                             ? " at " + daemonTime(s, *st.retention_last_time)
                                              : std::string()));
   if (!st.retention_shortfall.empty()) html += row("retention shortfall", st.retention_shortfall);
   html += "</table>\n</section>\n</div>\n";
 
-  html += fmt::format("<section id=\"log\">\n<h2>Log (last {})</h2>\n<table class=\"log\">\n",
-                      kStatusLogEntries);
+  html += fmt::format("<section id=\"log\">\n<h2>Log (last {})</h2>\n", kStatusLogEntries);
+  if (s.simulated_time)
+    html +=
+        "<p class=\"line\">Times marked sim are the simulated clock's (glarecamd --simulate); "
+        "the others the machine's.</p>\n";
+  html += "<table class=\"log\">\n";
   for (auto it = log.rbegin(); it != log.rend(); ++it)
     html += fmt::format("<tr class=\"{}\"><td>{}</td><td>{}</td><td>{}</td></tr>\n", e(it->level),
-                        e(isoSeconds(it->time)), e(it->level), e(it->text));
+                        e(logTime(*it)), e(it->level), e(it->text));
   html += "</table>\n</section>\n</body>\n</html>\n";
   return html;
 }

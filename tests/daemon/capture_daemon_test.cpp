@@ -243,6 +243,27 @@ TEST_F(DaemonTest, AlphaTargetsAreCaughtAsTheSunMoves) {
   EXPECT_EQ(pipeline::readSweepTable(day / "sweep.csv")->rows.size(), 5u);
 }
 
+// Under load the status once named the 45° target as the next stack while the 50° stack was
+// still being taken: the schedule moved on when a stack began. It moves on once the stack is done.
+TEST_F(DaemonTest, WhileAStackIsTakenTheStatusNamesItsTarget) {
+  clock_.setUtcStart(utc("2026-06-21T05:00:00Z"));
+  writeConfig({.inclinometer = "sim:24.5",
+               .schedule = "mode = \"alpha-targets\"\nalpha_targets_deg = [50, 45]",
+               .site = true});
+  StatusBoard board;
+  std::vector<std::optional<double>> named;  // the next stack's target, at each capture call
+  cameras_.onCapture([&] { named.push_back(board.latest()->state.next_target_deg); });
+  auto daemon = makeDaemon({.max_stacks = 1},
+                           [&board](DaemonServices& services) { services.status_board = &board; });
+  ASSERT_TRUE(daemon);
+  ASSERT_TRUE(daemon->run());
+  ASSERT_EQ(stacks().size(), 1u);
+  EXPECT_EQ(manifest(stacks().front())["daemon"]["target_alpha_deg"].get<double>(), 50.0);
+  ASSERT_FALSE(named.empty());
+  for (const std::optional<double>& target : named) EXPECT_EQ(target, 50.0);
+  EXPECT_EQ(board.latest()->state.next_target_deg, 45.0);  // once the 50° stack is done
+}
+
 TEST_F(DaemonTest, CameraLostMidBracketIsReopenedWithBackoff) {
   writeConfig();
   std::vector<std::chrono::nanoseconds> opens;

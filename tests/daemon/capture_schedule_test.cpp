@@ -53,12 +53,12 @@ TEST(CaptureSchedule, TheIntervalStartsAtOnceAndKeepsItsGrid) {
   ManualClock clock(utc("2026-06-21T08:00:00Z"));
   const SteadyTime start = clock.now();
   CaptureSchedule schedule(every(600s));
-  schedule.plan(clock, false, {});
+  schedule.plan(clock, std::nullopt, {});
   ASSERT_EQ(schedule.next(), start);
   EXPECT_TRUE(schedule.due(clock.now()));
   EXPECT_EQ(schedule.nextWallTime(clock), utc("2026-06-21T08:00:00Z"));
   clock.advance(42s);  // the bracket took a while: the grid does not move
-  schedule.plan(clock, true, {});
+  schedule.plan(clock, clock.utcNow(), {});
   EXPECT_EQ(schedule.next(), start + 600s);
   EXPECT_FALSE(schedule.due(clock.now()));
   EXPECT_EQ(schedule.nextWallTime(clock), utc("2026-06-21T08:10:00Z"));
@@ -69,9 +69,9 @@ TEST(CaptureSchedule, MissedSlotsAreNotCaughtUp) {
   ManualClock clock(utc("2026-06-21T08:00:00Z"));
   const SteadyTime start = clock.now();
   CaptureSchedule schedule(every(600s));
-  schedule.plan(clock, false, {});
+  schedule.plan(clock, std::nullopt, {});
   clock.advance(2000s);  // the slots at 600, 1200 and 1800 s passed (the disk was full)
-  schedule.plan(clock, true, {});
+  schedule.plan(clock, clock.utcNow(), {});
   EXPECT_EQ(schedule.next(), start + 2600s);
 }
 
@@ -79,21 +79,21 @@ TEST(CaptureSchedule, APlanMadeAgainNeverWaitsLongerThanTheNewInterval) {
   ManualClock clock(utc("2026-06-21T08:00:00Z"));
   const SteadyTime start = clock.now();
   CaptureSchedule schedule(every(600s));
-  schedule.plan(clock, false, {});
-  schedule.plan(clock, true, {});  // next at 600 s
+  schedule.plan(clock, std::nullopt, {});
+  schedule.plan(clock, clock.utcNow(), {});  // next at 600 s
   clock.advance(100s);
   schedule.reconfigure(every(60s));  // a reload
-  schedule.plan(clock, false, {});
+  schedule.plan(clock, std::nullopt, {});
   EXPECT_EQ(schedule.next(), start + 160s);
   schedule.reconfigure(every(600s));
-  schedule.plan(clock, false, {});  // the nearer slot stays
+  schedule.plan(clock, std::nullopt, {});  // the nearer slot stays
   EXPECT_EQ(schedule.next(), start + 160s);
 }
 
 TEST(CaptureSchedule, TheButtonModePlansNoSlot) {
   ManualClock clock(utc("2026-06-21T08:00:00Z"));
   CaptureSchedule schedule(onTheButton());
-  schedule.plan(clock, false, kRig);
+  schedule.plan(clock, std::nullopt, kRig);
   EXPECT_FALSE(schedule.next());
   EXPECT_FALSE(schedule.due(clock.now() + 24h));
   EXPECT_FALSE(schedule.nextWallTime(clock));
@@ -103,7 +103,7 @@ TEST(CaptureSchedule, TheButtonModePlansNoSlot) {
 TEST(CaptureSchedule, AlphaTargetsWaitForTheModuleAndTryAgainLater) {
   ManualClock clock(utc("2026-06-21T05:00:00Z"));
   CaptureSchedule schedule(alphaTargets({80, 60}));
-  schedule.plan(clock, false, {.site = kRig.site, .module = std::nullopt});
+  schedule.plan(clock, std::nullopt, {.site = kRig.site, .module = std::nullopt});
   EXPECT_FALSE(schedule.next());
   EXPECT_EQ(schedule.replanAt(), clock.now() + kReplanDelay);
   EXPECT_EQ(schedule.unplannedReason(), "α targets need the module's tilt");
@@ -112,7 +112,7 @@ TEST(CaptureSchedule, AlphaTargetsWaitForTheModuleAndTryAgainLater) {
 TEST(CaptureSchedule, AlphaTargetsPlanTheNextCrossing) {
   ManualClock clock(utc("2026-06-21T05:00:00Z"));
   CaptureSchedule schedule(alphaTargets({80, 60}));
-  schedule.plan(clock, false, kRig);
+  schedule.plan(clock, std::nullopt, kRig);
   const auto crossings = alphaCrossings(*kRig.site, *kRig.module, clock.utcNow(), kAlphaPlanHorizon,
                                         std::vector<double>{80, 60});
   ASSERT_TRUE(crossings) << crossings.error().message;
@@ -126,16 +126,40 @@ TEST(CaptureSchedule, AlphaTargetsPlanTheNextCrossing) {
 TEST(CaptureSchedule, ATargetJustTakenIsNotTakenAgainWithinTheRepeatGuard) {
   ManualClock clock(utc("2026-06-21T05:00:00Z"));
   CaptureSchedule schedule(alphaTargets({80, 60}));
-  schedule.plan(clock, false, kRig);
+  schedule.plan(clock, std::nullopt, kRig);
   ASSERT_TRUE(schedule.next());
   clock.advance(*schedule.next() - clock.now());  // at the 80° crossing
   // Planned again at the crossing without taking it, the same target comes first ...
-  schedule.plan(clock, false, kRig);
+  schedule.plan(clock, std::nullopt, kRig);
   EXPECT_EQ(schedule.nextTargetDeg(), 80.0);
   // ... once taken, the guard skips it: the next is 60°.
   schedule.take(clock.utcNow());
-  schedule.plan(clock, true, kRig);
+  schedule.plan(clock, clock.utcNow(), kRig);
   EXPECT_EQ(schedule.nextTargetDeg(), 60.0);
+}
+
+// A loaded machine: the 80° stack's bracket lasted until after the sun crossed 75°. The 75° stack
+// is still owed (due at once), not skipped for the 70° one.
+TEST(CaptureSchedule, ATargetCrossedDuringTheLastStackIsStillOwed) {
+  ManualClock clock(utc("2026-06-21T05:00:00Z"));
+  CaptureSchedule schedule(alphaTargets({80, 75, 70}));
+  schedule.plan(clock, std::nullopt, kRig);
+  ASSERT_EQ(schedule.nextTargetDeg(), 80.0);
+  clock.advance(*schedule.next() - clock.now());  // the 80° stack begins
+  const UtcTime begun = clock.utcNow();
+  const auto crossings = alphaCrossings(*kRig.site, *kRig.module, begun, kAlphaPlanHorizon,
+                                        std::vector<double>{75, 70});
+  ASSERT_TRUE(crossings) << crossings.error().message;
+  ASSERT_GE(crossings->size(), 2u);
+  ASSERT_EQ(crossings->at(0).target_deg, 75.0);
+  ASSERT_EQ(crossings->at(1).target_deg, 70.0);
+  // It ends halfway between the 75° and the 70° crossings.
+  clock.advance((crossings->at(0).time - begun) +
+                (crossings->at(1).time - crossings->at(0).time) / 2);
+  schedule.take(begun);
+  schedule.plan(clock, begun, kRig);
+  EXPECT_EQ(schedule.nextTargetDeg(), 75.0);
+  EXPECT_TRUE(schedule.due(clock.now()));
 }
 
 TEST(CaptureSchedule, NoCrossingWithinTheHorizonIsSaid) {
@@ -143,7 +167,7 @@ TEST(CaptureSchedule, NoCrossingWithinTheHorizonIsSaid) {
   CaptureSchedule schedule(alphaTargets({5}));
   // A north-facing wall at 48° N: the sun never shines on it at α 5°.
   schedule.plan(
-      clock, false,
+      clock, std::nullopt,
       {.site = kRig.site, .module = sun::ModuleOrientation{.tilt_deg = 90, .azimuth_deg = 0}});
   EXPECT_FALSE(schedule.next());
   EXPECT_EQ(schedule.unplannedReason(), "no α target is crossed in the next 24 h");
@@ -153,7 +177,7 @@ TEST(CaptureSchedule, NoCrossingWithinTheHorizonIsSaid) {
 TEST(CaptureSchedule, AWallClockThatJumpedIsSeen) {
   ManualClock clock(utc("2026-06-21T05:00:00Z"));
   CaptureSchedule schedule(alphaTargets({80, 60}));
-  schedule.plan(clock, false, kRig);
+  schedule.plan(clock, std::nullopt, kRig);
   EXPECT_FALSE(schedule.wallClockJump(clock));
   // A few seconds of drift correction are no jump ...
   clock.setUtcStart(utc("2026-06-21T05:00:02Z"));
@@ -163,7 +187,7 @@ TEST(CaptureSchedule, AWallClockThatJumpedIsSeen) {
   EXPECT_EQ(schedule.wallClockJump(clock), std::chrono::nanoseconds(1h));
   // An interval plan does not depend on the wall clock.
   CaptureSchedule interval(every(600s));
-  interval.plan(clock, false, {});
+  interval.plan(clock, std::nullopt, {});
   clock.setUtcStart(utc("2026-06-21T09:00:00Z"));
   EXPECT_FALSE(interval.wallClockJump(clock));
 }

@@ -24,5 +24,25 @@ TEST(DaemonClock, TimeLapseRunsTheWallClockFaster) {
   EXPECT_GE(clock.utcNow(), start);
 }
 
+// The sun moves 0.01° in a real bracket: a simulated one must not move it 120 times as far.
+TEST(DaemonClock, AStacksTimeLineRunsAtRealRateOnATimeLapse) {
+  testing::ManualClock steady(utc("2026-06-21T08:00:00Z"));
+  const UtcTime start = utc("2026-06-21T05:00:00Z");
+  const TimeLapseClock clock(start, 120.0, steady);
+  const StackTimeline timeline(clock);
+  steady.advance(2s);  // the bracket
+  EXPECT_EQ(timeline.begun(), start);
+  EXPECT_EQ(timeline.now(), start + 2s);
+  EXPECT_EQ(clock.utcNow(), start + 240s);  // the time lapse itself runs on
+}
+
+TEST(DaemonClock, AStacksTimeLineIsTheWallClockElsewhere) {
+  testing::ManualClock clock(utc("2026-06-21T08:00:00Z"));
+  const StackTimeline timeline(clock);
+  clock.advance(2s);
+  EXPECT_EQ(timeline.begun(), utc("2026-06-21T08:00:00Z"));
+  EXPECT_EQ(timeline.now(), clock.utcNow());
+}
+
 }  // namespace
 }  // namespace glarecam::daemon

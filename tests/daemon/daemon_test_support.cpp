@@ -175,11 +175,13 @@ daemon::CameraOpener ScriptedCameras::opener() {
 std::optional<Error> ScriptedCameras::beforeCapture(
     std::span<const capture::ExposureRequest> requests) {
   const int call = ++calls_;
+  if (capture_hook_) capture_hook_();
   std::unique_lock lock(mutex_);
   if (exposure_clock_) {
     double exposures_us = 0;
     for (const capture::ExposureRequest& request : requests) exposures_us += request.exposure_us;
-    exposure_clock_->advance(std::chrono::nanoseconds(std::llround(exposures_us * 1e3)));
+    exposure_clock_->advance(std::chrono::nanoseconds(std::llround(exposures_us * 1e3)) +
+                             capture_time_);
   }
   if (wedge_at_ && call == *wedge_at_) {
     wedged_ = true;
@@ -228,6 +230,17 @@ void ScriptedCameras::release() {
 void ScriptedCameras::takeExposureTime(ManualClock& clock) {
   const std::lock_guard lock(mutex_);
   exposure_clock_ = &clock;
+}
+
+void ScriptedCameras::onCapture(std::function<void()> hook) {
+  const std::lock_guard lock(mutex_);
+  capture_hook_ = std::move(hook);
+}
+
+void ScriptedCameras::takeCaptureTime(ManualClock& clock, std::chrono::nanoseconds per_capture) {
+  const std::lock_guard lock(mutex_);
+  exposure_clock_ = &clock;
+  capture_time_ = per_capture;
 }
 
 }  // namespace glarecam::testing

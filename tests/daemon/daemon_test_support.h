@@ -118,6 +118,11 @@ class ScriptedCameras {
   // Every capture() advances `clock` by the exposures it was asked for, as a real camera takes
   // them (the sim camera returns at once).
   void takeExposureTime(ManualClock& clock);
+  // Every capture() advances `clock` by `per_capture` besides: a slow bracket (a loaded machine,
+  // a large scene to draw).
+  void takeCaptureTime(ManualClock& clock, std::chrono::nanoseconds per_capture);
+  // `hook` runs at the start of every capture() call, on the capturing thread.
+  void onCapture(std::function<void()> hook);
 
   int opens() const { return opens_; }
   int captureCalls() const { return calls_; }
@@ -136,6 +141,8 @@ class ScriptedCameras {
   bool wedged_ = false;
   bool released_ = false;
   ManualClock* exposure_clock_ = nullptr;
+  std::chrono::nanoseconds capture_time_{};
+  std::function<void()> capture_hook_;
 };
 
 // "sim:size=160x128,fov=30,seed=N": small and fast.

@@ -122,9 +122,10 @@ TEST(HealthMonitor, ADiskThatCannotBeExaminedPausesCaptureSayingWhy) {
 
 TEST(HealthMonitor, WarnsAboutTheClockOnlyWhenItIsNotSynchronised) {
   Monitored m;
-  EXPECT_EQ(m.monitor.clockWarning(), "");
+  EXPECT_EQ(HealthMonitor::clockWarning(m.clock.clockStatus()), "");
   m.clock.setClockStatus({.synchronised = false, .detail = "kernel: STA_UNSYNC"});
-  EXPECT_EQ(m.monitor.clockWarning(), "not synchronised (kernel: STA_UNSYNC); stacks are flagged");
+  EXPECT_EQ(HealthMonitor::clockWarning(m.clock.clockStatus()),
+            "not synchronised (kernel: STA_UNSYNC); stacks are flagged");
 }
 
 }  // namespace

@@ -34,7 +34,8 @@ struct InclinometerFaultsTest : ::testing::Test {
 TEST_F(InclinometerFaultsTest, AHealthySensorGivesTheGeometryAndNoFault) {
   RigSession rig = session("sim:50");
   capture::CaptureSettings settings;
-  const InclinometerFaults::Measured measured = faults.measure(rig, {}, state, settings);
+  const InclinometerFaults::Measured measured =
+      faults.measure(rig, {}, state, settings, clock.utcNow());
   ASSERT_TRUE(measured.geometry);
   EXPECT_NEAR(measured.geometry->alpha_deg, 40.0, 0.05);  // the sim's noise over 4 samples
   EXPECT_FALSE(measured.pause);
@@ -46,7 +47,8 @@ TEST_F(InclinometerFaultsTest, AHealthySensorGivesTheGeometryAndNoFault) {
 TEST_F(InclinometerFaultsTest, AFaultTakesTheStackWithAlphaUnknownByDefault) {
   RigSession rig = session("sim:50,fault=zeros");
   capture::CaptureSettings settings;
-  const InclinometerFaults::Measured measured = faults.measure(rig, {}, state, settings);
+  const InclinometerFaults::Measured measured =
+      faults.measure(rig, {}, state, settings, clock.utcNow());
   EXPECT_FALSE(measured.geometry);
   EXPECT_FALSE(measured.pause);
   EXPECT_FALSE(state.inclinometer_pauses);
@@ -60,7 +62,8 @@ TEST_F(InclinometerFaultsTest, AFaultPausesCaptureWhenConfigured) {
   RigSession rig = session("sim:50,fault=saturated");
   capture::CaptureSettings settings;
   const FaultConfig pause{.inclinometer = InclinometerFaultPolicy::kPause};
-  const InclinometerFaults::Measured measured = faults.measure(rig, pause, state, settings);
+  const InclinometerFaults::Measured measured =
+      faults.measure(rig, pause, state, settings, clock.utcNow());
   EXPECT_FALSE(measured.geometry);
   EXPECT_TRUE(measured.pause);
   EXPECT_TRUE(state.inclinometer_pauses);
@@ -70,7 +73,7 @@ TEST_F(InclinometerFaultsTest, AFaultPausesCaptureWhenConfigured) {
 TEST_F(InclinometerFaultsTest, TheRetryClearsTheFaultWhenTheSensorReadsAgain) {
   RigSession broken = session("sim:50,fault=zeros");
   capture::CaptureSettings settings;
-  faults.measure(broken, {}, state, settings);
+  faults.measure(broken, {}, state, settings, clock.utcNow());
   ASSERT_TRUE(faults.retryAt());
 
   clock.advance(kInclinometerRetry);
@@ -98,7 +101,8 @@ TEST_F(InclinometerFaultsTest, ARigWhoseAlphaIsNotMeasuredHasNoInclinometerFault
   RigSession rig(rig::RigConfig{},
                  {.faults = {}, .log_name = "test"});  // neither [site] nor [source]
   capture::CaptureSettings settings;
-  const InclinometerFaults::Measured measured = faults.measure(rig, {}, state, settings);
+  const InclinometerFaults::Measured measured =
+      faults.measure(rig, {}, state, settings, clock.utcNow());
   EXPECT_FALSE(measured.geometry);
   EXPECT_FALSE(measured.pause);
   EXPECT_EQ(state.inclinometer_fault, "");

@@ -13,6 +13,7 @@
 #include "capture/test_cameras.h"
 #include "daemon/daemon_fixture.h"
 #include "daemon/daemon_test_support.h"
+#include "daemon/hardware/simulated_rig.h"
 #include "support/test_support.h"
 
 namespace glarecam::daemon {
@@ -52,18 +53,21 @@ TEST_F(RigDoctor, TheSimulatedLabRigIsReady) {
   EXPECT_FALSE(doctor.config_bad_input);
 }
 
-// An unsynchronised clock fails a real rig that takes α from the sun, but only warns on the
-// simulated rig (glarecamd --simulate runs on its own time-lapse clock), saying why.
+// An unsynchronised clock fails a real rig that takes α from the sun; the simulated rig (the
+// config glarecamd --simulate writes) is synchronised by construction, as glarecamd's status says
+// (rigClockStatus): its sun, α and scene all follow its own clock.
 TEST_F(RigDoctor, AnUnsynchronisedClockFailsARealRigButNotTheSimulatedOne) {
   const auto unsynchronised = [] {
     return sun::ClockStatus{.synchronised = false, .detail = "the kernel says so"};
   };
   DoctorOptions simulated = options({.site = true});
+  std::filesystem::rename(simulated.config_path, dir_ / kSimulatedRigFileName);
+  simulated.config_path = dir_ / kSimulatedRigFileName;
   simulated.clock_status = unsynchronised;
   const std::vector<DoctorCheck> sim_checks = runDoctor(simulated);
   const DoctorCheck& sim_clock = check(sim_checks, "clock");
-  EXPECT_EQ(sim_clock.level, CheckLevel::kWarn) << sim_clock.detail;
-  EXPECT_NE(sim_clock.detail.find("simulated rig"), std::string::npos) << sim_clock.detail;
+  EXPECT_EQ(sim_clock.level, CheckLevel::kOk) << sim_clock.detail;
+  EXPECT_EQ(sim_clock.detail, simulatedClockStatus().detail);
 
   RigSpec real{.site = true};
   real.inclinometer = "adxl355:/dev/i2c-1@0x1d";

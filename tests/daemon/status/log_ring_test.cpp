@@ -6,6 +6,8 @@
 
 #include <memory>
 
+#include "daemon/daemon_test_support.h"
+
 namespace glarecam::daemon {
 namespace {
 
@@ -34,6 +36,20 @@ TEST(LogRing, HoldsTheStatusPagesFifty) {
   ASSERT_EQ(entries.size(), kStatusLogEntries);
   EXPECT_EQ(entries.front().text, "w70");
   EXPECT_EQ(entries.back().text, "w119");
+}
+
+// On glarecamd --simulate the page's log mixed the machine's times with the simulated clock's:
+// each entry keeps the machine's time, and the simulated clock's beside it.
+TEST(LogRing, OnASimulatedClockEachEntryCarriesItsTimeToo) {
+  testing::ManualClock machine(testing::utc("2026-12-06T04:00:00Z"));
+  const TimeLapseClock simulated(testing::utc("2026-06-21T05:25:00Z"), 120.0, machine);
+  auto ring = std::make_shared<LogRing>(kStatusLogEntries, &simulated);
+  spdlog::logger logger("ring-test", ring);
+  machine.advance(std::chrono::seconds(10));
+  logger.info("captured");
+  const auto entries = ring->entries();
+  ASSERT_EQ(entries.size(), 1u);
+  EXPECT_EQ(entries[0].simulated_time, testing::utc("2026-06-21T05:45:00Z"));
 }
 
 }  // namespace

@@ -81,6 +81,28 @@ TEST(StatusPage, ShowsTheStateTheLastStackTodayTheRigTheDiskAndTheLog) {
   EXPECT_EQ(html.find("<link"), std::string::npos);
 }
 
+// glarecamd --simulate: the page's own times are the simulated clock's, marked sim; the log's are
+// the machine's, each with the simulated time beside it.
+TEST(StatusPage, SimulatedTimesAreMarkedApartFromTheMachines) {
+  StatusSnapshot s = capturingRig();
+  s.simulated_time = true;
+  const std::vector<LogEntry> log{
+      {.time = std::chrono::sys_days(std::chrono::year(2026) / std::chrono::December / 6),
+       .simulated_time = utc("2026-06-21T10:15:03Z"),
+       .level = "info",
+       .text = "captured"}};
+  const std::string html = statusHtml(s, log);
+  EXPECT_NE(html.find("2026-06-21T10:16:00Z sim"), std::string::npos);          // now
+  EXPECT_NE(html.find("2026-06-21T10:25:03Z sim (α 40°)"), std::string::npos);  // next stack
+  EXPECT_NE(html.find("2026-12-06T00:00:00Z (sim 2026-06-21T10:15:03Z)"), std::string::npos);
+  const nlohmann::json json = statusJson(s, log);
+  EXPECT_EQ(json["simulated_time"], true);
+  EXPECT_EQ(json["log"][0]["time"], "2026-12-06T00:00:00Z");
+  EXPECT_EQ(json["log"][0]["simulated_time"], "2026-06-21T10:15:03Z");
+  // The machine's clock: nothing marked.
+  EXPECT_EQ(statusHtml(capturingRig(), someLog()).find(" sim"), std::string::npos);
+}
+
 TEST(StatusPage, APausedDiskAndALostCameraAreShownWithTheirReasons) {
   StatusSnapshot paused = capturingRig();
   paused.state.disk_fault = "12.0 MiB free on /out, below the 1.0 GiB reserve";

@@ -19,6 +19,19 @@ namespace {
 
 using testing::fitsOf;
 
+// The sheet of `table` and its fits for module "standard" on 2026-11-26, without the facet model,
+// at the method's limit curve.
+Status writeStandardSheet(const SweepTable& table, const SweepFits& fits,
+                          const std::filesystem::path& directory) {
+  return writeDatasheet({.module = "standard",
+                         .date = "2026-11-26",
+                         .table = &table,
+                         .fits = &fits,
+                         .model_beta_deg = std::nullopt,
+                         .limit = {}},
+                        directory);
+}
+
 TEST(Datasheet, WritesPdfSvgAndPng) {
   auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
   ASSERT_TRUE(table);
@@ -50,13 +63,7 @@ TEST(Datasheet, ASimulatedSweepIsMarkedOnTheSheet) {
   testing::TempDir dir;
   const auto draw = [&](const SweepTable& drawn, const std::filesystem::path& out) {
     std::filesystem::create_directories(out);
-    auto status = writeDatasheet({.module = "standard",
-                                  .date = "2026-11-26",
-                                  .table = &drawn,
-                                  .fits = &fits,
-                                  .model_beta_deg = std::nullopt,
-                                  .limit = {}},
-                                 out);
+    auto status = writeStandardSheet(drawn, fits, out);
     EXPECT_TRUE(status) << status.error().message;
     return testing::readText(out / kDatasheetPng);
   };
@@ -126,13 +133,7 @@ TEST(Datasheet, ALongSubtitleWrapsAndStaysReadable) {
   }
   const SweepFits fits = fitsOf(*table);
   testing::TempDir dir;
-  auto status = writeDatasheet({.module = "standard",
-                                .date = "2026-11-26",
-                                .table = &*table,
-                                .fits = &fits,
-                                .model_beta_deg = std::nullopt,
-                                .limit = {}},
-                               dir.path());
+  auto status = writeStandardSheet(*table, fits, dir.path());
   ASSERT_TRUE(status) << status.error().message;
   const std::vector<PdfWord> words = pdfWords(dir / kDatasheetPdf);
   ASSERT_FALSE(words.empty()) << "pdftotext (poppler-utils, scripts/install-deps.sh) read nothing";
@@ -157,13 +158,7 @@ TEST(Datasheet, MissingDirectoryIsAnErrorNotACrash) {
   auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
   ASSERT_TRUE(table);
   const SweepFits fits = fitsOf(*table);
-  auto status = writeDatasheet({.module = "m",
-                                .date = "d",
-                                .table = &*table,
-                                .fits = &fits,
-                                .model_beta_deg = std::nullopt,
-                                .limit = {}},
-                               "/nonexistent/dir");
+  auto status = writeStandardSheet(*table, fits, "/nonexistent/dir");
   EXPECT_FALSE(status);
 }
 

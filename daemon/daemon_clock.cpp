@@ -17,8 +17,10 @@ SteadyTime SystemDaemonClock::steadyAt(UtcTime utc) const {
   return now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(utc - utcNow());
 }
 
+// Not delegating to the constructor below: naming machine_ in a delegating constructor's
+// initializer reads a member of an object whose construction has not begun (UBSan: invalid vptr).
 TimeLapseClock::TimeLapseClock(UtcTime start, double factor)
-    : TimeLapseClock(start, factor, machine_) {}
+    : steady_(machine_), start_utc_(start), start_steady_(machine_.now()), factor_(factor) {}
 
 TimeLapseClock::TimeLapseClock(UtcTime start, double factor, DaemonClock& steady)
     : steady_(steady), start_utc_(start), start_steady_(steady.now()), factor_(factor) {}

@@ -160,6 +160,11 @@ Result<StackManifest> parseManifest(const json& document, const std::string& whe
   GLARECAM_ASSIGN(manifest.captured_at, fields.optionalText("captured_at"));
   GLARECAM_ASSIGN(manifest.alpha_deg,
                   fields.optionalNumberIn("alpha_deg", 0, kMaxStackAlphaDeg, "°"));
+  if (fields.has("source")) {
+    JsonReader block;
+    GLARECAM_ASSIGN(block, fields.member("source"));
+    GLARECAM_ASSIGN(manifest.source_illuminance, parseSourceIlluminance(block));
+  }
   if (fields.has("calibration")) {
     if (document.at("calibration").is_string()) {
       manifest.calibration_path = document.at("calibration").get<std::string>();
@@ -218,6 +223,11 @@ json toJson(const StackManifest& manifest) {
   if (manifest.id) document["id"] = *manifest.id;
   if (manifest.captured_at) document["captured_at"] = *manifest.captured_at;
   if (manifest.alpha_deg) document["alpha_deg"] = *manifest.alpha_deg;
+  if (manifest.source_illuminance) {
+    document["source"] = toJson(*manifest.source_illuminance);
+  } else {
+    document.erase("source");
+  }
   if (manifest.calibration) {
     document["calibration"] = toJson(*manifest.calibration);
   } else if (manifest.calibration_path) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/source_illuminance.h"
 
 namespace glarecam {
 
@@ -75,6 +76,8 @@ struct StackManifest {
   std::optional<Calibration> calibration;       // given inline
   std::optional<std::string> calibration_path;  // or as a path relative to the stack
   std::vector<FrameSpec> frames;
+  // The manifest's `source` block: the illuminance that lit the stack; absent: unreferred.
+  std::optional<SourceIlluminance> source_illuminance;
   nlohmann::json source = nlohmann::json::object();  // camera, geometry, unknown keys
 };
 

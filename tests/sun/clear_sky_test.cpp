@@ -21,15 +21,16 @@ TEST(ClearSky, AirMassMatchesKastenYoungsTable) {
 }
 
 TEST(ClearSky, HighSunFollowsTheIesFormulaWithTheSecantAirMass) {
-  // Above 30° the secant and Kasten–Young differ by < 0.3 %, which exp(−0.21 m) shrinks below
-  // 0.1 % of E: the handbook's own formula must come out within 0.1 %.
+  // Above 30° the secant and Kasten–Young air masses differ by at most 0.005 (1.995 against
+  // 2.000 at 30°), which changes exp(−0.21 m) by at most 0.21 × 0.005 = 0.105 % of E: the
+  // handbook's own formula must come out within 0.15 %.
   for (double elevation : {30.0, 45.0, 60.0, 90.0}) {
     for (int day : {2, 92, 185, 300}) {
       const double expected = 127'500.0 * (1 + 0.034 * std::cos(2 * M_PI * (day - 2) / 365.0)) *
                               std::exp(-0.21 / std::sin(radians(elevation)));
       const auto sky = clearSkyIlluminance(elevation, day);
       ASSERT_TRUE(sky);
-      EXPECT_NEAR(sky->illuminance_lx, expected, 1e-3 * expected) << elevation << "° day " << day;
+      EXPECT_NEAR(sky->illuminance_lx, expected, 1.5e-3 * expected) << elevation << "° day " << day;
       EXPECT_NEAR(sky->illuminance_u_lx, 0.15 * sky->illuminance_lx, 1e-9);
     }
   }

@@ -195,6 +195,21 @@ std::optional<double> alphaFor(const Camera& camera, const CaptureSettings& sett
   return std::nullopt;
 }
 
+// The source as given, else as a simulated camera lit its scene (only where the scene also gives
+// α: a rig measures its own).
+std::optional<SourceIlluminance> sourceFor(const Camera& camera, const CaptureSettings& settings) {
+  if (settings.source_illuminance || !settings.alpha_from_scene)
+    return settings.source_illuminance;
+  const auto truth = sceneTruthOf(camera);
+  if (!truth || !truth->contains("source_illuminance_lx") ||
+      !(*truth)["source_illuminance_lx"].is_number())
+    return std::nullopt;
+  return SourceIlluminance{.illuminance_lx = (*truth)["source_illuminance_lx"].get<double>(),
+                           .illuminance_u_lx = 0,
+                           .origin = IlluminanceOrigin::kGiven,
+                           .instrument = "the simulated sun"};
+}
+
 StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings,
                            const Bracket& bracket) {
   const std::optional<double> alpha_deg = alphaFor(camera, settings);
@@ -203,6 +218,7 @@ StackManifest makeManifest(const Camera& camera, const CaptureSettings& settings
   manifest.id = stackId(formatStackStamp(now), alpha_deg);
   manifest.captured_at = formatIsoSeconds(now);
   manifest.alpha_deg = alpha_deg;
+  manifest.source_illuminance = sourceFor(camera, settings);
   manifest.calibration = calibrationFor(camera, settings);
   const CameraOptics& known = camera.info().optics;
   const auto f_number = settings.optics.f_number ? settings.optics.f_number : known.f_number;

@@ -33,6 +33,10 @@ struct CaptureSettings {
   // Without alpha_deg: a simulated camera's scene α (glarecam capture --camera sim:). Off where
   // a rig measures α, so that an α it could not measure stays unknown.
   bool alpha_from_scene = true;
+  // The source illuminance during the bracket (capture --source-illuminance, a rig instrument),
+  // recorded as the manifest's `source`. Without it, and with alpha_from_scene, a simulated
+  // camera's scene gives its simulated sun's.
+  std::optional<SourceIlluminance> source_illuminance;
   std::optional<nlohmann::json> geometry;  // the rig's geometry block (rig_geometry.h), as measured
   CameraOptics optics;                     // overrides what the camera reports
   AutoBracketOptions auto_bracket;

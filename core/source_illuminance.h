@@ -36,11 +36,12 @@ struct SourceIlluminance {
   double illuminance_u_lx = 0;  // its standard uncertainty u(E), >= 0
   IlluminanceOrigin origin = IlluminanceOrigin::kGiven;
   // A sensor reading's description: "pyrheliometer modbus:/dev/ttyUSB0@1 (W/m², 93 lm/W)".
-  std::optional<std::string> instrument;
-  std::optional<int> samples;       // readings averaged during the bracket
-  std::optional<double> spread_lx;  // their standard deviation
+  std::optional<std::string> instrument = std::nullopt;
+  std::optional<int> samples = std::nullopt;       // readings averaged during the bracket
+  std::optional<double> spread_lx = std::nullopt;  // their standard deviation
 
   double relativeUncertainty() const { return illuminance_u_lx / illuminance_lx; }
+  bool operator==(const SourceIlluminance&) const = default;
 };
 
 // The manifest's `source` block (a reader at it): refuses an illuminance that is not finite and

@@ -105,6 +105,7 @@ Status runCapture(const CaptureRunOptions& options) {
   settings.alpha_deg = options.alpha_deg;
   settings.calibration = options.calibration;
   settings.module = options.module;
+  settings.source_illuminance = options.source_illuminance;
   settings.show_progress = options.show_progress;
   std::unique_ptr<RigSession> rig;
   if (options.config_path) GLARECAM_ASSIGN(rig, openRig(options, settings));

@@ -25,6 +25,8 @@ struct CaptureRunOptions {
   std::optional<double> alpha_deg;                   // α given; contradicts a config that gives α
   std::optional<Calibration> calibration;            // default: the config's calibration file's
   std::optional<std::string> module;                 // default: the config's [output] module
+  // --source-illuminance: the source's E for every stack of the series (a lab lamp).
+  std::optional<SourceIlluminance> source_illuminance;
   capture::SeriesOptions series;
   bool on_button = false;  // before each stack, wait for the config's [gpio] button
   bool show_progress = true;

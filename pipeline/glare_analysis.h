@@ -14,6 +14,11 @@ namespace glarecam::pipeline {
 struct GlareAnalysisOptions {
   std::optional<double> limit_cd_m2;     // the α curve's limit or a constant threshold
   std::vector<double> thresholds_cd_m2;  // extra levels, each positive
+  // The relative standard uncertainty of the image's absolute scale that the ellipses at fixed
+  // levels inherit as their level's: u(E)/E for an image referred to a reference illuminance
+  // (docs/method.md). A scale error moves the contour at a fixed level exactly as the opposite
+  // error of the level does; the FWHM, at a fraction of the image's own peak, is immune to it.
+  double scale_relative_uncertainty = 0;
 };
 
 struct GlareAnalysis {

@@ -258,7 +258,10 @@ std::vector<std::string> pictureCaption(const StackResult& result) {
                   render::formatGrouped(luminance.max_cd_m2, kCaptionDigits)),
       limit ? fmt::format("limit {} cd/m\u00b2", render::formatGrouped(*limit, kCaptionDigits))
             : std::string("no limit"),
-      result.glare ? (*result.glare ? "glare: yes" : "glare: no") : std::string("glare: \u2013")};
+      result.glare ? (*result.glare ? "glare: yes" : "glare: no") : std::string("glare: \u2013"),
+      result.illuminance.referred()
+          ? fmt::format("at E = {:g} klx", *result.illuminance.reference_lx / 1000)
+          : std::string("unreferred")};
 }
 
 std::string pictureTitle(const std::optional<double>& alpha_deg) {
@@ -419,6 +422,28 @@ Result<bool> applyGivenAlpha(Stack& stack, const std::optional<double>& alpha_de
   return true;
 }
 
+// The stack's source illuminance: --source-illuminance, else the manifest's, else none.
+std::optional<SourceIlluminance> sourceIlluminance(const Stack& stack,
+                                                   const ProcessOptions& options) {
+  const std::optional<SourceIlluminance>& recorded = stack.manifest.source_illuminance;
+  if (!options.source_illuminance) return recorded;
+  if (recorded && recorded->illuminance_lx != options.source_illuminance->illuminance_lx)
+    spdlog::warn("{}: records a source illuminance of {}; --source-illuminance {} replaces it",
+                 (stack.directory / kManifestFileName).string(), describe(*recorded),
+                 describe(*options.source_illuminance));
+  return options.source_illuminance;
+}
+
+// Multiplies the merged luminance by `factor` (E_ref / E), in place; the relative uncertainty
+// and the masks are unchanged.
+void referLuminance(calibration::MergedImage& merged, double factor, unsigned threads) {
+  FloatImage& luminance = merged.luminance_cd_m2;
+  parallelRows(luminance.height(), threads, [&](int first_row, int end_row) {
+    for (int y = first_row; y < end_row; ++y)
+      for (float& value : luminance.row(y)) value = static_cast<float>(value * factor);
+  });
+}
+
 // --threshold, else the α curve, else none.
 std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& options) {
   if (options.threshold_cd_m2) return options.threshold_cd_m2;
@@ -446,6 +471,7 @@ Status ProcessOptions::validate() const {
     return badInput("--thresholds: must be positive luminances in cd/m²");
   if (alpha_deg && !(*alpha_deg >= 0 && *alpha_deg <= kMaxStackAlphaDeg))
     return badInput(fmt::format("--alpha: must be between 0 and {:g} degrees", kMaxStackAlphaDeg));
+  GLARECAM_CHECK(checkReferenceIlluminance(reference_illuminance_lx, "--reference-illuminance"));
   return {};
 }
 
@@ -469,6 +495,12 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   progress.advance("read");
   MergedStack merged_stack;
   GLARECAM_ASSIGN(merged_stack, mergeStack(stack, options));
+  ResultIlluminance illuminance;
+  illuminance.source = sourceIlluminance(stack, options);
+  if (illuminance.source) {
+    illuminance.reference_lx = options.reference_illuminance_lx;
+    referLuminance(merged_stack.image, illuminance.factor(), options.threads);
+  }
   const calibration::MergedImage& merged = merged_stack.image;
   progress.advance("merged");
 
@@ -477,7 +509,10 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
   const calibration::CameraModel camera(stack.calibration.intrinsics);
   const GlareAnalysis glare =
       analyseGlare(merged, camera, stats.max,
-                   {.limit_cd_m2 = limit, .thresholds_cd_m2 = options.thresholds_cd_m2});
+                   {.limit_cd_m2 = limit,
+                    .thresholds_cd_m2 = options.thresholds_cd_m2,
+                    .scale_relative_uncertainty =
+                        illuminance.source ? illuminance.source->relativeUncertainty() : 0.0});
   warnAboutCameraModel(glare, calibrationSource(stack, options));
   progress.advance("analysed");
   ProcessSummary summary;
@@ -494,6 +529,7 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
        .width = merged.luminance_cd_m2.width(),
        .height = merged.luminance_cd_m2.height(),
        .calibration = calibrationIdentity(stack, options),
+       .illuminance = illuminance,
        .stats = stats,
        .frames = merged_stack.frames,
        .limit_cd_m2 = limit,

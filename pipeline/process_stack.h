@@ -4,6 +4,10 @@
 // quality.exr (relative uncertainty, valid frame count, bound flags), luminance.png (false
 // colour with the glare ellipses drawn over it) and result.json (glarecam.result/1, with the
 // limit, FWHM and threshold ellipses of glare_analysis.h), each file atomically, result.json last.
+// A stack with a source illuminance E (its manifest's `source`, or given) is referred to the
+// reference E_ref before the analysis: every luminance written, luminance.exr included, is
+// L · E_ref / E (docs/method.md "Reference illuminance"); one without is processed at face value
+// and marked unreferred.
 #pragma once
 
 #include <filesystem>
@@ -14,6 +18,7 @@
 
 #include "calibration/calibration_file.h"
 #include "core/error.h"
+#include "core/source_illuminance.h"
 #include "pipeline/result.h"
 
 namespace glarecam::pipeline {
@@ -27,6 +32,12 @@ struct ProcessOptions {
   // α for a stack whose manifest records none (another tool's, a rig without an inclinometer),
   // recorded in result.json as given by the user; one that contradicts the manifest's is refused.
   std::optional<double> alpha_deg = std::nullopt;
+  // The source illuminance E for the stack (--source-illuminance, origin given): replaces the
+  // manifest's `source`, with a warning when that records another value. Without either the
+  // result is unreferred.
+  std::optional<SourceIlluminance> source_illuminance = std::nullopt;
+  // E_ref: the luminance image is referred to it (L · E_ref / E) before the glare analysis.
+  double reference_illuminance_lx = kDefaultReferenceIlluminanceLx;
   unsigned threads = 0;  // 0: all cores
   bool show_progress = true;
   // The images at full float32 precision, losslessly (larger); by default luminance.exr keeps 24
@@ -35,7 +46,8 @@ struct ProcessOptions {
   bool float32 = false;
   // Whose and how old a calibration may be (a serial mismatch refuses, old parts warn).
   calibration::CalibrationUseOptions calibration_use;
-  Status validate() const;  // thresholds positive and finite, at most kMaxThresholds
+  // Thresholds positive and finite, at most kMaxThresholds; the illuminances in range.
+  Status validate() const;
 };
 
 // The result document `process` writes into its output directory (glarecam.result/1).

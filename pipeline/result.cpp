@@ -98,8 +98,16 @@ json calibrationJson(const CalibrationIdentity& cal) {
           {"luminance_factor_u", jsonOrNull(cal.luminance_factor_u)}};
 }
 
+json illuminanceJson(const ResultIlluminance& e) {
+  return {{"status", e.referred() ? "referred" : "unreferred"},
+          {"reference_lx", jsonOrNull(e.reference_lx)},
+          {"source", e.source ? toJson(*e.source) : json(nullptr)},
+          {"factor", e.referred() ? json(e.factor()) : json(nullptr)}};
+}
+
 json luminanceJson(const ResultLuminance& l) {
   return {{"max_cd_m2", l.max_cd_m2},
+          {"measured_max_cd_m2", jsonOrNull(l.measured_max_cd_m2)},
           {"max_pixel", {l.max_pixel[0], l.max_pixel[1]}},
           {"max_position_px", pair(l.max_position_px)},
           {"max_method", toString(l.max_method)},
@@ -232,6 +240,7 @@ Result<ResultLuminance> readLuminance(const JsonReader& document) {
   const auto parsed = peakMethodFromString(method);
   if (!parsed) return r.fail("max_method", "\"" + method + "\" is not a peak method");
   l.max_method = *parsed;
+  GLARECAM_ASSIGN(l.measured_max_cd_m2, r.optionalNumber("measured_max_cd_m2"));
   GLARECAM_ASSIGN(l.max_relative_uncertainty, r.optionalNonNegative("max_relative_uncertainty"));
   GLARECAM_ASSIGN(l.max_relative_uncertainty_combined,
                   r.optionalNonNegative("max_relative_uncertainty_combined"));
@@ -247,6 +256,31 @@ Result<ResultLuminance> readLuminance(const JsonReader& document) {
   GLARECAM_ASSIGN(l.median_relative_uncertainty, r.nonNegative("median_relative_uncertainty"));
   GLARECAM_ASSIGN(l.frames_consistent, r.optionalBoolean("frames_consistent"));
   return l;
+}
+
+// The `illuminance` block; a result written before it existed is unreferred.
+Result<ResultIlluminance> readIlluminance(const JsonReader& document) {
+  std::optional<JsonReader> block;
+  GLARECAM_ASSIGN(block, document.optionalObject("illuminance"));
+  ResultIlluminance e;
+  if (!block) return e;
+  std::string status;
+  GLARECAM_ASSIGN(status, block->word("status", {"referred", "unreferred"}));
+  std::optional<JsonReader> source;
+  GLARECAM_ASSIGN(source, block->optionalObject("source"));
+  if (source) GLARECAM_ASSIGN(e.source, parseSourceIlluminance(*source));
+  GLARECAM_ASSIGN(e.reference_lx, block->optionalPositive("reference_lx"));
+  if (e.reference_lx)
+    GLARECAM_CHECK(checkReferenceIlluminance(
+        *e.reference_lx, block->file() + ": " + block->path() + ".reference_lx"));
+  const bool referred = status == "referred";
+  if (referred != e.source.has_value())
+    return block->fail("source", referred ? "is missing for a referred result"
+                                          : "must be null for an unreferred result");
+  if (referred != e.reference_lx.has_value())
+    return block->fail("reference_lx", referred ? "is missing for a referred result"
+                                                : "must be null for an unreferred result");
+  return e;
 }
 
 Result<ResultFrame> readFrame(const JsonReader& r) {
@@ -353,6 +387,12 @@ ResultEllipse resultEllipse(const GlareEllipse& e) {
       .unweighted_contour_points = static_cast<long long>(e.unweighted_contour_points)};
 }
 
+std::string describe(const ResultIlluminance& illuminance) {
+  if (!illuminance.referred()) return "unreferred";
+  return fmt::format("referred to {:g} klx (source {})", *illuminance.reference_lx / 1000,
+                     describe(*illuminance.source));
+}
+
 std::string newestPartDate(const CalibrationIdentity& calibration) {
   std::string newest;
   if (!calibration.parts) return newest;
@@ -395,8 +435,14 @@ StackResult makeResult(const ResultInputs& in) {
   l.max_position_px = {s.max.x_px, s.max.y_px};
   l.max_method = s.max.method;
   l.max_relative_uncertainty = finite(noise_u);
-  if (std::isfinite(noise_u) && std::isfinite(k_u))
-    l.max_relative_uncertainty_combined = std::hypot(noise_u, k_u);
+  // u(E) scales every referred luminance alike too (fully correlated across the image).
+  result.illuminance = in.illuminance;
+  const double e_u = in.illuminance.referred() ? in.illuminance.source->relativeUncertainty()
+                                               : std::numeric_limits<double>::quiet_NaN();
+  if (std::isfinite(noise_u) && (std::isfinite(k_u) || std::isfinite(e_u)))
+    l.max_relative_uncertainty_combined =
+        std::hypot(noise_u, std::isfinite(k_u) ? k_u : 0.0, std::isfinite(e_u) ? e_u : 0.0);
+  if (in.illuminance.referred()) l.measured_max_cd_m2 = s.max.value_cd_m2 / in.illuminance.factor();
   l.valid_fraction = s.valid_fraction;
   l.saturated_pixels = static_cast<long long>(s.saturated_pixels);
   l.dark_pixels = static_cast<long long>(s.dark_pixels);
@@ -450,6 +496,7 @@ json toJson(const StackResult& r) {
           {"camera", r.camera},
           {"module", jsonOrNull(r.module)},
           {"calibration", calibrationJson(r.calibration)},
+          {"illuminance", illuminanceJson(r.illuminance)},
           {"luminance", luminanceJson(r.luminance)},
           {"frames", frames},
           {"limit",
@@ -487,7 +534,11 @@ Result<StackResult> resultFromJson(const json& document, const std::string& file
   GLARECAM_ASSIGN(result.camera, readCopiedBlock(r, "camera"));
   GLARECAM_ASSIGN(result.module, r.optionalText("module"));
   GLARECAM_ASSIGN(result.calibration, readResultCalibration(r));
+  GLARECAM_ASSIGN(result.illuminance, readIlluminance(r));
   GLARECAM_ASSIGN(result.luminance, readLuminance(r));
+  if (result.luminance.measured_max_cd_m2.has_value() != result.illuminance.referred())
+    return r.fail("luminance.measured_max_cd_m2",
+                  "must be given exactly when the result is referred (illuminance.status)");
   JsonReader frames;
   GLARECAM_ASSIGN(frames, r.arrayMember("frames"));
   GLARECAM_ASSIGN(result.frames, readEach<ResultFrame>(frames, readFrame));

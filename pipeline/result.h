@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/generator.h"
 #include "core/json.h"
+#include "core/source_illuminance.h"
 #include "pipeline/glare_analysis.h"
 #include "pipeline/luminance_stats.h"
 
@@ -76,14 +77,32 @@ struct ResultLimit {
   bool operator==(const ResultLimit&) const = default;
 };
 
+// What a result's luminances refer to (docs/method.md "Reference illuminance and the contour
+// ladder"): referred to `reference_lx` through the stack's source illuminance, L_ref = L ·
+// E_ref / E, or unreferred (no source: at face value, and never mixed with referred results).
+struct ResultIlluminance {
+  std::optional<SourceIlluminance> source = std::nullopt;  // none: unreferred
+  std::optional<double> reference_lx = std::nullopt;       // exactly when there is a source
+  bool referred() const { return source.has_value(); }
+  // E_ref / E: what the measured luminances were multiplied by (1 when unreferred).
+  double factor() const { return referred() ? *reference_lx / source->illuminance_lx : 1.0; }
+  bool operator==(const ResultIlluminance&) const = default;
+};
+
+// "referred to 100 klx (source 92.5 ± 2.8 klx, sensor)" or "unreferred".
+std::string describe(const ResultIlluminance& illuminance);
+
 struct ResultLuminance {
-  double max_cd_m2 = 0;
+  double max_cd_m2 = 0;  // referred when the result is
+  // The maximum as measured, under the stack's own source (only when referred; else max_cd_m2).
+  std::optional<double> measured_max_cd_m2 = std::nullopt;
   std::array<long long, 2> max_pixel{};  // max_position_px rounded
   std::array<double, 2> max_position_px{};
   PeakMethod max_method = PeakMethod::kQuadraticFit;
   std::optional<double> max_relative_uncertainty = std::nullopt;  // the merge's noise
-  std::optional<double> max_relative_uncertainty_combined =
-      std::nullopt;  // with u(K), when it is known
+  // With the uncertainties of the absolute scale: u(K) and, when referred, u(E), those known
+  // (none when neither is).
+  std::optional<double> max_relative_uncertainty_combined = std::nullopt;
   double valid_fraction = 0;
   long long saturated_pixels = 0, dark_pixels = 0, masked_pixels = 0;
   double median_relative_uncertainty = 0;
@@ -160,6 +179,7 @@ struct StackResult {
   nlohmann::json camera = nullptr;  // the manifest's camera block (backend, model, serial), or null
   std::optional<std::string> module = std::nullopt;
   CalibrationIdentity calibration;
+  ResultIlluminance illuminance;
   ResultLuminance luminance;
   std::vector<ResultFrame> frames = {};
   ResultLimit limit;
@@ -190,6 +210,7 @@ struct ResultInputs {
   std::optional<std::string> module = std::nullopt;  // the manifest's module, when it names one
   int width = 0, height = 0;
   CalibrationIdentity calibration;
+  ResultIlluminance illuminance;  // the stats and glare below are referred when it is
   LuminanceStats stats;
   std::vector<FrameCheck> frames = {};
   std::optional<double> limit_cd_m2 = std::nullopt;

@@ -72,6 +72,21 @@ Result<std::optional<double>> parseOptionalNumber(const std::optional<std::strin
   return values->front();
 }
 
+Result<std::optional<SourceIlluminance>> parseOptionalSourceIlluminance(
+    const std::optional<std::string>& text, const std::string& option) {
+  if (!text) return std::nullopt;
+  return parseGivenIlluminance(*text, option);
+}
+
+Result<double> parseReferenceIlluminance(const std::optional<std::string>& text,
+                                         const std::string& option) {
+  std::optional<double> value;
+  GLARECAM_ASSIGN(value, parseOptionalNumber(text, option));
+  if (!value) return kDefaultReferenceIlluminanceLx;
+  GLARECAM_CHECK(checkReferenceIlluminance(*value, option));
+  return *value;
+}
+
 Result<std::optional<double>> parseOptionalLuminance(const std::optional<std::string>& text,
                                                      const std::string& option) {
   auto value = parseOptionalNumber(text, option);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/source_illuminance.h"
 
 namespace glarecam::apps {
 
@@ -23,6 +24,23 @@ Result<std::optional<double>> parseOptionalNumber(const std::optional<std::strin
 // The same for a luminance in cd/m², which must be positive (a --threshold).
 Result<std::optional<double>> parseOptionalLuminance(const std::optional<std::string>& text,
                                                      const std::string& option);
+
+// --source-illuminance LX[±U] (origin given), when it was given.
+Result<std::optional<SourceIlluminance>> parseOptionalSourceIlluminance(
+    const std::optional<std::string>& text, const std::string& option);
+// --reference-illuminance LX, or the default E_ref when it was not given.
+Result<double> parseReferenceIlluminance(const std::optional<std::string>& text,
+                                         const std::string& option);
+// The help text of both, one wording for every command that takes them.
+inline constexpr const char* kSourceIlluminanceHelp =
+    "the source's direct normal illuminance during the bracket in lx, with its standard "
+    "uncertainty: 92500±2800 (or 92500+-2800); refers the stack's luminances to the reference "
+    "illuminance (docs/method.md)";
+inline constexpr const char* kMixedReferencesHelp =
+    "fit rows referred to different illuminances, or referred and unreferred rows, together "
+    "(default: refused, naming the rows)";
+inline constexpr const char* kReferenceIlluminanceHelp =
+    "the illuminance in lx every luminance is referred to (default 100000)";
 
 Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option,
                                             std::size_t min_count, std::size_t max_count);

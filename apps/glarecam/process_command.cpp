@@ -18,7 +18,8 @@ namespace {
 struct ProcessArgs {
   std::string stack;
   // Optional, so that a given but empty value ("--threshold $UNSET") is an error, not a default.
-  std::optional<std::string> calibration, out, threshold, thresholds, alpha;
+  std::optional<std::string> calibration, out, threshold, thresholds, alpha, source_illuminance,
+      reference_illuminance;
   bool json = false, no_progress = false, force_calibration = false, float32 = false;
   unsigned threads = 0;
   double max_calibration_age_days = 365;
@@ -34,6 +35,10 @@ Status runProcess(const ProcessArgs& args) {
   options.threads = args.threads;
   GLARECAM_ASSIGN(options.threshold_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
   GLARECAM_ASSIGN(options.alpha_deg, parseOptionalNumber(args.alpha, "--alpha"));
+  GLARECAM_ASSIGN(options.source_illuminance,
+                  parseOptionalSourceIlluminance(args.source_illuminance, "--source-illuminance"));
+  GLARECAM_ASSIGN(options.reference_illuminance_lx,
+                  parseReferenceIlluminance(args.reference_illuminance, "--reference-illuminance"));
   if (args.thresholds) {
     auto thresholds =
         parseNumberList(*args.thresholds, "--thresholds", 1, pipeline::kMaxThresholds);
@@ -71,6 +76,11 @@ void addProcessCommand(CLI::App& app, Action& action) {
   sub->add_option("--alpha", args->alpha,
                   "angle of incidence α in degrees for a stack that records none (recorded in "
                   "result.json as given); one that contradicts the stack's is refused");
+  sub->add_option("--source-illuminance", args->source_illuminance,
+                  std::string(kSourceIlluminanceHelp) + "; replaces the stack's own `source`")
+      ->option_text("LX[±U]");
+  sub->add_option("--reference-illuminance", args->reference_illuminance, kReferenceIlluminanceHelp)
+      ->option_text("LX");
   sub->add_option("--threshold", args->threshold,
                   "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
   sub->add_option("--thresholds", args->thresholds,

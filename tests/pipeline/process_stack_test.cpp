@@ -400,6 +400,10 @@ TEST(ProcessStack, ConstantThresholdReplacesTheAlphaCurve) {
 TEST(ProcessStack, TheResultRecordsTheCalibrationItRestsOn) {
   testing::TempDir dir;
   testing::writeSmallStack(dir / "s");
+  // Unreferred, so that u(K) is the only systematic term (ProcessStackReferred adds u(E)).
+  json manifest = json::parse(testing::readText(dir / "s" / "stack.json"));
+  manifest.erase("source");
+  testing::writeText(dir / "s" / "stack.json", manifest.dump());
   auto inline_run = processStack(dir / "s", quiet());
   ASSERT_TRUE(inline_run) << inline_run.error().message;
   const json inline_cal = toJson(inline_run->result)["calibration"];
@@ -655,6 +659,101 @@ TEST(BadStackCorpus, CoversTheListOfStackFormatMd) {
                             "flat-field-escapes"};
   for (const char* name : required)
     EXPECT_TRUE(fs::is_directory(testing::testDataDir() / "bad-stacks" / name)) << name;
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline
+
+namespace glarecam::pipeline {
+namespace {
+
+// One scene (40°, 16 px per degree) under a sun of `source_lx`, processed; the result as JSON.
+json processedUnder(const fs::path& dir, double source_lx, bool record_source,
+                    std::optional<SourceIlluminance> given = std::nullopt) {
+  capture::SimulationOptions options = testing::smallScene(40.0, 320, 256);
+  options.horizontal_fov_deg = 20;
+  options.seed = 11;
+  options.source_illuminance_lx = source_lx;
+  options.source_illuminance_u_lx = 0.03 * source_lx;  // a pyrheliometer's 3 %
+  options.record_source = record_source;
+  testing::writeSmallStack(dir, options);
+  ProcessOptions process = quiet();
+  process.source_illuminance = given;
+  auto summary = processStack(dir, process);
+  EXPECT_TRUE(summary) << summary.error().message;
+  return summary ? toJson(summary->result) : json();
+}
+
+// The check: the same scene under 60 and 100 klx, referred, gives one Lmax and one limit
+// ellipse within their σ; unreferred, the dimmer sun's limit ellipse is smaller by the √ln law.
+TEST(ProcessStackReferred, OneSceneUnderTwoSunsGivesOneReferredResult) {
+  testing::TempDir dir;
+  const json bright = processedUnder(dir / "bright", 100'000, true);
+  const json dim = processedUnder(dir / "dim", 60'000, true);
+  ASSERT_TRUE(bright.is_object() && dim.is_object());
+  EXPECT_EQ(dim["illuminance"]["status"], "referred");
+  EXPECT_EQ(dim["illuminance"]["reference_lx"], 100'000);
+  EXPECT_EQ(dim["illuminance"]["source"]["origin"], "given");
+  EXPECT_NEAR(dim["illuminance"]["factor"].get<double>(), 100.0 / 60.0, 1e-12);
+  const auto lmax = [](const json& r) { return r["luminance"]["max_cd_m2"].get<double>(); };
+  const auto sigma = [&](const json& r) {
+    return r["luminance"]["max_relative_uncertainty_combined"].get<double>() * lmax(r);
+  };
+  // u(E) (3 %) enters the combined uncertainty on top of the merge's noise.
+  EXPECT_GT(dim["luminance"]["max_relative_uncertainty_combined"].get<double>(), 0.03);
+  EXPECT_NEAR(lmax(dim), lmax(bright), std::hypot(sigma(dim), sigma(bright)));
+  EXPECT_NEAR(dim["luminance"]["measured_max_cd_m2"].get<double>(), lmax(dim) * 0.6,
+              1e-9 * lmax(dim));
+  for (const char* axis : {"vertical_deg", "horizontal_deg"}) {
+    const json& a = dim["limit"]["ellipse"];
+    const json& b = bright["limit"]["ellipse"];
+    const double u =
+        std::hypot(a["uncertainty"][axis].get<double>(), b["uncertainty"][axis].get<double>());
+    EXPECT_NEAR(a[axis].get<double>(), b[axis].get<double>(), u) << axis;
+  }
+  // The axes' σ carry u(E) through the contour's gradient: larger than without it.
+  const json unreferred_dim = processedUnder(dir / "unreferred", 60'000, false);
+  EXPECT_EQ(unreferred_dim["illuminance"]["status"], "unreferred");
+  EXPECT_TRUE(unreferred_dim["luminance"]["measured_max_cd_m2"].is_null());
+  EXPECT_GT(dim["limit"]["ellipse"]["uncertainty"]["vertical_deg"].get<double>(),
+            2 * unreferred_dim["limit"]["ellipse"]["uncertainty"]["vertical_deg"].get<double>());
+  // Unreferred, the lobe is 0.6 times as bright: for a Gaussian lobe an axis goes as
+  // √ln((L − B)/(T − B)), so the limit ellipse shrinks by that ratio. The background B scales
+  // with the sun as well (3000 → 1800 cd/m²). Within 1 %, the chain's tolerance above.
+  const double peak = lmax(bright), limit = *glareLimitCdM2(40.0);
+  const double shrink = std::sqrt(std::log((0.6 * peak - 1800) / (limit - 1800)) /
+                                  std::log((peak - 3000) / (limit - 3000)));
+  for (const char* axis : {"vertical_deg", "horizontal_deg"}) {
+    EXPECT_NEAR(unreferred_dim["limit"]["ellipse"][axis].get<double>() /
+                    bright["limit"]["ellipse"][axis].get<double>(),
+                shrink, 0.01)
+        << axis;
+  }
+  EXPECT_LT(shrink, 0.95);  // the shift is real, not inside the tolerance
+}
+
+TEST(ProcessStackReferred, AGivenIlluminanceReplacesTheStacksOwn) {
+  testing::TempDir dir;
+  // The scene under 60 klx, recorded as if the sun were at the reference; the operator knows.
+  SourceIlluminance given{.illuminance_lx = 60'000, .illuminance_u_lx = 1'000};
+  const json fixed = processedUnder(dir / "s", 60'000, false, given);
+  const json truth = processedUnder(dir / "t", 100'000, true);
+  ASSERT_TRUE(fixed.is_object() && truth.is_object());
+  EXPECT_EQ(fixed["illuminance"]["source"]["illuminance_lx"], 60'000);
+  EXPECT_NEAR(
+      fixed["luminance"]["max_cd_m2"].get<double>() / truth["luminance"]["max_cd_m2"].get<double>(),
+      1, 0.01);
+}
+
+TEST(ProcessStackReferred, ABadReferenceIsRefused) {
+  for (double reference : {0.0, -1.0, 2e5, std::nan("")}) {
+    ProcessOptions options = quiet();
+    options.reference_illuminance_lx = reference;
+    const auto status = options.validate();
+    ASSERT_FALSE(status) << reference;
+    EXPECT_EQ(status.error().code, ErrorCode::kBadInput);
+    EXPECT_NE(status.error().message.find("--reference-illuminance"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -352,14 +352,32 @@ constexpr int kAlphaDefaultDecimals = 1;
 TextTable datasheetSweepTable(const SweepTable& sweep) {
   TextTable table{.rows = {{"\u03b1 (\u00b0)", "limit (cd/m\u00b2)", "Lmax (cd/m\u00b2)",
                             "vertical (\u00b0)", "horizontal (\u00b0)", "glare"}}};
+  // The source illuminance each row was referred from, when any was: the sweep's own suns.
+  const bool referred = std::ranges::any_of(sweep.rows, &SweepRow::isReferred);
+  if (referred) table.rows.front().push_back("E (klx)");
   for (const SweepRow& row : sweep.rows) {
     table.rows.push_back(
         {formatToUncertainty(row.alpha_deg, row.alpha_uncertainty_deg, kAlphaDefaultDecimals),
          row.limit_cd_m2 ? formatLuminance(*row.limit_cd_m2) : kNoValue, lmaxCell(row),
          formatFixed(row.vertical_deg, kAxisDecimals),
          formatFixed(row.horizontal_deg, kAxisDecimals), glareCell(row)});
+    if (referred)
+      table.rows.back().push_back(row.source_illuminance_lx
+                                      ? fmt::format("{:.1f}", *row.source_illuminance_lx / 1000)
+                                      : kNoValue);
   }
   return table;
+}
+
+// What the sheet's luminances refer to, for its subtitle: "Luminances referred to E = 100 klx
+// direct normal (the stacks' sources 61.2–98.4 klx, sensor)." or that they are not.
+std::string referenceSentence(const SweepTable& table) {
+  if (const std::optional<double> reference = tableReferenceIlluminance(table))
+    return fmt::format(" Luminances at E = {:g} klx direct normal, referred from sources of {}.",
+                       *reference / 1000, sourceIlluminanceRange(table));
+  if (tableReferences(table).size() > 1)
+    return fmt::format(" Luminances MIXED: {}.", mixedReferences(table));
+  return fmt::format(" Luminances {}: {}.", kUnreferredWord, kUnreferredNote);
 }
 
 namespace {
@@ -493,11 +511,11 @@ std::string subtitle(const DatasheetContent& content) {
   // α as the table shows it: to its own uncertainty (not "4.99985").
   return fmt::format(
       "Sweep of {} stack{}, \u03b1 {}\u00b0 to {}\u00b0 (angle of incidence from the module "
-      "normal). Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.{}",
+      "normal).{} Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.{}",
       n, n == 1 ? "" : "s",
       formatToUncertainty(lo->alpha_deg, lo->alpha_uncertainty_deg, kAlphaDefaultDecimals),
-      formatToUncertainty(hi->alpha_deg, hi->alpha_uncertainty_deg, kAlphaDefaultDecimals), limit,
-      glareRangesText(content), measured_with);
+      formatToUncertainty(hi->alpha_deg, hi->alpha_uncertainty_deg, kAlphaDefaultDecimals),
+      referenceSentence(*content.table), limit, glareRangesText(content), measured_with);
 }
 
 void drawHeader(Canvas& canvas, const DatasheetContent& content, const Box& box,
@@ -607,13 +625,24 @@ void drawWarnings(Canvas& canvas, const std::vector<std::string>& warnings, cons
   }
 }
 
+}  // namespace
+
+std::optional<PageMark> datasheetPageMark(const SweepTable& sweep) {
+  if (isSimulated(sweep)) return PageMark{"SIMULATED", kSimulatedNote};
+  if (!tableReferenceIlluminance(sweep)) return PageMark{"UNREFERRED", kUnreferredNote};
+  return std::nullopt;
+}
+
+namespace {
+
 void drawDatasheet(Canvas& canvas, const DatasheetContent& content) {
   paint(canvas, kWhite);
   // Across the page's face, pale red under everything drawn after it: a sheet of the simulated
   // camera's stacks can never pass for a measurement, whatever is cut from it. (Opaque pale red
   // drawn first rather than translucent red drawn last: the same look, and no group surface.)
-  if (isSimulated(*content.table))
-    drawPageMark(canvas, kA4Landscape, "SIMULATED", kSimulatedNote, /*over=*/false);
+  // An unreferred sheet is marked the same way: its luminances belong to the day's sky.
+  if (const std::optional<PageMark> mark = datasheetPageMark(*content.table))
+    drawPageMark(canvas, kA4Landscape, mark->word, mark->note, /*over=*/false);
   const Layout layout = pageLayout(canvas, content);
   drawHeader(canvas, content, layout.header, layout.subtitle_lines);
   drawLmaxPlot(canvas, content, layout.lmax_plot);

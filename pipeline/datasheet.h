@@ -34,6 +34,13 @@ inline constexpr const char* kDatasheetPng = "datasheet.png";
 // to 4 significant digits, axes to 2 decimals).
 render::TextTable datasheetSweepTable(const SweepTable& sweep);
 
+// The word drawn across the sheet's face and its note: "SIMULATED" for the simulated camera's
+// stacks, "UNREFERRED" for luminances at the day's own sun (docs/datasheet.md), none otherwise.
+struct PageMark {
+  std::string word, note;
+};
+std::optional<PageMark> datasheetPageMark(const SweepTable& sweep);
+
 // Writes the three files into directory (which must exist), each atomically.
 Status writeDatasheet(const DatasheetContent& content, const std::filesystem::path& directory);
 

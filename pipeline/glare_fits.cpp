@@ -672,6 +672,15 @@ Result<SweepFits> readAndFitSweep(const std::filesystem::path& path, SweepTable&
   if (path.empty()) return badInput("SWEEP: expected a sweep table (CSV), got an empty string");
   GLARECAM_ASSIGN(table, readSweepTable(path));
   sortByAlpha(table);
+  if (const std::string mixed = mixedReferences(table); !mixed.empty()) {
+    if (!options.allow_mixed_references)
+      return badInput(fmt::format(
+          "{}: the rows' luminances are not referred to one illuminance ({}); fit each part on "
+          "its own, reprocess with one --reference-illuminance, or give --mixed",
+          path.string(), mixed));
+    spdlog::warn("{}: rows of different references fitted together (--mixed): {}", path.string(),
+                 mixed);
+  }
   auto fits = fitSweep(table, options);
   if (!fits) return std::unexpected(withContext(fits.error(), path.string()));
   for (const std::string& warning : fits->warnings) spdlog::warn("{}: {}", path.string(), warning);

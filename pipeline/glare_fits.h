@@ -86,6 +86,10 @@ struct FitOptions {
   // Fit the suspect rows too (SweepRow::suspect: frames that disagree with the merge). By default
   // they are left out, with a warning naming how many, as rows whose Lmax is only a bound are.
   bool include_suspect = false;
+  // Fit rows referred to different reference illuminances, or referred and unreferred rows,
+  // together (--mixed; mixedReferences()). By default readAndFitSweep refuses them, naming the
+  // rows: their luminances are not on one scale.
+  bool allow_mixed_references = false;
 };
 
 // All four fits of a sweep table. kBadInput when the table has fewer rows (after leaving out the

@@ -278,6 +278,15 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
     spdlog::warn("sweep: the stacks differ in {} (--mixed)", mixed);
     summary.table.notes.push_back("mixed: the stacks differ in " + mixed);
   }
+  if (const std::string mixed = mixedReferences(summary.table); !mixed.empty()) {
+    if (!options.allow_mixed)
+      return badInput("sweep: the stacks' luminances are not referred to one illuminance (" +
+                      mixed +
+                      "): give every stack its source illuminance, or --mixed to write the "
+                      "table anyway (docs/method.md \"Reference illuminance\")");
+    spdlog::warn("sweep: the stacks are referred differently: {} (--mixed)", mixed);
+    summary.table.notes.push_back("mixed references: " + mixed);
+  }
   summary.sweep_csv = options.output_directory / kSweepTableFileName;
   GLARECAM_CHECK(writeFileAtomic(summary.sweep_csv, formatSweepTable(summary.table)));
   warnAboutEarlierOutputs(options.output_directory, results);

@@ -1,6 +1,7 @@
 #include "pipeline/sweep_table.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <map>
 
 #include "core/csv.h"
 
@@ -41,6 +43,10 @@ enum Column {
   kCalibrationDate,
   kLuminanceFactor,
   kLuminanceFactorU,
+  kSourceIlluminance,
+  kSourceIlluminanceU,
+  kSourceOrigin,
+  kReferenceIlluminance,
   kStackId,
   kStack,
   kColumnCount
@@ -72,6 +78,10 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "calibration_date",
                                                              "luminance_factor",
                                                              "luminance_factor_u",
+                                                             "source_illuminance_lx",
+                                                             "source_illuminance_u_lx",
+                                                             "source_origin",
+                                                             "reference_illuminance_lx",
                                                              "stack_id",
                                                              "stack"};
 
@@ -144,12 +154,47 @@ Status requireAtMost(const std::optional<double>& value, double most, const char
   return {};
 }
 
+// The row's source and reference illuminance columns: a referred row has all but the
+// uncertainty, an unreferred one says "unreferred" (or, from an older table, nothing) and has
+// neither illuminance.
+Status parseRowIlluminance(const Header& header, const std::vector<std::string>& fields,
+                           const std::array<std::optional<double>, kColumnCount>& numbers,
+                           SweepRow& row) {
+  row.source_origin = field(header, fields, kSourceOrigin);
+  row.source_illuminance_lx = numbers[kSourceIlluminance];
+  row.source_illuminance_u_lx = numbers[kSourceIlluminanceU];
+  row.reference_illuminance_lx = numbers[kReferenceIlluminance];
+  for (int c : {kSourceIlluminance, kReferenceIlluminance}) {
+    if (numbers[c] && !(*numbers[c] > 0 && *numbers[c] <= kMaxSourceIlluminanceLx))
+      return badInput(fmt::format("{}: {} is outside (0, {:g}] lx", kColumnNames[c], *numbers[c],
+                                  kMaxSourceIlluminanceLx));
+  }
+  if (row.source_illuminance_u_lx && *row.source_illuminance_u_lx < 0)
+    return badInput(fmt::format("source_illuminance_u_lx: {} must not be negative",
+                                *row.source_illuminance_u_lx));
+  const bool unreferred = row.source_origin.empty() || row.source_origin == kUnreferredWord;
+  if (!unreferred && !originFromWord(row.source_origin))
+    return badInput(fmt::format(
+        "source_origin: \"{}\" is not sensor, given, clear_sky or unreferred", row.source_origin));
+  if (unreferred && (row.source_illuminance_lx || row.reference_illuminance_lx))
+    return badInput(
+        "source_origin: an unreferred row has no source_illuminance_lx or "
+        "reference_illuminance_lx");
+  if (!unreferred && !(row.source_illuminance_lx && row.reference_illuminance_lx))
+    return badInput(
+        fmt::format("source_origin {}: a referred row needs source_illuminance_lx and "
+                    "reference_illuminance_lx",
+                    row.source_origin));
+  return {};
+}
+
 Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& fields) {
   SweepRow row;
   std::array<std::optional<double>, kColumnCount> numbers;
-  for (int c : {kAlpha, kLimit, kLmax, kVertical, kHorizontal, kLmaxUncertainty,
-                kVerticalUncertainty, kHorizontalUncertainty, kAlphaUncertainty, kFwhmVertical,
-                kFwhmHorizontal, kLuminanceFactor, kLuminanceFactorU}) {
+  for (int c :
+       {kAlpha, kLimit, kLmax, kVertical, kHorizontal, kLmaxUncertainty, kVerticalUncertainty,
+        kHorizontalUncertainty, kAlphaUncertainty, kFwhmVertical, kFwhmHorizontal, kLuminanceFactor,
+        kLuminanceFactorU, kSourceIlluminance, kSourceIlluminanceU, kReferenceIlluminance}) {
     GLARECAM_ASSIGN(numbers[c], parseNumber(field(header, fields, Column(c)), kColumnNames[c]));
   }
   GLARECAM_CHECK(validateSweepAlpha(numbers[kAlpha]));
@@ -203,6 +248,7 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   if (row.luminance_factor_u && *row.luminance_factor_u < 0)
     return badInput(
         fmt::format("luminance_factor_u: {} must not be negative", *row.luminance_factor_u));
+  GLARECAM_CHECK(parseRowIlluminance(header, fields, numbers, row));
   if (row.frames_consistent == false && row.suspect.empty())
     row.suspect = "frames disagree with the merge";
   row.stack_id = field(header, fields, kStackId);
@@ -314,6 +360,10 @@ std::string formatSweepTable(const SweepTable& table) {
         quoteCsvField(oneLine(r.calibration_date)),
         number(r.luminance_factor),
         number(r.luminance_factor_u),
+        number(r.source_illuminance_lx),
+        number(r.source_illuminance_u_lx),
+        r.isReferred() ? r.source_origin : std::string(kUnreferredWord),
+        number(r.reference_illuminance_lx),
         quoteCsvField(oneLine(r.stack_id)),
         quoteCsvField(oneLine(r.stack))};
     text += csvLine(fields);
@@ -359,8 +409,22 @@ Result<SweepRow> sweepRowFromResult(const StackResult& result, const std::string
   row.alpha_uncertainty_deg = result.alpha_uncertainty_deg;
   row.lmax_cd_m2 = luminance.max_cd_m2;
   row.limit_cd_m2 = result.limit.limit_cd_m2;
+  // The row's own uncertainty: the merge's noise and, for a referred row, u(E), which differs
+  // from row to row (each stack its own reading). u(K), common to every row, moves the whole
+  // sweep alike and stays out (the sheet states it with the calibration).
+  const ResultIlluminance& illuminance = result.illuminance;
+  const double e_u = illuminance.referred() ? illuminance.source->relativeUncertainty() : 0.0;
   if (luminance.max_relative_uncertainty)
-    row.lmax_uncertainty_cd_m2 = *luminance.max_relative_uncertainty * luminance.max_cd_m2;
+    row.lmax_uncertainty_cd_m2 =
+        std::hypot(*luminance.max_relative_uncertainty, e_u) * luminance.max_cd_m2;
+  if (illuminance.referred()) {
+    row.source_illuminance_lx = illuminance.source->illuminance_lx;
+    row.source_illuminance_u_lx = illuminance.source->illuminance_u_lx;
+    row.source_origin = std::string(originWord(illuminance.source->origin));
+    row.reference_illuminance_lx = illuminance.reference_lx;
+  } else {
+    row.source_origin = kUnreferredWord;
+  }
   const std::optional<ResultEllipse>& limit = result.limit.ellipse;
   row.vertical_deg = axis(limit, &ResultEllipse::vertical_deg);
   row.horizontal_deg = axis(limit, &ResultEllipse::horizontal_deg);
@@ -424,6 +488,90 @@ std::vector<std::string> tableFrameSizes(const SweepTable& table) {
   return distinctValues(table, [](const SweepRow& row) {
     return row.width && row.height ? fmt::format("{}x{}", *row.width, *row.height) : std::string();
   });
+}
+
+std::string referenceText(const SweepRow& row) {
+  return row.isReferred() ? fmt::format("{:g} klx", *row.reference_illuminance_lx / 1000)
+                          : std::string(kUnreferredWord);
+}
+
+std::vector<std::string> tableReferences(const SweepTable& table) {
+  return distinctValues(table, referenceText);
+}
+
+std::string mixedReferences(const SweepTable& table) {
+  const std::vector<std::string> references = tableReferences(table);
+  if (references.size() < 2) return {};
+  // The largest group is the table's; the others are named row by row (a few, then a count).
+  constexpr std::size_t kRowsNamed = 4;
+  std::vector<std::vector<const SweepRow*>> groups(references.size());
+  for (const SweepRow& row : table.rows)
+    groups[std::ranges::find(references, referenceText(row)) - references.begin()].push_back(&row);
+  const std::size_t largest =
+      std::ranges::max_element(groups, {}, &std::vector<const SweepRow*>::size) - groups.begin();
+  std::string text;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const bool referred = groups[g].front()->isReferred();
+    text += fmt::format("{}{} row(s) {}{}", text.empty() ? "" : "; ", groups[g].size(),
+                        referred ? "referred to " : "", references[g]);
+    if (g == largest) continue;
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < groups[g].size() && i < kRowsNamed; ++i) {
+      const SweepRow& row = *groups[g][i];
+      names.push_back(
+          fmt::format("{} (α {:g}°)", row.stack_id.empty() ? "?" : row.stack_id, row.alpha_deg));
+    }
+    if (groups[g].size() > kRowsNamed)
+      names.push_back(fmt::format("and {} more", groups[g].size() - kRowsNamed));
+    text += fmt::format(": {}", fmt::join(names, ", "));
+  }
+  return text;
+}
+
+SweepTable rowsOfOneReference(const SweepTable& table, std::string* left_out) {
+  const std::string mixed = mixedReferences(table);
+  if (mixed.empty()) return table;
+  std::map<std::string, std::size_t> counts;
+  for (const SweepRow& row : table.rows)
+    if (row.isReferred()) ++counts[referenceText(row)];
+  std::string kept = kUnreferredWord;
+  std::size_t most = 0;
+  for (const std::string& reference : tableReferences(table)) {  // first seen wins a tie
+    const auto it = counts.find(reference);
+    if (it != counts.end() && it->second > most) {
+      kept = it->first;
+      most = it->second;
+    }
+  }
+  SweepTable one;
+  one.notes = table.notes;
+  for (const SweepRow& row : table.rows)
+    if (referenceText(row) == kept) one.rows.push_back(row);
+  if (left_out)
+    *left_out = fmt::format("{} row(s) not referred to {} left out ({})",
+                            table.rows.size() - one.rows.size(), kept, mixed);
+  return one;
+}
+
+std::optional<double> tableReferenceIlluminance(const SweepTable& table) {
+  if (table.rows.empty() || !mixedReferences(table).empty()) return std::nullopt;
+  return table.rows.front().reference_illuminance_lx;
+}
+
+std::string sourceIlluminanceRange(const SweepTable& table) {
+  std::optional<double> low, high;
+  for (const SweepRow& row : table.rows) {
+    if (!row.source_illuminance_lx) continue;
+    low = std::min(low.value_or(*row.source_illuminance_lx), *row.source_illuminance_lx);
+    high = std::max(high.value_or(*row.source_illuminance_lx), *row.source_illuminance_lx);
+  }
+  if (!low) return {};
+  const std::vector<std::string> origins = distinctValues(
+      table, [](const SweepRow& row) { return row.isReferred() ? row.source_origin : ""; });
+  const std::string range = *low == *high
+                                ? fmt::format("{:.1f} klx", *low / 1000)
+                                : fmt::format("{:.1f}–{:.1f} klx", *low / 1000, *high / 1000);
+  return fmt::format("{} ({})", range, fmt::join(origins, ", "));
 }
 
 std::vector<std::string> tableCalibrations(const SweepTable& table) {

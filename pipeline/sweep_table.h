@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/source_illuminance.h"
 #include "pipeline/limit_curve.h"
 #include "pipeline/result.h"
 
@@ -44,8 +45,15 @@ struct SweepRow {
   // measured (YYYY-MM-DD) and K with its standard uncertainty.
   std::string calibration_date;
   std::optional<double> luminance_factor, luminance_factor_u;
+  // What the row's luminances and axes refer to (result.json's illuminance): the source's E and
+  // u(E), its origin (sensor, given, clear_sky; "unreferred" or empty when there is none) and
+  // E_ref. Referred and unreferred rows, or rows of two references, never mix in one table.
+  std::optional<double> source_illuminance_lx, source_illuminance_u_lx;
+  std::string source_origin;
+  std::optional<double> reference_illuminance_lx;
   std::string stack_id, stack;
   bool isSuspect() const { return !suspect.empty(); }
+  bool isReferred() const { return reference_illuminance_lx.has_value(); }
 };
 
 struct SweepTable {
@@ -70,6 +78,32 @@ GlareLimit inferGlareLimit(const SweepTable& table, std::string* warning = nullp
 bool isSimulated(const SweepTable& table);
 // What every output made from such rows says beside its SIMULATED mark.
 inline constexpr const char* kSimulatedNote = "stacks of the simulated camera: not a measurement";
+
+// The word sweep.csv's source_origin and the outputs use for a row without a source illuminance.
+inline constexpr const char* kUnreferredWord = "unreferred";
+// What every output made from unreferred rows says beside its UNREFERRED mark.
+inline constexpr const char* kUnreferredNote =
+    "at the day's own sun, not referred to a stated source illuminance";
+
+// What a row refers to, as people read it: "100 klx" or "unreferred".
+std::string referenceText(const SweepRow& row);
+// The distinct references of the rows, in order ("100 klx", "unreferred").
+std::vector<std::string> tableReferences(const SweepTable& table);
+// Empty when every row refers to one reference (or every row is unreferred); else what mixes,
+// naming the rows of each ("10 rows referred to 100 klx; 2 unreferred: stacks s-07 (α 45°),
+// s-08 (α 50°)"): their luminances are not on one scale, so no fit or sheet can use them together
+// (docs/method.md "Reference illuminance").
+std::string mixedReferences(const SweepTable& table);
+// The rows of one reference out of a mixed table: the referred rows of the most common reference
+// (unreferred rows only when no row is referred), and a note naming what was left out; the table
+// itself and no note when it does not mix. What a rig's day sheet uses when its instrument failed
+// for some stacks: they stay in the day's sweep.csv, not in its fits.
+SweepTable rowsOfOneReference(const SweepTable& table, std::string* left_out = nullptr);
+// The reference every row shares, when they share one (none when unreferred or mixed).
+std::optional<double> tableReferenceIlluminance(const SweepTable& table);
+// The range and origins of the rows' source illuminances: "61.2–98.4 klx (sensor)"; empty when
+// no row is referred.
+std::string sourceIlluminanceRange(const SweepTable& table);
 
 // The distinct cameras ("sim SIM-0001"), frame sizes ("320x256"), calibration ids and modules of
 // the rows, in order, empty ones left out.

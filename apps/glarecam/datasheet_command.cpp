@@ -18,17 +18,19 @@ struct DatasheetArgs {
   std::string module = "unnamed module";
   std::optional<double> model_beta_deg;
   bool include_suspect = false;
+  bool mixed = false;
 };
 
 Status runDatasheet(const DatasheetArgs& args) {
   GLARECAM_CHECK(requireNonEmptyPath(args.out, "--out"));
-  pipeline::SweepPublishOptions publish{.sweep = args.sweep,
-                                        .out = std::nullopt,
-                                        .module = args.module,
-                                        .date = {},
-                                        .threshold_cd_m2 = std::nullopt,
-                                        .model_beta_deg = args.model_beta_deg,
-                                        .fit = {.include_suspect = args.include_suspect}};
+  pipeline::SweepPublishOptions publish{
+      .sweep = args.sweep,
+      .out = std::nullopt,
+      .module = args.module,
+      .date = {},
+      .threshold_cd_m2 = std::nullopt,
+      .model_beta_deg = args.model_beta_deg,
+      .fit = {.include_suspect = args.include_suspect, .allow_mixed_references = args.mixed}};
   if (args.out) publish.out = *args.out;
   GLARECAM_CHECK(publish.validate());
   GLARECAM_ASSIGN(publish.date, pipeline::sheetDate(args.date));
@@ -59,6 +61,7 @@ void addDatasheetCommand(CLI::App& app, Action& action) {
                   "were measured at the sweep's)");
   sub->add_option("--model-beta", args->model_beta_deg,
                   "overlay the five-facet model with facet tilt β in degrees (glarecam model)");
+  sub->add_flag("--mixed", args->mixed, kMixedReferencesHelp);
   sub->add_flag("--include-suspect", args->include_suspect,
                 "fit the suspect rows too (frames that disagree with the merge; default: drawn "
                 "hollow, listed and left out)");

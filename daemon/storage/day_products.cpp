@@ -1,6 +1,7 @@
 #include "daemon/storage/day_products.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
@@ -75,7 +76,12 @@ Result<DaySummary> updateDayProducts(const DayProductsOptions& options, const st
   GLARECAM_CHECK(ensureDirectory(summary.directory));
   GLARECAM_CHECK(writeFileAtomic(summary.directory / pipeline::kSweepTableFileName,
                                  pipeline::formatSweepTable(table)));
-  const auto fits = pipeline::fitSweep(table);
+  // A stack whose source illuminance could not be read (the instrument failed) stays in the
+  // day's table, but the sheet is of one reference.
+  std::string left_out;
+  const pipeline::SweepTable sheet_table = pipeline::rowsOfOneReference(table, &left_out);
+  if (!left_out.empty()) spdlog::warn("day {}: {}", day, left_out);
+  const auto fits = pipeline::fitSweep(sheet_table);
   if (!fits) {
     summary.detail =
         fmt::format("{} stacks; no data sheet yet: {}", summary.stacks, fits.error().message);
@@ -86,13 +92,15 @@ Result<DaySummary> updateDayProducts(const DayProductsOptions& options, const st
   GLARECAM_CHECK(pipeline::publishDatasheet(
       {.module = options.module,
        .date = day,
-       .table = &table,
+       .table = &sheet_table,
        .fits = &*fits,
        .model_beta_deg = std::nullopt,
-       .limit = pipeline::inferGlareLimit(table)},
+       .limit = pipeline::inferGlareLimit(sheet_table)},
       (summary.directory / pipeline::kSweepTableFileName).string(), summary.directory));
   summary.datasheet = true;
-  summary.detail = fmt::format("{} stacks, data sheet updated", summary.stacks);
+  summary.detail = left_out.empty()
+                       ? fmt::format("{} stacks, data sheet updated", summary.stacks)
+                       : fmt::format("{} stacks, data sheet updated; {}", summary.stacks, left_out);
   return summary;
 }
 

@@ -154,6 +154,49 @@ TEST(Datasheet, ALongSubtitleWrapsAndStaysReadable) {
   }
 }
 
+// The sheet says what its luminances refer to: the reference and the sweep's sources in the
+// subtitle and a column of each row's source, or an UNREFERRED mark across the face.
+TEST(Datasheet, TheSheetSaysWhatItsLuminancesReferTo) {
+  auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(table);
+  const SweepFits fits = fitsOf(*table);
+  const auto words = [&](const SweepTable& drawn, const std::filesystem::path& out) {
+    std::filesystem::create_directories(out);
+    auto status = writeStandardSheet(drawn, fits, out);
+    EXPECT_TRUE(status) << status.error().message;
+    std::string text;
+    for (const PdfWord& word : pdfWords(out / kDatasheetPdf)) text += word.text + " ";
+    return text;
+  };
+  testing::TempDir dir;
+  const std::string unreferred = words(*table, dir / "unreferred");
+  // The mark is drawn diagonally, which pdftotext reads letter by letter: the word is asked of
+  // the function the drawing uses, its note's letters of the page.
+  const auto mark = datasheetPageMark(*table);
+  ASSERT_TRUE(mark);
+  EXPECT_EQ(mark->word, "UNREFERRED");
+  EXPECT_EQ(mark->note, kUnreferredNote);
+  EXPECT_NE(unreferred.find("Luminances unreferred:"), std::string::npos) << unreferred;
+  SweepTable referred = *table;
+  for (std::size_t i = 0; i < referred.rows.size(); ++i) {
+    referred.rows[i].source_illuminance_lx = 61'200 + 4'650.0 * i;
+    referred.rows[i].source_origin = "sensor";
+    referred.rows[i].reference_illuminance_lx = 100'000;
+  }
+  const std::string text = words(referred, dir / "referred");
+  EXPECT_FALSE(datasheetPageMark(referred));
+  EXPECT_NE(text.find("Luminances at E = 100 klx direct normal, referred from sources of "
+                      "61.2\u201398.4 klx (sensor)."),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("E (klx)"), std::string::npos) << text;
+  EXPECT_NE(text.find("98.4"), std::string::npos) << text;
+  // A simulated sweep is marked SIMULATED, referred or not.
+  for (SweepRow& row : referred.rows) row.camera_backend = "sim";
+  ASSERT_TRUE(datasheetPageMark(referred));
+  EXPECT_EQ(datasheetPageMark(referred)->word, "SIMULATED");
+}
+
 TEST(Datasheet, MissingDirectoryIsAnErrorNotACrash) {
   auto table = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
   ASSERT_TRUE(table);

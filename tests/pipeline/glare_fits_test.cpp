@@ -370,3 +370,37 @@ TEST(GlareFits, JsonCarriesTheKeysLaterToolsRelyOn) {
 
 }  // namespace
 }  // namespace glarecam::pipeline
+
+namespace glarecam::pipeline {
+namespace {
+
+// A table of hand-joined sweeps, one referred and one not, is refused naming the rows, and fitted
+// with --mixed; one reference alone fits.
+TEST(GlareFitsReferences, AMixedTableIsRefusedUnlessAsked) {
+  std::string text =
+      "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,source_illuminance_lx,"
+      "source_origin,reference_illuminance_lx,stack_id\n";
+  const double lmax[] = {594e3, 577e3, 539e3, 587e3, 495e3, 839e3, 2.4e6};
+  for (int i = 0; i < 7; ++i) {
+    const int alpha = i == 0 ? 5 : 10 * i;
+    text += i < 5 ? fmt::format("{},30000,{},5,5,90000,sensor,100000,r{}\n", alpha, lmax[i], alpha)
+                  : fmt::format("{},30000,{},5,5,,unreferred,,u{}\n", alpha, lmax[i], alpha);
+  }
+  testing::TempDir dir;
+  testing::writeText(dir / "sweep.csv", text);
+  SweepTable table;
+  auto refused = readAndFitSweep(dir / "sweep.csv", table);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(refused.error().message.find("sweep.csv: the rows' luminances are not referred to one "
+                                         "illuminance (5 row(s) referred to 100 klx; 2 row(s) "
+                                         "unreferred: u50 (\u03b1 50\u00b0), u60"),
+            std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("--mixed"), std::string::npos);
+  auto fitted = readAndFitSweep(dir / "sweep.csv", table, {.allow_mixed_references = true});
+  EXPECT_TRUE(fitted) << fitted.error().message;
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline

@@ -1,6 +1,7 @@
 // The sweep table CSV (docs/stack-format.md): reading, validation with file:line errors, writing.
 #include "pipeline/sweep_table.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -142,6 +143,23 @@ INSTANTIATE_TEST_SUITE_P(
                "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,"
                "horizontal_deg,luminance_factor_u\n5,30000,5e5,5,5,-1\n",
                "luminance_factor_u: -1 must not be negative"},
+        BadCsv{"SourceOriginUnknown",
+               "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,source_origin\n"
+               "5,30000,5e5,5,5,moon\n",
+               "source_origin: \"moon\" is not sensor, given, clear_sky or unreferred"},
+        BadCsv{"ReferredWithoutReference",
+               "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
+               "source_illuminance_lx,source_origin\n5,30000,5e5,5,5,90000,sensor\n",
+               "needs source_illuminance_lx and reference_illuminance_lx"},
+        BadCsv{"UnreferredWithIlluminance",
+               "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
+               "source_illuminance_lx,source_origin\n5,30000,5e5,5,5,90000,unreferred\n",
+               "an unreferred row has no source_illuminance_lx"},
+        BadCsv{"IlluminanceInWattsPerSquareMetre",
+               "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,horizontal_deg,"
+               "source_illuminance_lx,source_origin,reference_illuminance_lx\n"
+               "5,30000,5e5,5,5,900000,sensor,100000\n",
+               "source_illuminance_lx: 900000 is outside (0, 150000] lx"},
         BadCsv{"AlphaUncertaintyZero",
                "alpha_deg,limit_cd_m2,lmax_cd_m2,vertical_deg,"
                "horizontal_deg,alpha_uncertainty_deg\n5,30000,5e5,5,5,0\n",
@@ -282,6 +300,91 @@ TEST(SweepTable, FramesThatDisagreeMakeASuspectRow) {
   EXPECT_NE(bad.error().message.find("frames_consistent: expected true, false or nothing"),
             std::string::npos)
       << bad.error().message;
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline
+
+namespace glarecam::pipeline {
+namespace {
+
+// A result referred from `source_lx` to 100 klx (or unreferred), as a row.
+SweepRow referredRow(double alpha_deg, std::optional<double> source_lx, std::string id) {
+  StackResult result = testing::minimalResult(5e5, alpha_deg);
+  result.stack = std::move(id);
+  result.luminance.max_relative_uncertainty = 0.004;
+  if (source_lx) {
+    result.illuminance.source = SourceIlluminance{.illuminance_lx = *source_lx,
+                                                  .illuminance_u_lx = 0.03 * *source_lx,
+                                                  .origin = IlluminanceOrigin::kSensor};
+    result.illuminance.reference_lx = 100'000;
+  }
+  auto row = sweepRowFromResult(result, "stacks/" + result.stack);
+  EXPECT_TRUE(row) << row.error().message;
+  return *row;
+}
+
+TEST(SweepTableReferences, TheSourceTravelsThroughTheTable) {
+  SweepTable table;
+  table.rows = {referredRow(40, 61'200, "a40"), referredRow(20, 98'400, "a20")};
+  // A referred row's own uncertainty carries u(E) (3 %) beside the merge's noise (0.4 %).
+  EXPECT_NEAR(*table.rows[0].lmax_uncertainty_cd_m2, std::hypot(0.004, 0.03) * 5e5, 1e-6);
+  TempDir dir;
+  auto read = readText(dir, formatSweepTable(table));
+  ASSERT_TRUE(read) << read.error().message;
+  ASSERT_EQ(read->rows.size(), 2u);
+  EXPECT_EQ(read->rows[1].source_illuminance_lx, 61'200);
+  EXPECT_EQ(read->rows[1].source_illuminance_u_lx, 0.03 * 61'200);
+  EXPECT_EQ(read->rows[1].source_origin, "sensor");
+  EXPECT_EQ(read->rows[1].reference_illuminance_lx, 100'000);
+  EXPECT_EQ(mixedReferences(*read), "");
+  EXPECT_EQ(tableReferenceIlluminance(*read), 100'000);
+  EXPECT_EQ(sourceIlluminanceRange(*read), "61.2\u201398.4 klx (sensor)");
+  // Unreferred rows say so in the table, and a table without the columns reads as unreferred.
+  SweepTable plain;
+  plain.rows = {referredRow(40, std::nullopt, "p40")};
+  EXPECT_NE(formatSweepTable(plain).find(",unreferred,"), std::string::npos);
+  auto old = readSweepTable(testing::testDataDir() / "standard-module-table3.csv");
+  ASSERT_TRUE(old);
+  EXPECT_EQ(tableReferences(*old), std::vector<std::string>{"unreferred"});
+  EXPECT_FALSE(tableReferenceIlluminance(*old));
+  EXPECT_EQ(sourceIlluminanceRange(*old), "");
+}
+
+TEST(SweepTableReferences, AMixedTableNamesTheRowsOfTheSmallerGroups) {
+  SweepTable table;
+  for (int alpha = 5; alpha <= 40; alpha += 5)
+    table.rows.push_back(referredRow(alpha, 90'000, fmt::format("r{}", alpha)));
+  table.rows.push_back(referredRow(45, std::nullopt, "u45"));
+  table.rows.push_back(referredRow(50, std::nullopt, "u50"));
+  EXPECT_EQ(mixedReferences(table),
+            "8 row(s) referred to 100 klx; 2 row(s) unreferred: u45 (\u03b1 45\u00b0), u50 "
+            "(\u03b1 50\u00b0)");
+  EXPECT_FALSE(tableReferenceIlluminance(table));
+  // A rig's day sheet keeps the referred rows (its instrument failed for the others).
+  std::string left_out;
+  const SweepTable one = rowsOfOneReference(table, &left_out);
+  EXPECT_EQ(one.rows.size(), 8u);
+  EXPECT_EQ(tableReferenceIlluminance(one), 100'000);
+  EXPECT_EQ(left_out.rfind("2 row(s) not referred to 100 klx left out (", 0), 0u) << left_out;
+  // Only unreferred rows: all kept, nothing said.
+  SweepTable unreferred;
+  unreferred.rows = {table.rows[8], table.rows[9]};
+  left_out.clear();
+  EXPECT_EQ(rowsOfOneReference(unreferred, &left_out).rows.size(), 2u);
+  EXPECT_EQ(left_out, "");
+  // Two references: the rows of the smaller named, at most four and a count.
+  SweepRow other = referredRow(60, 90'000, "x");
+  for (int i = 0; i < 6; ++i) {
+    other.reference_illuminance_lx = 50'000;
+    other.stack_id = fmt::format("o{}", i);
+    table.rows.push_back(other);
+  }
+  const std::string mixed = mixedReferences(table);
+  EXPECT_NE(mixed.find("6 row(s) referred to 50 klx: o0 (\u03b1 60\u00b0), o1"), std::string::npos)
+      << mixed;
+  EXPECT_NE(mixed.find("and 2 more"), std::string::npos) << mixed;
+  EXPECT_EQ(mixed.find("r5 "), std::string::npos) << mixed;  // the largest group is the table's
 }
 
 }  // namespace

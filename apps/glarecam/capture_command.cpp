@@ -20,6 +20,7 @@ struct CaptureArgs {
   std::optional<std::string> camera, config;
   std::string out;
   std::optional<std::string> alpha, gain, f_number, nd, calibration, pixel_format, module;
+  std::optional<std::string> source_illuminance;
   std::string exposures = "auto";
   std::string count = "1";
   double interval_s = 0;
@@ -33,6 +34,8 @@ Result<daemon::CaptureRunOptions> runOptions(const CaptureArgs& args) {
   run.camera_uri = args.camera;
   if (args.config) run.config_path = *args.config;
   GLARECAM_ASSIGN(run.alpha_deg, parseOptionalNumber(args.alpha, "--alpha"));
+  GLARECAM_ASSIGN(run.source_illuminance,
+                  parseOptionalSourceIlluminance(args.source_illuminance, "--source-illuminance"));
   std::optional<double> gain;
   GLARECAM_ASSIGN(gain, parseOptionalNumber(args.gain, "--gain"));
   run.capture.gain_db = gain.value_or(0.0);
@@ -88,6 +91,9 @@ void addCaptureCommand(CLI::App& app, Action& action) {
   sub->add_option("--out", args->out, "directory the stacks are written into (created)")
       ->required();
   sub->add_option("--alpha", args->alpha, "angle of incidence α in degrees, recorded in the stack");
+  sub->add_option("--source-illuminance", args->source_illuminance,
+                  std::string(kSourceIlluminanceHelp) + "; recorded in every stack (origin given)")
+      ->option_text("LX[±U]");
   sub->add_option("--exposures", args->exposures,
                   "'auto' (meter, plan, check) or a list of exposure times in µs, e.g. 10,100,1000")
       ->capture_default_str();

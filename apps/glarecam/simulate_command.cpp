@@ -17,6 +17,8 @@ struct SimulateArgs {
   std::string out;
   std::string size = "1224x1024";
   std::optional<std::string> distortion, offset;  // given but empty is an error
+  std::optional<std::string> source_illuminance;
+  bool unreferred = false;
   std::string seed = "1";
   std::string sensor_seed = "1";
   capture::SimulationOptions options;
@@ -42,6 +44,16 @@ Status runSimulate(SimulateArgs& args) {
     if (!offset) return std::unexpected(offset.error());
     args.options.lobe_offset_deg = {(*offset)[0], (*offset)[1]};
   }
+  if (args.source_illuminance) {
+    if (args.unreferred)
+      return badInput("--unreferred: a stack cannot record --source-illuminance and none");
+    SourceIlluminance source;
+    GLARECAM_ASSIGN(source,
+                    parseGivenIlluminance(*args.source_illuminance, "--source-illuminance"));
+    args.options.source_illuminance_lx = source.illuminance_lx;
+    args.options.source_illuminance_u_lx = source.illuminance_u_lx;
+  }
+  args.options.record_source = !args.unreferred;
   args.options.show_progress = !args.no_progress;
   // Refuse a bad --out before spending seconds on the simulation.
   if (auto target = stackTarget(args.out); !target) return std::unexpected(target.error());
@@ -81,6 +93,14 @@ void addSimulateCommand(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_option("--background", args->options.background_cd_m2, "background luminance, cd/m²")
       ->capture_default_str();
+  sub->add_option("--source-illuminance", args->source_illuminance,
+                  "the simulated sun's direct normal illuminance in lx (default 100000, the "
+                  "reference): it scales the whole scene and is recorded as the stack's source, "
+                  "with the uncertainty given (92500±2800)")
+      ->option_text("LX[±U]");
+  sub->add_flag("--unreferred", args->unreferred,
+                "record no source illuminance: a stack as an older rig or another tool writes "
+                "it, processed unreferred");
   sub->add_option("--peak-scale", args->options.peak_scale, "scale the module's luminance maximum")
       ->capture_default_str();
   sub->add_option("--hot-pixels", args->options.defects.hot_pixels,

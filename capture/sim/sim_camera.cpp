@@ -73,9 +73,12 @@ Status applyParameter(std::string_view key, std::string_view value, SimulationOp
     sim.horizontal_fov_deg = number;
   } else if (key == "alpha") {
     sim.alpha_deg = number;
+  } else if (key == "illuminance") {
+    sim.source_illuminance_lx = number;  // validate() names the range
   } else {
     return badInput(fmt::format(
-        "camera URI sim: unknown parameter '{}' (known: module, seed, size, fov, alpha, target)",
+        "camera URI sim: unknown parameter '{}' (known: module, seed, size, fov, alpha, "
+        "illuminance, target)",
         key));
   }
   return {};

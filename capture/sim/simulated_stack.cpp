@@ -72,6 +72,13 @@ StackManifest makeManifest(const SimulationOptions& options, const Calibration& 
                                .f_number = options.f_number,
                                .nd_transmission = options.nd_transmission});
   }
+  if (options.record_source)
+    manifest.source_illuminance = SourceIlluminance{
+        .illuminance_lx = options.source_illuminance_lx,
+        .illuminance_u_lx = options.source_illuminance_u_lx,
+        .origin = IlluminanceOrigin::kGiven,
+        .instrument = "the simulated sun",
+    };
   manifest.source = {{"camera",
                       {{"backend", "sim"},
                        {"model", "glarecam-sim"},
@@ -129,6 +136,11 @@ Status SimulationOptions::validate() const {
   }
   if (!(peak_scale > 0 && std::isfinite(peak_scale)))
     return badInput("simulate: --peak-scale must be positive");
+  if (!(source_illuminance_lx > 0 && source_illuminance_lx <= kMaxSourceIlluminanceLx))
+    return badInput(fmt::format("simulate: --source-illuminance must be in (0, {:g}] lx",
+                                kMaxSourceIlluminanceLx));
+  if (!(source_illuminance_u_lx >= 0 && source_illuminance_u_lx < source_illuminance_lx))
+    return badInput("simulate: --source-illuminance's uncertainty must be >= 0 and below it");
   if (!std::isfinite(lobe_orientation_deg))
     return badInput("simulate: --orientation must be finite");
   const auto within = [](double deg) { return std::abs(deg) < kMaxOffsetDeg; };
@@ -173,19 +185,29 @@ Status checkLensInvertible(const calibration::CameraModel& camera, int width, in
 
 nlohmann::json sceneTruthJson(const SimulatedScene& scene, double alpha_deg) {
   const SceneTruth& truth = scene.truth;
+  const SceneTruth& lit = scene.truth_as_lit;
   return {{"schema", kTruthSchema},
           {"alpha_deg", alpha_deg},
+          {"reference_illuminance_lx", kDefaultReferenceIlluminanceLx},
+          {"source_illuminance_lx", scene.source_illuminance_lx},
           {"luminance_max_cd_m2", truth.peak_cd_m2},
           {"limit_cd_m2", truth.limit_cd_m2},
           {"limit_axes_deg", axesJson(truth.limit_axes)},
           {"fwhm_axes_deg", axesJson(truth.fwhm_axes)},
           {"glare", truth.peak_cd_m2 >= truth.limit_cd_m2},
+          {"as_lit",
+           {{"luminance_max_cd_m2", lit.peak_cd_m2},
+            {"limit_axes_deg", axesJson(lit.limit_axes)},
+            {"fwhm_axes_deg", axesJson(lit.fwhm_axes)},
+            {"glare", lit.peak_cd_m2 >= lit.limit_cd_m2}}},
           {"centre_pixel", scene.centre_pixel}};
 }
 
 nlohmann::json SimulatedStack::truthJson() const {
   SimulatedScene scene;
   scene.truth = truth;
+  scene.truth_as_lit = truth_as_lit;
+  scene.source_illuminance_lx = source_illuminance_lx;
   scene.centre_pixel = centre_pixel;
   nlohmann::json document = sceneTruthJson(scene, manifest.alpha_deg.value_or(0.0));
   document["stack"] = manifest.id.value_or("");
@@ -220,9 +242,17 @@ Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options) {
   lobe->peak_cd_m2 = model_peak * options.peak_scale;
   lobe->orientation_deg = options.lobe_orientation_deg;
   lobe->centre_direction_deg = options.lobe_offset_deg;
+  // The scene as lit: every luminance in proportion to the source (the module's reflection, and
+  // the sky's in its glass, which that sun also lights), so that referred it is the reference's.
+  auto reference_scene = GlareScene::create(*lobe);
+  if (!reference_scene) return std::unexpected(reference_scene.error());
+  const double lit = options.source_illuminance_lx / kDefaultReferenceIlluminanceLx;
+  lobe->peak_cd_m2 *= lit;
+  lobe->background_cd_m2 *= lit;
   auto scene = GlareScene::create(*lobe);
   if (!scene) return std::unexpected(scene.error());
   SimulatedScene result;
+  result.source_illuminance_lx = options.source_illuminance_lx;
   result.calibration = simulatedCalibration(options);
   const calibration::CameraModel camera(result.calibration.intrinsics);
   GLARECAM_CHECK(checkLensInvertible(camera, options.width, options.height));
@@ -233,7 +263,8 @@ Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options) {
   }
   result.centre_pixel = {centre.x, centre.y};
   result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
-  result.truth = scene->truth(limit);
+  result.truth = reference_scene->truth(limit);
+  result.truth_as_lit = scene->truth(limit);
   return result;
 }
 
@@ -259,6 +290,8 @@ Result<SimulatedStack> simulateStack(const SimulationOptions& options) {
   SimulatedStack result;
   result.true_luminance_cd_m2 = std::move(scene.true_luminance_cd_m2);
   result.truth = scene.truth;
+  result.truth_as_lit = scene.truth_as_lit;
+  result.source_illuminance_lx = scene.source_illuminance_lx;
   result.centre_pixel = scene.centre_pixel;
   const Calibration& calibration = scene.calibration;
 

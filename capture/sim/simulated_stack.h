@@ -27,6 +27,14 @@ struct SimulationOptions : SimulatedCameraModel {
   double background_cd_m2 = 3000.0;  // sky reflected in the module glass, an overcast-sky order
   double peak_scale = 1.0;  // multiplies the module's luminance maximum (e.g. below-limit scenes)
   double nd_transmission = 1.0e-3;  // ND 3.0 filter: sun reflections need it
+  // The sun that lights the scene: its direct normal illuminance E scales every luminance of the
+  // scene by E / E_ref (the module model's values are the module's at the reference,
+  // docs/method.md "Reference illuminance"), and is recorded as the manifest's `source` (origin
+  // given, its uncertainty as stated) unless `record_source` is off, which makes an unreferred
+  // stack. truth.json gives the truth at the reference and as lit.
+  double source_illuminance_lx = kDefaultReferenceIlluminanceLx;
+  double source_illuminance_u_lx = 0;
+  bool record_source = true;
   BracketOptions bracket;
   SensorDefects defects;       // none by default: a clean sensor (the sensor's seed places them)
   bool show_progress = false;  // progress on stderr (the CLI turns it on)
@@ -38,8 +46,10 @@ struct SimulationOptions : SimulatedCameraModel {
 struct SimulatedStack {
   StackManifest manifest;
   std::vector<RawFrame> frames;
-  FloatImage true_luminance_cd_m2;
-  SceneTruth truth;
+  FloatImage true_luminance_cd_m2;  // as lit
+  SceneTruth truth;                 // at the reference illuminance
+  SceneTruth truth_as_lit;          // under the scene's own source (= truth at E = E_ref)
+  double source_illuminance_lx = kDefaultReferenceIlluminanceLx;
   std::array<double, 2> centre_pixel{0, 0};
   BracketPlan bracket;
   SensorDefectMap defects;  // empty images when the sensor has none
@@ -54,15 +64,18 @@ Intrinsics pinholeIntrinsics(int width, int height, double horizontal_fov_deg,
 // The scene the simulated rig looks at, before any sensor: what the `sim:` camera and the fake
 // GigE Vision camera expose frames of.
 struct SimulatedScene {
-  FloatImage true_luminance_cd_m2;
-  SceneTruth truth;
+  FloatImage true_luminance_cd_m2;  // as lit by the options' source
+  SceneTruth truth;                 // at the reference illuminance
+  SceneTruth truth_as_lit;
+  double source_illuminance_lx = kDefaultReferenceIlluminanceLx;
   Calibration calibration;  // the simulated camera's, exact by construction
   std::array<double, 2> centre_pixel{0, 0};
 };
 
 Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options);
 
-// truth.json (schema glarecam.truth/1) of a scene: maximum, limit, both axes, glare, centre.
+// truth.json (schema glarecam.truth/1) of a scene: maximum, limit, both axes, glare, centre, at
+// the reference illuminance; under "as_lit" the same under the scene's own source.
 nlohmann::json sceneTruthJson(const SimulatedScene& scene, double alpha_deg);
 
 // The calibration block of the simulated camera (its sensor, K, f-number and pinhole model).

@@ -14,8 +14,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -240,17 +242,28 @@ class GlarecamdKills : public ::testing::Test {
   fs::path out_ = dir_ / "out";
 };
 
+// GLARECAM_KILLS_PER_KIND: kills wanted while a stack, and while a result, is being written.
+int killsPerKind() {
+  constexpr int kDefaultKillsPerKind = 8;
+  const char* text = std::getenv("GLARECAM_KILLS_PER_KIND");
+  const int kills = text ? std::atoi(text) : kDefaultKillsPerKind;
+  return std::clamp(kills, 1, 25);
+}
+
 TEST_F(GlarecamdKills, SigkillWhileWritingLeavesNoPartialStack) {
   const auto test_start = Clock::now();
-  constexpr int kKillsWhileWriting = 25;  // wanted of each kind: stacks and results, 50 in all
-  constexpr int kMaxTrials = 300;
+  // Wanted of each kind, stacks and results: issue 9's 50 kills in all under `make kill-check`
+  // (GLARECAM_KILLS_PER_KIND=25), 8 of each in `make test`, where the full run cost 170 s of a
+  // loaded 2-core CI machine's time for the same verdict.
+  const int kKillsWhileWriting = killsPerKind();
+  const int kMaxTrials = 12 * kKillsWhileWriting;
   // On a loaded machine fewer kills land mid-write (start-up jitter outgrows the writes), and the
   // trials once ran into ctest's 300 s timeout. So they stop at a budget from the test's start
-  // that leaves the staging measurement before and the restart after room inside that timeout,
-  // and at least this many of each kind must have landed (a busy 2-core machine reaches it; an
-  // idle one lands all 50 in about 30 s).
-  constexpr auto kTrialBudget = 170s;
-  constexpr int kMinKillsWhileWriting = 10;
+  // that leaves the staging measurement before and the restart after room inside that timeout
+  // (7 s a kill wanted, at most 170 s), and at least 40 % of each kind must have landed (a busy
+  // 2-core machine reaches it; an idle one lands all 50 in about 30 s).
+  const auto kTrialBudget = std::min<std::chrono::seconds>(7s * kKillsWhileWriting, 170s);
+  const int kMinKillsWhileWriting = (2 * kKillsWhileWriting + 4) / 5;
   // A staging time measured too short (both inotify events in one read) still leaves room.
   constexpr std::chrono::microseconds kMinKillWindow{2000};
   fs::create_directories(out_ / "stacks");

@@ -39,29 +39,29 @@ class UnavailableBackend final : public CameraBackend {
 
 struct BackendEntry {
   std::string_view scheme;
-  std::function<std::unique_ptr<CameraBackend>(const SceneAlphaSource&)> make;
+  std::function<std::unique_ptr<CameraBackend>(const SceneSource&)> make;
 };
 
 const std::array<BackendEntry, 4>& backendEntries() {
   static const std::array<BackendEntry, 4> entries{{
       {"sim", makeSimCameraBackend},
 #if GLARECAM_WITH_ARAVIS
-      {"aravis", [](const SceneAlphaSource&) { return makeAravisBackend(); }},
+      {"aravis", [](const SceneSource&) { return makeAravisBackend(); }},
 #else
       {"aravis",
-       [](const SceneAlphaSource&) {
+       [](const SceneSource&) {
          return std::make_unique<UnavailableBackend>("aravis", "Aravis 0.8");
        }},
 #endif
 #if GLARECAM_WITH_LIBCAMERA
-      {"libcamera", [](const SceneAlphaSource&) { return makeLibcameraBackend(); }},
+      {"libcamera", [](const SceneSource&) { return makeLibcameraBackend(); }},
 #else
       {"libcamera",
-       [](const SceneAlphaSource&) {
+       [](const SceneSource&) {
          return std::make_unique<UnavailableBackend>("libcamera", "libcamera");
        }},
 #endif
-      {"v4l2", [](const SceneAlphaSource&) { return makeV4l2Backend(); }},
+      {"v4l2", [](const SceneSource&) { return makeV4l2Backend(); }},
   }};
   return entries;
 }
@@ -94,9 +94,9 @@ std::vector<std::unique_ptr<CameraBackend>> cameraBackends() {
 }
 
 Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme,
-                                                     const SceneAlphaSource& scene_alpha) {
+                                                     const SceneSource& scene_source) {
   for (const auto& entry : backendEntries()) {
-    if (entry.scheme == scheme) return entry.make(scene_alpha);
+    if (entry.scheme == scheme) return entry.make(scene_source);
   }
   return badInput(
       fmt::format("unknown camera backend '{}' (expected one of {})", scheme, knownSchemes()));
@@ -133,11 +133,11 @@ nlohmann::json toJson(const CameraListing& listing) {
 }
 
 Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options,
-                                           const SceneAlphaSource& scene_alpha) {
+                                           const SceneSource& scene_source) {
   CameraUri parsed;
   GLARECAM_ASSIGN(parsed, parseCameraUri(uri));
   std::unique_ptr<CameraBackend> backend;
-  GLARECAM_ASSIGN(backend, cameraBackend(parsed.scheme, scene_alpha));
+  GLARECAM_ASSIGN(backend, cameraBackend(parsed.scheme, scene_source));
   return backend->open(parsed.id, options);
 }
 

@@ -25,17 +25,23 @@ struct CameraUri {
 // "aravis:GV01" → {aravis, GV01}; a bare known scheme ("sim") is accepted as "sim:".
 Result<CameraUri> parseCameraUri(std::string_view uri);
 
-// Where a simulated camera (sim:) takes the α of the scene it shows, asked before each bracket:
-// the rig's measured α, or the capture's --alpha (nullopt: not known). Real cameras look at the
-// real scene and never ask; any camera may be given one.
-using SceneAlphaSource = std::function<std::optional<double>()>;
+// What a simulated camera (sim:) shows, asked before each bracket: the scene's α (the rig's
+// measured α, or the capture's --alpha; nullopt: not known) and the direct normal illuminance of
+// the sun that lights it (the clear-sky value for the rig's site and time, or the instrument's;
+// nullopt: the URI's illuminance=, else 100 klx). Real cameras look at the real scene and never
+// ask; any camera may be given one.
+struct SceneState {
+  std::optional<double> alpha_deg = std::nullopt;
+  std::optional<double> source_illuminance_lx = std::nullopt;
+};
+using SceneSource = std::function<SceneState()>;
 
 // Every backend, in the order `glarecam cameras` lists them.
 std::vector<std::unique_ptr<CameraBackend>> cameraBackends();
 
 // The backend for `scheme`, or a kBadInput error listing the known schemes.
 Result<std::unique_ptr<CameraBackend>> cameraBackend(std::string_view scheme,
-                                                     const SceneAlphaSource& scene_alpha = {});
+                                                     const SceneSource& scene_source = {});
 
 // What every backend sees now (`glarecam cameras`): the cameras, and for each backend that could
 // not list, why (not built in, no device, a library error).
@@ -53,6 +59,6 @@ nlohmann::json toJson(const CameraListing& listing);
 
 // Parses `uri` and opens the camera it names.
 Result<std::unique_ptr<Camera>> openCamera(std::string_view uri, const CameraOptions& options,
-                                           const SceneAlphaSource& scene_alpha = {});
+                                           const SceneSource& scene_source = {});
 
 }  // namespace glarecam::capture

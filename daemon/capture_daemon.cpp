@@ -64,7 +64,7 @@ CaptureDaemon::CaptureDaemon(DaemonOptions options, DaemonServices services, Con
       clock_(*services_.clock),
       events_(clock_),
       camera_(config_.daemon.faults, services_.open_camera,
-              [this] { return rig_ ? rig_->sceneAlphaDeg() : std::nullopt; }),
+              [this] { return rig_ ? rig_->sceneState() : capture::SceneState{}; }),
       schedule_(config_.daemon.schedule),
       health_(clock_, *services_.notifier, *services_.disk),
       output_(config_.daemon.output.root),

@@ -120,13 +120,17 @@ Status runCapture(const CaptureRunOptions& options) {
   // A capture killed while writing leaves its hidden staging directory: old ones go now.
   if (std::filesystem::is_directory(out, error)) removeStaleTemporaries(out, kStaleTemporaryAge);
   // The α the rig measured for this stack; else the --alpha given (a config without [site]).
-  const capture::SceneAlphaSource scene_alpha = [&rig, given = options.alpha_deg] {
-    const std::optional<double> measured = rig ? rig->sceneAlphaDeg() : std::nullopt;
-    return measured ? measured : given;
+  // The sun that lights a simulated scene: the rig's clear-sky sun, else the one given.
+  const capture::SceneSource scene_source = [&rig, given = options.alpha_deg,
+                                             source = options.source_illuminance] {
+    capture::SceneState state = rig ? rig->sceneState() : capture::SceneState{};
+    if (!state.alpha_deg) state.alpha_deg = given;
+    if (source) state.source_illuminance_lx = source->illuminance_lx;
+    return state;
   };
   std::unique_ptr<capture::Camera> camera;
   GLARECAM_ASSIGN(camera, capture::openCamera(camera_uri, capture::cameraOptions(options.capture),
-                                              scene_alpha));
+                                              scene_source));
   GLARECAM_CHECK(checkAgainstCamera(*camera, settings));
   return capture::captureSeries(*camera, std::move(settings), options.series, rig.get());
 }

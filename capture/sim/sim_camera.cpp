@@ -115,13 +115,15 @@ std::string sceneDetail(const SimulationOptions& options) {
 
 class SimCamera final : public Camera, public SceneTruthSource {
  public:
-  // `alpha_fixed`: the URI gave alpha=, which every α the source gives must agree with.
+  // `alpha_fixed`: the URI gave alpha=, which every α the source gives must agree with;
+  // `illuminance_fixed`: the URI gave illuminance=, which the source's does not change.
   SimCamera(SimulationOptions options, SimulatedScene scene, std::string uri,
-            SceneAlphaSource scene_alpha, bool alpha_fixed)
+            SceneSource scene_source, bool alpha_fixed, bool illuminance_fixed)
       : options_(std::move(options)),
         scene_(std::move(scene)),
-        scene_alpha_(std::move(scene_alpha)),
-        alpha_fixed_(alpha_fixed) {
+        scene_source_(std::move(scene_source)),
+        alpha_fixed_(alpha_fixed),
+        illuminance_fixed_(illuminance_fixed) {
     info_ = {.uri = std::move(uri),
              .backend = "sim",
              .vendor = "glarecam",
@@ -157,7 +159,7 @@ class SimCamera final : public Camera, public SceneTruthSource {
 
  private:
   Result<std::vector<CapturedFrame>> doCapture(std::span<const ExposureRequest> requests) override {
-    GLARECAM_CHECK(showSourceAlpha());
+    GLARECAM_CHECK(showSourceScene());
     std::vector<CapturedFrame> frames;
     frames.reserve(requests.size());
     for (const ExposureRequest& request : requests) {
@@ -178,18 +180,24 @@ class SimCamera final : public Camera, public SceneTruthSource {
     return frames;
   }
 
-  // The scene at the α the source gives now (a calibration target has none); a URI's alpha=
-  // stays, and refuses an α that contradicts it.
-  Status showSourceAlpha() {
-    if (!scene_alpha_ || !options_.calibration_target.empty()) return {};
-    const std::optional<double> asked = scene_alpha_();
-    if (!asked) return {};
-    if (alpha_fixed_) return agreesWithUriAlpha(options_.alpha_deg, *asked);
-    double shown = 0;
-    GLARECAM_ASSIGN(shown, shownAlphaDeg(*asked));
-    if (shown == options_.alpha_deg) return {};
+  // The scene at the α and under the sun the source gives now (a calibration target has
+  // neither); a URI's alpha= stays, and refuses an α that contradicts it; a URI's illuminance=
+  // stays too.
+  Status showSourceScene() {
+    if (!scene_source_ || !options_.calibration_target.empty()) return {};
+    const SceneState asked = scene_source_();
     SimulationOptions moved = options_;
-    moved.alpha_deg = shown;
+    if (asked.alpha_deg && alpha_fixed_) {
+      GLARECAM_CHECK(agreesWithUriAlpha(options_.alpha_deg, *asked.alpha_deg));
+    } else if (asked.alpha_deg) {
+      GLARECAM_ASSIGN(moved.alpha_deg, shownAlphaDeg(*asked.alpha_deg));
+    }
+    if (asked.source_illuminance_lx && !illuminance_fixed_)
+      moved.source_illuminance_lx = *asked.source_illuminance_lx;
+    if (moved.alpha_deg == options_.alpha_deg &&
+        moved.source_illuminance_lx == options_.source_illuminance_lx)
+      return {};
+    GLARECAM_CHECK(moved.validate());
     SimulatedScene scene;
     GLARECAM_ASSIGN(scene, renderSimulatedScene(moved));
     options_ = std::move(moved);
@@ -207,8 +215,9 @@ class SimCamera final : public Camera, public SceneTruthSource {
 
   SimulationOptions options_;
   SimulatedScene scene_;
-  SceneAlphaSource scene_alpha_;
+  SceneSource scene_source_;
   bool alpha_fixed_ = false;
+  bool illuminance_fixed_ = false;
   CameraInfo info_;
   std::uint64_t frames_taken_ = 0;
   std::uint64_t camera_clock_ns_ = 0;  // the simulated camera clock (timestamps)
@@ -231,7 +240,7 @@ Result<SimulatedScene> targetScene(SimulationOptions& sim) {
 
 class SimCameraBackend final : public CameraBackend {
  public:
-  explicit SimCameraBackend(SceneAlphaSource scene_alpha) : scene_alpha_(std::move(scene_alpha)) {}
+  explicit SimCameraBackend(SceneSource scene_source) : scene_source_(std::move(scene_source)) {}
 
   std::string_view scheme() const override { return "sim"; }
 
@@ -252,31 +261,38 @@ class SimCameraBackend final : public CameraBackend {
     }
     // An α beyond the scene's range (a low sun) does not keep the camera from opening: a bracket
     // taken there fails, naming it. One that contradicts the URI's alpha= does.
-    const bool alpha_fixed = uriGivesAlpha(id);
-    std::optional<double> asked_deg = scene_alpha_ ? scene_alpha_() : std::nullopt;
+    const bool alpha_fixed = uriGives(id, "alpha");
+    const bool illuminance_fixed = uriGives(id, "illuminance");
+    const SceneState asked = scene_source_ ? scene_source_() : SceneState{};
+    std::optional<double> asked_deg = asked.alpha_deg;
     if (asked_deg && !alpha_fixed && !shownAlphaDeg(*asked_deg)) asked_deg.reset();
     SimulationOptions sim;
     GLARECAM_ASSIGN(sim, parseSimCameraId(id, asked_deg));
+    if (asked.source_illuminance_lx && !illuminance_fixed) {
+      sim.source_illuminance_lx = *asked.source_illuminance_lx;
+      GLARECAM_CHECK(sim.validate());
+    }
     auto rendered = sim.calibration_target.empty() ? renderSimulatedScene(sim) : targetScene(sim);
     if (!rendered) {
       return badInput(fmt::format("camera URI 'sim:{}': {}", id, rendered.error().message));
     }
     return std::make_unique<SimCamera>(std::move(sim), std::move(*rendered),
-                                       "sim:" + std::string(id), scene_alpha_, alpha_fixed);
+                                       "sim:" + std::string(id), scene_source_, alpha_fixed,
+                                       illuminance_fixed);
   }
 
  private:
-  static bool uriGivesAlpha(std::string_view id) {
+  static bool uriGives(std::string_view id, std::string_view parameter) {
     bool given = false;
     const Status parsed =
         forEachUriParameter(id, kUriName, [&](std::string_view key, std::string_view) -> Status {
-          given = given || key == "alpha";
+          given = given || key == parameter;
           return {};
         });
     return parsed && given;
   }
 
-  SceneAlphaSource scene_alpha_;
+  SceneSource scene_source_;
 };
 
 }  // namespace
@@ -309,8 +325,8 @@ Result<SimulationOptions> parseSimCameraId(std::string_view id,
   return sim;
 }
 
-std::unique_ptr<CameraBackend> makeSimCameraBackend(SceneAlphaSource scene_alpha) {
-  return std::make_unique<SimCameraBackend>(std::move(scene_alpha));
+std::unique_ptr<CameraBackend> makeSimCameraBackend(SceneSource scene_source) {
+  return std::make_unique<SimCameraBackend>(std::move(scene_source));
 }
 
 }  // namespace glarecam::capture

@@ -2,15 +2,17 @@
 // scene (simulated_stack.h) through its 12-bit sensor model, so exposure and gain change the
 // frames exactly as the merge's radiometry expects. It stands in for hardware in tests, in the
 // demo and for users without a camera. URI parameters, comma-separated after "sim:":
-//   module=NAME  seed=N  size=WxH  fov=DEG  alpha=DEG   (e.g. "sim:module=standard,size=640x512")
+//   module=NAME  seed=N  size=WxH  fov=DEG  alpha=DEG  illuminance=LX
+//   (e.g. "sim:module=standard,size=640x512")
 //   target=dark|flat|linearity|noise|luminance|board   a calibration target instead of the module
-// The scene's α comes from the camera's SceneAlphaSource (camera_registry.h: the rig's measured α,
+// The scene's α comes from the camera's SceneSource (camera_registry.h: the rig's measured α,
 // or the capture's --alpha), asked before each bracket; the scene is rendered again when it
 // changed. Without one, the URI's alpha=, else the simulator's default. A URI's alpha= fixes the
 // scene: an α from the source that contradicts it is refused (at open, or by the bracket), so a
 // stack never records one α and shows another. An α up to
 // kSceneAlphaSlackDeg past the method's 80° (an inclinometer's noise around an 80° target) shows
-// the 80° scene; beyond that a bracket is refused.
+// the 80° scene; beyond that a bracket is refused. The sun that lights the scene is the source's
+// too (a rig's clear-sky sun), unless the URI's illuminance= fixes it; else 100 klx.
 // Its frames' timestamps are a camera's clock, as if behind Gigabit Ethernet: from 0 at open, each
 // frame stamped at the start of its exposure, the clock advancing by the exposure and the frame's
 // transfer (bracketFloorS, camera.h), so a bracket reports the time a camera would take, while
@@ -51,6 +53,6 @@ std::optional<nlohmann::json> sceneTruthOf(const Camera& camera);
 Result<SimulationOptions> parseSimCameraId(std::string_view id,
                                            std::optional<double> scene_alpha_deg = std::nullopt);
 
-std::unique_ptr<CameraBackend> makeSimCameraBackend(SceneAlphaSource scene_alpha = {});
+std::unique_ptr<CameraBackend> makeSimCameraBackend(SceneSource scene_source = {});
 
 }  // namespace glarecam::capture

@@ -7,8 +7,8 @@
 namespace glarecam::daemon {
 
 CameraSupervisor::CameraSupervisor(FaultConfig faults, CameraOpener opener,
-                                   capture::SceneAlphaSource scene_alpha)
-    : faults_(faults), opener_(std::move(opener)), scene_alpha_(std::move(scene_alpha)) {}
+                                   capture::SceneSource scene_source)
+    : faults_(faults), opener_(std::move(opener)), scene_source_(std::move(scene_source)) {}
 
 void CameraSupervisor::configure(std::string uri, capture::CameraOptions options,
                                  FaultConfig faults) {
@@ -23,7 +23,7 @@ Result<capture::Camera*> CameraSupervisor::acquire(SteadyTime now) {
   if (camera_) return camera_.get();
   if (retry_at_ && now < *retry_at_)
     return std::unexpected(last_error_.value_or(Error{ErrorCode::kHardware, uri_ + ": closed"}));
-  auto opened = opener_(uri_, options_, scene_alpha_);
+  auto opened = opener_(uri_, options_, scene_source_);
   if (!opened) {
     failed(opened.error(), now);
     return std::unexpected(opened.error());

@@ -20,12 +20,12 @@ namespace glarecam::daemon {
 
 // Opens a camera by URI, as capture::openCamera (the default) does.
 using CameraOpener = std::function<Result<std::unique_ptr<capture::Camera>>(
-    std::string_view uri, const capture::CameraOptions&, const capture::SceneAlphaSource&)>;
+    std::string_view uri, const capture::CameraOptions&, const capture::SceneSource&)>;
 
 class CameraSupervisor {
  public:
-  // `scene_alpha`: given to every camera it opens (the rig's measured α, for a simulated one).
-  CameraSupervisor(FaultConfig faults, CameraOpener opener, capture::SceneAlphaSource scene_alpha);
+  // `scene_source`: given to every camera it opens (the rig's measured α, for a simulated one).
+  CameraSupervisor(FaultConfig faults, CameraOpener opener, capture::SceneSource scene_source);
 
   // The camera to open; an open camera is closed when the URI or the options change.
   void configure(std::string uri, capture::CameraOptions options, FaultConfig faults);
@@ -57,7 +57,7 @@ class CameraSupervisor {
  private:
   FaultConfig faults_;
   CameraOpener opener_;
-  capture::SceneAlphaSource scene_alpha_;
+  capture::SceneSource scene_source_;
   std::string uri_;
   capture::CameraOptions options_;
   std::unique_ptr<capture::Camera> camera_;

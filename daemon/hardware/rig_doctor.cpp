@@ -66,7 +66,7 @@ DoctorCheck checkCamera(const Config& config, const CameraOpener& open,
                         const std::optional<double>& alpha_deg) {
   if (!config.rig.camera) return failed("camera", "the config names no camera (camera = \"URI\")");
   auto camera = open(*config.rig.camera, capture::cameraOptions(config.daemon.capture),
-                     [alpha_deg] { return alpha_deg; });
+                     [alpha_deg] { return capture::SceneState{.alpha_deg = alpha_deg}; });
   if (!camera) return failed("camera", camera.error().message);
   const capture::CameraLimits limits = (*camera)->limits();
   // The camera's own range (Camera::capture refuses anything outside it): a sensor whose least

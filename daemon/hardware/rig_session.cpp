@@ -10,6 +10,7 @@
 #include "daemon/hardware/simulated_rig.h"
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"
+#include "sun/clear_sky.h"
 
 namespace glarecam::daemon {
 
@@ -61,6 +62,15 @@ Result<rig::RigGeometry> RigSession::measure(UtcTime time,
 std::optional<double> RigSession::sceneAlphaDeg() const {
   if (!last_geometry_) return std::nullopt;
   return last_geometry_->alpha_deg;
+}
+
+capture::SceneState RigSession::sceneState() const {
+  capture::SceneState state{.alpha_deg = sceneAlphaDeg()};
+  if (last_geometry_ && last_geometry_->sun && config_.site) {
+    if (const auto sky = sun::clearSkySource(last_geometry_->time, *config_.site))
+      state.source_illuminance_lx = sky->illuminance_lx;
+  }
+  return state;
 }
 
 void RigSession::record(const Result<rig::RigGeometry>& measured,

@@ -11,7 +11,7 @@
 //   the frames expose; a fixed lab source does not).
 //
 // The session keeps the last geometry it measured: the module's orientation for planning α
-// targets, and the α a simulated camera shows (its SceneAlphaSource). As a capture::SeriesRig it
+// targets, and the α a simulated camera shows (its SceneSource). As a capture::SeriesRig it
 // prepares and finishes each stack of `glarecam capture`'s series, waiting for the button when
 // asked to. glarecamd decides itself what a fault means for capture ([faults] inclinometer).
 #pragma once
@@ -25,6 +25,7 @@
 #include <thread>
 
 #include "capture/bracketer.h"
+#include "capture/camera_registry.h"
 #include "capture/capture_series.h"
 #include "core/error.h"
 #include "core/time.h"
@@ -75,6 +76,9 @@ class RigSession final : public capture::SeriesRig {
   const std::optional<rig::RigGeometry>& lastGeometry() const { return last_geometry_; }
   // The α of the last geometry measured, for a simulated camera's scene (nullopt: none yet).
   std::optional<double> sceneAlphaDeg() const;
+  // That α, and the clear-sky direct normal illuminance of the sun at the site then (none for a
+  // lab source, or a sun below the horizon): what a simulated camera's scene shows.
+  capture::SceneState sceneState() const;
   // Records a measurement in `settings`: α and the geometry block, or a block that says why α is
   // unknown.
   static void record(const Result<rig::RigGeometry>& measured, capture::CaptureSettings& settings);

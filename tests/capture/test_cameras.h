@@ -25,7 +25,8 @@ inline const capture::CameraLimits kSimLimits{.min_exposure_us = 10,
                                               .max_gain_db = 24};
 
 inline std::unique_ptr<capture::Camera> openSim(const std::string& id, double alpha_deg = 40.0) {
-  auto camera = capture::openCamera("sim:" + id, {}, [alpha_deg] { return alpha_deg; });
+  auto camera = capture::openCamera(
+      "sim:" + id, {}, [alpha_deg] { return capture::SceneState{.alpha_deg = alpha_deg}; });
   EXPECT_TRUE(camera) << camera.error().message;
   return camera ? std::move(*camera) : nullptr;
 }

@@ -271,9 +271,9 @@ TEST_F(DaemonTest, CameraLostMidBracketIsReopenedWithBackoff) {
   cameras_.loseAtCall(3);  // mid-way through the first bracket; opens fail until healed
   auto daemon = makeDaemon({}, [&](DaemonServices& services) {
     services.open_camera = [&](std::string_view uri, const capture::CameraOptions& options,
-                               const capture::SceneAlphaSource& scene_alpha) {
+                               const capture::SceneSource& scene_source) {
       opens.push_back(clock_.elapsed());
-      return script(uri, options, scene_alpha);
+      return script(uri, options, scene_source);
     };
   });
   ASSERT_TRUE(daemon);

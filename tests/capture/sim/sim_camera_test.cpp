@@ -110,7 +110,8 @@ double truthAlpha(const Camera& camera) {
 
 TEST(SimCamera, ItsSceneFollowsItsAlphaSource) {
   std::optional<double> alpha_deg = 30.0;
-  auto camera = openCamera("sim:size=64x48", {}, [&] { return alpha_deg; });
+  auto camera =
+      openCamera("sim:size=64x48", {}, [&] { return SceneState{.alpha_deg = alpha_deg}; });
   ASSERT_TRUE(camera) << camera.error().message;
   EXPECT_DOUBLE_EQ(truthAlpha(**camera), 30.0);  // asked at the open
   const std::vector<ExposureRequest> one{{1000, 0}};
@@ -134,9 +135,53 @@ TEST(SimCamera, ItsSceneFollowsItsAlphaSource) {
       << beyond.error().message;
 }
 
+// The sun that lights the scene follows the source too (a rig's clear-sky sun), and lights the
+// frames in proportion; a URI's illuminance= fixes it.
+TEST(SimCamera, ItsSunFollowsItsSource) {
+  SceneState state{.alpha_deg = 30.0, .source_illuminance_lx = 60'000.0};
+  auto camera = openCamera("sim:size=64x48", {}, [&] { return state; });
+  ASSERT_TRUE(camera) << camera.error().message;
+  const auto lit = [&] { return sceneTruthOf(**camera)->value("source_illuminance_lx", -1.0); };
+  EXPECT_DOUBLE_EQ(lit(), 60'000.0);  // asked at the open
+  // Long enough that the background (the median pixel) stands some 100 DN above the black level.
+  const std::vector<ExposureRequest> one{{100'000, 0}};
+  const double black_dn = SensorModel{}.black_level_dn;
+  const auto median = [&] {
+    auto frames = (*camera)->capture(one);
+    EXPECT_TRUE(frames) << frames.error().message;
+    const auto& image = (*frames)[0].image;
+    std::vector<std::uint16_t> values(image.data(), image.data() + image.pixelCount());
+    std::ranges::nth_element(values, values.begin() + values.size() / 2);
+    return values[values.size() / 2] - black_dn;
+  };
+  const double at_60 = median();
+  state.source_illuminance_lx = 90'000.0;
+  const double at_90 = median();
+  EXPECT_DOUBLE_EQ(lit(), 90'000.0);  // rendered again before the bracket
+  // Lobe and background both scale with E: the background's signal by 1.5; 3 % for the median's
+  // whole DN and noise.
+  std::printf("median signal %.1f DN at 60 klx, %.1f DN at 90 klx\n", at_60, at_90);
+  EXPECT_GT(at_90 / at_60, 1.45);
+  EXPECT_LT(at_90 / at_60, 1.55);
+  state.source_illuminance_lx.reset();  // not known: the scene stays
+  median();
+  EXPECT_DOUBLE_EQ(lit(), 90'000.0);
+  auto fixed = openCamera("sim:size=64x48,illuminance=70000", {}, [&] { return state; });
+  ASSERT_TRUE(fixed) << fixed.error().message;
+  state.source_illuminance_lx = 50'000.0;
+  ASSERT_TRUE((*fixed)->capture(one));
+  EXPECT_DOUBLE_EQ(sceneTruthOf(**fixed)->value("source_illuminance_lx", -1.0), 70'000.0);
+  // An absurd sun from the source is refused by the bracket, naming the range.
+  state.source_illuminance_lx = 500'000.0;
+  auto absurd = (*camera)->capture(one);
+  ASSERT_FALSE(absurd);
+  EXPECT_EQ(absurd.error().code, ErrorCode::kBadInput);
+}
+
 TEST(SimCamera, OpensUnderALowSunAndRefusesOnlyTheBracket) {
   std::optional<double> alpha_deg = 85.0;  // the sun low behind the module: no scene there
-  auto camera = openCamera("sim:size=64x48", {}, [&] { return alpha_deg; });
+  auto camera =
+      openCamera("sim:size=64x48", {}, [&] { return SceneState{.alpha_deg = alpha_deg}; });
   ASSERT_TRUE(camera) << camera.error().message;
   const std::vector<ExposureRequest> one{{1000, 0}};
   auto refused = (*camera)->capture(one);
@@ -149,13 +194,15 @@ TEST(SimCamera, OpensUnderALowSunAndRefusesOnlyTheBracket) {
 
 TEST(SimCamera, AnAlphaInItsUriIsKeptAndMayNotBeContradicted) {
   std::optional<double> alpha_deg = 20.0;
-  auto contradicted = openCamera("sim:size=64x48,alpha=40", {}, [&] { return alpha_deg; });
+  auto contradicted =
+      openCamera("sim:size=64x48,alpha=40", {}, [&] { return SceneState{.alpha_deg = alpha_deg}; });
   ASSERT_FALSE(contradicted);
   EXPECT_NE(contradicted.error().message.find("alpha=40 contradicts the capture's α 20"),
             std::string::npos)
       << contradicted.error().message;
   alpha_deg = 85.0;  // beyond the scene's range: still a contradiction, not a low sun
-  contradicted = openCamera("sim:size=64x48,alpha=40", {}, [&] { return alpha_deg; });
+  contradicted =
+      openCamera("sim:size=64x48,alpha=40", {}, [&] { return SceneState{.alpha_deg = alpha_deg}; });
   ASSERT_FALSE(contradicted);
   EXPECT_NE(contradicted.error().message.find("alpha=40 contradicts the capture's α 85"),
             std::string::npos)
@@ -164,7 +211,8 @@ TEST(SimCamera, AnAlphaInItsUriIsKeptAndMayNotBeContradicted) {
   // Opened before α is known, the URI's α is kept, and every bracket checks it: a stack must
   // never record one α and show another.
   alpha_deg.reset();
-  auto fixed = openCamera("sim:size=64x48,alpha=40", {}, [&] { return alpha_deg; });
+  auto fixed =
+      openCamera("sim:size=64x48,alpha=40", {}, [&] { return SceneState{.alpha_deg = alpha_deg}; });
   ASSERT_TRUE(fixed) << fixed.error().message;
   const std::vector<ExposureRequest> one{{1000, 0}};
   ASSERT_TRUE((*fixed)->capture(one));

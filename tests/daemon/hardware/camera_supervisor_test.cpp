@@ -18,7 +18,7 @@ TEST(CameraSupervisor, BackoffDoublesToItsCapAndSuccessClearsTheCount) {
   CameraSupervisor supervisor(
       {.camera_max_failures = 4, .camera_backoff = 2s, .camera_backoff_max = 10s},
       [&](std::string_view, const capture::CameraOptions&,
-          const capture::SceneAlphaSource&) -> Result<std::unique_ptr<capture::Camera>> {
+          const capture::SceneSource&) -> Result<std::unique_ptr<capture::Camera>> {
         ++opens;
         return hardwareError("absent");
       },

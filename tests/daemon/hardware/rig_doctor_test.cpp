@@ -91,7 +91,7 @@ TEST_F(RigDoctor, TheTestFrameIsTakenWithinTheCamerasGainRange) {
   DoctorOptions doctor = options();
   doctor.open_camera =
       [](std::string_view, const capture::CameraOptions&,
-         const capture::SceneAlphaSource&) -> Result<std::unique_ptr<capture::Camera>> {
+         const capture::SceneSource&) -> Result<std::unique_ptr<capture::Camera>> {
     return std::make_unique<testing::CountingCamera>(capture::CameraLimits{
         .min_exposure_us = 10, .max_exposure_us = 1e6, .min_gain_db = 1.5, .max_gain_db = 24});
   };
@@ -103,7 +103,7 @@ TEST_F(RigDoctor, AFailingCameraIsNamedInItsCheck) {
   DoctorOptions doctor = options();
   doctor.open_camera =
       [](std::string_view, const capture::CameraOptions&,
-         const capture::SceneAlphaSource&) -> Result<std::unique_ptr<capture::Camera>> {
+         const capture::SceneSource&) -> Result<std::unique_ptr<capture::Camera>> {
     return std::make_unique<testing::CountingCamera>(
         capture::CameraLimits{.min_exposure_us = 10, .max_exposure_us = 1e6},
         testing::CountingCamera::Answer::kError);
@@ -128,7 +128,7 @@ TEST_F(RigDoctor, TheCameraIsLeftAloneWhileGlarecamdRuns) {
   bool opened = false;
   doctor.open_camera =
       [&](std::string_view, const capture::CameraOptions&,
-          const capture::SceneAlphaSource&) -> Result<std::unique_ptr<capture::Camera>> {
+          const capture::SceneSource&) -> Result<std::unique_ptr<capture::Camera>> {
     opened = true;
     return hardwareError("must not be opened");
   };

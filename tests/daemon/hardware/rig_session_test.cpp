@@ -10,6 +10,7 @@
 
 #include "daemon/daemon_config.h"
 #include "daemon/daemon_fixture.h"
+#include "sun/clear_sky.h"
 #include "support/test_support.h"
 
 namespace glarecam::daemon {
@@ -58,6 +59,33 @@ TEST(RigSession, MeasuresAlphaFromTheConfigsRig) {
   ASSERT_TRUE(session.lastGeometry());
   EXPECT_EQ(session.lastGeometry()->alpha_deg, geometry->alpha_deg);
   EXPECT_EQ(session.sceneAlphaDeg(), geometry->alpha_deg);
+}
+
+// A simulated camera's scene under the sun is lit by the clear-sky sun of the site at the hour
+// the geometry was measured; a lab lamp gives no such value (its E is the operator's).
+TEST(RigSession, TheScenesSunIsTheClearSkySunOfTheSiteThen) {
+  TempDir dir;
+  RigSession lab = labSession(labConfig(dir.path()));
+  ASSERT_TRUE(lab.measure(utcNow(), std::nullopt));
+  EXPECT_TRUE(lab.sceneState().alpha_deg);
+  EXPECT_FALSE(lab.sceneState().source_illuminance_lx);
+  TempDir outdoors;
+  const Config config = labConfig(outdoors.path(), {.site = true});
+  RigSession session = labSession(config);
+  EXPECT_FALSE(session.sceneState().source_illuminance_lx);  // nothing measured yet
+  // 2026-06-21 11:30 UTC at 48° N 7.85° E: the sun near its highest.
+  const UtcTime noon = std::chrono::sys_days{std::chrono::year{2026} / 6 / 21} +
+                       std::chrono::hours{11} + std::chrono::minutes{30};
+  const auto geometry = session.measure(noon, std::nullopt);
+  ASSERT_TRUE(geometry) << geometry.error().message;
+  const capture::SceneState state = session.sceneState();
+  EXPECT_EQ(state.alpha_deg, geometry->alpha_deg);
+  const auto sky = sun::clearSkySource(noon, *config.rig.site);
+  ASSERT_TRUE(sky) << sky.error().message;
+  ASSERT_TRUE(state.source_illuminance_lx);
+  EXPECT_EQ(*state.source_illuminance_lx, sky->illuminance_lx);
+  // A midsummer noon sun at 65° elevation: near the 100 klx reference (IES RP-21 gives ~100 klx).
+  EXPECT_NEAR(*state.source_illuminance_lx, 100'000, 8'000);
 }
 
 TEST(RigSession, AnImplausibleTiltIsAFaultNeverAnAlpha) {

@@ -422,10 +422,19 @@ Result<bool> applyGivenAlpha(Stack& stack, const std::optional<double>& alpha_de
   return true;
 }
 
-// The stack's source illuminance: --source-illuminance, else the manifest's, else none.
-std::optional<SourceIlluminance> sourceIlluminance(const Stack& stack,
-                                                   const ProcessOptions& options) {
+// The stack's source illuminance: --source-illuminance, else the manifest's, else the estimate
+// (clear sky) when asked for, else none.
+Result<std::optional<SourceIlluminance>> sourceIlluminance(const Stack& stack,
+                                                           const ProcessOptions& options) {
   const std::optional<SourceIlluminance>& recorded = stack.manifest.source_illuminance;
+  if (!options.source_illuminance && !recorded && options.estimate_source) {
+    auto estimate = options.estimate_source(stack.manifest);
+    if (!estimate)
+      return badInput(fmt::format("{}: {}", stack.directory.string(), estimate.error().message));
+    spdlog::info("{}: no source illuminance recorded; the clear-sky estimate {}",
+                 stack.directory.string(), describe(*estimate));
+    return std::optional(*estimate);
+  }
   if (!options.source_illuminance) return recorded;
   if (recorded && recorded->illuminance_lx != options.source_illuminance->illuminance_lx)
     spdlog::warn("{}: records a source illuminance of {}; --source-illuminance {} replaces it",
@@ -492,11 +501,11 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                                                   options.calibration_use, warnings));
   for (const std::string& warning : warnings) spdlog::warn("{}", warning);
   warnAboutPrincipalPoint(stack, calibrationSource(stack, options));
+  ResultIlluminance illuminance;
+  GLARECAM_ASSIGN(illuminance.source, sourceIlluminance(stack, options));
   progress.advance("read");
   MergedStack merged_stack;
   GLARECAM_ASSIGN(merged_stack, mergeStack(stack, options));
-  ResultIlluminance illuminance;
-  illuminance.source = sourceIlluminance(stack, options);
   if (illuminance.source) {
     illuminance.reference_lx = options.reference_illuminance_lx;
     referLuminance(merged_stack.image, illuminance.factor(), options.threads);

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -36,6 +37,10 @@ struct ProcessOptions {
   // manifest's `source`, with a warning when that records another value. Without either the
   // result is unreferred.
   std::optional<SourceIlluminance> source_illuminance = std::nullopt;
+  // The estimate for a stack that records no source and is given none (`--source-illuminance
+  // clear-sky`: sun::clearSkySourceOfStack), origin clear_sky; its error (no sun recorded) is
+  // the process's.
+  std::function<Result<SourceIlluminance>(const StackManifest&)> estimate_source = nullptr;
   // E_ref: the luminance image is referred to it (L · E_ref / E) before the glare analysis.
   double reference_illuminance_lx = kDefaultReferenceIlluminanceLx;
   unsigned threads = 0;  // 0: all cores

@@ -42,27 +42,53 @@ std::optional<ClearSkyIlluminance> clearSkyIlluminance(double elevation_deg, int
   return sky;
 }
 
-Result<SourceIlluminance> clearSkySource(std::chrono::sys_time<std::chrono::microseconds> utc,
-                                         const SiteLocation& site) {
-  SolarPosition sun;
-  GLARECAM_ASSIGN(sun, solarPosition(utc, site));
+namespace {
+
+int dayOfYear(UtcTime utc) {
   const auto day = std::chrono::floor<std::chrono::days>(utc);
   const std::chrono::year_month_day date{day};
-  const int day_of_year =
-      static_cast<int>((day - std::chrono::sys_days{date.year() / 1 / 1}).count()) + 1;
+  return static_cast<int>((day - std::chrono::sys_days{date.year() / 1 / 1}).count()) + 1;
+}
+
+// The estimate as a source; `where` begins the message when the sun is down.
+Result<SourceIlluminance> clearSkySourceAt(double elevation_deg, UtcTime utc, double altitude_m,
+                                           const std::string& where) {
   const std::optional<ClearSkyIlluminance> sky =
-      clearSkyIlluminance(sun.elevation_deg, day_of_year, site.altitude_m);
+      clearSkyIlluminance(elevation_deg, dayOfYear(utc), altitude_m);
   if (!sky)
     return badInput(fmt::format(
-        "the sun is {:.1f}° below the horizon at {}: no direct light for a clear-sky estimate",
-        -sun.elevation_deg, formatIsoSeconds(utc)));
-  SourceIlluminance source;
-  source.illuminance_lx = sky->illuminance_lx;
-  source.illuminance_u_lx = sky->illuminance_u_lx;
-  source.origin = IlluminanceOrigin::kClearSky;
-  source.instrument = fmt::format("clear sky (IES RP-21, c = {}), sun at {:.1f}°",
-                                  kIesClearSkyExtinction, sun.elevation_deg);
-  return source;
+        "{}: the sun is {:.1f}° below the horizon at {}: no direct light for a clear-sky estimate",
+        where, -elevation_deg, formatIsoSeconds(utc)));
+  return SourceIlluminance{
+      .illuminance_lx = sky->illuminance_lx,
+      .illuminance_u_lx = sky->illuminance_u_lx,
+      .origin = IlluminanceOrigin::kClearSky,
+      .instrument = fmt::format("clear sky (IES RP-21, c = {}), sun at {:.1f}°",
+                                kIesClearSkyExtinction, elevation_deg)};
+}
+
+}  // namespace
+
+Result<SourceIlluminance> clearSkySource(UtcTime utc, const SiteLocation& site) {
+  SolarPosition sun;
+  GLARECAM_ASSIGN(sun, solarPosition(utc, site));
+  return clearSkySourceAt(sun.elevation_deg, utc, site.altitude_m, "clear sky");
+}
+
+Result<SourceIlluminance> clearSkySourceOfStack(const StackManifest& manifest) {
+  const std::string stack = manifest.id.value_or("the stack");
+  const nlohmann::json* geometry =
+      manifest.source.contains("geometry") ? &manifest.source["geometry"] : nullptr;
+  if (!geometry || !geometry->is_object() || !geometry->contains("sun_elevation_deg") ||
+      !(*geometry)["sun_elevation_deg"].is_number() || !geometry->contains("time") ||
+      !(*geometry)["time"].is_string())
+    return badInput(fmt::format(
+        "{}: its geometry records no sun (a lab lamp, or no [site]): no clear-sky estimate; give "
+        "--source-illuminance LX",
+        stack));
+  UtcTime time;
+  GLARECAM_ASSIGN(time, parseIsoTime((*geometry)["time"].get<std::string>()));
+  return clearSkySourceAt((*geometry)["sun_elevation_deg"].get<double>(), time, 0.0, stack);
 }
 
 }  // namespace glarecam::sun

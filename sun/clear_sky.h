@@ -24,6 +24,8 @@
 
 #include "core/error.h"
 #include "core/source_illuminance.h"
+#include "core/stack_manifest.h"
+#include "core/time.h"
 #include "sun/solar_position.h"
 
 namespace glarecam::sun {
@@ -58,5 +60,12 @@ std::optional<ClearSkyIlluminance> clearSkyIlluminance(double elevation_deg, int
 // direct light to refer to) or the site or instant is invalid.
 Result<SourceIlluminance> clearSkySource(std::chrono::sys_time<std::chrono::microseconds> utc,
                                          const SiteLocation& site);
+
+// The clear-sky estimate for a recorded stack, from the sun its rig measured: the manifest's
+// geometry block (`time`, `sun_elevation_deg`, docs/stack-format.md), at sea level (the geometry
+// does not record the site's altitude: at 1000 m the estimate would be 2.5 % higher at a high
+// sun, far inside its 15 %). kBadInput naming the stack when the geometry records no sun (a lab
+// lamp, a stack of another tool, a rig without a [site]) or a sun below the horizon.
+Result<SourceIlluminance> clearSkySourceOfStack(const StackManifest& manifest);
 
 }  // namespace glarecam::sun

@@ -11,9 +11,12 @@
 #include "apps/glarecam/option_parsing.h"
 #include "core/json.h"
 #include "pipeline/process_stack.h"
+#include "sun/clear_sky.h"
 
 namespace glarecam::apps {
 namespace {
+
+constexpr const char* kClearSkyWord = "clear-sky";
 
 struct ProcessArgs {
   std::string stack;
@@ -35,8 +38,13 @@ Status runProcess(const ProcessArgs& args) {
   options.threads = args.threads;
   GLARECAM_ASSIGN(options.threshold_cd_m2, parseOptionalNumber(args.threshold, "--threshold"));
   GLARECAM_ASSIGN(options.alpha_deg, parseOptionalNumber(args.alpha, "--alpha"));
-  GLARECAM_ASSIGN(options.source_illuminance,
-                  parseOptionalSourceIlluminance(args.source_illuminance, "--source-illuminance"));
+  if (args.source_illuminance == kClearSkyWord) {
+    options.estimate_source = sun::clearSkySourceOfStack;
+  } else {
+    GLARECAM_ASSIGN(
+        options.source_illuminance,
+        parseOptionalSourceIlluminance(args.source_illuminance, "--source-illuminance"));
+  }
   GLARECAM_ASSIGN(options.reference_illuminance_lx,
                   parseReferenceIlluminance(args.reference_illuminance, "--reference-illuminance"));
   if (args.thresholds) {
@@ -77,8 +85,11 @@ void addProcessCommand(CLI::App& app, Action& action) {
                   "angle of incidence α in degrees for a stack that records none (recorded in "
                   "result.json as given); one that contradicts the stack's is refused");
   sub->add_option("--source-illuminance", args->source_illuminance,
-                  std::string(kSourceIlluminanceHelp) + "; replaces the stack's own `source`")
-      ->option_text("LX[±U]");
+                  std::string(kSourceIlluminanceHelp) +
+                      "; replaces the stack's own `source`. `clear-sky`: for a stack that records "
+                      "no source, the clear-sky estimate for the sun its rig measured (origin "
+                      "clear_sky, 15-30 % uncertain)")
+      ->option_text("LX[±U]|clear-sky");
   sub->add_option("--reference-illuminance", args->reference_illuminance, kReferenceIlluminanceHelp)
       ->option_text("LX");
   sub->add_option("--threshold", args->threshold,

@@ -119,6 +119,52 @@ done
 check "thousands separator" 2 "$GLARECAM" process --no-progress --out "$WORK/r4" --threshold 30,000 "$WORK/s"
 expect "thousands separator error says one number" one_line_naming "expected one number"
 expect "nothing written on bad thresholds" test ! -e "$WORK/r4"
+# The source illuminance (docs/process.md, "Referred and unreferred"): a bad value is refused
+# with exit 2 naming where it came from, before anything is written.
+for bad in -5 0 nan inf 1e400 150001 abc "90000±90000" "90000±-5"; do
+  check "bad --source-illuminance $bad" 2 "$GLARECAM" process --no-progress --out "$WORK/r6" \
+    --source-illuminance="$bad" "$WORK/s"
+  expect "bad --source-illuminance $bad is one line naming the option" one_line_naming "--source-illuminance"
+  check "simulate: bad --source-illuminance $bad" 2 "$GLARECAM" simulate --out "$WORK/r6s" \
+    --size 64x48 --source-illuminance="$bad"
+  expect "simulate: bad --source-illuminance $bad names the option" one_line_naming "--source-illuminance"
+  check "capture: bad --source-illuminance $bad" 2 "$GLARECAM" capture --camera sim:size=64x48 \
+    --alpha 40 --out "$WORK/r6c" --source-illuminance="$bad"
+  expect "capture: bad --source-illuminance $bad names the option" one_line_naming "--source-illuminance"
+done
+for bad in 0 -1 nan 2e5; do
+  check "bad --reference-illuminance $bad" 2 "$GLARECAM" process --no-progress --out "$WORK/r6" \
+    --reference-illuminance="$bad" "$WORK/s"
+  expect "bad --reference-illuminance $bad names the option" one_line_naming "--reference-illuminance"
+done
+expect "nothing written on a bad illuminance" test ! -e "$WORK/r6" -a ! -e "$WORK/r6s" -a ! -e "$WORK/r6c"
+# A stack recorded without a source (an older rig's): unreferred, unless a value or the clear-sky
+# estimate is given; the estimate needs the sun the rig measured, which a simulated stack has not.
+check "simulate --unreferred" 0 "$GLARECAM" simulate --out "$WORK/su" --alpha 70 --size 200x160 --fov 16 -q --unreferred
+check "process an unreferred stack" 0 "$GLARECAM" process --no-progress --json --out "$WORK/ru" "$WORK/su"
+expect "an unreferred result says so" grep -q '"status": "unreferred"' "$WORK/out"
+check "process a referred stack" 0 "$GLARECAM" process --no-progress --json --out "$WORK/ru" "$WORK/s"
+expect "a simulated stack is referred to 100 klx" grep -q '"reference_lx": 100000' "$WORK/out"
+check "process with a given source" 0 "$GLARECAM" process --no-progress --json --out "$WORK/ru" \
+  --source-illuminance 80000+-2400 "$WORK/su"
+expect "a given source is recorded as given" grep -q '"origin": "given"' "$WORK/out"
+check "clear-sky without a sun" 2 "$GLARECAM" process --no-progress --out "$WORK/ru2" \
+  --source-illuminance clear-sky "$WORK/su"
+expect "clear-sky without a sun says why" one_line_naming "records no sun"
+python3 - "$WORK/su/stack.json" <<'PY'
+import json, sys
+path = sys.argv[1]
+manifest = json.load(open(path))
+manifest["geometry"] = {
+    "source": "sun", "time": "2026-06-21T11:30:00Z", "sun_elevation_deg": 40.0,
+    "alpha_deg": 70.0, "alpha_uncertainty_deg": 0.1, "module_tilt_deg": 30.0,
+    "module_azimuth_deg": 180.0}
+json.dump(manifest, open(path, "w"))
+PY
+check "clear-sky with the rig's sun" 0 "$GLARECAM" process --no-progress --json --out "$WORK/ru" \
+  --source-illuminance clear-sky "$WORK/su"
+expect "the clear-sky estimate is marked clear_sky" grep -q '"origin": "clear_sky"' "$WORK/out"
+
 # A lens with distortion and levels whose region is the whole view or none: statuses, exit 0.
 check "simulate with distortion" 0 "$GLARECAM" simulate --out "$WORK/sd" --size 160x128 --fov 16 --distortion=-0.05 -q
 check "thresholds below the background and above the maximum" 0 "$GLARECAM" process --no-progress --json --thresholds 1000,1e12 "$WORK/sd"

@@ -81,5 +81,33 @@ TEST(ClearSky, ASourceForAnInstantAndSite) {
   EXPECT_NE(night.error().message.find("below the horizon"), std::string::npos);
 }
 
+// A recorded stack's estimate comes from the sun its rig measured (the geometry block), at sea
+// level; a stack without one (a lab lamp) or with the sun down is refused, naming the stack.
+TEST(ClearSky, AStacksEstimateIsOfTheSunItsRigMeasured) {
+  StackManifest manifest;
+  manifest.id = "20260621T113000Z-a40.0";
+  EXPECT_EQ(clearSkySourceOfStack(manifest).error().code, ErrorCode::kBadInput);
+  EXPECT_NE(clearSkySourceOfStack(manifest).error().message.find(
+                "20260621T113000Z-a40.0: its geometry records no sun"),
+            std::string::npos);
+  manifest.source["geometry"] = {{"source", "fixed"}, {"time", "2026-06-21T11:30:00Z"}};
+  EXPECT_FALSE(clearSkySourceOfStack(manifest));
+  manifest.source["geometry"] = {
+      {"source", "sun"}, {"time", "2026-06-21T11:30:00Z"}, {"sun_elevation_deg", 40.0}};
+  const auto estimate = clearSkySourceOfStack(manifest);
+  ASSERT_TRUE(estimate) << estimate.error().message;
+  const auto sky = clearSkyIlluminance(40.0, 172);  // 21 June is day 172 of 2026
+  ASSERT_TRUE(sky);
+  EXPECT_DOUBLE_EQ(estimate->illuminance_lx, sky->illuminance_lx);
+  EXPECT_DOUBLE_EQ(estimate->illuminance_u_lx, sky->illuminance_u_lx);
+  EXPECT_EQ(estimate->origin, IlluminanceOrigin::kClearSky);
+  manifest.source["geometry"]["sun_elevation_deg"] = -3.0;
+  const auto night = clearSkySourceOfStack(manifest);
+  ASSERT_FALSE(night);
+  EXPECT_NE(night.error().message.find("below the horizon"), std::string::npos);
+  manifest.source["geometry"] = {{"sun_elevation_deg", 40.0}, {"time", "yesterday"}};
+  EXPECT_EQ(clearSkySourceOfStack(manifest).error().code, ErrorCode::kBadInput);
+}
+
 }  // namespace
 }  // namespace glarecam::sun

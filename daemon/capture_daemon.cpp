@@ -396,6 +396,7 @@ Status CaptureDaemon::takeStack(CaptureTrigger trigger, const StackTimeline& tim
   if (config_.daemon.output.module != kUnnamedModule)
     settings.module = config_.daemon.output.module;
   settings.alpha_from_scene = !rig_->measuresAlpha();
+  settings.source_illuminance = rig_->config().fixed_source_illuminance;  // a lab lamp's
   const InclinometerFaults::Measured measured =
       inclinometer_.measure(*rig_, config_.daemon.faults, state_, settings, timeline.begun());
   if (measured.pause) return skip("capture paused for the inclinometer");

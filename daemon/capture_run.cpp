@@ -105,10 +105,18 @@ Status runCapture(const CaptureRunOptions& options) {
   settings.alpha_deg = options.alpha_deg;
   settings.calibration = options.calibration;
   settings.module = options.module;
+  // Given, else the lab lamp's as the config states it.
   settings.source_illuminance = options.source_illuminance;
   settings.show_progress = options.show_progress;
   std::unique_ptr<RigSession> rig;
   if (options.config_path) GLARECAM_ASSIGN(rig, openRig(options, settings));
+  if (rig) {
+    // A rig measures α and knows its source's E (a lamp the config states), or leaves them
+    // unknown: a simulated camera's scene never stands in for them.
+    settings.alpha_from_scene = !rig->measuresAlpha();
+    if (!settings.source_illuminance)
+      settings.source_illuminance = rig->config().fixed_source_illuminance;
+  }
   std::string camera_uri = options.camera_uri.value_or("");
   if (!options.camera_uri && rig && rig->config().camera) camera_uri = *rig->config().camera;
   if (camera_uri.empty())

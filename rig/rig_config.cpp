@@ -36,15 +36,30 @@ Result<std::optional<sun::SiteLocation>> readSite(const std::filesystem::path& f
   return location;
 }
 
-Result<std::optional<sun::SkyDirection>> readSource(const std::filesystem::path& file,
-                                                    const toml::table* table) {
-  if (!table) return std::nullopt;
+// [source]: the lamp's direction, and its illuminance at the module when measured ("92500±2800",
+// or a number of lx).
+Status readSource(const std::filesystem::path& file, const toml::table* table, RigConfig& rig) {
+  if (!table) return {};
   TableReader source(file, *table, "source");
   sun::SkyDirection direction;
   GLARECAM_ASSIGN(direction.elevation_deg, source.requiredNumber("elevation_deg", -90, 90));
   GLARECAM_ASSIGN(direction.azimuth_deg, source.requiredNumber("azimuth_deg", 0, 360));
-  GLARECAM_CHECK(source.checkNoUnknownKeys());
-  return direction;
+  rig.fixed_source = direction;
+  if (const toml::node* node = source.node("illuminance")) {
+    std::string text;
+    if (const auto number = node->value<double>()) {
+      text = fmt::format("{}", *number);
+    } else if (const auto string = node->value<std::string>()) {
+      text = *string;
+    } else {
+      return source.error(*node, fmt::format("{} must be a number of lx or \"LX±U\"",
+                                             source.qualified("illuminance")));
+    }
+    auto illuminance = parseGivenIlluminance(text, source.qualified("illuminance"));
+    if (!illuminance) return source.error(*node, illuminance.error().message);
+    rig.fixed_source_illuminance = *illuminance;
+  }
+  return source.checkNoUnknownKeys();
 }
 
 Result<std::optional<InclinometerConfig>> readInclinometer(const std::filesystem::path& file,
@@ -126,7 +141,7 @@ Result<RigConfig> readRigSections(const std::filesystem::path& path, const toml:
   GLARECAM_CHECK(top.checkNoUnknownKeys());
   if (calibration) rig.calibration = path.parent_path() / *calibration;
   GLARECAM_ASSIGN(rig.site, readSite(path, root["site"].as_table()));
-  GLARECAM_ASSIGN(rig.fixed_source, readSource(path, root["source"].as_table()));
+  GLARECAM_CHECK(readSource(path, root["source"].as_table(), rig));
   GLARECAM_ASSIGN(rig.inclinometer, readInclinometer(path, root["inclinometer"].as_table()));
   GLARECAM_CHECK(readModule(path, root["module"].as_table(), rig));
   GLARECAM_ASSIGN(rig.gpio, readGpio(path, root["gpio"].as_table()));

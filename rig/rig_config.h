@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/source_illuminance.h"
 #include "core/stack_manifest.h"
 #include "rig/gpio/rig_io.h"
 #include "rig/inclinometer/tilt.h"
@@ -41,6 +42,9 @@ struct RigConfig {
 
   std::optional<sun::SiteLocation> site;          // outdoors: α from the sun's position
   std::optional<sun::SkyDirection> fixed_source;  // lab: α against a lamp that does not move
+  // [source] illuminance: the lamp's direct normal illuminance at the module, measured once with
+  // an illuminance meter (origin given), recorded as every stack's source.
+  std::optional<SourceIlluminance> fixed_source_illuminance;
 
   // The module's facing azimuth, and its tilt when no inclinometer measures it.
   std::optional<double> module_azimuth_deg;

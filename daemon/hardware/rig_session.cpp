@@ -66,7 +66,9 @@ std::optional<double> RigSession::sceneAlphaDeg() const {
 
 capture::SceneState RigSession::sceneState() const {
   capture::SceneState state{.alpha_deg = sceneAlphaDeg()};
-  if (last_geometry_ && last_geometry_->sun && config_.site) {
+  if (config_.fixed_source_illuminance) {
+    state.source_illuminance_lx = config_.fixed_source_illuminance->illuminance_lx;
+  } else if (last_geometry_ && last_geometry_->sun && config_.site) {
     if (const auto sky = sun::clearSkySource(last_geometry_->time, *config_.site))
       state.source_illuminance_lx = sky->illuminance_lx;
   }

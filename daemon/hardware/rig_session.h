@@ -76,8 +76,9 @@ class RigSession final : public capture::SeriesRig {
   const std::optional<rig::RigGeometry>& lastGeometry() const { return last_geometry_; }
   // The α of the last geometry measured, for a simulated camera's scene (nullopt: none yet).
   std::optional<double> sceneAlphaDeg() const;
-  // That α, and the clear-sky direct normal illuminance of the sun at the site then (none for a
-  // lab source, or a sun below the horizon): what a simulated camera's scene shows.
+  // That α, and the illuminance of its source: the lab lamp's as the config gives it, or the
+  // clear-sky direct normal illuminance of the sun at the site then (none for a lamp the config
+  // gives none, or a sun below the horizon): what a simulated camera's scene shows.
   capture::SceneState sceneState() const;
   // Records a measurement in `settings`: α and the geometry block, or a block that says why α is
   // unknown.

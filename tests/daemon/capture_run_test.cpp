@@ -100,6 +100,7 @@ TEST(CaptureRun, TheRigsConfigGivesTheCameraAndAlpha) {
   EXPECT_NEAR(*read->manifest.alpha_deg, 40.0, 0.05);  // the lab rig's
   EXPECT_EQ(read->manifest.source["camera"]["backend"], "sim");
   EXPECT_EQ(read->manifest.source["geometry"]["inclinometer"]["uri"], "sim:50");
+  EXPECT_FALSE(read->manifest.source_illuminance);  // a lamp the config states no E for
 
   options.alpha_deg = 40;  // the config's [source] gives α already
   const Status twice = runCapture(options);
@@ -133,6 +134,43 @@ TEST(CaptureRun, ACameraThatKnowsItsLensIsNotToldAnother) {
   EXPECT_EQ(refused.error().message,
             "capture: sim:size=64x48 knows its own lens and filter; --f-number and "
             "--nd-transmission are for real cameras");
+}
+
+// A lab lamp whose illuminance the config states ([source] illuminance) lights every stack of the
+// series: recorded as the manifest's source (origin given), and the simulated scene lit by it;
+// --source-illuminance replaces it.
+TEST(CaptureRun, ALabLampsStatedIlluminanceIsEveryStacksSource) {
+  TempDir dir;
+  std::string toml = rigToml({});
+  const std::string lamp = "[source]\nelevation_deg = 0\nazimuth_deg = 180\n";
+  ASSERT_NE(toml.find(lamp), std::string::npos);
+  toml.replace(toml.find(lamp), lamp.size(), lamp + "illuminance = \"61000±1500\"\n");
+  testing::writeText(dir / "glarecam.toml", toml);
+  CaptureRunOptions options = quietRun(dir / "out");
+  options.config_path = dir / "glarecam.toml";
+  ASSERT_TRUE(runCapture(options));
+  auto stacks = stacksIn(dir / "out");
+  ASSERT_EQ(stacks.size(), 1u);
+  auto read = readStack(stacks.front());
+  ASSERT_TRUE(read) << read.error().message;
+  ASSERT_TRUE(read->manifest.source_illuminance);
+  EXPECT_EQ(read->manifest.source_illuminance->illuminance_lx, 61'000);
+  EXPECT_EQ(read->manifest.source_illuminance->illuminance_u_lx, 1'500);
+  EXPECT_EQ(read->manifest.source_illuminance->origin, IlluminanceOrigin::kGiven);
+  const auto truth = nlohmann::json::parse(testing::readText(stacks.front() / "truth.json"));
+  EXPECT_EQ(truth["source_illuminance_lx"], 61'000.0);  // the scene as lit
+
+  options.series.out = dir / "given";
+  options.source_illuminance = SourceIlluminance{.illuminance_lx = 75'000};
+  ASSERT_TRUE(runCapture(options));
+  stacks = stacksIn(dir / "given");
+  ASSERT_EQ(stacks.size(), 1u);
+  read = readStack(stacks.front());
+  ASSERT_TRUE(read && read->manifest.source_illuminance);
+  EXPECT_EQ(read->manifest.source_illuminance->illuminance_lx, 75'000);
+  EXPECT_EQ(nlohmann::json::parse(
+                testing::readText(stacks.front() / "truth.json"))["source_illuminance_lx"],
+            75'000.0);
 }
 
 }  // namespace

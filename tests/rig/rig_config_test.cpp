@@ -89,6 +89,37 @@ TEST(RigConfig, BadConfigsNameTheFileLineAndProblem) {
   EXPECT_NE(missing.error().message.find("/nonexistent/rig.toml: no such file"), std::string::npos);
 }
 
+// A lab lamp's illuminance at the module, measured once with an illuminance meter: a number of
+// lx or "LX±U", origin given; a bad one names the file, line and key.
+TEST(RigConfig, ALabLampStatesItsIlluminance) {
+  const std::string lamp = "[source]\nelevation_deg = 0\nazimuth_deg = 180\n";
+  const std::string rest = "[module]\nazimuth_deg = 180\ntilt_deg = 50\n";
+  TempDir dir;
+  auto config =
+      readRigConfig(writeText(dir, "rig.toml", lamp + "illuminance = \"92500±2800\"\n" + rest));
+  ASSERT_TRUE(config) << config.error().message;
+  ASSERT_TRUE(config->fixed_source_illuminance);
+  EXPECT_EQ(config->fixed_source_illuminance->illuminance_lx, 92'500);
+  EXPECT_EQ(config->fixed_source_illuminance->illuminance_u_lx, 2'800);
+  EXPECT_EQ(config->fixed_source_illuminance->origin, IlluminanceOrigin::kGiven);
+  config = readRigConfig(writeText(dir, "rig.toml", lamp + "illuminance = 40000\n" + rest));
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_EQ(config->fixed_source_illuminance->illuminance_lx, 40'000);
+  config = readRigConfig(writeText(dir, "rig.toml", lamp + rest));
+  ASSERT_TRUE(config) << config.error().message;
+  EXPECT_FALSE(config->fixed_source_illuminance);
+  for (const char* bad : {"0", "-3", "nan", "2e5", "\"bright\"", "true", "\"9e4±9e4\""}) {
+    const auto refused =
+        readRigConfig(writeText(dir, "rig.toml", lamp + "illuminance = " + bad + "\n" + rest));
+    ASSERT_FALSE(refused) << bad;
+    EXPECT_EQ(refused.error().code, ErrorCode::kBadInput);
+    EXPECT_NE(refused.error().message.find("rig.toml:4: "), std::string::npos)
+        << refused.error().message;
+    EXPECT_NE(refused.error().message.find("source.illuminance"), std::string::npos)
+        << refused.error().message;
+  }
+}
+
 TEST(RigConfig, ReadsTheGpioLines) {
   TempDir dir;
   const auto config = readRigConfig(writeText(dir, "rig.toml", R"([gpio]

@@ -144,6 +144,52 @@ fi
 echo "glarecamd:       $daemon_stacks stacks in $OUT/daemon/stacks/, results in $OUT/daemon/results/,"
 echo "                 the day's sheet $day/datasheet.pdf (sweep.csv, fits.json beside it)"
 
+# The rig's morning beside the tilting table. The table's lamp lit every stack alike (80 klx,
+# stated in its config); the morning's sun brightens with its elevation, and the sun's elevation
+# and α move together over a morning: unreferred, the day's sheet would mix the module's
+# α-dependence with the atmosphere's. Referred (glarecamd reads its instrument with every bracket,
+# docs/rig.md), the two sheets must agree within their stated uncertainties (2 σ combined).
+awk -F, -v table="$sweep_csv" '
+  function at(name) { return $(column[FILENAME, name]) }
+  function si(v) { return v >= 1e6 ? sprintf("%.3gM", v / 1e6) : sprintf("%.3gk", v / 1e3) }
+  FNR == 1 { for (i = 1; i <= NF; ++i) column[FILENAME, $i] = i; next }
+  FILENAME == table { a = int(at("alpha_deg") + 0.5); lmax[a] = at("lmax_cd_m2")
+                      u[a] = at("lmax_uncertainty_cd_m2"); next }
+  {
+    a = int(at("alpha_deg") + 0.5)
+    if (!(a in lmax)) next
+    if (!header++)
+      printf "\n%-5s  %-16s  %-17s  %-24s  %-18s\n", "α (°)", "E (klx, origin)",
+             "table Lmax", "the morning, referred", "unreferred"
+    origin = at("source_origin"); e = at("source_illuminance_lx"); ref = at("reference_illuminance_lx")
+    l = at("lmax_cd_m2"); ul = at("lmax_uncertainty_cd_m2")
+    if (origin == "unreferred") {
+      printf "%5d  %-16s  %7s ± %-6s  %-24s  %7s (%+.0f %%)\n", a, "unreferred", si(lmax[a]),
+             si(u[a]), "-", si(l), 100 * (l / lmax[a] - 1)
+      ++unreferred; next
+    }
+    sigma = sqrt(u[a] ^ 2 + ul ^ 2); z = (l - lmax[a]) / sigma
+    measured = l * e / ref
+    printf "%5d  %5.1f %-10s  %7s ± %-6s  %7s ± %-6s (%+.1f σ)  %7s (%+.0f %%)\n", a, e / 1000,
+           origin, si(lmax[a]), si(u[a]), si(l), si(ul), z, si(measured),
+           100 * (measured / lmax[a] - 1)
+    if (z > 2 || z < -2) ++disagree
+    worst = (measured / lmax[a] - 1) ^ 2 > worst ^ 2 ? measured / lmax[a] - 1 : worst
+  }
+  END {
+    if (unreferred) {
+      printf "the morning: %d stacks unreferred (the rig read no instrument): its sheet is " \
+             "marked UNREFERRED\n", unreferred
+      exit 0
+    }
+    printf "the morning referred agrees with the table at every α within 2 σ (%d outside); " \
+           "unreferred it would have been off by up to %+.0f %%\n", disagree, 100 * worst
+    if (disagree) exit 1
+  }' "$sweep_csv" "$day/sweep.csv" || {
+  echo "demo: the rig's referred morning does not agree with the tilting table" >&2
+  exit 1
+}
+
 # The next morning, retention: the simulated rig keeps a stack a day and its result two
 # ([output] keep_stacks_days, keep_results_days, within max_use_gib 0.6), so the next day
 # glarecamd deletes the first morning's processed stacks; their results and the day's sheet stay.

@@ -178,8 +178,8 @@ awk -F, -v table="$sweep_csv" '
   }
   END {
     if (unreferred) {
-      printf "the morning: %d stacks unreferred (the rig read no instrument): its sheet is " \
-             "marked UNREFERRED\n", unreferred
+      printf "the morning: %d stacks unreferred (the rig read no instrument): its sheet " \
+             "says so\n", unreferred
       exit 0
     }
     printf "the morning referred agrees with the table at every α within 2 σ (%d outside); " \

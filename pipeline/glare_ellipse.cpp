@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 #include "core/angles.h"
 #include "core/neighbourhood.h"
@@ -268,6 +269,24 @@ PixelBox contourBox(const RegionContour& contour, int margin) {
   return {box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin};
 }
 
+// The part `box` (clipped to the image) of a merged image.
+calibration::MergedImage cropMerged(const calibration::MergedImage& merged, const PixelBox& box) {
+  const auto crop = [&](const auto& image) {
+    using Pixel = std::remove_cvref_t<decltype(*image.data())>;
+    Image<Pixel> out = Image<Pixel>::uninitialized(box.width(), box.height());
+    for (int y = 0; y < box.height(); ++y) {
+      const auto row = image.row(box.y0 + y);
+      std::copy_n(row.begin() + box.x0, box.width(), out.row(y).begin());
+    }
+    return out;
+  };
+  return {crop(merged.luminance_cd_m2), crop(merged.relative_uncertainty),
+          crop(merged.valid_frames), crop(merged.bound)};
+}
+
+// Crops smaller than this fraction of the image are worth their copy.
+constexpr double kMaxCropFraction = 0.5;
+
 }  // namespace
 
 const char* toString(EllipseStatus status) {
@@ -300,6 +319,57 @@ std::optional<EllipseStatus> ellipseStatusFromString(std::string_view text) {
     if (text == toString(status)) return status;
   }
   return std::nullopt;
+}
+
+std::vector<EllipseMeasurement> measureGlareEllipses(const calibration::MergedImage& merged,
+                                                     const calibration::CameraModel& camera,
+                                                     const LuminancePeak& peak,
+                                                     const std::vector<EllipseLevel>& levels) {
+  const FloatImage& image = merged.luminance_cd_m2;
+  const auto measureAll = [&](const calibration::MergedImage& on,
+                              const calibration::CameraModel& on_camera,
+                              const LuminancePeak& on_peak, int dx, int dy) {
+    std::vector<EllipseMeasurement> out;
+    out.reserve(levels.size());
+    for (const EllipseLevel& level : levels) {
+      out.push_back(measureGlareEllipse(on, on_camera, on_peak, level.level_cd_m2,
+                                        level.relative_uncertainty));
+      if (!out.back().ellipse || (dx == 0 && dy == 0)) continue;
+      GlareEllipse& e = *out.back().ellipse;
+      e.centre_px = {e.centre_px.x + dx, e.centre_px.y + dy};
+      for (PixelPoint& p : e.contour_px) p = {p.x + dx, p.y + dy};
+    }
+    return out;
+  };
+  // The lowest level that floods anything: levels above the maximum end before any flood.
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const EllipseLevel& level : levels) {
+    if (std::isfinite(level.level_cd_m2) && level.level_cd_m2 > 0 &&
+        level.level_cd_m2 <= peak.value_cd_m2)
+      lowest = std::min(lowest, level.level_cd_m2);
+  }
+  if (image.empty() || levels.size() < 2 || !std::isfinite(lowest))
+    return measureAll(merged, camera, peak, 0, 0);
+  const int px = std::clamp(static_cast<int>(std::lround(peak.x_px)), 0, image.width() - 1);
+  const int py = std::clamp(static_cast<int>(std::lround(peak.y_px)), 0, image.height() - 1);
+  PixelBox box{px, py, px + 1, py + 1};
+  for (const RegionExtent& r : findRegions(image, lowest, kMinRegionPixels))
+    box = {std::min(box.x0, r.x0), std::min(box.y0, r.y0), std::max(box.x1, r.x1 + 1),
+           std::max(box.y1, r.y1 + 1)};
+  box = {std::max(0, box.x0 - kLevelCropMarginPx), std::max(0, box.y0 - kLevelCropMarginPx),
+         std::min(image.width(), box.x1 + kLevelCropMarginPx),
+         std::min(image.height(), box.y1 + kLevelCropMarginPx)};
+  const double fraction = static_cast<double>(box.width()) * box.height() /
+                          (static_cast<double>(image.width()) * image.height());
+  if (fraction > kMaxCropFraction) return measureAll(merged, camera, peak, 0, 0);
+  Intrinsics shifted = camera.intrinsics();
+  shifted.cx -= box.x0;
+  shifted.cy -= box.y0;
+  LuminancePeak shifted_peak = peak;
+  shifted_peak.x_px -= box.x0;
+  shifted_peak.y_px -= box.y0;
+  return measureAll(cropMerged(merged, box), calibration::CameraModel(shifted), shifted_peak,
+                    box.x0, box.y0);
 }
 
 double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg) {

@@ -305,7 +305,8 @@ std::optional<RegionContour> traceRegionContour(const FloatImage& luminance, dou
   return contour;
 }
 
-int countRegions(const FloatImage& luminance, double level, std::size_t min_pixels) {
+std::vector<RegionExtent> findRegions(const FloatImage& luminance, double level,
+                                      std::size_t min_pixels) {
   // Rows holding any pixel at or above the level, found on all cores: on a glare image they
   // are few, and only they are labelled.
   std::vector<std::uint8_t> bright_row(static_cast<std::size_t>(luminance.height()), 0);
@@ -317,18 +318,22 @@ int countRegions(const FloatImage& luminance, double level, std::size_t min_pixe
     }
   });
   ByteImage mask(luminance.width(), luminance.height());
-  int regions = 0;
+  std::vector<RegionExtent> regions;
   for (int y = 0; y < luminance.height(); ++y) {
     if (!bright_row[static_cast<std::size_t>(y)]) continue;
     const auto row = luminance.row(y);
     for (int x = 0; x < luminance.width(); ++x) {
       if (!reaches(row[static_cast<std::size_t>(x)], level) || mask.at(x, y)) continue;
       std::size_t count = 0;
-      floodRegion(luminance, level, {x, y}, mask, count);
-      if (count >= min_pixels) ++regions;
+      const RegionBox box = floodRegion(luminance, level, {x, y}, mask, count);
+      if (count >= min_pixels) regions.push_back({box.x0, box.y0, box.x1, box.y1, count});
     }
   }
   return regions;
+}
+
+int countRegions(const FloatImage& luminance, double level, std::size_t min_pixels) {
+  return static_cast<int>(findRegions(luminance, level, min_pixels).size());
 }
 
 }  // namespace glarecam::pipeline

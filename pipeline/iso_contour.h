@@ -60,6 +60,18 @@ struct RegionContour {
 std::optional<RegionContour> traceRegionContour(const FloatImage& luminance, double level,
                                                 PixelIndex seed);
 
+// An 8-connected region at or above a level: its pixel box (inclusive) and pixel count.
+struct RegionExtent {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  std::size_t pixels = 0;
+};
+
+// The 8-connected regions at or above `level` that have at least `min_pixels` pixels, in scan
+// order. Every region at a higher level lies inside one of the regions at a lower level (or in
+// one smaller than `min_pixels`, then itself smaller): what lets several levels share one scan.
+std::vector<RegionExtent> findRegions(const FloatImage& luminance, double level,
+                                      std::size_t min_pixels);
+
 // How many 8-connected regions at or above `level` have at least `min_pixels` pixels.
 int countRegions(const FloatImage& luminance, double level, std::size_t min_pixels);
 

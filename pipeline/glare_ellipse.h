@@ -114,8 +114,9 @@ struct EllipseLevel {
 // at the lowest level reached are found once on the whole image, and every level is measured on
 // a copy of the image cut to those regions' box (grown by kLevelCropMarginPx, room for the widest
 // smoothing window): a region at a higher level lies inside one at a lower level, so its
-// contour, its smoothed field and the count of regions are the same there. Pixel positions in
-// the results are the whole image's. In the order asked.
+// contour, its smoothed field and the count of regions are the same there. The levels are
+// measured on availableThreads() threads at once (each with one). Pixel positions in the results
+// are the whole image's. In the order asked.
 std::vector<EllipseMeasurement> measureGlareEllipses(const calibration::MergedImage& merged,
                                                      const calibration::CameraModel& camera,
                                                      const LuminancePeak& peak,

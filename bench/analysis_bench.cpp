@@ -2,6 +2,8 @@
 // both levels the method asks for, the limit at the stack's α and half the maximum:
 //  - analysis/glarecam: robust maximum, sub-pixel contours, geometric ellipse fits in the
 //    angular plane, uncertainty and region counts (pipeline/glare_analysis.h);
+//  - analysis/glarecam_ladder: the same with the contour ladder (every fixed level from
+//    10 000 cd/m² up to the peak, sharing one flood of the image), what `process` runs;
 //  - analysis/opencv_fitellipse: the usual OpenCV recipe on the same image: the plain maximum
 //    (cv::minMaxLoc), then per level cv::threshold, cv::findContours (outer contours) and
 //    cv::fitEllipse on the largest: a binary, pixel-biased answer in pixels, not degrees.
@@ -29,13 +31,15 @@ const calibration::MergedImage* mergedOrSkip(benchmark::State& state) {
   return &*merged;
 }
 
-void analysisGlarecam(benchmark::State& state) {
+void analysisGlarecam(benchmark::State& state, bool ladder) {
   const BenchStack* stack = benchStackOrSkip(state);
   const calibration::MergedImage* merged = stack ? mergedOrSkip(state) : nullptr;
   if (!merged) return;
   const calibration::CameraModel camera(stack->calibration.intrinsics);
   const pipeline::GlareAnalysisOptions options{
-      .limit_cd_m2 = pipeline::glareLimitCdM2(stack->options.alpha_deg), .thresholds_cd_m2 = {}};
+      .limit_cd_m2 = pipeline::glareLimitCdM2(stack->options.alpha_deg),
+      .thresholds_cd_m2 = {},
+      .ladder = ladder};
   for (auto _ : state) {
     const pipeline::LuminancePeak peak = pipeline::findLuminancePeak(*merged);
     const pipeline::GlareAnalysis analysis = pipeline::analyseGlare(*merged, camera, peak, options);
@@ -43,9 +47,18 @@ void analysisGlarecam(benchmark::State& state) {
       state.SkipWithError("analysis/glarecam: no limit or FWHM ellipse on the bench stack");
       break;
     }
+    if (ladder && analysis.ladder.size() < 3) {
+      state.SkipWithError("analysis/glarecam_ladder: no fixed rung on the bench stack");
+      break;
+    }
     benchmark::DoNotOptimize(analysis);
   }
   setStackCounters(state, *stack);
+  if (ladder) {
+    const pipeline::LuminancePeak peak = pipeline::findLuminancePeak(*merged);
+    state.counters["rungs"] =
+        static_cast<double>(pipeline::ladderLevelsCdM2(peak.value_cd_m2).size());
+  }
 }
 
 cv::RotatedRect largestContourEllipse(const cv::Mat& luminance, double level) {
@@ -80,13 +93,16 @@ void analysisOpenCvFitEllipse(benchmark::State& state) {
 }  // namespace
 
 std::vector<std::string> registerAnalysisBenchmarks() {
-  benchmark::RegisterBenchmark(kAnalysisGlarecam, analysisGlarecam)
+  benchmark::RegisterBenchmark(kAnalysisGlarecam, analysisGlarecam, false)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(kAnalysisGlarecamLadder, analysisGlarecam, true)
       ->UseRealTime()
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark(kAnalysisOpenCvFitEllipse, analysisOpenCvFitEllipse)
       ->UseRealTime()
       ->Unit(benchmark::kMillisecond);
-  return {kAnalysisGlarecam, kAnalysisOpenCvFitEllipse};
+  return {kAnalysisGlarecam, kAnalysisGlarecamLadder, kAnalysisOpenCvFitEllipse};
 }
 
 }  // namespace glarecam::bench

@@ -30,7 +30,7 @@ hazard::ProfileTable benchProfile() {
                     {"horizontal_deg", 4.0},
                     {"circular_beam", {{"beta_mrad", 85.5}}}});
   }
-  const nlohmann::json document{{"schema", pipeline::kGlareProfileSchema},
+  const nlohmann::json document{{"schema", pipeline::kGlareProfileSchemaV1},
                                 {"module", "bench module"},
                                 {"glare_ranges_deg", {{0.0, 80.0}}},
                                 {"profile", rows}};

@@ -5,8 +5,12 @@
 //   analysis/glarecam ÷ merge/glarecam           target <= 3x: analysis no bottleneck
 //   analysis/glarecam ÷ analysis/opencv_fitellipse   (no target: the price of sub-pixel
 //                                                      contours, angles and uncertainties)
+//   analysis/glarecam_ladder ÷ analysis/glarecam (no target: the contour ladder's rungs against
+//                                                the method's two levels alone)
 //   process/end_to_end/SIZE ÷ process/decode_floor/SIZE  target <= 1.5x at 5 MP: a whole
 //                                                process near the price of decoding its frames
+//   process/end_to_end/SIZE ÷ process/no_ladder/SIZE     target <= 1.1x at 5 MP: the contour
+//                                                ladder costs process at most 10 %
 //   capture/fake_gv_bracket ÷ capture/link_floor target <= 1.1x: the capture's overhead at
 //                                                most 10 % of exposure plus transfer (the fake
 //                                                camera takes its exposures)
@@ -50,6 +54,7 @@ constexpr double kDecodeFloorTargetRatio = 1.5;  // at 5 MP, the rig's sensor
 // uncertainty, count, flag) against the floor's four; 3 leaves the arithmetic one more pass.
 constexpr double kMemoryFloorTargetRatio = 3.0;
 constexpr double kAnalysisTargetRatio = 3.0;
+constexpr double kLadderTargetRatio = 1.1;  // at 5 MP
 constexpr double kCaptureOverheadTargetRatio = 1.1;
 constexpr double kHazardTargetRatio = 1.5;
 constexpr double kHazardPairTargetRatio = 0.1;
@@ -248,11 +253,15 @@ int main(int argc, char** argv) {
              kMemoryFloorTargetRatio);
   printRatio(reporter, kAnalysisGlarecam, kMergeGlarecam, 2, Target::kAtMost, kAnalysisTargetRatio);
   printRatio(reporter, kAnalysisGlarecam, kAnalysisOpenCvFitEllipse, 2, Target::kNone, 0);
+  printRatio(reporter, kAnalysisGlarecamLadder, kAnalysisGlarecam, 2, Target::kNone, 0);
   for (const SensorSize& size : kProcessSensorSizes) {
     const bool rig = size.width == kStackWidth && size.height == kStackHeight;
     printRatio(reporter, std::string(kProcessEndToEnd) + "/" + size.name,
                std::string(kProcessDecodeFloor) + "/" + size.name, 2,
                rig ? Target::kAtMost : Target::kNone, kDecodeFloorTargetRatio);
+    printRatio(reporter, std::string(kProcessEndToEnd) + "/" + size.name,
+               std::string(kProcessNoLadder) + "/" + size.name, 3,
+               rig ? Target::kAtMost : Target::kNone, kLadderTargetRatio);
   }
   // The sweep's speed-up from parallel stacks: 1 thread ÷ all threads.
   printRatio(reporter, kSweepOneThread, kSweepAllThreads, 2, Target::kNone, 0);

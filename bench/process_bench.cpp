@@ -1,7 +1,10 @@
 // process/end_to_end/SIZE: `glarecam process` as the rig runs it: decode the stack's PNG frames,
 // merge, summarise and write luminance.exr, quality.exr, luminance.png and result.json. Beside it
 // process/decode_floor/SIZE: reading the same stack's manifest and decoding its frames alone, on
-// the same threads: what every process pays before any merge, its floor. At 1.25, 5 and 12 MP.
+// the same threads: what every process pays before any merge, its floor; and
+// process/no_ladder/SIZE: the same process without the contour ladder (process --no-ladder), the
+// peer the ladder's price is measured against (docs/process.md: at most 10 % at 5 MP). At 1.25, 5
+// and 12 MP.
 // Counters: the results' bytes on disk, the stack's, and their ratio (the results are meant to be
 // smaller than the measurement). Each stack is written once to the scratch directory; each
 // iteration processes it into the same output directory (overwritten atomically, as on
@@ -35,7 +38,7 @@ double directoryBytes(const std::filesystem::path& directory) {
   return static_cast<double>(bytes);
 }
 
-void processEndToEnd(benchmark::State& state, const SensorSize& size) {
+void processEndToEnd(benchmark::State& state, const SensorSize& size, bool ladder) {
   const Result<std::filesystem::path>& directory = benchStackDirectory(size);
   if (!directory) {
     state.SkipWithError(directory.error().message.c_str());
@@ -45,6 +48,7 @@ void processEndToEnd(benchmark::State& state, const SensorSize& size) {
   options.output_directory = scratchDirectory() / (std::string("result-") + size.name);
   options.threads = 0;  // all cores
   options.show_progress = false;
+  options.ladder = ladder;
   for (auto _ : state) {
     Result<pipeline::ProcessSummary> summary = pipeline::processStack(*directory, options);
     if (!summary) {
@@ -84,6 +88,9 @@ std::string processEndToEndName(const SensorSize& size) {
 std::string processDecodeFloorName(const SensorSize& size) {
   return std::string(kProcessDecodeFloor) + "/" + size.name;
 }
+std::string processNoLadderName(const SensorSize& size) {
+  return std::string(kProcessNoLadder) + "/" + size.name;
+}
 
 }  // namespace
 
@@ -94,11 +101,16 @@ std::vector<std::string> registerProcessBenchmarks() {
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond)
         ->Iterations(kEndToEndIterations);
-    benchmark::RegisterBenchmark(processEndToEndName(size).c_str(), processEndToEnd, size)
+    benchmark::RegisterBenchmark(processNoLadderName(size).c_str(), processEndToEnd, size, false)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(kEndToEndIterations);
+    benchmark::RegisterBenchmark(processEndToEndName(size).c_str(), processEndToEnd, size, true)
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond)
         ->Iterations(kEndToEndIterations);
     names.push_back(processDecodeFloorName(size));
+    names.push_back(processNoLadderName(size));
     names.push_back(processEndToEndName(size));
   }
   return names;

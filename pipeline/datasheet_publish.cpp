@@ -24,11 +24,11 @@ namespace glarecam::pipeline {
 namespace fs = std::filesystem;
 
 Status publishDatasheet(const DatasheetContent& content, const std::string& source,
-                        const std::filesystem::path& directory) {
+                        const std::filesystem::path& directory, const ContourTable* contours) {
   GLARECAM_CHECK(writeDatasheet(content, directory));
   const GlareProfile profile =
       makeGlareProfile({.module = content.module, .date = content.date, .source = source},
-                       *content.table, *content.fits, content.limit);
+                       *content.table, *content.fits, content.limit, contours);
   return writeJsonFile(directory / kGlareProfileFileName, toJson(profile));
 }
 
@@ -61,13 +61,22 @@ Result<fs::path> publishSweepTable(const SweepPublishOptions& options) {
   GLARECAM_ASSIGN(limit, sheetLimit(options.sweep.string(), table, options.threshold_cd_m2));
   const fs::path out = options.out.value_or(options.sweep.parent_path());
   if (!out.empty()) GLARECAM_CHECK(ensureDirectory(out));
+  std::optional<ContourTable> contours;
+  const fs::path contours_csv = options.sweep.parent_path() / kContourTableFileName;
+  std::error_code ec;
+  if (fs::exists(contours_csv, ec)) {
+    GLARECAM_ASSIGN(contours, readContourTable(contours_csv));
+  } else {
+    spdlog::info("{}: no {} beside it: the glare profile's ladder is empty", options.sweep.string(),
+                 kContourTableFileName);
+  }
   GLARECAM_CHECK(publishDatasheet({.module = options.module,
                                    .date = options.date,
                                    .table = &table,
                                    .fits = &fits,
                                    .model_beta_deg = options.model_beta_deg,
                                    .limit = limit},
-                                  options.sweep.string(), out));
+                                  options.sweep.string(), out, contours ? &*contours : nullptr));
   return out / kDatasheetPdf;
 }
 

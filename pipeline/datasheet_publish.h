@@ -15,9 +15,11 @@
 
 namespace glarecam::pipeline {
 
-// `content` names the table and its fits; `source` is the sweep table's path (in the profile).
+// `content` names the table and its fits; `source` is the sweep table's path (in the profile);
+// `contours`, the sweep's contour table, gives the profile its ladder (none: an empty ladder).
 Status publishDatasheet(const DatasheetContent& content, const std::string& source,
-                        const std::filesystem::path& directory);
+                        const std::filesystem::path& directory,
+                        const ContourTable* contours = nullptr);
 
 struct SweepPublishOptions {
   std::filesystem::path sweep;               // the sweep table (glarecam sweep's sweep.csv)
@@ -38,7 +40,9 @@ struct SweepPublishOptions {
 // stacks name no module, or when --module was not given.
 std::optional<std::string> moduleMismatch(const std::string& module, const SweepTable& table);
 
-// Reads and fits the sweep table and publishes its sheet and profile; the PDF's path.
+// Reads and fits the sweep table and publishes its sheet and profile; the PDF's path. The
+// contour table beside the sweep table (contours.csv, as `glarecam sweep` writes it) gives the
+// profile its ladder; without one the ladder is empty (a note in the log).
 // Warns (moduleMismatch) when --module disagrees with the stacks' own module.
 Result<std::filesystem::path> publishSweepTable(const SweepPublishOptions& options);
 

@@ -1,13 +1,16 @@
 #include "pipeline/glare_ellipse.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 #include "core/angles.h"
 #include "core/neighbourhood.h"
+#include "core/parallel.h"
 #include "pipeline/iso_contour.h"
 #include "pipeline/level_field.h"
 
@@ -268,6 +271,24 @@ PixelBox contourBox(const RegionContour& contour, int margin) {
   return {box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin};
 }
 
+// The part `box` (clipped to the image) of a merged image.
+calibration::MergedImage cropMerged(const calibration::MergedImage& merged, const PixelBox& box) {
+  const auto crop = [&](const auto& image) {
+    using Pixel = std::remove_cvref_t<decltype(*image.data())>;
+    Image<Pixel> out = Image<Pixel>::uninitialized(box.width(), box.height());
+    for (int y = 0; y < box.height(); ++y) {
+      const auto row = image.row(box.y0 + y);
+      std::copy_n(row.begin() + box.x0, box.width(), out.row(y).begin());
+    }
+    return out;
+  };
+  return {crop(merged.luminance_cd_m2), crop(merged.relative_uncertainty),
+          crop(merged.valid_frames), crop(merged.bound)};
+}
+
+// Crops smaller than this fraction of the image are worth their copy.
+constexpr double kMaxCropFraction = 0.5;
+
 }  // namespace
 
 const char* toString(EllipseStatus status) {
@@ -302,14 +323,80 @@ std::optional<EllipseStatus> ellipseStatusFromString(std::string_view text) {
   return std::nullopt;
 }
 
+std::vector<EllipseMeasurement> measureGlareEllipses(const calibration::MergedImage& merged,
+                                                     const calibration::CameraModel& camera,
+                                                     const LuminancePeak& peak,
+                                                     const std::vector<EllipseLevel>& levels) {
+  const FloatImage& image = merged.luminance_cd_m2;
+  // The levels on all threads, the lowest (the largest contours, the longest tasks) first.
+  std::vector<std::size_t> order(levels.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return levels[a].level_cd_m2 < levels[b].level_cd_m2;
+  });
+  const auto measureAll = [&](const calibration::MergedImage& on,
+                              const calibration::CameraModel& on_camera,
+                              const LuminancePeak& on_peak, int dx, int dy) {
+    std::vector<EllipseMeasurement> out(levels.size());
+    parallelTasks(static_cast<int>(levels.size()), availableThreads(), [&](int task) {
+      const std::size_t i = order[static_cast<std::size_t>(task)];
+      out[i] = measureGlareEllipse(on, on_camera, on_peak, levels[i].level_cd_m2,
+                                   levels[i].relative_uncertainty);
+      if (!out[i].ellipse || (dx == 0 && dy == 0)) return;
+      GlareEllipse& e = *out[i].ellipse;
+      e.centre_px = {e.centre_px.x + dx, e.centre_px.y + dy};
+      for (PixelPoint& p : e.contour_px) p = {p.x + dx, p.y + dy};
+    });
+    return out;
+  };
+  // The lowest level that floods anything: levels above the maximum end before any flood.
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const EllipseLevel& level : levels) {
+    if (std::isfinite(level.level_cd_m2) && level.level_cd_m2 > 0 &&
+        level.level_cd_m2 <= peak.value_cd_m2)
+      lowest = std::min(lowest, level.level_cd_m2);
+  }
+  if (image.empty() || levels.size() < 2 || !std::isfinite(lowest))
+    return measureAll(merged, camera, peak, 0, 0);
+  const int px = std::clamp(static_cast<int>(std::lround(peak.x_px)), 0, image.width() - 1);
+  const int py = std::clamp(static_cast<int>(std::lround(peak.y_px)), 0, image.height() - 1);
+  PixelBox box{px, py, px + 1, py + 1};
+  for (const RegionExtent& r : findRegions(image, lowest, kMinRegionPixels))
+    box = {std::min(box.x0, r.x0), std::min(box.y0, r.y0), std::max(box.x1, r.x1 + 1),
+           std::max(box.y1, r.y1 + 1)};
+  box = {std::max(0, box.x0 - kLevelCropMarginPx), std::max(0, box.y0 - kLevelCropMarginPx),
+         std::min(image.width(), box.x1 + kLevelCropMarginPx),
+         std::min(image.height(), box.y1 + kLevelCropMarginPx)};
+  const double fraction = static_cast<double>(box.width()) * box.height() /
+                          (static_cast<double>(image.width()) * image.height());
+  if (fraction > kMaxCropFraction) return measureAll(merged, camera, peak, 0, 0);
+  Intrinsics shifted = camera.intrinsics();
+  shifted.cx -= box.x0;
+  shifted.cy -= box.y0;
+  LuminancePeak shifted_peak = peak;
+  shifted_peak.x_px -= box.x0;
+  shifted_peak.y_px -= box.y0;
+  return measureAll(cropMerged(merged, box), calibration::CameraModel(shifted), shifted_peak,
+                    box.x0, box.y0);
+}
+
 double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg) {
   // Omega = integral over psi of (1 - cos R(psi)), R the ellipse's radius in direction psi: the
   // plane's radius is the angle from its centre. Periodic trapezoid rule: spectrally accurate.
+  // cos² and sin² of the steps' directions once (every ellipse, five times each, takes them).
+  static const auto kSquares = [] {
+    std::array<std::array<double, 2>, kSolidAngleSteps> squares{};
+    for (int i = 0; i < kSolidAngleSteps; ++i) {
+      const double psi = 2 * std::numbers::pi * i / kSolidAngleSteps;
+      squares[static_cast<std::size_t>(i)] = {std::pow(std::cos(psi), 2),
+                                              std::pow(std::sin(psi), 2)};
+    }
+    return squares;
+  }();
   const double a = radians(semi_major_deg), b = radians(semi_minor_deg);
   double sum = 0;
-  for (int i = 0; i < kSolidAngleSteps; ++i) {
-    const double psi = 2 * std::numbers::pi * i / kSolidAngleSteps;
-    const double radius = a * b / std::hypot(b * std::cos(psi), a * std::sin(psi));
+  for (const auto& [cos2, sin2] : kSquares) {
+    const double radius = a * b / std::sqrt(b * b * cos2 + a * a * sin2);
     sum += 1 - std::cos(radius);
   }
   return sum * 2 * std::numbers::pi / kSolidAngleSteps;
@@ -332,7 +419,8 @@ EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
     return outcome(EllipseStatus::kPeakIsBound);
   if (!reaches) return outcome(EllipseStatus::kBelowLevel);
   const auto seed = seedPixel(image, peak, level_cd_m2);
-  auto contour = seed ? traceRegionContour(image, level_cd_m2, *seed) : std::nullopt;
+  ByteImage region_mask;  // the traced region's pixels: counting the others floods it no more
+  auto contour = seed ? traceRegionContour(image, level_cd_m2, *seed, &region_mask) : std::nullopt;
   if (!contour) return outcome(EllipseStatus::kNoPixelAtLevel);
   if (contour->touches_all_borders) return outcome(EllipseStatus::kFillsImage);
   // Where the noise is large against the step between pixels, the contour is traced again in a
@@ -397,9 +485,9 @@ EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
     return outcome(EllipseStatus::kNotAnEllipse);  // result.json promises numbers
   ellipse.ellipticity_ok = ellipse.shape_residual_fraction <= kMaxEllipticalResidualFraction;
   ellipse.truncated = contour->touches_border;
-  // The measured region counts even when it is smaller than the noise-speck size.
-  ellipse.regions = countRegions(image, level_cd_m2, kMinRegionPixels) +
-                    (contour->connected_pixels < kMinRegionPixels ? 1 : 0);
+  // The measured region, even when it is smaller than the noise-speck size, and the others.
+  ellipse.regions =
+      1 + static_cast<int>(findRegions(image, level_cd_m2, kMinRegionPixels, &region_mask).size());
   ellipse.contour_points = observed;
   ellipse.region_pixels = contour->region_pixels;
   for (const ContourPoint& p : contour->points) ellipse.contour_px.push_back({p.x_px, p.y_px});

@@ -103,6 +103,30 @@ EllipseMeasurement measureGlareEllipse(const calibration::MergedImage& merged,
                                        const LuminancePeak& peak, double level_cd_m2,
                                        double level_relative_uncertainty = 0);
 
+// One level of several measured on one image, with its own relative standard uncertainty.
+struct EllipseLevel {
+  double level_cd_m2 = 0;
+  double relative_uncertainty = 0;
+};
+
+// The ellipses at several levels of one image, each exactly as measureGlareEllipse() gives it
+// (the same statuses; the axes equal to rounding), sharing the work between levels: the regions
+// at the lowest level reached are found once on the whole image, and every level is measured on
+// a copy of the image cut to those regions' box (grown by kLevelCropMarginPx, room for the widest
+// smoothing window): a region at a higher level lies inside one at a lower level, so its
+// contour, its smoothed field and the count of regions are the same there. The levels are
+// measured on availableThreads() threads at once (each with one). Pixel positions in the results
+// are the whole image's. In the order asked.
+std::vector<EllipseMeasurement> measureGlareEllipses(const calibration::MergedImage& merged,
+                                                     const calibration::CameraModel& camera,
+                                                     const LuminancePeak& peak,
+                                                     const std::vector<EllipseLevel>& levels);
+
+// The margin around the lowest level's regions that measureGlareEllipses() keeps: beyond the
+// smoothed field's reach (3 kMaxSmoothingRadius + 4 px around a contour, level_field.h) and the
+// cubic crossing's two pixels.
+inline constexpr int kLevelCropMarginPx = 64;
+
 // Solid angle (sr) of an ellipse in an angular plane, centred on the plane's origin.
 double ellipseSolidAngleSr(double semi_major_deg, double semi_minor_deg);
 

@@ -43,6 +43,9 @@ constexpr Style kAxisStyle{kWhite, 1, 0.08, false};
 constexpr Style kCircleStyle{kWhite, 0.5, 0.07, false};
 // The --thresholds ellipses: pale yellow, dotted, each labelled with its level.
 constexpr Style kThresholdStyle{{1.0, 1.0, 0.6}, 0.9, 0.08, true};
+// The contour ladder's fixed rungs (the method's Figure 14): thin, pale cyan, solid, each
+// labelled with its level; drawn first, under everything else.
+constexpr Style kLadderStyle{{0.6, 0.95, 1.0}, 0.75, 0.06, false};
 
 constexpr Rgb kLabelOutline{0, 0, 0};
 constexpr double kSmallLabelEm = 0.8;  // the circles' labels and the legend, below the axes'
@@ -146,6 +149,7 @@ struct Overlay {
   std::optional<GlareEllipse> limit, fwhm;
   bool below_limit = false;  // the maximum does not reach the limit: no glare
   std::vector<std::pair<double, GlareEllipse>> thresholds;  // level (cd/m²), ellipse
+  std::vector<std::pair<double, GlareEllipse>> ladder;      // the fixed rungs, likewise
 };
 
 std::vector<Polyline> ellipseOutline(const Overlay& o, const GlareEllipse& e, const Box& box) {
@@ -236,6 +240,8 @@ void drawLegend(Canvas& canvas, const Overlay& o, const Box& box, double font_px
                                               : "no glare: FWHM ellipse (grey dashed)");
   }
   if (!o.thresholds.empty()) lines.push_back("--thresholds ellipses (yellow dotted), by level");
+  if (!o.ladder.empty())
+    lines.push_back("contour ladder (thin cyan): 1, 2.15, 4.64 \u00d7 10\u207f cd/m\u00b2");
   lines.push_back("circles: radius 1\u00b0, 5\u00b0, 10\u00b0, 20\u00b0 around the maximum");
   double y = box.y0 + font_px * 1.2;
   for (const std::string& line : lines) {
@@ -244,12 +250,14 @@ void drawLegend(Canvas& canvas, const Overlay& o, const Box& box, double font_px
   }
 }
 
-// Each --thresholds ellipse, labelled with its level at its upper-right point, off `lines`.
-void drawThresholds(Canvas& canvas, const Overlay& o, const Box& box, double font_px,
-                    const std::vector<Polyline>& lines) {
-  for (const auto& [level_cd_m2, e] : o.thresholds) {
+// Each ellipse of `levels`, labelled with its level at its point at parameter `t` (π/4: upper
+// right for the --thresholds, -π/4: lower right for the ladder), off `lines`.
+void drawLevelLabels(Canvas& canvas, const Overlay& o,
+                     const std::vector<std::pair<double, GlareEllipse>>& levels, double t,
+                     const Box& box, double font_px, const std::vector<Polyline>& lines) {
+  for (const auto& [level_cd_m2, e] : levels) {
     const AngularPlane plane(e.plane_centre);
-    const Point2 at = e.plane_ellipse.pointAt(std::numbers::pi / 4);
+    const Point2 at = e.plane_ellipse.pointAt(t);
     const Ray ray = plane.toRay({at.x, at.y});
     if (ray.z <= 0) continue;
     const Point p = pictureAt(o.camera, ray);
@@ -268,6 +276,7 @@ void drawOverlay(Canvas& canvas, const Overlay& o, double font_px) {
     stroke(canvas, pieces, style, font_px);
     lines.insert(lines.end(), pieces.begin(), pieces.end());
   };
+  for (const auto& [level, e] : o.ladder) draw(ellipseOutline(o, e, box), kLadderStyle);
   for (const auto& [level, e] : o.thresholds) draw(ellipseOutline(o, e, box), kThresholdStyle);
   if (o.fwhm) draw(ellipseOutline(o, *o.fwhm, box), kFwhmFitStyle);
   if (o.limit) {
@@ -283,7 +292,8 @@ void drawOverlay(Canvas& canvas, const Overlay& o, double font_px) {
   } else if (o.fwhm) {
     drawAxes(canvas, o, *o.fwhm, "FWHM ", box, font_px, lines);
   }
-  drawThresholds(canvas, o, box, font_px, lines);
+  drawLevelLabels(canvas, o, o.thresholds, std::numbers::pi / 4, box, font_px, lines);
+  drawLevelLabels(canvas, o, o.ladder, -std::numbers::pi / 4, box, font_px, lines);
   drawLegend(canvas, o, box, font_px);
 }
 
@@ -296,10 +306,15 @@ PictureOverlay glareOverlay(const GlareAnalysis& analysis, const calibration::Ca
                   std::nullopt,
                   analysis.fwhm.ellipse,
                   analysis.limit && analysis.limit->status == EllipseStatus::kBelowLevel,
+                  {},
                   {}};
   if (analysis.limit) overlay.limit = analysis.limit->ellipse;
   for (const EllipseMeasurement& m : analysis.thresholds)
     if (m.ellipse) overlay.thresholds.emplace_back(m.level_cd_m2, *m.ellipse);
+  for (const ContourRung& rung : analysis.ladder) {
+    if (rung.kind == ContourKind::kLadder && rung.measurement.ellipse)
+      overlay.ladder.emplace_back(rung.measurement.level_cd_m2, *rung.measurement.ellipse);
+  }
   return [overlay](Canvas& canvas, double font_px) { drawOverlay(canvas, overlay, font_px); };
 }
 

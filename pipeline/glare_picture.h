@@ -1,6 +1,7 @@
 // The paper's Figure 9 drawn over the false-colour luminance picture (false_colour.h): the limit
 // contour as traced, the fitted limit ellipse with both axes drawn and labelled in degrees, the
-// FWHM ellipse, and circles of 1°, 5°, 10° and 20° around the luminance maximum. Ellipses,
+// FWHM ellipse, the contour ladder's fixed rungs (thin, each labelled with its level: the method's
+// Figure 14), and circles of 1°, 5°, 10° and 20° around the luminance maximum. Ellipses,
 // axes and circles are angular shapes mapped through the camera model, so they bend with the
 // lens distortion exactly as the glare spot does.
 #pragma once

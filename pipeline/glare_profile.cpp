@@ -1,7 +1,12 @@
 #include "pipeline/glare_profile.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <iterator>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -86,8 +91,223 @@ std::vector<AlphaRange> glareRanges(const SweepFits& fits, const GlareLimit& lim
   return ranges;
 }
 
+namespace {
+
+// An orientation in (-90°, 90°].
+double wrapOrientationDeg(double deg) {
+  while (deg > 90) deg -= 180;
+  while (deg <= -90) deg += 180;
+  return deg;
+}
+
+// a + (b - a) t for every number of a contour; the orientation the short way round (an axis'
+// direction is modulo 180°). `level_cd_m2` and `kind` are the caller's.
+ProfileContour lerpContour(const ProfileContour& a, const ProfileContour& b, double t) {
+  const auto mix = [t](double x, double y) { return x + (y - x) * t; };
+  ProfileContour c = a;
+  c.vertical_deg = mix(a.vertical_deg, b.vertical_deg);
+  c.horizontal_deg = mix(a.horizontal_deg, b.horizontal_deg);
+  double to = b.orientation_deg;
+  if (to - a.orientation_deg > 90) to -= 180;
+  if (to - a.orientation_deg < -90) to += 180;
+  c.orientation_deg = wrapOrientationDeg(mix(a.orientation_deg, to));
+  c.solid_angle_sr = mix(a.solid_angle_sr, b.solid_angle_sr);
+  c.vertical_uncertainty_deg = mix(a.vertical_uncertainty_deg, b.vertical_uncertainty_deg);
+  c.horizontal_uncertainty_deg = mix(a.horizontal_uncertainty_deg, b.horizontal_uncertainty_deg);
+  c.orientation_uncertainty_deg =
+      a.orientation_uncertainty_deg && b.orientation_uncertainty_deg
+          ? std::optional(mix(*a.orientation_uncertainty_deg, *b.orientation_uncertainty_deg))
+          : std::nullopt;
+  c.solid_angle_uncertainty_sr = mix(a.solid_angle_uncertainty_sr, b.solid_angle_uncertainty_sr);
+  return c;
+}
+
+// A measured row of contours.csv as a profile contour.
+ProfileContour contourOfRow(const ContourRow& row) {
+  return {.level_cd_m2 = row.level_cd_m2,
+          .kind = row.kind,
+          .vertical_deg = *row.vertical_deg,
+          .horizontal_deg = *row.horizontal_deg,
+          .orientation_deg = *row.orientation_deg,
+          .solid_angle_sr = *row.solid_angle_sr,
+          .vertical_uncertainty_deg = *row.vertical_uncertainty_deg,
+          .horizontal_uncertainty_deg = *row.horizontal_uncertainty_deg,
+          .orientation_uncertainty_deg = row.orientation_uncertainty_deg,
+          .solid_angle_uncertainty_sr = *row.solid_angle_uncertainty_sr};
+}
+
+// The measured rungs of the stacks at one α (fixed levels, then the half maximum as the last
+// entry with key -1), each the mean over those stacks (the half maximum's level in ln L).
+using StackRungs = std::map<double, ProfileContour>;
+constexpr double kHalfMaximumKey = -1;
+
+std::map<double, StackRungs> measuredRungsByAlpha(const ContourTable& contours) {
+  std::map<double, std::map<double, std::vector<ProfileContour>>> collected;
+  for (const ContourRow& row : contours.rows) {
+    if (!row.measured() || row.kind == ContourKind::kLimit) continue;
+    const double key = row.kind == ContourKind::kHalfMaximum ? kHalfMaximumKey : row.level_cd_m2;
+    collected[row.alpha_deg][key].push_back(contourOfRow(row));
+  }
+  std::map<double, StackRungs> by_alpha;
+  for (const auto& [alpha, levels] : collected) {
+    for (const auto& [key, list] : levels) {
+      // The running mean: the k-th contour mixed in with weight 1/k.
+      ProfileContour mean = list.front();
+      double ln_level = std::log(list.front().level_cd_m2);
+      for (std::size_t k = 1; k < list.size(); ++k) {
+        const double t = 1.0 / static_cast<double>(k + 1);
+        mean = lerpContour(mean, list[k], t);
+        ln_level += (std::log(list[k].level_cd_m2) - ln_level) * t;
+      }
+      mean.level_cd_m2 = key == kHalfMaximumKey ? std::exp(ln_level) : key;
+      by_alpha[alpha][key] = mean;
+    }
+  }
+  return by_alpha;
+}
+
+// The rungs at a whole degree between two measured α (t from the first), the levels both have.
+std::vector<ProfileContour> rungsBetween(const StackRungs& a, const StackRungs& b, double t) {
+  std::vector<ProfileContour> rungs;
+  for (const auto& [key, first] : a) {
+    const auto second = b.find(key);
+    if (second == b.end()) continue;
+    ProfileContour c = lerpContour(first, second->second, t);
+    c.level_cd_m2 =
+        key == kHalfMaximumKey
+            ? std::exp(std::log(first.level_cd_m2) +
+                       (std::log(second->second.level_cd_m2) - std::log(first.level_cd_m2)) * t)
+            : key;
+    rungs.push_back(c);
+  }
+  std::stable_sort(rungs.begin(), rungs.end(),
+                   [](const auto& x, const auto& y) { return x.level_cd_m2 < y.level_cd_m2; });
+  return rungs;
+}
+
+// The value at x of the parabola through (x[k], y[k]), k = 0, 1, 2.
+double parabolaAt(const std::array<double, 3>& x, const std::array<double, 3>& y, double at) {
+  double sum = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    double basis = 1;
+    for (std::size_t m = 0; m < 3; ++m)
+      if (m != k) basis *= (at - x[m]) / (x[k] - x[m]);
+    sum += basis * y[k];
+  }
+  return sum;
+}
+
+// The contour at `level` in one degree's ladder (linear in ln level between rungs), or none
+// outside its rungs. Between rungs the linear interpolation's own error joins the standard
+// uncertainties of the axes and the solid angle: estimated as the larger of its differences from
+// the parabolas (in ln level) through the two rungs and the next rung above, and below: a lobe's
+// axes are concave in ln level (a Gaussian's go as √ln(L/T)), its solid angle nearly linear, and
+// either curve's bend changes along the ladder.
+std::optional<ProfileContour> contourInRow(const ProfileLadderRow& row, double level) {
+  const std::vector<ProfileContour>& rungs = row.contours;
+  if (rungs.empty() || !(level >= rungs.front().level_cd_m2) ||
+      !(level <= rungs.back().level_cd_m2))
+    return std::nullopt;
+  for (std::size_t i = 0; i < rungs.size(); ++i) {
+    if (rungs[i].level_cd_m2 == level) return rungs[i];
+    if (i + 1 == rungs.size() || rungs[i + 1].level_cd_m2 <= level) continue;
+    const double t = std::log(level / rungs[i].level_cd_m2) /
+                     std::log(rungs[i + 1].level_cd_m2 / rungs[i].level_cd_m2);
+    ProfileContour c = lerpContour(rungs[i], rungs[i + 1], t);
+    c.level_cd_m2 = level;
+    c.kind = ContourKind::kLadder;
+    // Each parabola through the two rungs and a third, the next above and the next below.
+    std::vector<std::size_t> thirds;
+    if (i + 2 < rungs.size()) thirds.push_back(i + 2);
+    if (i > 0) thirds.push_back(i - 1);
+    const auto widen = [&](double ProfileContour::*value, double ProfileContour::*sigma) {
+      double error = 0;
+      for (const std::size_t third : thirds) {
+        const std::array<const ProfileContour*, 3> r{&rungs[i], &rungs[i + 1], &rungs[third]};
+        const std::array<double, 3> x{std::log(r[0]->level_cd_m2), std::log(r[1]->level_cd_m2),
+                                      std::log(r[2]->level_cd_m2)};
+        const double curved =
+            parabolaAt(x, {r[0]->*value, r[1]->*value, r[2]->*value}, std::log(level));
+        error = std::max(error, std::abs(curved - c.*value));
+      }
+      c.*sigma = std::hypot(c.*sigma, error);
+    };
+    widen(&ProfileContour::vertical_deg, &ProfileContour::vertical_uncertainty_deg);
+    widen(&ProfileContour::horizontal_deg, &ProfileContour::horizontal_uncertainty_deg);
+    widen(&ProfileContour::solid_angle_sr, &ProfileContour::solid_angle_uncertainty_sr);
+    return c;
+  }
+  return std::nullopt;
+}
+
+const ProfileLadderRow* ladderRowAt(const GlareProfile& profile, double alpha_deg) {
+  const auto it = std::ranges::find_if(
+      profile.ladder, [&](const ProfileLadderRow& row) { return row.alpha_deg == alpha_deg; });
+  return it == profile.ladder.end() ? nullptr : &*it;
+}
+
+}  // namespace
+
+std::vector<ProfileLadderRow> profileLadder(const ContourTable& contours) {
+  const std::map<double, StackRungs> by_alpha = measuredRungsByAlpha(contours);
+  std::vector<ProfileLadderRow> ladder;
+  if (by_alpha.empty()) return ladder;
+  const double first = std::max(0.0, std::ceil(by_alpha.begin()->first));
+  const double last =
+      std::min<double>(kProfileAlphaMaxDeg, std::floor(std::prev(by_alpha.end())->first));
+  for (double alpha = first; alpha <= last; alpha += kProfileStepDeg) {
+    auto above = by_alpha.lower_bound(alpha);  // the first measured α at or above
+    ProfileLadderRow row{.alpha_deg = alpha};
+    if (above->first == alpha) {
+      row.contours = rungsBetween(above->second, above->second, 0);
+    } else {
+      const auto below = std::prev(above);
+      row.contours = rungsBetween(below->second, above->second,
+                                  (alpha - below->first) / (above->first - below->first));
+    }
+    ladder.push_back(std::move(row));
+  }
+  return ladder;
+}
+
+std::optional<ProfileContour> contourAt(const GlareProfile& profile, double alpha_deg,
+                                        double level_cd_m2) {
+  if (!std::isfinite(alpha_deg) || !(level_cd_m2 > 0) || !std::isfinite(level_cd_m2))
+    return std::nullopt;
+  const double lo = std::floor(alpha_deg), hi = std::ceil(alpha_deg);
+  const ProfileLadderRow* below = ladderRowAt(profile, lo);
+  const ProfileLadderRow* above = ladderRowAt(profile, hi);
+  if (!below || !above) return std::nullopt;
+  const auto a = contourInRow(*below, level_cd_m2);
+  if (!a || lo == hi) return a;
+  const auto b = contourInRow(*above, level_cd_m2);
+  if (!b) return std::nullopt;
+  ProfileContour c = lerpContour(*a, *b, alpha_deg - lo);
+  c.level_cd_m2 = level_cd_m2;
+  c.kind = a->kind == b->kind ? a->kind : ContourKind::kLadder;
+  return c;
+}
+
+Result<std::optional<ProfileContour>> contourAt(const GlareProfile& profile, double alpha_deg,
+                                                double level_cd_m2, double source_illuminance_lx) {
+  if (profile.referred != true || !profile.reference_illuminance_lx)
+    return badInput(fmt::format(
+        "the glare profile of {} is {}: the contour under a source illuminance needs a profile "
+        "referred to a reference illuminance (docs/method.md \"Reference illuminance\")",
+        profile.module,
+        profile.referred ? "unreferred"
+                         : "of glarecam.glare-profile/1, which "
+                           "does not say what it refers to"));
+  if (!(source_illuminance_lx > 0) || !std::isfinite(source_illuminance_lx))
+    return badInput(fmt::format("source illuminance {:g} lx: must be a positive number",
+                                source_illuminance_lx));
+  return contourAt(profile, alpha_deg,
+                   level_cd_m2 * *profile.reference_illuminance_lx / source_illuminance_lx);
+}
+
 GlareProfile makeGlareProfile(const ProfileIdentity& identity, const SweepTable& table,
-                              const SweepFits& fits, const GlareLimit& limit) {
+                              const SweepFits& fits, const GlareLimit& limit,
+                              const ContourTable* contours) {
   GlareProfile profile;
   profile.module = identity.module;
   profile.date = identity.date;
@@ -120,6 +340,9 @@ GlareProfile makeGlareProfile(const ProfileIdentity& identity, const SweepTable&
          .vertical_deg = row.vertical_deg,
          .horizontal_deg = row.horizontal_deg});
   }
+  profile.reference_illuminance_lx = tableReferenceIlluminance(table);
+  profile.referred = profile.reference_illuminance_lx.has_value();
+  if (contours) profile.ladder = profileLadder(*contours);
   profile.fits = fitsJson(fits);
   profile.generator = Generator{};
   return profile;
@@ -154,7 +377,100 @@ json measuredJson(const MeasuredRow& row) {
           {"horizontal_deg", jsonOrNull(row.horizontal_deg)}};
 }
 
+json ladderJson(const std::vector<ProfileLadderRow>& ladder) {
+  json rows = json::array();
+  for (const ProfileLadderRow& row : ladder) {
+    json contours = json::array();
+    for (const ProfileContour& c : row.contours) {
+      contours.push_back({{"level_cd_m2", c.level_cd_m2},
+                          {"kind", toString(c.kind)},
+                          {"vertical_deg", c.vertical_deg},
+                          {"horizontal_deg", c.horizontal_deg},
+                          {"orientation_deg", c.orientation_deg},
+                          {"solid_angle_sr", c.solid_angle_sr},
+                          {"uncertainty",
+                           {{"vertical_deg", c.vertical_uncertainty_deg},
+                            {"horizontal_deg", c.horizontal_uncertainty_deg},
+                            {"orientation_deg", jsonOrNull(c.orientation_uncertainty_deg)},
+                            {"solid_angle_sr", c.solid_angle_uncertainty_sr}}}});
+    }
+    rows.push_back({{"alpha_deg", row.alpha_deg}, {"contours", contours}});
+  }
+  return rows;
+}
+
 // ---- reading ---------------------------------------------------------------------------------
+
+Result<ProfileContour> readProfileContour(const JsonReader& r) {
+  GLARECAM_CHECK(r.object());
+  ProfileContour c;
+  GLARECAM_ASSIGN(c.level_cd_m2, r.positive("level_cd_m2"));
+  std::string kind;
+  GLARECAM_ASSIGN(kind, r.word("kind", {"ladder", "half_maximum"}));
+  c.kind = *contourKindFromString(kind);
+  if (c.kind == ContourKind::kLadder && !isLadderLevel(c.level_cd_m2))
+    return r.fail("level_cd_m2", fmt::format("{:g} cd/m² is not a level of the ladder (1, 2.15 or "
+                                             "4.64 × 10ⁿ from 10 000 cd/m²)",
+                                             c.level_cd_m2));
+  GLARECAM_ASSIGN(c.vertical_deg, r.numberIn("vertical_deg", 0, kMaxFullAxisDeg, "°"));
+  GLARECAM_ASSIGN(c.horizontal_deg, r.numberIn("horizontal_deg", 0, kMaxFullAxisDeg, "°"));
+  GLARECAM_ASSIGN(c.orientation_deg, r.numberIn("orientation_deg", -90, 90, "°"));
+  GLARECAM_ASSIGN(c.solid_angle_sr, r.numberIn("solid_angle_sr", 0, 4 * std::numbers::pi, " sr"));
+  JsonReader u;
+  GLARECAM_ASSIGN(u, r.objectMember("uncertainty"));
+  GLARECAM_ASSIGN(c.vertical_uncertainty_deg, u.nonNegative("vertical_deg"));
+  GLARECAM_ASSIGN(c.horizontal_uncertainty_deg, u.nonNegative("horizontal_deg"));
+  GLARECAM_ASSIGN(c.orientation_uncertainty_deg, u.optionalNonNegative("orientation_deg"));
+  GLARECAM_ASSIGN(c.solid_angle_uncertainty_sr, u.nonNegative("solid_angle_sr"));
+  return c;
+}
+
+// Whole degrees 0–80, ascending, each once; each degree's contours by ascending level.
+Result<std::vector<ProfileLadderRow>> readLadder(const JsonReader& list) {
+  std::vector<ProfileLadderRow> ladder;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const JsonReader element = list.element(i);
+    GLARECAM_CHECK(element.object());
+    ProfileLadderRow row;
+    GLARECAM_ASSIGN(row.alpha_deg, element.numberIn("alpha_deg", 0, kProfileAlphaMaxDeg, "°"));
+    if (row.alpha_deg != std::floor(row.alpha_deg))
+      return element.fail("alpha_deg", "is not a whole degree");
+    if (!ladder.empty() && !(row.alpha_deg > ladder.back().alpha_deg))
+      return element.fail("alpha_deg", "is not above the previous row's: the ladder ascends in α");
+    JsonReader contours;
+    GLARECAM_ASSIGN(contours, element.arrayMember("contours"));
+    GLARECAM_ASSIGN(row.contours, readEach<ProfileContour>(contours, readProfileContour));
+    for (std::size_t k = 1; k < row.contours.size(); ++k) {
+      if (!(row.contours[k].level_cd_m2 > row.contours[k - 1].level_cd_m2))
+        return contours.element(k).fail("level_cd_m2",
+                                        "is not above the previous contour's: levels ascend");
+    }
+    ladder.push_back(std::move(row));
+  }
+  return ladder;
+}
+
+// /2's `illuminance` (required there) and `ladder`.
+Status readIlluminanceAndLadder(const JsonReader& r, const std::string& schema, GlareProfile& p) {
+  const bool v2 = schema == kGlareProfileSchema;
+  std::optional<JsonReader> illuminance;
+  GLARECAM_ASSIGN(illuminance, r.optionalObject("illuminance"));
+  if (v2 && !illuminance)
+    return r.fail("illuminance", "is missing (a /2 profile says what it refers to)");
+  if (illuminance) {
+    std::string status;
+    GLARECAM_ASSIGN(status, illuminance->word("status", {"referred", "unreferred", "unstated"}));
+    if (status != "unstated") p.referred = status == "referred";
+    GLARECAM_ASSIGN(p.reference_illuminance_lx, illuminance->optionalPositive("reference_lx"));
+    if ((p.referred == true) != p.reference_illuminance_lx.has_value())
+      return illuminance->fail("reference_lx", "must be given exactly when the status is referred");
+  }
+  std::optional<JsonReader> ladder;
+  GLARECAM_ASSIGN(ladder, r.optionalArray("ladder"));
+  if (v2 && !ladder) return r.fail("ladder", "is missing (a /2 profile has one, maybe empty)");
+  if (ladder) GLARECAM_ASSIGN(p.ladder, readLadder(*ladder));
+  return {};
+}
 
 // A circular beam's full angle, in mrad: at most a half turn.
 constexpr double kMaxBetaMrad = std::numbers::pi * kMradPerRad;
@@ -315,6 +631,12 @@ json toJson(const GlareProfile& p) {
       {"sun_half_angle_mrad", p.sun_half_angle_mrad},
       {"profile", rows},
       {"measured", measured},
+      {"illuminance",
+       {{"status", !p.referred   ? "unstated"
+                   : *p.referred ? "referred"
+                                 : "unreferred"},
+        {"reference_lx", jsonOrNull(p.reference_illuminance_lx)}}},
+      {"ladder", ladderJson(p.ladder)},
       {"fits", p.fits}};
   // What earlier profiles lack is left out rather than written as a value they never had.
   if (p.date) document["date"] = *p.date;
@@ -326,7 +648,8 @@ json toJson(const GlareProfile& p) {
 
 Result<GlareProfile> glareProfileFromJson(const json& document, const std::string& file) {
   const JsonReader r(document, file);
-  GLARECAM_CHECK(r.schema(kGlareProfileSchema, "a glare profile", kGlareProfileSchemas));
+  std::string schema;
+  GLARECAM_ASSIGN(schema, r.schema(kGlareProfileSchema, "a glare profile", kGlareProfileSchemas));
   GlareProfile p;
   GLARECAM_ASSIGN(p.module, r.text("module"));
   GLARECAM_ASSIGN(p.date, r.optionalText("date"));
@@ -346,6 +669,7 @@ Result<GlareProfile> glareProfileFromJson(const json& document, const std::strin
   p.sun_half_angle_mrad = sun_half_angle_mrad.value_or(kSunHalfAngleMrad);
   GLARECAM_ASSIGN(p.rows, readRows(r));
   GLARECAM_ASSIGN(p.measured, readList<MeasuredRow>(r, "measured", readMeasured));
+  GLARECAM_CHECK(readIlluminanceAndLadder(r, schema, p));
   std::optional<JsonReader> fits;
   GLARECAM_ASSIGN(fits, r.optionalObject("fits"));
   if (fits) {

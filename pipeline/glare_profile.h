@@ -3,7 +3,11 @@
 // glare-hazard tools model it: the circular cone of the same solid angle as the measured ellipse,
 // and the surface slope error σ that gives that cone in beta = 2 (4.65 mrad + σ).
 //
-// The document, glarecam.glare-profile/1, is one value type (GlareProfile) with one writer
+// Since /2 it also carries the contour ladder per whole degree of α (docs/method.md, "Reference
+// illuminance and the contour ladder"), from the sweep's contours.csv, and says what its
+// luminances refer to; contourAt() answers the contour at any α, level and source illuminance.
+//
+// The document, glarecam.glare-profile/2, is one value type (GlareProfile) with one writer
 // (toJson) and one reader (glareProfileFromJson, readGlareProfile), which every consumer (the
 // hazard calculation, tests, other tools through the docs) goes through. The reader accepts the
 // versions in kGlareProfileSchemas and profiles written by earlier glarecam versions, which lack
@@ -21,6 +25,8 @@
 
 #include "core/error.h"
 #include "core/generator.h"
+#include "pipeline/contour_table.h"
+#include "pipeline/glare_analysis.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/limit_curve.h"
 
@@ -81,10 +87,38 @@ struct ProfileIdentity {
   std::string source = {};  // the sweep table's path
 };
 
-inline constexpr std::string_view kGlareProfileSchema = "glarecam.glare-profile/1";
+inline constexpr std::string_view kGlareProfileSchema = "glarecam.glare-profile/2";
+inline constexpr std::string_view kGlareProfileSchemaV1 = "glarecam.glare-profile/1";
 // The schemas glareProfileFromJson() reads.
 inline constexpr std::initializer_list<std::string_view> kGlareProfileSchemas = {
-    kGlareProfileSchema};
+    kGlareProfileSchema, kGlareProfileSchemaV1};
+
+// One contour of the ladder at one α: a fixed rung (kind ladder) or the half maximum, its full
+// axes, orientation (major axis from the horizontal, (-90°, 90°]), solid angle and their standard
+// uncertainties, referred like the profile.
+struct ProfileContour {
+  double level_cd_m2 = 0;
+  ContourKind kind = ContourKind::kLadder;
+  double vertical_deg = 0, horizontal_deg = 0, orientation_deg = 0, solid_angle_sr = 0;
+  double vertical_uncertainty_deg = 0, horizontal_uncertainty_deg = 0;
+  std::optional<double> orientation_uncertainty_deg = std::nullopt;  // none for a circle
+  double solid_angle_uncertainty_sr = 0;
+  bool operator==(const ProfileContour&) const = default;
+};
+
+// The ladder at one whole degree of α, by ascending level. Between two measured stacks' α a
+// rung's axes, orientation, solid angle and σ are linear in α, for the levels both measured (the
+// half maximum's level log-linear); at a measured α they are that stack's (the mean of stacks at
+// one α).
+struct ProfileLadderRow {
+  double alpha_deg = 0;
+  std::vector<ProfileContour> contours = {};
+  bool operator==(const ProfileLadderRow&) const = default;
+};
+
+// The ladder per whole degree of α, from a sweep's contour table (contour_table.h): the degrees
+// within the measured α range (up to 80°), each with the rungs measured at both neighbouring α.
+std::vector<ProfileLadderRow> profileLadder(const ContourTable& contours);
 
 // A calibration the profile's rows rest on (by id, in the rows' order): its date and K ± u(K).
 struct ProfileCalibration {
@@ -119,15 +153,41 @@ struct GlareProfile {
   double sun_half_angle_mrad = kSunHalfAngleMrad;
   std::vector<ProfileRow> rows = {};  // α = 0, 1, … kProfileAlphaMaxDeg, in order
   std::vector<MeasuredRow> measured = {};
+  // Since /2: what the luminances refer to: true, referred to `reference_illuminance_lx` (every
+  // row of the sweep referred to it); false, unreferred; nullopt, a /1 profile (it does not say;
+  // written again as status "unstated").
+  std::optional<bool> referred = std::nullopt;
+  std::optional<double> reference_illuminance_lx = std::nullopt;  // exactly when referred
+  // Since /2: the contour ladder per whole degree of α, ascending (empty: the sweep had none).
+  std::vector<ProfileLadderRow> ladder = {};
   // The fits exactly as `glarecam fit --json` writes them (glarecam.fits/1, fitsJson()), or null.
   nlohmann::json fits = nullptr;
   std::optional<Generator> generator = std::nullopt;
   bool operator==(const GlareProfile&) const = default;
 };
 
-// The profile of a sweep's fits under `limit`, with the table's rows and identity.
+// The profile of a sweep's fits under `limit`, with the table's rows and identity, and the
+// ladder of its contour table when given.
 GlareProfile makeGlareProfile(const ProfileIdentity& identity, const SweepTable& table,
-                              const SweepFits& fits, const GlareLimit& limit);
+                              const SweepFits& fits, const GlareLimit& limit,
+                              const ContourTable* contours = nullptr);
+
+// The contour at angle of incidence `alpha_deg` and referred luminance `level_cd_m2` from the
+// profile's ladder: linear in ln level between the two rungs around it (axes, orientation, solid
+// angle, σ), then linear in α between the whole degrees around `alpha_deg`. None outside the
+// ladder's α, above its highest rung at either degree (above the peak there is no contour; between
+// the highest rung and the peak none is claimed) or below its lowest (none is claimed). The
+// contour's kind is ladder unless both degrees' rungs at exactly that level are half maxima.
+// Between rungs the axes' and the solid angle's standard uncertainties include the linear
+// interpolation's own error, estimated from the parabola in ln level through the next rung.
+std::optional<ProfileContour> contourAt(const GlareProfile& profile, double alpha_deg,
+                                        double level_cd_m2);
+
+// The contour where a source of direct normal illuminance `source_illuminance_lx` makes the
+// luminance reach `level_cd_m2`: the referred contour at level · E_ref / E (docs/method.md).
+// kBadInput when the profile is not referred (it cannot say) or E is not a positive number.
+Result<std::optional<ProfileContour>> contourAt(const GlareProfile& profile, double alpha_deg,
+                                                double level_cd_m2, double source_illuminance_lx);
 
 nlohmann::json toJson(const GlareProfile& profile);
 // Reads a profile document, validating every field it has; `file` names it in errors (kBadInput).

@@ -286,12 +286,18 @@ ContourPoint crossingPoint(const FloatImage& image, const RegionGrid& grid, Edge
 }  // namespace
 
 std::optional<RegionContour> traceRegionContour(const FloatImage& luminance, double level,
-                                                PixelIndex seed) {
+                                                PixelIndex seed, ByteImage* region_mask) {
   if (!(level > 0) || seed.x < 0 || seed.y < 0 || seed.x >= luminance.width() ||
       seed.y >= luminance.height() || !reaches(luminance.at(seed.x, seed.y), level)) {
     return std::nullopt;
   }
-  ByteImage mask(luminance.width(), luminance.height());
+  ByteImage own_mask;
+  if (region_mask) {
+    *region_mask = ByteImage(luminance.width(), luminance.height());
+  } else {
+    own_mask = ByteImage(luminance.width(), luminance.height());
+  }
+  ByteImage& mask = region_mask ? *region_mask : own_mask;
   RegionContour contour;
   const RegionBox box = floodRegion(luminance, level, seed, mask, contour.connected_pixels);
   const RegionGrid grid(mask, box);
@@ -305,7 +311,8 @@ std::optional<RegionContour> traceRegionContour(const FloatImage& luminance, dou
   return contour;
 }
 
-int countRegions(const FloatImage& luminance, double level, std::size_t min_pixels) {
+std::vector<RegionExtent> findRegions(const FloatImage& luminance, double level,
+                                      std::size_t min_pixels, ByteImage* seen) {
   // Rows holding any pixel at or above the level, found on all cores: on a glare image they
   // are few, and only they are labelled.
   std::vector<std::uint8_t> bright_row(static_cast<std::size_t>(luminance.height()), 0);
@@ -316,19 +323,25 @@ int countRegions(const FloatImage& luminance, double level, std::size_t min_pixe
           std::any_of(row.begin(), row.end(), [&](float v) { return reaches(v, level); });
     }
   });
-  ByteImage mask(luminance.width(), luminance.height());
-  int regions = 0;
+  ByteImage own_mask;
+  if (!seen) own_mask = ByteImage(luminance.width(), luminance.height());
+  ByteImage& mask = seen ? *seen : own_mask;
+  std::vector<RegionExtent> regions;
   for (int y = 0; y < luminance.height(); ++y) {
     if (!bright_row[static_cast<std::size_t>(y)]) continue;
     const auto row = luminance.row(y);
     for (int x = 0; x < luminance.width(); ++x) {
       if (!reaches(row[static_cast<std::size_t>(x)], level) || mask.at(x, y)) continue;
       std::size_t count = 0;
-      floodRegion(luminance, level, {x, y}, mask, count);
-      if (count >= min_pixels) ++regions;
+      const RegionBox box = floodRegion(luminance, level, {x, y}, mask, count);
+      if (count >= min_pixels) regions.push_back({box.x0, box.y0, box.x1, box.y1, count});
     }
   }
   return regions;
+}
+
+int countRegions(const FloatImage& luminance, double level, std::size_t min_pixels) {
+  return static_cast<int>(findRegions(luminance, level, min_pixels).size());
 }
 
 }  // namespace glarecam::pipeline

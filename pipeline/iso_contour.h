@@ -56,9 +56,24 @@ struct RegionContour {
 };
 
 // The contour at `level` (> 0) of the region holding `seed`, or nothing when the seed pixel is
-// below the level (or not finite).
+// below the level (or not finite). With `region_mask`, the region's pixels (before filling holes)
+// are flagged 1 in it (made the image's size, all 0, first): for findRegions() to count the
+// other regions without flooding this one again.
 std::optional<RegionContour> traceRegionContour(const FloatImage& luminance, double level,
-                                                PixelIndex seed);
+                                                PixelIndex seed, ByteImage* region_mask = nullptr);
+
+// An 8-connected region at or above a level: its pixel box (inclusive) and pixel count.
+struct RegionExtent {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  std::size_t pixels = 0;
+};
+
+// The 8-connected regions at or above `level` that have at least `min_pixels` pixels, in scan
+// order. Every region at a higher level lies inside one of the regions at a lower level (or in
+// one smaller than `min_pixels`, then itself smaller): what lets several levels share one scan.
+// With `seen`, pixels flagged in it are left out (and the regions found flagged in it too).
+std::vector<RegionExtent> findRegions(const FloatImage& luminance, double level,
+                                      std::size_t min_pixels, ByteImage* seen = nullptr);
 
 // How many 8-connected regions at or above `level` have at least `min_pixels` pixels.
 int countRegions(const FloatImage& luminance, double level, std::size_t min_pixels);

@@ -521,7 +521,8 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
                    {.limit_cd_m2 = limit,
                     .thresholds_cd_m2 = options.thresholds_cd_m2,
                     .scale_relative_uncertainty =
-                        illuminance.source ? illuminance.source->relativeUncertainty() : 0.0});
+                        illuminance.source ? illuminance.source->relativeUncertainty() : 0.0,
+                    .ladder = options.ladder});
   warnAboutCameraModel(glare, calibrationSource(stack, options));
   progress.advance("analysed");
   ProcessSummary summary;
@@ -543,7 +544,8 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
        .frames = merged_stack.frames,
        .limit_cd_m2 = limit,
        .constant_limit = options.threshold_cd_m2.has_value(),
-       .glare = glare});
+       .glare = glare,
+       .ladder = options.ladder});
   FalseColourOptions picture_options;
   picture_options.limit_cd_m2 = limit;
   picture_options.title = pictureTitle(stack.manifest.alpha_deg);

@@ -30,6 +30,9 @@ struct ProcessOptions {
   // A constant glare limit instead of the α curve (the method's 30 000 cd/m² mode).
   std::optional<double> threshold_cd_m2;
   std::vector<double> thresholds_cd_m2;  // extra ellipses, one per level (threshold sweep)
+  // The contour ladder (glare_analysis.h) in result.json's `contours` and the picture; off:
+  // `--no-ladder`, `contours` null.
+  bool ladder = true;
   // α for a stack whose manifest records none (another tool's, a rig without an inclinometer),
   // recorded in result.json as given by the user; one that contradicts the manifest's is refused.
   std::optional<double> alpha_deg = std::nullopt;

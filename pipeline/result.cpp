@@ -336,6 +336,52 @@ Result<CalibrationIdentity> readResultCalibration(const JsonReader& document) {
   return cal;
 }
 
+Result<ResultContour> readContour(const JsonReader& block) {
+  GLARECAM_CHECK(block.object());
+  ResultContour contour;
+  std::string kind;
+  GLARECAM_ASSIGN(kind, block.word("kind", {"ladder", "limit", "half_maximum"}));
+  contour.kind = *contourKindFromString(kind);
+  GLARECAM_ASSIGN(contour.level, readLevel(block, "level_cd_m2"));
+  if (!(contour.level.level_cd_m2 > 0)) return block.fail("level_cd_m2", "must be positive");
+  if (contour.kind == ContourKind::kLadder && !isLadderLevel(contour.level.level_cd_m2))
+    return block.fail("level_cd_m2", fmt::format("{:g} cd/m² is not a level of the ladder (1, "
+                                                 "2.15 or 4.64 × 10ⁿ from 10 000 cd/m²)",
+                                                 contour.level.level_cd_m2));
+  return contour;
+}
+
+// `contours`: null or absent (no ladder), or the rungs by ascending level, the limit's at the
+// limit and the half maximum's at the FWHM's level, each at most once.
+Result<std::optional<std::vector<ResultContour>>> readContours(const JsonReader& document,
+                                                               const StackResult& result) {
+  std::optional<JsonReader> list;
+  GLARECAM_ASSIGN(list, document.optionalArray("contours"));
+  if (!list) return std::optional<std::vector<ResultContour>>{};
+  std::vector<ResultContour> contours;
+  GLARECAM_ASSIGN(contours, readEach<ResultContour>(*list, readContour));
+  int limits = 0, halves = 0;
+  for (std::size_t i = 0; i < contours.size(); ++i) {
+    const JsonReader element = list->element(i);
+    const ResultContour& c = contours[i];
+    if (i > 0 && c.level.level_cd_m2 < contours[i - 1].level.level_cd_m2)
+      return element.fail("level_cd_m2", "is below the previous contour's: the ladder ascends");
+    if (c.kind == ContourKind::kLimit) {
+      ++limits;
+      if (result.limit.limit_cd_m2 != c.level.level_cd_m2)
+        return element.fail("level_cd_m2", "of the limit contour is not limit.limit_cd_m2");
+    }
+    if (c.kind == ContourKind::kHalfMaximum) {
+      ++halves;
+      if (c.level.level_cd_m2 != result.fwhm.level_cd_m2)
+        return element.fail("level_cd_m2", "of the half-maximum contour is not fwhm.level_cd_m2");
+    }
+    if (limits > 1 || halves > 1)
+      return element.fail("kind", fmt::format("a second \"{}\" contour", toString(c.kind)));
+  }
+  return std::optional(std::move(contours));
+}
+
 Result<ResultOutputs> readOutputs(const JsonReader& document) {
   JsonReader r;
   GLARECAM_ASSIGN(r, document.objectMember("outputs"));
@@ -469,6 +515,11 @@ StackResult makeResult(const ResultInputs& in) {
   result.fwhm = resultLevel(in.glare.fwhm);
   for (const EllipseMeasurement& m : in.glare.thresholds)
     result.thresholds.push_back(resultLevel(m));
+  if (in.ladder) {
+    result.contours.emplace();
+    for (const ContourRung& rung : in.glare.ladder)
+      result.contours->push_back({rung.kind, resultLevel(rung.measurement)});
+  }
   result.glare = glareVerdict(s.max, in.limit_cd_m2);
   return result;
 }
@@ -479,6 +530,16 @@ json toJson(const StackResult& r) {
     thresholds.push_back({{"threshold_cd_m2", level.level_cd_m2},
                           {"status", toString(level.status)},
                           {"ellipse", ellipseJson(level.ellipse)}});
+  }
+  json contours = nullptr;
+  if (r.contours) {
+    contours = json::array();
+    for (const ResultContour& c : *r.contours) {
+      contours.push_back({{"level_cd_m2", c.level.level_cd_m2},
+                          {"kind", toString(c.kind)},
+                          {"status", toString(c.level.status)},
+                          {"ellipse", ellipseJson(c.level.ellipse)}});
+    }
   }
   json frames = json::array();
   for (const ResultFrame& f : r.frames) {
@@ -509,6 +570,7 @@ json toJson(const StackResult& r) {
             {"status", toString(r.fwhm.status)},
             {"ellipse", ellipseJson(r.fwhm.ellipse)}}},
           {"thresholds", thresholds},
+          {"contours", contours},
           {"glare", jsonOrNull(r.glare)},
           {"outputs",
            {{"luminance_exr", r.outputs.luminance_exr},
@@ -551,6 +613,7 @@ Result<StackResult> resultFromJson(const json& document, const std::string& file
   GLARECAM_ASSIGN(result.thresholds, readEach<ResultLevel>(thresholds, [](const JsonReader& level) {
                     return readLevel(level, "threshold_cd_m2");
                   }));
+  GLARECAM_ASSIGN(result.contours, readContours(r, result));
   GLARECAM_ASSIGN(result.glare, r.optionalBoolean("glare"));
   if (result.glare && !result.limit.limit_cd_m2)
     return r.fail("glare", "is a verdict without a limit");

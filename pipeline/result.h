@@ -64,6 +64,15 @@ struct ResultLevel {
   bool operator==(const ResultLevel&) const = default;
 };
 
+// One rung of the contour ladder (glare_analysis.h): its kind and the ellipse at its level (with
+// its σ; the fixed rungs' and the limit's include u(E) when referred, the half maximum's the
+// peak's), or the status saying why there is none.
+struct ResultContour {
+  ContourKind kind = ContourKind::kLadder;
+  ResultLevel level;
+  bool operator==(const ResultContour&) const = default;
+};
+
 // How the stack's limit was set: the α curve, a constant (--threshold), or none (no α).
 enum class LimitMode { kAlphaCurve, kConstant, kNone };
 const char* toString(LimitMode mode);
@@ -185,6 +194,9 @@ struct StackResult {
   ResultLimit limit;
   ResultLevel fwhm;
   std::vector<ResultLevel> thresholds = {};  // in the order asked
+  // The contour ladder by ascending level; none when it was not computed (`process --no-ladder`,
+  // or a result written before the ladder existed).
+  std::optional<std::vector<ResultContour>> contours = std::nullopt;
   // Lmax at or above the limit; nullopt without a limit, or when a bound cannot decide.
   std::optional<bool> glare = std::nullopt;
   ResultOutputs outputs;
@@ -216,6 +228,7 @@ struct ResultInputs {
   std::optional<double> limit_cd_m2 = std::nullopt;
   bool constant_limit = false;  // --threshold rather than the α curve
   GlareAnalysis glare;
+  bool ladder = true;  // the analysis computed the contour ladder (its `ladder` may be empty)
 };
 
 StackResult makeResult(const ResultInputs& inputs);

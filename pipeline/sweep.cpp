@@ -19,6 +19,7 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/stack_manifest.h"
+#include "pipeline/contour_table.h"
 #include "pipeline/datasheet.h"
 #include "pipeline/glare_profile.h"
 #include "pipeline/process_stack.h"
@@ -90,8 +91,14 @@ Status checkAlpha(const fs::path& stack) {
   return validateSweepAlpha(*alpha);
 }
 
-Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_directory,
-                            const SweepOptions& options, unsigned threads_per_job) {
+// One processed stack: its row of sweep.csv and its rows of contours.csv.
+struct SweptStack {
+  SweepRow row;
+  std::vector<ContourRow> contours;
+};
+
+Result<SweptStack> processOne(const fs::path& stack, const fs::path& result_directory,
+                              const SweepOptions& options, unsigned threads_per_job) {
   const auto given = options.given_alpha_deg.find(stack.filename().string());
   const std::optional<double> given_alpha_deg =
       given != options.given_alpha_deg.end() ? std::optional(given->second) : std::nullopt;
@@ -107,10 +114,13 @@ Result<SweepRow> processOne(const fs::path& stack, const fs::path& result_direct
                          .calibration_use = {}};
   // Runs on a worker thread: an exception (out of memory, a bug) must skip this stack, not
   // terminate the process and lose every other stack's work.
-  return catchExceptions([&]() -> Result<SweepRow> {
+  return catchExceptions([&]() -> Result<SweptStack> {
     auto summary = processStack(stack, process);
     if (!summary) return std::unexpected(summary.error());
-    return sweepRowFromResult(summary->result, stack.string());
+    SweptStack swept;
+    GLARECAM_ASSIGN(swept.row, sweepRowFromResult(summary->result, stack.string()));
+    swept.contours = contourRowsFromResult(summary->result);
+    return swept;
   });
 }
 
@@ -237,7 +247,7 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
                    alpha_deg);
   }
 
-  std::vector<std::optional<Result<SweepRow>>> outcomes(stacks.size());
+  std::vector<std::optional<Result<SweptStack>>> outcomes(stacks.size());
   std::atomic<std::size_t> next{0};
   std::mutex progress_mutex;
   Progress progress("sweep", static_cast<int>(stacks.size()), options.show_progress);
@@ -260,7 +270,9 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
 
   for (std::size_t i = 0; i < stacks.size(); ++i) {
     if (*outcomes[i]) {
-      summary.table.rows.push_back(std::move(**outcomes[i]));
+      summary.table.rows.push_back(std::move((*outcomes[i])->row));
+      for (ContourRow& row : (*outcomes[i])->contours)
+        summary.contours.rows.push_back(std::move(row));
     } else {
       summary.skipped.push_back({stacks[i], outcomes[i]->error()});
     }
@@ -289,6 +301,8 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
   }
   summary.sweep_csv = options.output_directory / kSweepTableFileName;
   GLARECAM_CHECK(writeFileAtomic(summary.sweep_csv, formatSweepTable(summary.table)));
+  summary.contours_csv = options.output_directory / kContourTableFileName;
+  GLARECAM_CHECK(writeFileAtomic(summary.contours_csv, formatContourTable(summary.contours)));
   warnAboutEarlierOutputs(options.output_directory, results);
   return summary;
 }

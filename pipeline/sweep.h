@@ -2,7 +2,8 @@
 // Each stack runs through processStack() with its outputs under OUT/results/<stack name>/; a stack
 // that fails (unreadable, no α, corrupt frames) is reported and skipped, never stops the rest.
 // OUT/sweep.csv (sweep_table.h, rows sorted by α, skipped stacks as '#' notes) is written
-// atomically once every stack is done.
+// atomically once every stack is done, and beside it OUT/contours.csv (contour_table.h: every
+// processed stack's contour ladder, one row per stack and level).
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "pipeline/contour_table.h"
 #include "pipeline/sweep_table.h"
 
 namespace glarecam::pipeline {
@@ -53,6 +55,8 @@ struct SweepSummary {
   SweepTable table;
   std::vector<SkippedStack> skipped;
   std::filesystem::path sweep_csv;
+  ContourTable contours;  // the rows' stacks' ladders (contours.csv)
+  std::filesystem::path contours_csv;
 };
 
 inline constexpr const char* kSweepTableFileName = "sweep.csv";

@@ -23,7 +23,8 @@ struct ProcessArgs {
   // Optional, so that a given but empty value ("--threshold $UNSET") is an error, not a default.
   std::optional<std::string> calibration, out, threshold, thresholds, alpha, source_illuminance,
       reference_illuminance;
-  bool json = false, no_progress = false, force_calibration = false, float32 = false;
+  bool json = false, no_progress = false, force_calibration = false, float32 = false,
+       no_ladder = false;
   unsigned threads = 0;
   double max_calibration_age_days = 365;
 };
@@ -55,6 +56,7 @@ Status runProcess(const ProcessArgs& args) {
   }
   options.show_progress = !args.no_progress;
   options.float32 = args.float32;
+  options.ladder = !args.no_ladder;
   if (!(args.max_calibration_age_days > 0))
     return badInput("--max-calibration-age-days must be positive");
   options.calibration_use = {.force = args.force_calibration,
@@ -96,6 +98,8 @@ void addProcessCommand(CLI::App& app, Action& action) {
                   "constant glare limit in cd/m² instead of the α curve (e.g. 30000)");
   sub->add_option("--thresholds", args->thresholds,
                   "extra ellipse levels in cd/m², comma-separated, at most 32 (threshold sweep)");
+  sub->add_flag("--no-ladder", args->no_ladder,
+                "no contour ladder: result.json's `contours` is null (a little faster)");
   sub->add_flag("--force-calibration", args->force_calibration,
                 "use a calibration made for another camera serial than the stack's");
   sub->add_option("--max-calibration-age-days", args->max_calibration_age_days,

@@ -95,13 +95,17 @@ expect "--json prints the result" grep -q '"schema": "glarecam.result/1"' "$WORK
 expect "--json result has glare" grep -q '"glare": true' "$WORK/out"
 expect "--out is honoured" test -s "$WORK/r2/result.json"
 expect "--json has the limit ellipse" grep -q '"vertical_deg"' "$WORK/out"
+expect "--json has the contour ladder with its limit and half-maximum rungs" \
+  bash -c "grep -q '\"kind\": \"ladder\"' '$WORK/out' && grep -q '\"kind\": \"limit\"' '$WORK/out' && grep -q '\"kind\": \"half_maximum\"' '$WORK/out'"
+check "process --no-ladder" 0 "$GLARECAM" process --no-progress --json --no-ladder --out "$WORK/r2" "$WORK/s"
+expect "--no-ladder: no contours" grep -q '"contours": null' "$WORK/out"
 expect "--json has both ellipses with uncertainties" \
   test "$(grep -c '"uncertainty": {' "$WORK/out")" -eq 2
 
 # Glare-limit options.
 check "--threshold" 0 "$GLARECAM" process --no-progress --json --out "$WORK/r3" --threshold 30000 "$WORK/s"
 expect "--threshold is the constant mode" grep -q '"mode": "constant"' "$WORK/out"
-check "--thresholds" 0 "$GLARECAM" process --no-progress --json --out "$WORK/r3" --thresholds 5e4,2e5 "$WORK/s"
+check "--thresholds" 0 "$GLARECAM" process --no-progress --json --no-ladder --out "$WORK/r3" --thresholds 5e4,2e5 "$WORK/s"
 expect "--thresholds gives one ellipse each" \
   test "$(grep -c '"threshold_cd_m2"' "$WORK/out")" -eq 2 -a "$(grep -c '"uncertainty": {' "$WORK/out")" -eq 4
 for bad in abc -5 0 nan 1e400 "30000,40000"; do
@@ -217,6 +221,10 @@ expect "sweep table notes the broken stack" grep -q "^# skipped $WORK/sweep-in/b
 expect "sweep table has 4 rows sorted by alpha" \
   test "$(grep -v '^#' "$WORK/sw/sweep.csv" | tail -n +2 | cut -d, -f1 | tr '\n' ' ')" = "20 40 60 80 "
 expect "sweep wrote each result" test -s "$WORK/sw/results/a60/result.json"
+expect "sweep wrote contours.csv beside sweep.csv" \
+  grep -q '^stack_id,alpha_deg,level_cd_m2,kind,status,vertical_deg' "$WORK/sw/contours.csv"
+expect "contours.csv has each stack's ladder, the limit and half maximum among it" \
+  bash -c "grep -q ',20,10000,ladder,' '$WORK/sw/contours.csv' && grep -q ',80,400000,limit,' '$WORK/sw/contours.csv' && test \$(grep -c ',half_maximum,' '$WORK/sw/contours.csv') -eq 4"
 check "sweep --strict with a broken stack" 2 "$GLARECAM" sweep "$WORK/sweep-in" --out "$WORK/sw2" --strict --no-progress
 expect "--strict still writes the table" test -s "$WORK/sw2/sweep.csv"
 # A stack whose frames disagree (two frames swapped) is flagged all the way down: sweep.csv marks
@@ -248,6 +256,13 @@ expect "fit lists the row" grep -q "suspect: α 40° .*frames disagree" "$WORK/e
 check "fit --include-suspect" 0 "$GLARECAM" fit "$WORK/sws/sweep.csv" --include-suspect
 expect "fit --include-suspect says it fitted the row" grep -q "suspect (fitted as asked): α 40°" "$WORK/err"
 check "datasheet of the sweep with a suspect row" 0 "$GLARECAM" datasheet "$WORK/sws/sweep.csv" --date 2026-06-21
+expect "its profile is /2 with the sweep's ladder from 20 to 80°" python3 -c '
+import json, sys
+p = json.load(open(sys.argv[1]))
+assert p["schema"] == "glarecam.glare-profile/2", p["schema"]
+assert [r["alpha_deg"] for r in p["ladder"]] == list(range(20, 81)), [r["alpha_deg"] for r in p["ladder"]]
+assert p["ladder"][0]["contours"][0]["level_cd_m2"] == 10000
+' "$WORK/sws/glare-profile.json"
 expect "datasheet warns about the suspect row" grep -q "suspect: α 40°" "$WORK/err"
 
 check "sweep of nothing usable" 2 "$GLARECAM" sweep "$WORK/sweep-in/broken" "$WORK/nowhere" --out "$WORK/sw3"

@@ -23,7 +23,8 @@ struct Pictures {
 
 // The same scene drawn without and with the overlay; `with_ellipses` false draws the overlay of
 // an analysis that found no ellipse.
-Pictures render(bool with_ellipses = true, std::vector<double> thresholds_cd_m2 = {}) {
+Pictures render(bool with_ellipses = true, std::vector<double> thresholds_cd_m2 = {},
+                bool ladder = true) {
   testing::SceneSpec spec;
   spec.lobe = testing::lobeAtLimit(30'000, 594'000, 5.0, 5.7);
   Pictures p;
@@ -31,8 +32,9 @@ Pictures render(bool with_ellipses = true, std::vector<double> thresholds_cd_m2 
   const calibration::CameraModel camera(p.scene.intrinsics);
   const LuminancePeak peak = findLuminancePeak(p.scene.merged);
   if (with_ellipses) {
-    p.analysis = analyseGlare(p.scene.merged, camera, peak,
-                              {.limit_cd_m2 = 30'000.0, .thresholds_cd_m2 = thresholds_cd_m2});
+    p.analysis = analyseGlare(
+        p.scene.merged, camera, peak,
+        {.limit_cd_m2 = 30'000.0, .thresholds_cd_m2 = thresholds_cd_m2, .ladder = ladder});
   }
   FalseColourOptions options;
   options.limit_cd_m2 = 30'000.0;
@@ -101,6 +103,28 @@ TEST(GlarePicture, DrawsTheThresholdEllipses) {
   }
   ASSERT_GT(checked, 10);
   EXPECT_GT(lifted, checked / 3) << lifted << " of " << checked;
+}
+
+// The contour ladder's fixed rungs are drawn (thin pale cyan): the overlay lifts the picture along
+// the lowest rung's traced contour (10 000 cd/m², outside the limit's), where the picture of the
+// same analysis without the ladder is left alone.
+TEST(GlarePicture, DrawsTheLaddersContours) {
+  const Pictures with = render();
+  const Pictures without = render(true, {}, false);
+  ASSERT_FALSE(with.analysis.ladder.empty());
+  const ContourRung& lowest = with.analysis.ladder.front();
+  ASSERT_EQ(lowest.kind, ContourKind::kLadder);
+  ASSERT_EQ(lowest.measurement.level_cd_m2, 1e4);
+  ASSERT_TRUE(lowest.measurement.ellipse);
+  const GlareEllipse& e = *lowest.measurement.ellipse;
+  int lifted = 0, checked = 0;
+  for (std::size_t i = 0; i < e.contour_px.size(); i += 10) {
+    const auto& c = e.contour_px[i];
+    ++checked;
+    lifted += lift(with, c.x, c.y) > 40 && lift(without, c.x, c.y) < 10;
+  }
+  ASSERT_GT(checked, 10);
+  EXPECT_GT(lifted, checked * 2 / 3) << lifted << " of " << checked;
 }
 
 TEST(GlarePicture, WithoutEllipsesOnlyTheCirclesAreDrawn) {

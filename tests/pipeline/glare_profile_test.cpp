@@ -3,6 +3,7 @@
 // profiles read, and what is not a profile is refused naming the file and the field.
 #include "pipeline/glare_profile.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +12,9 @@
 #include <regex>
 
 #include "core/angles.h"
+#include "pipeline/process_stack.h"
 #include "pipeline/sweep_fits_test_support.h"
+#include "support/sim_support.h"
 #include "support/test_support.h"
 
 namespace glarecam::pipeline {
@@ -77,7 +80,7 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
 
   const nlohmann::json j =
       toJson(makeGlareProfile({"standard", "2026-11-26", "t.csv"}, *table, fits, {}));
-  EXPECT_EQ(j["schema"], "glarecam.glare-profile/1");
+  EXPECT_EQ(j["schema"], "glarecam.glare-profile/2");
   EXPECT_EQ(j["profile"].size(), 81u);
   EXPECT_EQ(j["measured"].size(), 9u);
   EXPECT_TRUE(j["fits"]["vertical"]["logistic"]["r2"].is_number());
@@ -259,7 +262,7 @@ TEST(GlareProfileDocument, RefusesWhatIsNotAProfileNamingTheField) {
   const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> cases{
       {[](nlohmann::json& d) { d["schema"] = "glarecam.fits/1"; },
        "p.json: schema \"glarecam.fits/1\" is not supported (a glare profile's is "
-       "\"glarecam.glare-profile/1\")"},
+       "\"glarecam.glare-profile/2\" or \"glarecam.glare-profile/1\")"},
       {[](nlohmann::json& d) { d.erase("module"); }, "p.json: module is missing"},
       {[](nlohmann::json& d) { d.erase("glare_ranges_deg"); },
        "p.json: glare_ranges_deg is missing"},
@@ -305,6 +308,225 @@ TEST(GlareProfileDocument, RefusesWhatIsNotAProfileNamingTheField) {
     EXPECT_EQ(read.error().code, ErrorCode::kBadInput);
     EXPECT_EQ(read.error().message, expected);
   }
+}
+
+}  // namespace
+}  // namespace glarecam::pipeline
+
+namespace glarecam::pipeline {
+namespace {
+
+// ---- the contour ladder (/2) ------------------------------------------------------------------
+
+ContourRow measuredRung(double alpha_deg, double level_cd_m2, ContourKind kind, double vertical_deg,
+                        double horizontal_deg, double orientation_deg) {
+  return {.stack_id = fmt::format("s{:g}", alpha_deg),
+          .alpha_deg = alpha_deg,
+          .level_cd_m2 = level_cd_m2,
+          .kind = kind,
+          .status = EllipseStatus::kMeasured,
+          .vertical_deg = vertical_deg,
+          .horizontal_deg = horizontal_deg,
+          .orientation_deg = orientation_deg,
+          .solid_angle_sr = vertical_deg * horizontal_deg * 1e-4,
+          .vertical_uncertainty_deg = 0.1,
+          .horizontal_uncertainty_deg = 0.2,
+          .orientation_uncertainty_deg = 1.0,
+          .solid_angle_uncertainty_sr = 1e-5,
+          .reference_illuminance_lx = 100'000.0};
+}
+
+// Two stacks, at α 20° and 30°: rungs at 1e4 and 2.15e4 in both, 4.64e4 at 30° alone, the half
+// maxima at 1e5 and 2e5, a limit rung (not in the profile) and a rung without an ellipse.
+ContourTable twoStackLadder() {
+  ContourTable table;
+  table.rows = {measuredRung(20, 1e4, ContourKind::kLadder, 10, 8, 89),
+                measuredRung(20, 2.15e4, ContourKind::kLadder, 8, 6, 89),
+                measuredRung(20, 3e4, ContourKind::kLimit, 7, 5, 89),
+                measuredRung(20, 1e5, ContourKind::kHalfMaximum, 4, 3, 89),
+                measuredRung(30, 1e4, ContourKind::kLadder, 12, 10, -89),
+                measuredRung(30, 2.15e4, ContourKind::kLadder, 10, 8, -89),
+                measuredRung(30, 4.64e4, ContourKind::kLadder, 8, 6, -89),
+                measuredRung(30, 2e5, ContourKind::kHalfMaximum, 5, 4, -89)};
+  ContourRow none = measuredRung(30, 1e6, ContourKind::kLadder, 1, 1, 0);
+  none.status = EllipseStatus::kBelowLevel;
+  table.rows.push_back(none);
+  return table;
+}
+
+TEST(ProfileLadder, RungsPerWholeDegreeLinearInAlphaBetweenTheStacks) {
+  const std::vector<ProfileLadderRow> ladder = profileLadder(twoStackLadder());
+  ASSERT_EQ(ladder.size(), 11u);  // 20 … 30°
+  EXPECT_EQ(ladder.front().alpha_deg, 20);
+  EXPECT_EQ(ladder.back().alpha_deg, 30);
+  // At a measured α: its rungs (fixed, then the half maximum), without the limit's.
+  ASSERT_EQ(ladder.back().contours.size(), 4u);
+  EXPECT_EQ(ladder.back().contours[2].level_cd_m2, 4.64e4);
+  EXPECT_EQ(ladder.back().contours[3].kind, ContourKind::kHalfMaximum);
+  // Between: the levels both stacks measured, axes linear in α, the half maximum's level
+  // log-linear, the orientation the short way round (89° and -89° are 2° apart, through 90°).
+  const ProfileLadderRow& at25 = ladder[5];
+  EXPECT_EQ(at25.alpha_deg, 25);
+  ASSERT_EQ(at25.contours.size(), 3u);
+  EXPECT_EQ(at25.contours[0].level_cd_m2, 1e4);
+  EXPECT_DOUBLE_EQ(at25.contours[0].vertical_deg, 11);
+  EXPECT_DOUBLE_EQ(at25.contours[0].horizontal_deg, 9);
+  EXPECT_NEAR(at25.contours[0].orientation_deg, 90, 1e-12);
+  EXPECT_NEAR(at25.contours[2].level_cd_m2, std::sqrt(1e5 * 2e5), 1e-6);
+  EXPECT_EQ(at25.contours[2].kind, ContourKind::kHalfMaximum);
+  EXPECT_NEAR(ladder[3].contours[0].orientation_deg, 89.6, 1e-9);   // α 23°: 89 + 0.3 · 2
+  EXPECT_NEAR(ladder[7].contours[0].orientation_deg, -89.6, 1e-9);  // α 27°
+  EXPECT_TRUE(profileLadder(ContourTable{}).empty());
+}
+
+GlareProfile ladderProfile() {
+  GlareProfile profile;
+  profile.module = "ladder module";
+  profile.referred = true;
+  profile.reference_illuminance_lx = 100'000;
+  profile.ladder = profileLadder(twoStackLadder());
+  return profile;
+}
+
+TEST(ContourAt, LinearInLnLevelBetweenRungsThenInAlpha) {
+  const GlareProfile profile = ladderProfile();
+  // At a rung: the rung.
+  const auto rung = contourAt(profile, 20, 1e4);
+  ASSERT_TRUE(rung);
+  EXPECT_EQ(rung->vertical_deg, 10);
+  // Between 1e4 and 2.15e4 at 20°: a quarter of the way in ln level.
+  const double level = 1e4 * std::pow(2.15, 0.25);
+  const auto between = contourAt(profile, 20, level);
+  ASSERT_TRUE(between);
+  EXPECT_NEAR(between->vertical_deg, 10 - 2 * 0.25, 1e-12);
+  EXPECT_EQ(between->level_cd_m2, level);
+  EXPECT_EQ(between->kind, ContourKind::kLadder);
+  // And at 20.5°: halfway to 21°'s (whose rungs are 0.1 of the way to 30°'s: +0.2°).
+  const auto off_degree = contourAt(profile, 20.5, level);
+  ASSERT_TRUE(off_degree);
+  EXPECT_NEAR(off_degree->vertical_deg, 10 - 0.5 + 0.1, 1e-12);
+  EXPECT_NEAR(off_degree->solid_angle_sr,
+              (contourAt(profile, 20, level)->solid_angle_sr +
+               contourAt(profile, 21, level)->solid_angle_sr) /
+                  2,
+              1e-15);
+  // None above the highest rung (the half maximum here), below the lowest, or outside the α.
+  EXPECT_FALSE(contourAt(profile, 20, 1.01e5));
+  EXPECT_TRUE(contourAt(profile, 30, 1.01e5));  // 30°'s half maximum is at 2e5
+  EXPECT_FALSE(contourAt(profile, 20, 9e3));
+  EXPECT_FALSE(contourAt(profile, 19.5, 2e4));
+  EXPECT_FALSE(contourAt(profile, 30.5, 2e4));
+  EXPECT_FALSE(contourAt(profile, 25, std::nan("")));
+  EXPECT_FALSE(contourAt(GlareProfile{}, 25, 2e4));
+}
+
+TEST(ContourAt, UnderASourceIlluminanceTheReferredContourAtTheScaledLevel) {
+  const GlareProfile profile = ladderProfile();
+  // A 50 klx sun reaches 1e4 cd/m² where the 100 klx reference reaches 2e4.
+  const auto dim = contourAt(profile, 25, 1e4, 50'000);
+  ASSERT_TRUE(dim) << dim.error().message;
+  ASSERT_TRUE(*dim);
+  EXPECT_EQ(**dim, *contourAt(profile, 25, 2e4));
+  GlareProfile unreferred = profile;
+  unreferred.referred = false;
+  unreferred.reference_illuminance_lx.reset();
+  const auto refused = contourAt(unreferred, 25, 1e4, 50'000);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(refused.error().message.find("is unreferred"), std::string::npos)
+      << refused.error().message;
+  EXPECT_FALSE(contourAt(profile, 25, 1e4, 0.0));
+  EXPECT_FALSE(contourAt(profile, 25, 1e4, -5.0));
+}
+
+TEST(GlareProfileDocument, TheLadderAndReferenceReadBackAndBadLaddersAreRefused) {
+  GlareProfile profile = tableIIIProfile();
+  profile.referred = true;
+  profile.reference_illuminance_lx = 100'000;
+  profile.ladder = profileLadder(twoStackLadder());
+  expectRoundTrip(profile, "a ladder");
+  const nlohmann::json good = toJson(profile);
+  EXPECT_EQ(good["schema"], "glarecam.glare-profile/2");
+  EXPECT_EQ(good["illuminance"], (nlohmann::json{{"status", "referred"}, {"reference_lx", 1e5}}));
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> cases{
+      {[](nlohmann::json& d) { d.erase("ladder"); },
+       "p.json: ladder is missing (a /2 profile has one, maybe empty)"},
+      {[](nlohmann::json& d) { d.erase("illuminance"); },
+       "p.json: illuminance is missing (a /2 profile says what it refers to)"},
+      {[](nlohmann::json& d) { d["illuminance"]["reference_lx"] = nullptr; },
+       "p.json: illuminance.reference_lx must be given exactly when the status is referred"},
+      {[](nlohmann::json& d) { d["ladder"][1]["alpha_deg"] = 20.5; },
+       "p.json: ladder[1].alpha_deg is not a whole degree"},
+      {[](nlohmann::json& d) { d["ladder"][1]["alpha_deg"] = 20; },
+       "p.json: ladder[1].alpha_deg is not above the previous row's: the ladder ascends in α"},
+      {[](nlohmann::json& d) { d["ladder"][0]["contours"][0]["kind"] = "limit"; },
+       "p.json: ladder[0].contours[0].kind \"limit\" is not ladder or half_maximum"},
+      {[](nlohmann::json& d) { d["ladder"][0]["contours"][0]["level_cd_m2"] = 1.5e4; },
+       "p.json: ladder[0].contours[0].level_cd_m2 15000 cd/m² is not a level of the ladder (1, "
+       "2.15 or 4.64 × 10ⁿ from 10 000 cd/m²)"},
+      {[](nlohmann::json& d) { d["ladder"][0]["contours"][1]["level_cd_m2"] = 1e4; },
+       "p.json: ladder[0].contours[1].level_cd_m2 is not above the previous contour's: levels "
+       "ascend"},
+      {[](nlohmann::json& d) { d["ladder"][0]["contours"][0]["vertical_deg"] = 200; },
+       "p.json: ladder[0].contours[0].vertical_deg 200° is outside [0, 180]"},
+      {[](nlohmann::json& d) {
+         d["ladder"][0]["contours"][0]["uncertainty"].erase("vertical_deg");
+       },
+       "p.json: ladder[0].contours[0].uncertainty.vertical_deg is missing"},
+  };
+  for (const auto& [change, message] : cases) {
+    nlohmann::json document = good;
+    change(document);
+    const auto read = glareProfileFromJson(document, "p.json");
+    ASSERT_FALSE(read) << message;
+    EXPECT_EQ(read.error().code, ErrorCode::kBadInput);
+    EXPECT_EQ(read.error().message, message);
+  }
+  // A /1 profile with neither reads, and says nothing about its reference.
+  nlohmann::json v1 = good;
+  v1["schema"] = "glarecam.glare-profile/1";
+  v1.erase("ladder");
+  v1.erase("illuminance");
+  const auto read = glareProfileFromJson(v1, "p.json");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_FALSE(read->referred);
+  EXPECT_TRUE(read->ladder.empty());
+  expectRoundTrip(*read, "a /1 profile, as read");
+  EXPECT_EQ(toJson(*read)["illuminance"]["status"], "unstated");
+}
+
+// The check of the issue: a contour between two rungs, from a processed stack's ladder through
+// the profile, agrees with the ellipse measured directly at that level (process --thresholds)
+// within its standard uncertainty, which includes the interpolation's own error (the stack's
+// pixel noise alone is far smaller: the axes of a Gaussian lobe go as √ln(L/T), and the chord
+// between rungs falls short of that curve by some 0.1 % of an axis).
+TEST(ContourAt, BetweenTwoRungsItAgreesWithADirectMeasurement) {
+  testing::TempDir dir;
+  testing::writeSmallStack(dir / "s", testing::smallScene(40.0));
+  const double level = std::sqrt(2.15e4 * 4.64e4);
+  ProcessOptions options;
+  options.show_progress = false;
+  options.thresholds_cd_m2 = {level};
+  const auto processed = processStack(dir / "s", options);
+  ASSERT_TRUE(processed) << processed.error().message;
+  const StackResult& result = processed->result;
+  ASSERT_TRUE(result.thresholds[0].ellipse) << toString(result.thresholds[0].status);
+  const ResultEllipse& direct = *result.thresholds[0].ellipse;
+  ContourTable table;
+  table.rows = contourRowsFromResult(result);
+  GlareProfile profile;
+  profile.ladder = profileLadder(table);
+  const auto contour = contourAt(profile, 40, level);
+  ASSERT_TRUE(contour);
+  EXPECT_NEAR(contour->vertical_deg, direct.vertical_deg, contour->vertical_uncertainty_deg);
+  EXPECT_NEAR(contour->horizontal_deg, direct.horizontal_deg, contour->horizontal_uncertainty_deg);
+  EXPECT_NEAR(contour->solid_angle_sr, direct.solid_angle_sr, contour->solid_angle_uncertainty_sr);
+  // Its σ is no blanket: a fraction of a per cent of the axes.
+  EXPECT_LT(contour->vertical_uncertainty_deg, 0.005 * contour->vertical_deg);
+  // And the interpolation is no coincidence: the rungs around it differ by many σ.
+  const auto low = contourAt(profile, 40, 2.15e4), high = contourAt(profile, 40, 4.64e4);
+  ASSERT_TRUE(low && high);
+  EXPECT_GT(low->vertical_deg - high->vertical_deg, 5 * direct.vertical_uncertainty_deg);
 }
 
 }  // namespace

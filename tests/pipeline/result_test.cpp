@@ -141,9 +141,21 @@ TEST(Result, EveryOptionalFieldReadsBackEqual) {
   result.thresholds = {{.level_cd_m2 = 1e4, .status = EllipseStatus::kFillsImage},
                        {.level_cd_m2 = 1e5, .status = EllipseStatus::kMeasured, .ellipse = e},
                        {.level_cd_m2 = 1e9, .status = EllipseStatus::kBelowLevel}};
+  result.contours = std::vector<ResultContour>{
+      {ContourKind::kLadder, {.level_cd_m2 = 1e4, .status = EllipseStatus::kFillsImage}},
+      {ContourKind::kLadder,
+       {.level_cd_m2 = 2.15e4, .status = EllipseStatus::kMeasured, .ellipse = e}},
+      {ContourKind::kLimit,
+       {.level_cd_m2 = 30'000.0, .status = EllipseStatus::kMeasured, .ellipse = e}},
+      {ContourKind::kLadder,
+       {.level_cd_m2 = 4.64e4, .status = EllipseStatus::kMeasured, .ellipse = e}},
+      {ContourKind::kHalfMaximum,
+       {.level_cd_m2 = 2.7e5, .status = EllipseStatus::kMeasured, .ellipse = e}}};
   result.glare = true;
   result.generator = {.name = "glarecam", .version = "9.8.7"};
   expectRoundTrip(result, "every field");
+  result.contours = std::vector<ResultContour>{};
+  expectRoundTrip(result, "an empty ladder (the maximum below 10 000 cd/m²)");
   // And the least a result holds.
   expectRoundTrip(testing::minimalResult(0.0), "minimal");
 }
@@ -222,6 +234,31 @@ TEST(Result, WhatIsNotAResultIsRefusedNamingTheField) {
               d["thresholds"] = {{{"threshold_cd_m2", 1e4}}};
             }),
             "r.json: thresholds[0].status is missing");
+  // The contour ladder: known kinds, the fixed levels, ascending, the limit's and the half
+  // maximum's rungs at their levels.
+  const auto rung = [](double level, const char* kind) {
+    return json{
+        {"level_cd_m2", level}, {"kind", kind}, {"status", "below_level"}, {"ellipse", nullptr}};
+  };
+  EXPECT_EQ(changed([&](json& d) { d["contours"] = {rung(1e4, "rung")}; }),
+            "r.json: contours[0].kind \"rung\" is not ladder, limit or half_maximum");
+  EXPECT_EQ(changed([&](json& d) { d["contours"] = {rung(3e4, "ladder")}; }),
+            "r.json: contours[0].level_cd_m2 30000 cd/m² is not a level of the ladder (1, 2.15 or "
+            "4.64 × 10ⁿ from 10 000 cd/m²)");
+  EXPECT_EQ(changed([&](json& d) {
+              d["contours"] = {rung(1e5, "ladder"), rung(1e4, "ladder")};
+            }),
+            "r.json: contours[1].level_cd_m2 is below the previous contour's: the ladder ascends");
+  EXPECT_EQ(changed([&](json& d) { d["contours"] = {rung(3e4, "limit")}; }),
+            "r.json: contours[0].level_cd_m2 of the limit contour is not limit.limit_cd_m2");
+  EXPECT_EQ(changed([&](json& d) {
+              d["contours"] = {rung(1e4, "half_maximum")};
+              d["fwhm"]["level_cd_m2"] = 1e4;
+              d["contours"].push_back(rung(1e4, "half_maximum"));
+            }),
+            "r.json: contours[1].kind a second \"half_maximum\" contour");
+  EXPECT_EQ(changed([](json& d) { d["contours"] = "none"; }),
+            "r.json: contours must be an array, not \"none\"");
   EXPECT_EQ(changed([](json& d) {
               d["frames"] = {{{"file", "f.png"}, {"samples", -1}}};
             }),

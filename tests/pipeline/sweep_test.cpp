@@ -10,7 +10,9 @@
 
 #include "core/image_io.h"
 #include "core/parallel.h"
+#include "pipeline/contour_table.h"
 #include "pipeline/process_stack.h"
+#include "pipeline/result.h"
 #include "support/sim_support.h"
 
 namespace glarecam::pipeline {
@@ -150,6 +152,22 @@ TEST(Sweep, ProcessesGoodStacksSortedByAlphaAndReportsBadOnes) {
   EXPECT_EQ(table->rows[0].stack, (dir / "stacks/s2").string());
   EXPECT_TRUE(fs::exists(dir / "out/results/s2/result.json"));
   EXPECT_TRUE(fs::exists(dir / "out/results/s2/luminance.png"));
+  // contours.csv beside it: each processed stack's ladder, row for row its result's contours.
+  EXPECT_EQ(summary->contours_csv, dir / "out/contours.csv");
+  auto contours = readContourTable(dir / "out/contours.csv");
+  ASSERT_TRUE(contours) << contours.error().message;
+  std::vector<ContourRow> expected;
+  for (const char* stack : {"s2", "s3", "s1"}) {  // by α
+    auto result = readResult(dir / "out/results" / stack / "result.json");
+    ASSERT_TRUE(result) << result.error().message;
+    ASSERT_TRUE(result->contours);
+    EXPECT_GE(result->contours->size(), 3u) << stack;  // fixed rungs, the limit, the half maximum
+    for (const ContourRow& row : contourRowsFromResult(*result)) expected.push_back(row);
+  }
+  EXPECT_EQ(contours->rows, expected);
+  EXPECT_EQ(contours->rows.front().alpha_deg, 20);
+  EXPECT_EQ(contours->rows.front().kind, ContourKind::kLadder);
+  EXPECT_EQ(contours->rows.front().level_cd_m2, 1e4);
 }
 
 // One table is one module measured with one camera and calibration: stacks whose calibrations

@@ -5,6 +5,7 @@
 #include "core/atomic_file.h"
 #include "daemon/daemon_clock.h"
 #include "rig/inclinometer/zero_offset_file.h"
+#include "sun/clear_sky.h"
 
 namespace glarecam::daemon {
 
@@ -23,6 +24,12 @@ bool isSimulatedRig(const rig::RigConfig& rig) {
 
 sun::ClockStatus rigClockStatus(const rig::RigConfig& rig, const sun::ClockStatus& clock) {
   return isSimulatedRig(rig) ? simulatedClockStatus() : clock;
+}
+
+Result<double> simulatedSourceIlluminance(UtcTime utc, const sun::SiteLocation& site) {
+  SourceIlluminance source;
+  GLARECAM_ASSIGN(source, sun::clearSkySource(utc, site));
+  return source.illuminance_lx;
 }
 
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options) {
@@ -53,6 +60,16 @@ samples = 10
 chip = "sim"
 led = 27
 button = 22
+
+# A simulated pyrheliometer (direct normal irradiance, W/m², float32 in input registers 0-1),
+# served over Modbus TCP on 127.0.0.1 at a free port and read like a real one; it serves the
+# clear-sky sun of the simulated time (docs/illuminance.md).
+[illuminance]
+transport = "sim"
+data_type = "float32"
+units = "W/m2"
+uncertainty_pct = 2
+name = "simulated pyrheliometer"
 
 [schedule]
 {schedule}

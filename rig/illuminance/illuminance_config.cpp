@@ -218,8 +218,7 @@ Result<double> illuminanceLx(const IlluminanceConfig& config, double value) {
     return hardwareError(fmt::format("{}: reads a value that is not a number", config.where()));
   if (lx <= 0)
     return hardwareError(
-        fmt::format("{}: reads {}: no direct light (or a sensor fault); no source illuminance",
-                    config.where(), reading));
+        fmt::format("{}: reads {}: no direct light (or a sensor fault)", config.where(), reading));
   if (lx > kMaxSourceIlluminanceLx)
     return hardwareError(fmt::format(
         "{}: reads {}, above {:g} lx, more than any sun gives (wrong scale, units or register?)",

@@ -17,7 +17,8 @@ constexpr std::int64_t kMaxIlluminanceTimeoutMs = 10'000;
 constexpr std::int64_t kMaxSampleIntervalMs = 60'000;
 
 template <typename Enum>
-Enum pick(std::string_view word, std::initializer_list<std::pair<std::string_view, Enum>> words) {
+Enum illuminanceChoice(std::string_view word,
+                       std::initializer_list<std::pair<std::string_view, Enum>> words) {
   for (const auto& [text, value] : words)
     if (text == word) return value;
   return words.begin()->second;
@@ -82,9 +83,9 @@ Result<IlluminanceConfig> readIlluminanceTable(const std::filesystem::path& file
   std::optional<std::string> word;
   GLARECAM_ASSIGN(word, reader.choice("transport", {"rtu", "tcp", "sim"}));
   if (!word) return reader.tableError("transport is missing (\"rtu\", \"tcp\" or \"sim\")");
-  config.transport = pick<ModbusTransport>(*word, {{"rtu", ModbusTransport::kRtu},
-                                                   {"tcp", ModbusTransport::kTcp},
-                                                   {"sim", ModbusTransport::kSim}});
+  config.transport = illuminanceChoice<ModbusTransport>(*word, {{"rtu", ModbusTransport::kRtu},
+                                                                {"tcp", ModbusTransport::kTcp},
+                                                                {"sim", ModbusTransport::kSim}});
   std::optional<std::string> text;
   GLARECAM_ASSIGN(text, reader.string("device"));
   if (text) config.device = *text;
@@ -111,11 +112,12 @@ Result<IlluminanceConfig> readIlluminanceTable(const std::filesystem::path& file
                   reader.choice("data_type", {"uint16", "int16", "uint32", "int32", "float32"}));
   if (!word)
     return reader.tableError("data_type is missing (uint16, int16, uint32, int32, float32)");
-  config.data_type = pick<RegisterDataType>(*word, {{"uint16", RegisterDataType::kUint16},
-                                                    {"int16", RegisterDataType::kInt16},
-                                                    {"uint32", RegisterDataType::kUint32},
-                                                    {"int32", RegisterDataType::kInt32},
-                                                    {"float32", RegisterDataType::kFloat32}});
+  config.data_type =
+      illuminanceChoice<RegisterDataType>(*word, {{"uint16", RegisterDataType::kUint16},
+                                                  {"int16", RegisterDataType::kInt16},
+                                                  {"uint32", RegisterDataType::kUint32},
+                                                  {"int32", RegisterDataType::kInt32},
+                                                  {"float32", RegisterDataType::kFloat32}});
   GLARECAM_ASSIGN(word, reader.choice("word_order", {"big", "little"}));
   if (word) config.word_order = *word == "big" ? WordOrder::kBig : WordOrder::kLittle;
   std::optional<double> number;
@@ -144,7 +146,7 @@ Result<IlluminanceConfig> readIlluminanceTable(const std::filesystem::path& file
   GLARECAM_ASSIGN(word, reader.choice("sim_fault", {"none", "dead", "timeout", "exception",
                                                     "out-of-range", "negative"}));
   if (word)
-    config.sim_fault = pick<SimulatedInstrumentFault>(
+    config.sim_fault = illuminanceChoice<SimulatedInstrumentFault>(
         *word, {{"none", SimulatedInstrumentFault::kNone},
                 {"dead", SimulatedInstrumentFault::kDead},
                 {"timeout", SimulatedInstrumentFault::kTimeout},

@@ -3,8 +3,8 @@
 // (glarecamd-simulated.toml, so that SIGHUP and `glarecam doctor` work on it too): the sim: camera,
 // the sim: inclinometer (an ADXL355 register simulator) on a south-facing module tilted
 // kSimulatedTiltDeg at a site at kSimulatedLatitudeDeg, the simulated GPIO chip, a simulated
-// pyrheliometer served over Modbus TCP on loopback ([illuminance] transport "sim"), and the
-// α-targets schedule (or a fixed interval). Time runs as a time lapse from a summer morning, so
+// pyrheliometer served over Modbus TCP on loopback ([illuminance] transport "sim"; only in a
+// build with libmodbus), and the α-targets schedule (or a fixed interval). Time runs as a time lapse from a summer morning, so
 // that the sun sweeps α from 80° down to ≈ 0° at noon and back within minutes.
 #pragma once
 

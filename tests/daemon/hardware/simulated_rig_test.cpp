@@ -14,6 +14,7 @@
 #include "daemon/daemon_fixture.h"
 #include "daemon/hardware/rig_doctor.h"
 #include "daemon/status/status_page.h"
+#include "rig/illuminance/illuminance_registry.h"
 
 namespace glarecam::daemon {
 namespace {
@@ -64,6 +65,7 @@ TEST_F(SimulatedRigTest, EveryStackOfAMorningRecordsTheAlphaItsSceneWasDrawnAt) 
     // The simulated pyrheliometer, read over Modbus TCP on loopback during the bracket, gave
     // the clear-sky sun of the bracket's start (captured_at: to the second, and E changes far
     // less than 0.1 % in a second of the time lapse).
+    if (!rig::modbusAvailable()) continue;  // built without: the rig has no instrument
     ASSERT_TRUE(recorded.contains("source")) << stack.filename();
     EXPECT_EQ(recorded["source"]["origin"], "sensor");
     const auto captured = parseIsoTime(recorded["captured_at"].get<std::string>());

@@ -138,6 +138,7 @@ class ModbusInstrumentSimulator::Server {
     const int unit = query[modbus_get_header_length(ctx_) - 1];
     const SimulatedInstrumentFault now = fault();
     if (unit != options_.slave_id || now == SimulatedInstrumentFault::kTimeout) return true;
+    ++answered_;  // before the reply: a client that has it sees the count
     modbus_set_socket(ctx_, client);
     if (now == SimulatedInstrumentFault::kException) {
       modbus_reply_exception(ctx_, query.data(), MODBUS_EXCEPTION_SLAVE_OR_SERVER_FAILURE);
@@ -158,7 +159,6 @@ class ModbusInstrumentSimulator::Server {
       modbus_reply(ctx_, query.data(), length, mapping_);
     }
     modbus_set_socket(ctx_, -1);
-    ++answered_;
     return true;
   }
 

@@ -154,6 +154,7 @@ void CaptureDaemon::stop() {
     if (const auto* report = std::get_if<WorkerEvent>(&*event)) handleWorker(*report);
   }
   closeGpio();
+  illuminance_.close();
   camera_.close();
   worker_.reset();
   spdlog::info("glarecamd: stopped after {} stacks ({} written, {} processed, {} failed)",
@@ -267,6 +268,7 @@ void CaptureDaemon::applyConfig() {
       config_.rig,
       RigSessionOptions{.faults = daemon.faults, .open_rig_io = services_.open_rig_io});
   inclinometer_.open(*rig_, state_);
+  illuminance_.open(config_.rig, state_);
   openGpio();
   checkClock();
   planNext(std::nullopt);
@@ -418,9 +420,13 @@ Status CaptureDaemon::takeStack(CaptureTrigger trigger, const StackTimeline& tim
   const UtcTime start = timeline.now();
   settings.start_time = start;
   const SteadyTime bracket_start = clock_.now();
+  illuminance_.startBracket(start, state_);
   auto stack = capture::captureStack(**acquired, settings);
   if (stack) watchdog_.recordBracket(clock_.now() - bracket_start);
   const UtcTime end = timeline.now();
+  // The source illuminance sampled during the bracket (none: unreferred), only ever its own.
+  const std::optional<SourceIlluminance> source = illuminance_.finishBracket(end, state_);
+  if (stack && source) stack->manifest.source_illuminance = source;
   state_.capturing = false;
   if (!stack) {
     const ErrorCode code = stack.error().code;
@@ -456,6 +462,8 @@ void CaptureDaemon::finishStack(capture::CapturedStack& stack,
   nlohmann::json flags = nlohmann::json::array();
   if (!state_.clock_warning.empty()) flags.push_back("clock_unsynchronised");
   if (!geometry && rig_->measuresAlpha()) flags.push_back("alpha_unknown");
+  if (illuminance_.configured() && !stack.manifest.source_illuminance)
+    flags.push_back("source_illuminance_unknown");
   stack.manifest.source["daemon"] = {
       {"trigger", triggerName(trigger)},
       {"schedule", schedule_.describe()},

@@ -8,6 +8,8 @@
 //                     fails (kHardware) and systemd restarts the daemon
 //   inclinometer      a failed read or an implausible tilt (rig_session.h): the stack is taken
 //                     with α unknown, or capture pauses, per [faults] inclinometer
+//   illuminance       the instrument sampled during each bracket fails, or its reading is
+//                     refused (illuminance_session.h): the stack is taken unreferred, a warning
 //   disk              below the reserve or read-only (health_monitor.h): capture pauses, resumes
 //                     when space returns; a stack whose write failed is kept and written later
 //   clock             not synchronised: said in STATUS, and every stack flagged
@@ -44,6 +46,7 @@
 #include "daemon/daemon_config.h"
 #include "daemon/daemon_events.h"
 #include "daemon/hardware/camera_supervisor.h"
+#include "daemon/hardware/illuminance_session.h"
 #include "daemon/hardware/inclinometer_faults.h"
 #include "daemon/hardware/rig_session.h"
 #include "daemon/health_monitor.h"
@@ -162,6 +165,7 @@ class CaptureDaemon {
   HealthMonitor health_;
   BracketWatchdog watchdog_{health_};
   InclinometerFaults inclinometer_{clock_};
+  IlluminanceSession illuminance_;
   OutputTree output_;
   RetentionScheduler retention_;
 

@@ -45,6 +45,7 @@ Result<std::unique_ptr<RigSession>> openRig(const CaptureRunOptions& options,
                                     .on_button = options.on_button});
   GLARECAM_CHECK(session->openSensors());
   GLARECAM_CHECK(session->openGpio());
+  GLARECAM_CHECK(session->openIlluminance());
   if (!options.calibration) GLARECAM_ASSIGN(settings.calibration, session->cameraCalibration());
   if (!options.module && config.daemon.output.module != kUnnamedModule)
     settings.module = config.daemon.output.module;

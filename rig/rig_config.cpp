@@ -145,6 +145,8 @@ Result<RigConfig> readRigSections(const std::filesystem::path& path, const toml:
   GLARECAM_ASSIGN(rig.inclinometer, readInclinometer(path, root["inclinometer"].as_table()));
   GLARECAM_CHECK(readModule(path, root["module"].as_table(), rig));
   GLARECAM_ASSIGN(rig.gpio, readGpio(path, root["gpio"].as_table()));
+  if (const toml::table* illuminance = root["illuminance"].as_table())
+    GLARECAM_ASSIGN(rig.illuminance, readIlluminanceTable(path, *illuminance));
   GLARECAM_CHECK(checkConsistent(rig));
   return rig;
 }

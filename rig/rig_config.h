@@ -1,6 +1,7 @@
 // The rig's part of its configuration (TOML, /etc/glarecam/glarecam.toml by convention): where the
 // rig is, how its module faces, which inclinometer measures the tilt, the light source (the sun,
-// or a fixed lamp in the lab), the camera, the calibration file and the GPIO lines. The same file
+// or a fixed lamp in the lab), the camera, the calibration file, the GPIO lines and the instrument
+// that measures the source's illuminance ([illuminance], docs/illuminance.md). The same file
 // holds glarecamd's sections, which daemon/daemon_config.h reads (daemon::readConfig reads the
 // whole file). Every key is documented in firmware-config/glarecam.toml and docs/rig.md. Reading
 // validates everything: an unknown key, a wrong type or a value out of range is a kBadInput error
@@ -18,6 +19,7 @@
 #include "core/source_illuminance.h"
 #include "core/stack_manifest.h"
 #include "rig/gpio/rig_io.h"
+#include "rig/illuminance/illuminance_config.h"
 #include "rig/inclinometer/tilt.h"
 #include "sun/incidence_angle.h"
 #include "sun/solar_position.h"
@@ -54,11 +56,14 @@ struct RigConfig {
 
   // [gpio]: trigger, status LED and button lines (chip "sim" for the simulated rig's).
   std::optional<RigIoConfig> gpio;
+
+  // [illuminance]: the Modbus instrument that gives each stack its source illuminance.
+  std::optional<IlluminanceConfig> illuminance;
 };
 
 // The sections of a config file the rig's reader reads.
-inline constexpr std::array<std::string_view, 5> kRigSections{"gpio", "inclinometer", "module",
-                                                              "site", "source"};
+inline constexpr std::array<std::string_view, 6> kRigSections{
+    "gpio", "illuminance", "inclinometer", "module", "site", "source"};
 
 // The top-level keys and kRigSections of `root`, parsed from `file` (relative paths resolve
 // against its directory). Other sections are their readers' (readConfigFile checks that each

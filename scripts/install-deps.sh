@@ -44,6 +44,8 @@ DEMO_PACKAGES=(
   # rig hardware: cameras, GPIO, I2C, systemd (the backends are built when their package is
   # found: a demo build without them would stay without them, CMake keeps the first answer)
   libaravis-dev libusb-1.0-0-dev libcamera-dev libgpiod-dev libi2c-dev libsystemd-dev
+  # the illuminance instrument (Modbus RTU/TCP) and its simulator
+  libmodbus-dev
   # glarecamd's status page
   libcpp-httplib-dev
 )

@@ -45,8 +45,8 @@ int runGlarecam(int argc, char** argv) {
   CLI::App app{
       "glarecam: measures glare of PV modules from bracketed camera stacks.\n"
       "Docs: docs/process.md, docs/sweep.md, docs/datasheet.md, docs/glare-profile.md,\n"
-      "docs/cameras.md, docs/calibration.md, docs/rig.md, docs/operator.md, docs/simulate.md,\n"
-      "docs/hazard.md, docs/stack-format.md, docs/method.md"};
+      "docs/cameras.md, docs/calibration.md, docs/rig.md, docs/illuminance.md, docs/operator.md,\n"
+      "docs/simulate.md, docs/hazard.md, docs/stack-format.md, docs/method.md"};
   app.set_version_flag("--version", kVersion);
   // `--json=yes` is refused, not read as true: a flag takes no value (subcommands inherit this).
   app.option_defaults()->disable_flag_override();

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -14,6 +15,7 @@
 #include "core/time.h"
 #include "daemon/hardware/simulated_rig.h"
 #include "pipeline/limit_curve.h"
+#include "rig/illuminance/illuminance_registry.h"
 #include "rig/rig_config.h"
 #include "rig/rig_geometry.h"
 #include "sun/clock_sync.h"
@@ -105,6 +107,8 @@ std::vector<std::string> permissionProblems(const Config& config) {
     const std::string& uri = config.rig.inclinometer->uri;
     need(uri.substr(kAdxl355.size(), uri.find('@') - kAdxl355.size()), R_OK | W_OK, "I2C bus");
   }
+  if (config.rig.illuminance && config.rig.illuminance->transport == rig::ModbusTransport::kRtu)
+    need(config.rig.illuminance->device, R_OK | W_OK, "serial device");
   if (config.rig.gpio && config.rig.gpio->chip.starts_with("gpiochip"))
     need("/dev/" + config.rig.gpio->chip, R_OK | W_OK, "GPIO chip");
   else if (config.rig.gpio && config.rig.gpio->chip.starts_with("/dev/"))
@@ -188,6 +192,31 @@ SensorChecks checkSensors(const Config& config) {
   return checks;
 }
 
+// One reading of the [illuminance] instrument. A failure is a warning: glarecamd captures on,
+// its stacks unreferred. The simulated instrument is served here for the reading, with the
+// simulated sun of now at the site.
+DoctorCheck checkIlluminance(const Config& config, bool daemon_running) {
+  if (!config.rig.illuminance)
+    return skipped("illuminance", "no [illuminance] instrument: the stacks are unreferred");
+  const rig::IlluminanceConfig& instrument = *config.rig.illuminance;
+  // Two masters on one RS-485 line garble each other's frames.
+  if (daemon_running && instrument.transport == rig::ModbusTransport::kRtu)
+    return skipped("illuminance", "glarecamd is running and owns " + instrument.device);
+  auto opened = rig::openIlluminance(instrument);
+  if (!opened) return warn("illuminance", opened.error().message + " (stacks unreferred)");
+  if (opened->simulator && config.rig.site) {
+    const auto lx = simulatedSourceIlluminance(utcNow(), *config.rig.site);
+    if (lx) rig::setSimulatedIlluminance(*opened, *lx);
+  }
+  const auto reading = opened->instrument->read();
+  if (!reading) return warn("illuminance", reading.error().message + " (stacks unreferred)");
+  const rig::IlluminanceInstrumentInfo& info = opened->instrument->info();
+  const double u_rel = std::hypot(info.instrument_u_rel, info.efficacy_u_rel);
+  return ok("illuminance", fmt::format("{}: {:.1f} klx ± {:.1f} % ({:g} {})", info.description,
+                                       reading->illuminance_lx / 1000, 100 * u_rel,
+                                       reading->raw_value, rig::unitsText(instrument.units)));
+}
+
 DoctorCheck unitCheck(const Result<std::string>& unit) {
   if (!unit) return warn("systemd", "cannot ask systemd: " + unit.error().message);
   const std::string detail = fmt::format("{}: {}", kUnit, *unit);
@@ -207,6 +236,7 @@ void checkRig(const Config& config, DoctorOptions& options, bool daemon_running,
                                   : checkCamera(config, options.open_camera, scene_alpha_deg));
   checks.push_back(std::move(sensors.inclinometer));
   checks.push_back(std::move(sensors.sun));
+  checks.push_back(checkIlluminance(config, daemon_running));
   checks.push_back(checkClock(config, rigClockStatus(config.rig, options.clock_status())));
   checks.push_back(checkDisk(config, *options.disk));
   checks.push_back(checkPermissions(config));
@@ -232,7 +262,8 @@ std::vector<DoctorCheck> runDoctor(DoctorOptions& options) {
   } else {
     options.config_bad_input = config.error().code == ErrorCode::kBadInput;
     checks.push_back(failed("config", config.error().message));
-    for (const char* name : {"camera", "inclinometer", "sun", "clock", "disk", "permissions"})
+    for (const char* name :
+         {"camera", "inclinometer", "sun", "illuminance", "clock", "disk", "permissions"})
       checks.push_back(skipped(name, "the config is not valid"));
   }
   checks.push_back(unitCheck(unit));

@@ -1,8 +1,9 @@
 // `glarecam doctor`: is this rig ready for glarecamd? One check per part, each ok, warn (works,
 // but look) or fail (glarecamd cannot do its job), in the order an operator fixes them: config,
-// camera (streams a test frame), inclinometer (readable and steady), sun position, clock, disk,
-// permissions, the systemd unit. A part that cannot be checked because an earlier one failed is
-// skipped. The camera is not touched while glarecamd runs (it owns it).
+// camera (streams a test frame), inclinometer (readable and steady), sun position, the
+// illuminance instrument (one reading; a warning when it fails: stacks go on unreferred), clock,
+// disk, permissions, the systemd unit. A part that cannot be checked because an earlier one failed
+// is skipped. The camera is not touched while glarecamd runs (it owns it).
 #pragma once
 
 #include <filesystem>

@@ -28,7 +28,23 @@ RigSession::RigSession(rig::RigConfig config, RigSessionOptions options)
   if (!options_.open_rig_io) options_.open_rig_io = rig::openRigIo;
 }
 
-RigSession::~RigSession() { closeGpio(); }
+RigSession::~RigSession() {
+  closeGpio();
+  illuminance_sampler_.reset();  // stops a sampling still running, before its instrument goes
+}
+
+Status RigSession::openIlluminance() {
+  if (!config_.illuminance) return {};
+  auto opened = rig::openIlluminance(*config_.illuminance);
+  if (!opened)
+    return std::unexpected(withContext(opened.error(), config_.path.string() + ": [illuminance]"));
+  illuminance_ = std::move(*opened);
+  illuminance_sampler_ = std::make_unique<rig::IlluminanceSampler>(
+      *illuminance_.instrument, config_.illuminance->sample_interval);
+  spdlog::info("{}: the source illuminance from {}", options_.log_name,
+               illuminance_.instrument->info().description);
+  return {};
+}
 
 Status RigSession::openSensors() {
   sensors_.reset();
@@ -175,12 +191,32 @@ Result<bool> RigSession::prepareStack(capture::CaptureSettings& settings, std::u
     show(rig::RigState::faulted(rig::FaultCode::kInclinometer));
   }
   show(rig::RigState::capturing());
+  // The bracket follows at once: its source illuminance is sampled from now to finishStack().
+  // A source given for the series (--source-illuminance) is the operator's word: kept.
+  sampling_ = illuminance_sampler_ && !settings.source_illuminance;
+  if (illuminance_sampler_ && settings.source_illuminance && index == 0)
+    spdlog::info("{}: the given source illuminance is recorded; [illuminance] is not read",
+                 options_.log_name);
+  if (sampling_ && config_.site) {  // a simulated instrument serves the clear-sky sun of now
+    const auto lx = simulatedSourceIlluminance(utcNow(), *config_.site);
+    rig::setSimulatedIlluminance(illuminance_, lx ? *lx : 0.0);
+  }
+  if (sampling_) illuminance_sampler_->start();
   return true;
 }
 
 void RigSession::finishStack(capture::CapturedStack& stack, UtcTime bracket_start,
                              UtcTime bracket_end) {
   show(rig::RigState::ready());
+  if (sampling_) {
+    sampling_ = false;
+    auto source = illuminance_sampler_->stop();
+    if (source)
+      stack.manifest.source_illuminance = *source;
+    else
+      spdlog::warn("{}: illuminance: {}; the stack is unreferred", options_.log_name,
+                   source.error().message);
+  }
   if (last_geometry_ && last_geometry_->sun)
     recordBracketMiddle(stack, *last_geometry_, bracket_start, bracket_end);
 }

@@ -13,7 +13,10 @@
 // The session keeps the last geometry it measured: the module's orientation for planning α
 // targets, and the α a simulated camera shows (its SceneSource). As a capture::SeriesRig it
 // prepares and finishes each stack of `glarecam capture`'s series, waiting for the button when
-// asked to. glarecamd decides itself what a fault means for capture ([faults] inclinometer).
+// asked to, and samples the config's [illuminance] instrument during each bracket (unless the
+// series was given its source illuminance): a stack whose instrument fails is written unreferred,
+// with a warning. glarecamd decides itself what a fault means for capture ([faults] inclinometer)
+// and samples the instrument itself (illuminance_session.h).
 #pragma once
 
 #include <filesystem>
@@ -32,6 +35,8 @@
 #include "daemon/daemon_config.h"
 #include "rig/gpio/rig_io.h"
 #include "rig/gpio/status_led.h"
+#include "rig/illuminance/illuminance_registry.h"
+#include "rig/illuminance/illuminance_sampler.h"
 #include "rig/rig_config.h"
 #include "rig/rig_geometry.h"
 #include "sun/clock_sync.h"
@@ -103,6 +108,12 @@ class RigSession final : public capture::SeriesRig {
   // The camera calibration in the config's calibration file, when it holds one.
   Result<std::optional<Calibration>> cameraCalibration() const;
 
+  // For the series: opens the config's [illuminance] instrument, to be sampled during each of
+  // its brackets; without one nothing. Its error (naming the config) for a build without
+  // libmodbus or an instrument that cannot be set up (a simulated one that cannot listen);
+  // reading failures come later, per stack.
+  Status openIlluminance();
+
   // capture::SeriesRig, for `glarecam capture --config`: the press (with on_button), the
   // geometry (the first stack's measured before the camera opened, unless a press came since),
   // the LED. With the button, an inclinometer that cannot read (the rig moving in a gust) shows
@@ -122,6 +133,9 @@ class RigSession final : public capture::SeriesRig {
   std::unique_ptr<rig::RigIo> io_;
   std::unique_ptr<rig::StatusLed> led_;
   std::jthread button_thread_;
+  rig::OpenedIlluminance illuminance_;
+  std::unique_ptr<rig::IlluminanceSampler> illuminance_sampler_;  // before illuminance_ goes
+  bool sampling_ = false;                                         // during a bracket of the series
 };
 
 // The tilt's plausibility rule: kHardware naming the sensor when `geometry`'s measured tilt lies

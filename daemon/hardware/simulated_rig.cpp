@@ -4,7 +4,9 @@
 
 #include "core/atomic_file.h"
 #include "daemon/daemon_clock.h"
+#include "rig/illuminance/illuminance_registry.h"
 #include "rig/inclinometer/zero_offset_file.h"
+#include "sun/clear_sky.h"
 
 namespace glarecam::daemon {
 
@@ -23,6 +25,29 @@ bool isSimulatedRig(const rig::RigConfig& rig) {
 
 sun::ClockStatus rigClockStatus(const rig::RigConfig& rig, const sun::ClockStatus& clock) {
   return isSimulatedRig(rig) ? simulatedClockStatus() : clock;
+}
+
+namespace {
+
+// The simulated pyrheliometer's table (a build without libmodbus has none).
+constexpr const char* kSimulatedInstrument = R"(
+# A simulated pyrheliometer (direct normal irradiance, W/m², float32 in input registers 0-1),
+# served over Modbus TCP on 127.0.0.1 at a free port and read like a real one; it serves the
+# clear-sky sun of the simulated time (docs/illuminance.md).
+[illuminance]
+transport = "sim"
+data_type = "float32"
+units = "W/m2"
+uncertainty_pct = 2
+name = "simulated pyrheliometer"
+)";
+
+}  // namespace
+
+Result<double> simulatedSourceIlluminance(UtcTime utc, const sun::SiteLocation& site) {
+  SourceIlluminance source;
+  GLARECAM_ASSIGN(source, sun::clearSkySource(utc, site));
+  return source.illuminance_lx;
 }
 
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options) {
@@ -53,7 +78,7 @@ samples = 10
 chip = "sim"
 led = 27
 button = 22
-
+{illuminance}
 [schedule]
 {schedule}
 
@@ -68,6 +93,7 @@ max_use_gib = {budget_gib}        # what a simulated day and the day before's re
       fmt::arg("camera", options.camera), fmt::arg("calibration", kSimulatedCalibrationFileName),
       fmt::arg("latitude", kSimulatedLatitudeDeg), fmt::arg("longitude", kSimulatedLongitudeDeg),
       fmt::arg("tilt", kSimulatedTiltDeg), fmt::arg("schedule", schedule),
+      fmt::arg("illuminance", rig::modbusAvailable() ? kSimulatedInstrument : ""),
       fmt::arg("keep_stacks", kSimulatedKeepStacksDays),
       fmt::arg("keep_results", kSimulatedKeepResultsDays),
       fmt::arg("budget_gib", kSimulatedMaxUseGib));

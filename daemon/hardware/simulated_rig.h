@@ -2,9 +2,10 @@
 // without hardware. The rig is an ordinary config file written into the output directory
 // (glarecamd-simulated.toml, so that SIGHUP and `glarecam doctor` work on it too): the sim: camera,
 // the sim: inclinometer (an ADXL355 register simulator) on a south-facing module tilted
-// kSimulatedTiltDeg at a site at kSimulatedLatitudeDeg, the simulated GPIO chip, and the α-targets
-// schedule (or a fixed interval). Time runs as a time lapse from a summer morning, so that the sun
-// sweeps α from 80° down to ≈ 0° at noon and back within minutes.
+// kSimulatedTiltDeg at a site at kSimulatedLatitudeDeg, the simulated GPIO chip, a simulated
+// pyrheliometer served over Modbus TCP on loopback ([illuminance] transport "sim"; only in a
+// build with libmodbus), and the α-targets schedule (or a fixed interval). Time runs as a time lapse from a summer morning, so
+// that the sun sweeps α from 80° down to ≈ 0° at noon and back within minutes.
 #pragma once
 
 #include <chrono>
@@ -54,6 +55,13 @@ bool isSimulatedRig(const rig::RigConfig& rig);
 // stacks' flags and `glarecam doctor` all say it: on a real rig the wall clock's state (`clock`:
 // the kernel's), on the simulated rig synchronised by construction (simulatedClockStatus()).
 sun::ClockStatus rigClockStatus(const rig::RigConfig& rig, const sun::ClockStatus& clock);
+
+// The simulated sun's direct normal illuminance (lx) at `utc` over `site`: the clear-sky model's
+// value (sun/clear_sky.h, IES RP-21), so that the sun's brightness follows the time lapse. It is
+// what the simulated rig's illuminance instrument serves ([illuminance] transport "sim", read
+// over Modbus TCP on loopback) and what a simulated camera's scene is to be lit with. kBadInput
+// while the sun is down there.
+Result<double> simulatedSourceIlluminance(UtcTime utc, const sun::SiteLocation& site);
 
 // Writes OUTPUT/glarecamd-simulated.toml (atomically) and returns its path.
 Result<std::filesystem::path> writeSimulatedRigConfig(const SimulatedRigOptions& options);

@@ -127,6 +127,7 @@ std::vector<std::string> statusFaults(const DaemonState& state) {
   add("camera: ", state.camera_fault);
   add("disk: ", state.disk_fault);
   add("inclinometer: ", state.inclinometer_fault);
+  add("illuminance: ", state.illuminance_fault);
   add("clock: ", state.clock_warning);
   add("GPIO: ", state.gpio_fault);
   add("config: ", state.config_warning);

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/source_illuminance.h"
 #include "core/time.h"
 #include "daemon/stack_worker.h"
 #include "daemon/storage/day_products.h"
@@ -61,13 +62,21 @@ struct DaemonState {
   std::optional<LastDay> last_day;
   std::optional<DiskState> disk;
   double paused_seconds = 0;
+  // The illuminance instrument ([illuminance], illuminance_session.h): what it is, the last
+  // bracket's source it gave, and why the last stacks are unreferred (a warning: capture goes on).
+  std::string illuminance_instrument;
+  std::string illuminance_fault;
+  std::optional<SourceIlluminance> last_source_illuminance;
+  std::optional<UtcTime> last_illuminance_time;
+  std::uint64_t illuminance_failures = 0;
 };
 
 // Capture waits: for the disk, or for the inclinometer ([faults] inclinometer = "pause").
 bool capturePaused(const DaemonState& state);
 
 // The faults in the words of the status line ("camera: …", "disk: …", "inclinometer: …",
-// "clock: …", "GPIO: …", "config: …", "worker: …", "retention: …"), most urgent first.
+// "illuminance: …" (a warning: the stacks go on, unreferred), "clock: …", "GPIO: …", "config: …",
+// "worker: …", "retention: …"), most urgent first.
 std::vector<std::string> statusFaults(const DaemonState& state);
 
 // The status page's one word for what the rig does, and why: "stopping"; "fault" while the

@@ -136,6 +136,15 @@ json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
   } else {
     disk["free_bytes"] = disk["total_bytes"] = disk["read_only"] = nullptr;
   }
+  json illuminance = {{"instrument", optionalText(st.illuminance_instrument)},
+                      {"fault", optionalText(st.illuminance_fault)},
+                      {"failures", st.illuminance_failures},
+                      {"last", nullptr}};
+  if (st.last_source_illuminance) {
+    illuminance["last"] = toJson(*st.last_source_illuminance);
+    illuminance["last"]["time"] =
+        st.last_illuminance_time ? json(isoSeconds(*st.last_illuminance_time)) : json(nullptr);
+  }
   json entries = json::array();
   for (const LogEntry& e : log) {
     json entry = {{"time", isoSeconds(e.time)}, {"level", e.level}, {"text", e.text}};
@@ -165,6 +174,7 @@ json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
        {{"uri", s.camera_uri}, {"open", s.camera_open}, {"fault", optionalText(st.camera_fault)}}},
       {"inclinometer",
        {{"uri", optionalText(s.inclinometer_uri)}, {"fault", optionalText(st.inclinometer_fault)}}},
+      {"illuminance", illuminance},
       {"clock",
        {{"synchronised", s.clock_synchronised}, {"warning", optionalText(st.clock_warning)}}},
       {"disk", disk},
@@ -241,6 +251,28 @@ std::string statusMetrics(const StatusSnapshot& s) {
     metric("glarecam_last_capture_timestamp_seconds", "gauge",
            "Unix time of the last stack's bracket.",
            fmt::format("{:.3f}", unixSeconds(*st.last_capture_time)));
+  if (!st.illuminance_instrument.empty()) {
+    metric("glarecam_source_illuminance_ok", "gauge",
+           "1 while the illuminance instrument reads (the stacks are referred).",
+           st.illuminance_fault.empty() ? 1 : 0);
+    metric("glarecam_source_illuminance_failures_total", "counter",
+           "Brackets the illuminance instrument failed (their stacks unreferred).",
+           st.illuminance_failures);
+  }
+  if (st.last_source_illuminance) {
+    const SourceIlluminance& source = *st.last_source_illuminance;
+    metric("glarecam_source_illuminance_lux", "gauge",
+           "Direct normal illuminance of the source during the last bracket it was read (lx).",
+           source.illuminance_lx);
+    metric("glarecam_source_illuminance_uncertainty_lux", "gauge", "Its standard uncertainty (lx).",
+           source.illuminance_u_lx);
+    metric("glarecam_source_illuminance_samples", "gauge", "Readings averaged in that bracket.",
+           source.samples.value_or(0));
+    if (st.last_illuminance_time)
+      metric("glarecam_source_illuminance_timestamp_seconds", "gauge",
+             "Unix time of that bracket's end.",
+             fmt::format("{:.3f}", unixSeconds(*st.last_illuminance_time)));
+  }
   if (st.last_result) {
     metric("glarecam_last_lmax_cd_m2", "gauge", "Lmax of the last stack processed (cd/m^2).",
            st.last_result->brief.lmax_cd_m2);
@@ -340,6 +372,18 @@ img {{ max-width: 100%; height: auto; border: 1px solid #ccc; }}
   if (!st.camera_fault.empty()) html += row("camera fault", st.camera_fault);
   html += row("inclinometer", s.inclinometer_uri.empty() ? "none" : s.inclinometer_uri);
   if (!st.inclinometer_fault.empty()) html += row("inclinometer fault", st.inclinometer_fault);
+  if (!st.illuminance_instrument.empty()) {
+    std::string value = st.illuminance_instrument;
+    if (st.last_source_illuminance)
+      value +=
+          fmt::format(": {} over {} readings{}", describe(*st.last_source_illuminance),
+                      st.last_source_illuminance->samples.value_or(0),
+                      st.last_illuminance_time ? " at " + daemonTime(s, *st.last_illuminance_time)
+                                               : std::string());
+    html += row("source illuminance", value);
+  }
+  if (!st.illuminance_fault.empty())
+    html += row("illuminance fault", st.illuminance_fault + " (the stacks are unreferred)");
   html += row("clock", std::string(s.clock_synchronised ? "synchronised" : "not synchronised") +
                            (s.simulated_time ? " (the simulated clock)" : ""));
   if (!st.clock_warning.empty()) html += row("clock warning", st.clock_warning);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "apps/glarecamd_harness.h"
+#include "core/build_config.h"
 #include "core/unique_fd.h"
 #include "support/test_support.h"
 
@@ -111,6 +112,12 @@ TEST_F(GlarecamdStatusPage, TheSimulatedRigsPageWhileItCaptures) {
   EXPECT_TRUE(status["last_result"]["glare"].is_boolean());
   EXPECT_GT(status["disk"]["free_bytes"].get<double>(), 0);
   EXPECT_FALSE(status["log"].empty());
+  // Its simulated pyrheliometer, read over Modbus TCP on loopback during each bracket.
+  EXPECT_TRUE(status["illuminance"]["fault"].is_null()) << status["illuminance"].dump();
+#if GLARECAM_WITH_MODBUS
+  EXPECT_EQ(status["illuminance"]["last"]["origin"], "sensor") << status["illuminance"].dump();
+  EXPECT_GT(status["illuminance"]["last"]["illuminance_lx"].get<double>(), 0);
+#endif
   httplib::Client client("127.0.0.1", port);
   client.set_read_timeout(10, 0);
   auto page = client.Get("/");
@@ -128,6 +135,10 @@ TEST_F(GlarecamdStatusPage, TheSimulatedRigsPageWhileItCaptures) {
   auto metrics = client.Get("/metrics");
   ASSERT_TRUE(metrics);
   EXPECT_NE(metrics->body.find("glarecam_stacks_processed_total "), std::string::npos);
+#if GLARECAM_WITH_MODBUS
+  EXPECT_NE(metrics->body.find("\nglarecam_source_illuminance_lux "), std::string::npos);
+  EXPECT_NE(metrics->body.find("\nglarecam_source_illuminance_ok 1\n"), std::string::npos);
+#endif
   for (const char* path :
        {"/../glarecamd-simulated.toml", "/%2e%2e/glarecamd-simulated.toml", "/stacks/", "/days/"}) {
     auto bad = client.Get(path);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "capture/camera_registry.h"
+#include "core/build_config.h"
 #include "core/stack_io.h"
 #include "daemon/daemon_fixture.h"
 #include "support/test_support.h"
@@ -108,6 +109,49 @@ TEST(CaptureRun, TheRigsConfigGivesTheCameraAndAlpha) {
   EXPECT_NE(twice.error().message.find("--alpha contradicts"), std::string::npos)
       << twice.error().message;
 }
+
+#if GLARECAM_WITH_MODBUS
+// The rig's [illuminance] instrument (here the simulated one, over Modbus TCP on loopback) is
+// sampled during each bracket: the stack records it as a sensor source; failing, the stack is
+// written unreferred; a source given for the series is kept and the instrument not read.
+TEST(CaptureRun, TheRigsInstrumentGivesEachStackItsSource) {
+  TempDir dir;
+  const std::string instrument =
+      "[illuminance]\ntransport = \"sim\"\ndata_type = \"float32\"\nunits = \"W/m2\"\n"
+      "uncertainty_pct = 2\nsample_interval_ms = 5\n";
+  testing::writeText(dir / "glarecam.toml", rigToml({.extra = instrument}));
+  CaptureRunOptions options = quietRun(dir / "out");
+  options.config_path = dir / "glarecam.toml";
+  ASSERT_TRUE(runCapture(options));
+  auto stacks = stacksIn(dir / "out");
+  ASSERT_EQ(stacks.size(), 1u);
+  auto read = readStack(stacks.front());
+  ASSERT_TRUE(read) << read.error().message;
+  ASSERT_TRUE(read->manifest.source_illuminance);
+  EXPECT_EQ(read->manifest.source_illuminance->origin, IlluminanceOrigin::kSensor);
+  EXPECT_NEAR(read->manifest.source_illuminance->illuminance_lx, 90'000, 0.1);
+
+  testing::writeText(dir / "glarecam.toml",
+                     rigToml({.extra = instrument + "sim_fault = \"out-of-range\"\n"}));
+  options.series.out = dir / "faulted";
+  ASSERT_TRUE(runCapture(options));
+  stacks = stacksIn(dir / "faulted");
+  ASSERT_EQ(stacks.size(), 1u);
+  read = readStack(stacks.front());
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_FALSE(read->manifest.source_illuminance);
+
+  options.source_illuminance = SourceIlluminance{.illuminance_lx = 55'000};
+  options.series.out = dir / "given";
+  ASSERT_TRUE(runCapture(options));
+  stacks = stacksIn(dir / "given");
+  ASSERT_EQ(stacks.size(), 1u);
+  read = readStack(stacks.front());
+  ASSERT_TRUE(read && read->manifest.source_illuminance);
+  EXPECT_EQ(read->manifest.source_illuminance->origin, IlluminanceOrigin::kGiven);
+  EXPECT_DOUBLE_EQ(read->manifest.source_illuminance->illuminance_lx, 55'000);
+}
+#endif
 
 TEST(CaptureRun, AnImplausibleTiltIsRefusedBeforeAnyExposure) {
   TempDir dir;

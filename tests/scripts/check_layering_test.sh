@@ -49,6 +49,7 @@ plant hazard/hazard_chart.cpp '#include <cairo-svg.h>' 'Cairo only in render/'
 plant tests/pipeline/datasheet_test.cpp '#include <cairo.h>' 'Cairo only in render/'
 plant daemon/capture_daemon.cpp '#include <arv.h>' 'Aravis only in capture/aravis/'
 plant capture/camera_registry.cpp '#include <gpiod.h>' 'libgpiod only in'
+plant daemon/hardware/illuminance_session.cpp '#include <modbus/modbus.h>' 'libmodbus only in'
 plant pipeline/process_stack.cpp '#include <systemd/sd-daemon.h>' 'libsystemd only in'
 plant tests/core/new_test.cpp '#include "support/sim_support.h"' 'which needs capture'
 plant rig/CMakeLists.txt 'target_link_libraries(glarecam_rig PUBLIC glarecam_daemon)' \

@@ -19,7 +19,7 @@ for pkg in libgtest-dev libgmock-dev libbenchmark-dev chromium clang-19 libclang
 done
 # What the build of glarecam and glarecamd cannot do without.
 for pkg in build-essential cmake ninja-build libopencv-dev libceres-dev libcairo2-dev \
-           libsystemd-dev libcpp-httplib-dev; do
+           libsystemd-dev libcpp-httplib-dev libmodbus-dev; do
   grep -qx -- "$pkg" <<<"$demo" || fail "the demo does not install $pkg"
 done
 # No package twice.

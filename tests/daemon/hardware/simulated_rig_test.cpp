@@ -14,6 +14,7 @@
 #include "daemon/daemon_fixture.h"
 #include "daemon/hardware/rig_doctor.h"
 #include "daemon/status/status_page.h"
+#include "rig/illuminance/illuminance_registry.h"
 
 namespace glarecam::daemon {
 namespace {
@@ -61,6 +62,22 @@ TEST_F(SimulatedRigTest, EveryStackOfAMorningRecordsTheAlphaItsSceneWasDrawnAt) 
     ASSERT_TRUE(recorded.contains("alpha_deg")) << stack.filename();
     EXPECT_NEAR(recorded["alpha_deg"].get<double>(), (*truth)["alpha_deg"].get<double>(), 0.05)
         << stack.filename() << ": the manifest's α against the scene's";
+    // The simulated pyrheliometer, read over Modbus TCP on loopback during the bracket, gave
+    // the clear-sky sun of the bracket's start (captured_at: to the second, and E changes far
+    // less than 0.1 % in a second of the time lapse).
+    if (!rig::modbusAvailable()) continue;  // built without: the rig has no instrument
+    ASSERT_TRUE(recorded.contains("source")) << stack.filename();
+    EXPECT_EQ(recorded["source"]["origin"], "sensor");
+    const auto captured = parseIsoTime(recorded["captured_at"].get<std::string>());
+    ASSERT_TRUE(captured);
+    const auto clear_sky =
+        simulatedSourceIlluminance(*captured, {.latitude_deg = kSimulatedLatitudeDeg,
+                                               .longitude_deg = kSimulatedLongitudeDeg,
+                                               .altitude_m = 278,
+                                               .pressure_hpa = sun::standardPressureHpa(278)});
+    ASSERT_TRUE(clear_sky) << clear_sky.error().message;
+    EXPECT_NEAR(recorded["source"]["illuminance_lx"].get<double>(), *clear_sky, 1e-3 * *clear_sky)
+        << stack.filename();
   }
 }
 

@@ -41,6 +41,15 @@ StatusSnapshot capturingRig() {
   st.paused_seconds = 12.75;
   st.stacks_deleted = 3;
   st.retention_last = "deleted stack x (12.0 MiB): older than 14 days";
+  st.illuminance_instrument = "pyrheliometer modbus:/dev/ttyUSB0@1 (W/m², 93 lm/W)";
+  st.last_source_illuminance = SourceIlluminance{.illuminance_lx = 92500,
+                                                 .illuminance_u_lx = 8200,
+                                                 .origin = IlluminanceOrigin::kSensor,
+                                                 .instrument = st.illuminance_instrument,
+                                                 .samples = 6,
+                                                 .spread_lx = 310};
+  st.last_illuminance_time = utc("2026-06-21T10:15:04Z");
+  st.illuminance_failures = 2;
   s.schedule = "at 16 α targets";
   s.camera_uri = "aravis:192.168.10.20";
   s.camera_open = true;
@@ -221,6 +230,27 @@ TEST(StatusPage, MetricsFollowThePrometheusTextFormat) {
   EXPECT_EQ(values["glarecam_state{state=\"capturing\"}"], 1);
   EXPECT_EQ(values["glarecam_state{state=\"paused\"}"], 0);
   EXPECT_EQ(values["glarecam_retention_deleted_total{kind=\"stack\"}"], 3);
+  EXPECT_EQ(values["glarecam_source_illuminance_lux"], 92500);
+  EXPECT_EQ(values["glarecam_source_illuminance_uncertainty_lux"], 8200);
+  EXPECT_EQ(values["glarecam_source_illuminance_samples"], 6);
+  EXPECT_EQ(values["glarecam_source_illuminance_ok"], 1);
+  EXPECT_EQ(values["glarecam_source_illuminance_failures_total"], 2);
+}
+
+TEST(StatusPage, ShowsTheSourceIlluminanceAndWhyTheStacksAreUnreferred) {
+  StatusSnapshot s = capturingRig();
+  const std::string page = statusHtml(s, someLog());
+  EXPECT_NE(page.find("92.5 ± 8.2 klx (sensor) over 6 readings"), std::string::npos);
+  const nlohmann::json json = statusJson(s, someLog());
+  EXPECT_EQ(json["illuminance"]["last"]["illuminance_lx"], 92500);
+  EXPECT_EQ(json["illuminance"]["last"]["origin"], "sensor");
+  EXPECT_TRUE(json["illuminance"]["fault"].is_null());
+  s.state.illuminance_fault = "modbus:/dev/ttyUSB0@1: no reply within 500 ms";
+  EXPECT_NE(statusHtml(s, someLog()).find("no reply within 500 ms (the stacks are unreferred)"),
+            std::string::npos);
+  EXPECT_EQ(statusJson(s, someLog())["illuminance"]["fault"], s.state.illuminance_fault);
+  const std::string metrics = statusMetrics(s);
+  EXPECT_NE(metrics.find("\nglarecam_source_illuminance_ok 0\n"), std::string::npos);
 }
 
 }  // namespace

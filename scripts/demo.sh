@@ -178,15 +178,14 @@ awk -F, -v table="$sweep_csv" '
   }
   END {
     if (unreferred) {
-      printf "the morning: %d stacks unreferred (the rig read no instrument): its sheet " \
-             "says so\n", unreferred
-      exit 0
+      printf "the morning: %d stacks unreferred: the rig read no instrument\n", unreferred
+      exit 1
     }
     printf "the morning referred agrees with the table at every α within 2 σ (%d outside); " \
            "unreferred it would have been off by up to %+.0f %%\n", disagree, 100 * worst
     if (disagree) exit 1
   }' "$sweep_csv" "$day/sweep.csv" || {
-  echo "demo: the rig's referred morning does not agree with the tilting table" >&2
+  echo "demo: the rig's morning is not referred, or does not agree with the tilting table" >&2
   exit 1
 }
 

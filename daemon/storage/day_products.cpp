@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/json.h"
 #include "core/time.h"
+#include "pipeline/contour_table.h"
 #include "pipeline/datasheet_publish.h"
 #include "pipeline/glare_fits.h"
 #include "pipeline/process_stack.h"
@@ -25,8 +26,10 @@ namespace {
 
 constexpr double kDegreesPerHour = 15.0;  // the Earth turns 360° in 24 h
 
-// The rows of the day's processed stacks, with a note for each result that gives none.
-pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::string& day) {
+// The rows of the day's processed stacks, with a note for each result that gives none, and
+// their contour ladders into `contours`.
+pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::string& day,
+                              pipeline::ContourTable& contours) {
   pipeline::SweepTable table;
   std::error_code error;
   const fs::path results = options.root / kResultsDirectory;
@@ -47,6 +50,8 @@ pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::stri
       continue;
     }
     table.rows.push_back(std::move(*row));
+    for (pipeline::ContourRow& contour : pipeline::contourRowsFromResult(*result))
+      contours.rows.push_back(std::move(contour));
   }
   pipeline::sortByAlpha(table);
   return table;
@@ -71,16 +76,25 @@ std::string solarDay(UtcTime utc, std::optional<double> longitude_deg) {
 
 Result<DaySummary> updateDayProducts(const DayProductsOptions& options, const std::string& day) {
   DaySummary summary{.day = day, .directory = options.root / kDaysDirectory / day};
-  const pipeline::SweepTable table = dayTable(options, day);
+  pipeline::ContourTable contours;
+  const pipeline::SweepTable table = dayTable(options, day, contours);
   summary.stacks = table.rows.size();
   GLARECAM_CHECK(ensureDirectory(summary.directory));
   GLARECAM_CHECK(writeFileAtomic(summary.directory / pipeline::kSweepTableFileName,
                                  pipeline::formatSweepTable(table)));
+  GLARECAM_CHECK(writeFileAtomic(summary.directory / pipeline::kContourTableFileName,
+                                 pipeline::formatContourTable(contours)));
   // A stack whose source illuminance could not be read (the instrument failed) stays in the
   // day's table, but the sheet is of one reference.
   std::string left_out;
   const pipeline::SweepTable sheet_table = pipeline::rowsOfOneReference(table, &left_out);
   if (!left_out.empty()) spdlog::warn("day {}: {}", day, left_out);
+  pipeline::ContourTable sheet_contours;  // the ladders of the sheet's rows: the profile's
+  for (const pipeline::ContourRow& contour : contours.rows)
+    if (std::ranges::any_of(sheet_table.rows, [&](const pipeline::SweepRow& row) {
+          return row.stack_id == contour.stack_id;
+        }))
+      sheet_contours.rows.push_back(contour);
   const auto fits = pipeline::fitSweep(sheet_table);
   if (!fits) {
     summary.detail =
@@ -89,14 +103,15 @@ Result<DaySummary> updateDayProducts(const DayProductsOptions& options, const st
   }
   GLARECAM_CHECK(
       writeFileAtomic(summary.directory / kFitsFileName, jsonText(pipeline::fitsJson(*fits))));
-  GLARECAM_CHECK(pipeline::publishDatasheet(
-      {.module = options.module,
-       .date = day,
-       .table = &sheet_table,
-       .fits = &*fits,
-       .model_beta_deg = std::nullopt,
-       .limit = pipeline::inferGlareLimit(sheet_table)},
-      (summary.directory / pipeline::kSweepTableFileName).string(), summary.directory));
+  GLARECAM_CHECK(
+      pipeline::publishDatasheet({.module = options.module,
+                                  .date = day,
+                                  .table = &sheet_table,
+                                  .fits = &*fits,
+                                  .model_beta_deg = std::nullopt,
+                                  .limit = pipeline::inferGlareLimit(sheet_table)},
+                                 (summary.directory / pipeline::kSweepTableFileName).string(),
+                                 summary.directory, &sheet_contours));
   summary.datasheet = true;
   summary.detail = left_out.empty()
                        ? fmt::format("{} stacks, data sheet updated", summary.stacks)

@@ -19,6 +19,7 @@
 
 #include "core/stack_io.h"
 #include "daemon/daemon_fixture.h"
+#include "pipeline/contour_table.h"
 #include "pipeline/sweep_table.h"
 #include "support/sim_support.h"
 
@@ -241,6 +242,13 @@ TEST_F(DaemonTest, AlphaTargetsAreCaughtAsTheSunMoves) {
   EXPECT_TRUE(fs::exists(day / "glare-profile.json"));
   EXPECT_TRUE(fs::exists(day / "fits.json"));
   EXPECT_EQ(pipeline::readSweepTable(day / "sweep.csv")->rows.size(), 5u);
+  // Its contour ladders beside the table, and in the profile (/2) for the hazard.
+  const auto contours = pipeline::readContourTable(day / pipeline::kContourTableFileName);
+  ASSERT_TRUE(contours) << contours.error().message;
+  EXPECT_GE(contours->rows.size(), 5u * 3);  // the limit, the half maximum and a rung, at least
+  const auto profile = nlohmann::json::parse(testing::readText(day / "glare-profile.json"));
+  ASSERT_TRUE(profile.contains("ladder")) << profile.dump().substr(0, 300);
+  EXPECT_FALSE(profile["ladder"].empty());
 }
 
 // Under load the status once named the 45° target as the next stack while the 50° stack was

@@ -342,6 +342,7 @@ GlareProfile makeGlareProfile(const ProfileIdentity& identity, const SweepTable&
   }
   profile.reference_illuminance_lx = tableReferenceIlluminance(table);
   profile.referred = profile.reference_illuminance_lx.has_value();
+  if (profile.referred == true) profile.sources = sourceIlluminanceRange(table);
   if (contours) profile.ladder = profileLadder(*contours);
   profile.fits = fitsJson(fits);
   profile.generator = Generator{};
@@ -464,6 +465,9 @@ Status readIlluminanceAndLadder(const JsonReader& r, const std::string& schema, 
     GLARECAM_ASSIGN(p.reference_illuminance_lx, illuminance->optionalPositive("reference_lx"));
     if ((p.referred == true) != p.reference_illuminance_lx.has_value())
       return illuminance->fail("reference_lx", "must be given exactly when the status is referred");
+    std::optional<std::string> sources;
+    GLARECAM_ASSIGN(sources, illuminance->optionalText("sources"));
+    p.sources = sources.value_or("");
   }
   std::optional<JsonReader> ladder;
   GLARECAM_ASSIGN(ladder, r.optionalArray("ladder"));
@@ -635,7 +639,8 @@ json toJson(const GlareProfile& p) {
        {{"status", !p.referred   ? "unstated"
                    : *p.referred ? "referred"
                                  : "unreferred"},
-        {"reference_lx", jsonOrNull(p.reference_illuminance_lx)}}},
+        {"reference_lx", jsonOrNull(p.reference_illuminance_lx)},
+        {"sources", p.sources.empty() ? nlohmann::json(nullptr) : nlohmann::json(p.sources)}}},
       {"ladder", ladderJson(p.ladder)},
       {"fits", p.fits}};
   // What earlier profiles lack is left out rather than written as a value they never had.

@@ -158,6 +158,9 @@ struct GlareProfile {
   // written again as status "unstated").
   std::optional<bool> referred = std::nullopt;
   std::optional<double> reference_illuminance_lx = std::nullopt;  // exactly when referred
+  // The sweep's source illuminances and where they came from, as the sheet says them: "61.2–98.4
+  // klx (sensor)", "80.0 klx (given)", "… (clear_sky)"; empty when unreferred or unstated.
+  std::string sources = {};
   // Since /2: the contour ladder per whole degree of α, ascending (empty: the sweep had none).
   std::vector<ProfileLadderRow> ladder = {};
   // The fits exactly as `glarecam fit --json` writes them (glarecam.fits/1, fitsJson()), or null.

@@ -100,6 +100,19 @@ TEST(GlareProfile, OneRowPerDegreeFromTheFitsWithLimitAndGlare) {
   EXPECT_EQ(s["simulated"], true);
   EXPECT_EQ(s["cameras"], nlohmann::json::array({"sim SIM-0001"}));
   EXPECT_EQ(s["calibrations"], nlohmann::json::array({"0123456789abcdef"}));
+  EXPECT_EQ(s["illuminance"]["status"], "unreferred");
+  EXPECT_TRUE(s["illuminance"]["sources"].is_null());
+  // Referred rows: the reference and where their sources came from flow into the profile.
+  for (std::size_t i = 0; i < simulated.rows.size(); ++i) {
+    simulated.rows[i].source_illuminance_lx = 70'000 + 1'000.0 * i;
+    simulated.rows[i].source_origin = "clear_sky";
+    simulated.rows[i].reference_illuminance_lx = 100'000;
+  }
+  const nlohmann::json referred =
+      toJson(makeGlareProfile({"standard", "2026-11-26", "t.csv"}, simulated, fits, {}));
+  EXPECT_EQ(referred["illuminance"]["status"], "referred");
+  EXPECT_EQ(referred["illuminance"]["reference_lx"], 100'000.0);
+  EXPECT_EQ(referred["illuminance"]["sources"], "70.0\u201378.0 klx (clear_sky)");
 }
 
 // A logistic extrapolated past its rows can leave physical values (issue 18: a day sheet's
@@ -443,11 +456,14 @@ TEST(GlareProfileDocument, TheLadderAndReferenceReadBackAndBadLaddersAreRefused)
   GlareProfile profile = tableIIIProfile();
   profile.referred = true;
   profile.reference_illuminance_lx = 100'000;
+  profile.sources = "61.2\u201398.4 klx (sensor)";
   profile.ladder = profileLadder(twoStackLadder());
   expectRoundTrip(profile, "a ladder");
   const nlohmann::json good = toJson(profile);
   EXPECT_EQ(good["schema"], "glarecam.glare-profile/2");
-  EXPECT_EQ(good["illuminance"], (nlohmann::json{{"status", "referred"}, {"reference_lx", 1e5}}));
+  EXPECT_EQ(good["illuminance"], (nlohmann::json{{"status", "referred"},
+                                                 {"reference_lx", 1e5},
+                                                 {"sources", "61.2\u201398.4 klx (sensor)"}}));
   const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> cases{
       {[](nlohmann::json& d) { d.erase("ladder"); },
        "p.json: ladder is missing (a /2 profile has one, maybe empty)"},

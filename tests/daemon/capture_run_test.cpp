@@ -38,6 +38,20 @@ std::vector<fs::path> stacksIn(const fs::path& directory) {
   return found;
 }
 
+// Runs `options` into `out` and reads back the one stack's manifest (a failure fails the test and
+// gives an empty manifest).
+StackManifest captureOne(CaptureRunOptions options, const fs::path& out) {
+  options.series.out = out;
+  const Status run = runCapture(options);
+  EXPECT_TRUE(run) << run.error().message;
+  const auto stacks = stacksIn(out);
+  EXPECT_EQ(stacks.size(), 1u);
+  if (stacks.size() != 1) return {};
+  const auto read = readStack(stacks.front());
+  EXPECT_TRUE(read) << read.error().message;
+  return read ? read->manifest : StackManifest{};
+}
+
 std::string problem(const CaptureRunOptions& options) {
   const Status status = options.validate();
   EXPECT_FALSE(status);
@@ -122,34 +136,22 @@ TEST(CaptureRun, TheRigsInstrumentGivesEachStackItsSource) {
   testing::writeText(dir / "glarecam.toml", rigToml({.extra = instrument}));
   CaptureRunOptions options = quietRun(dir / "out");
   options.config_path = dir / "glarecam.toml";
-  ASSERT_TRUE(runCapture(options));
-  auto stacks = stacksIn(dir / "out");
-  ASSERT_EQ(stacks.size(), 1u);
-  auto read = readStack(stacks.front());
-  ASSERT_TRUE(read) << read.error().message;
-  ASSERT_TRUE(read->manifest.source_illuminance);
-  EXPECT_EQ(read->manifest.source_illuminance->origin, IlluminanceOrigin::kSensor);
-  EXPECT_NEAR(read->manifest.source_illuminance->illuminance_lx, 90'000, 0.1);
+  const StackManifest sensed = captureOne(options, dir / "out");
+  ASSERT_TRUE(sensed.source_illuminance);
+  EXPECT_EQ(sensed.source_illuminance->origin, IlluminanceOrigin::kSensor);
+  EXPECT_NEAR(sensed.source_illuminance->illuminance_lx, 90'000, 0.1);
 
   testing::writeText(dir / "glarecam.toml",
                      rigToml({.extra = instrument + "sim_fault = \"out-of-range\"\n"}));
-  options.series.out = dir / "faulted";
-  ASSERT_TRUE(runCapture(options));
-  stacks = stacksIn(dir / "faulted");
-  ASSERT_EQ(stacks.size(), 1u);
-  read = readStack(stacks.front());
-  ASSERT_TRUE(read) << read.error().message;
-  EXPECT_FALSE(read->manifest.source_illuminance);
+  const StackManifest faulted = captureOne(options, dir / "faulted");
+  ASSERT_TRUE(faulted.id);
+  EXPECT_FALSE(faulted.source_illuminance);
 
   options.source_illuminance = SourceIlluminance{.illuminance_lx = 55'000};
-  options.series.out = dir / "given";
-  ASSERT_TRUE(runCapture(options));
-  stacks = stacksIn(dir / "given");
-  ASSERT_EQ(stacks.size(), 1u);
-  read = readStack(stacks.front());
-  ASSERT_TRUE(read && read->manifest.source_illuminance);
-  EXPECT_EQ(read->manifest.source_illuminance->origin, IlluminanceOrigin::kGiven);
-  EXPECT_DOUBLE_EQ(read->manifest.source_illuminance->illuminance_lx, 55'000);
+  const StackManifest given = captureOne(options, dir / "given");
+  ASSERT_TRUE(given.source_illuminance);
+  EXPECT_EQ(given.source_illuminance->origin, IlluminanceOrigin::kGiven);
+  EXPECT_DOUBLE_EQ(given.source_illuminance->illuminance_lx, 55'000);
 }
 #endif
 
@@ -192,29 +194,24 @@ TEST(CaptureRun, ALabLampsStatedIlluminanceIsEveryStacksSource) {
   testing::writeText(dir / "glarecam.toml", toml);
   CaptureRunOptions options = quietRun(dir / "out");
   options.config_path = dir / "glarecam.toml";
-  ASSERT_TRUE(runCapture(options));
-  auto stacks = stacksIn(dir / "out");
-  ASSERT_EQ(stacks.size(), 1u);
-  auto read = readStack(stacks.front());
-  ASSERT_TRUE(read) << read.error().message;
-  ASSERT_TRUE(read->manifest.source_illuminance);
-  EXPECT_EQ(read->manifest.source_illuminance->illuminance_lx, 61'000);
-  EXPECT_EQ(read->manifest.source_illuminance->illuminance_u_lx, 1'500);
-  EXPECT_EQ(read->manifest.source_illuminance->origin, IlluminanceOrigin::kGiven);
-  const auto truth = nlohmann::json::parse(testing::readText(stacks.front() / "truth.json"));
-  EXPECT_EQ(truth["source_illuminance_lx"], 61'000.0);  // the scene as lit
+  const auto lit_by = [](const fs::path& out) {  // the scene as the simulated camera lit it
+    const auto stacks = stacksIn(out);
+    if (stacks.size() != 1) return -1.0;
+    return nlohmann::json::parse(testing::readText(stacks.front() / "truth.json"))
+        .value("source_illuminance_lx", -1.0);
+  };
+  const StackManifest lamp_lit = captureOne(options, dir / "out");
+  ASSERT_TRUE(lamp_lit.source_illuminance);
+  EXPECT_EQ(lamp_lit.source_illuminance->illuminance_lx, 61'000);
+  EXPECT_EQ(lamp_lit.source_illuminance->illuminance_u_lx, 1'500);
+  EXPECT_EQ(lamp_lit.source_illuminance->origin, IlluminanceOrigin::kGiven);
+  EXPECT_EQ(lit_by(dir / "out"), 61'000.0);
 
-  options.series.out = dir / "given";
   options.source_illuminance = SourceIlluminance{.illuminance_lx = 75'000};
-  ASSERT_TRUE(runCapture(options));
-  stacks = stacksIn(dir / "given");
-  ASSERT_EQ(stacks.size(), 1u);
-  read = readStack(stacks.front());
-  ASSERT_TRUE(read && read->manifest.source_illuminance);
-  EXPECT_EQ(read->manifest.source_illuminance->illuminance_lx, 75'000);
-  EXPECT_EQ(nlohmann::json::parse(
-                testing::readText(stacks.front() / "truth.json"))["source_illuminance_lx"],
-            75'000.0);
+  const StackManifest given = captureOne(options, dir / "given");
+  ASSERT_TRUE(given.source_illuminance);
+  EXPECT_EQ(given.source_illuminance->illuminance_lx, 75'000);
+  EXPECT_EQ(lit_by(dir / "given"), 75'000.0);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "core/build_config.h"
 #include "rig/illuminance/illuminance_registry.h"
+#include "rig/illuminance/illuminance_test_support.h"
 #include "rig/illuminance/modbus_simulator.h"
 
 namespace glarecam::rig {
@@ -132,12 +133,7 @@ TEST(IlluminanceSamplerTest, ForgetsThePreviousBracket) {
 
 #if GLARECAM_WITH_MODBUS
 TEST(IlluminanceSamplerTest, SamplesTheSimulatedInstrumentOnLoopback) {
-  IlluminanceConfig config;
-  config.transport = ModbusTransport::kSim;
-  config.host = "127.0.0.1";
-  config.data_type = RegisterDataType::kFloat32;
-  config.units = IlluminanceUnits::kWattPerSquareMetre;
-  config.uncertainty_pct = 2;
+  IlluminanceConfig config = testing::simulatedHeadConfig();
   auto opened = openIlluminance(config, 93'000);
   ASSERT_TRUE(opened) << opened.error().message;
   IlluminanceSampler sampler(*opened->instrument, std::chrono::milliseconds(2));

@@ -8,6 +8,7 @@
 
 #include "core/build_config.h"
 #include "rig/illuminance/illuminance_registry.h"
+#include "rig/illuminance/illuminance_test_support.h"
 #include "rig/illuminance/modbus_instrument.h"
 
 namespace glarecam::rig {
@@ -179,12 +180,7 @@ TEST(ModbusSimulatorTest, OutOfRangeAndNegativeValuesAreRefused) {
 }
 
 TEST(ModbusSimulatorTest, TheSimTransportServesAndReadsThroughTheSameBackend) {
-  IlluminanceConfig config;
-  config.transport = ModbusTransport::kSim;
-  config.host = "127.0.0.1";
-  config.data_type = RegisterDataType::kFloat32;
-  config.units = IlluminanceUnits::kWattPerSquareMetre;
-  config.uncertainty_pct = 2;
+  IlluminanceConfig config = testing::simulatedHeadConfig();
   auto opened = openIlluminance(config, 70'000);
   ASSERT_TRUE(opened) << opened.error().message;
   ASSERT_TRUE(opened->simulator);

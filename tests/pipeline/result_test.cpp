@@ -240,19 +240,19 @@ TEST(Result, WhatIsNotAResultIsRefusedNamingTheField) {
     return json{
         {"level_cd_m2", level}, {"kind", kind}, {"status", "below_level"}, {"ellipse", nullptr}};
   };
-  EXPECT_EQ(changed([&](json& d) { d["contours"] = {rung(1e4, "rung")}; }),
+  EXPECT_EQ(changed([&](json& d) { d["contours"] = json::array({rung(1e4, "rung")}); }),
             "r.json: contours[0].kind \"rung\" is not ladder, limit or half_maximum");
-  EXPECT_EQ(changed([&](json& d) { d["contours"] = {rung(3e4, "ladder")}; }),
+  EXPECT_EQ(changed([&](json& d) { d["contours"] = json::array({rung(3e4, "ladder")}); }),
             "r.json: contours[0].level_cd_m2 30000 cd/m² is not a level of the ladder (1, 2.15 or "
             "4.64 × 10ⁿ from 10 000 cd/m²)");
   EXPECT_EQ(changed([&](json& d) {
-              d["contours"] = {rung(1e5, "ladder"), rung(1e4, "ladder")};
+              d["contours"] = json::array({rung(1e5, "ladder"), rung(1e4, "ladder")});
             }),
             "r.json: contours[1].level_cd_m2 is below the previous contour's: the ladder ascends");
-  EXPECT_EQ(changed([&](json& d) { d["contours"] = {rung(3e4, "limit")}; }),
+  EXPECT_EQ(changed([&](json& d) { d["contours"] = json::array({rung(3e4, "limit")}); }),
             "r.json: contours[0].level_cd_m2 of the limit contour is not limit.limit_cd_m2");
   EXPECT_EQ(changed([&](json& d) {
-              d["contours"] = {rung(1e4, "half_maximum")};
+              d["contours"] = json::array({rung(1e4, "half_maximum")});
               d["fwhm"]["level_cd_m2"] = 1e4;
               d["contours"].push_back(rung(1e4, "half_maximum"));
             }),

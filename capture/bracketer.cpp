@@ -198,8 +198,7 @@ std::optional<double> alphaFor(const Camera& camera, const CaptureSettings& sett
 // The source as given, else as a simulated camera lit its scene (only where the scene also gives
 // α: a rig measures its own).
 std::optional<SourceIlluminance> sourceFor(const Camera& camera, const CaptureSettings& settings) {
-  if (settings.source_illuminance || !settings.alpha_from_scene)
-    return settings.source_illuminance;
+  if (settings.source_illuminance || !settings.alpha_from_scene) return settings.source_illuminance;
   const auto truth = sceneTruthOf(camera);
   if (!truth || !truth->contains("source_illuminance_lx") ||
       !(*truth)["source_illuminance_lx"].is_number())

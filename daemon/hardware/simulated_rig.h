@@ -4,8 +4,9 @@
 // the sim: inclinometer (an ADXL355 register simulator) on a south-facing module tilted
 // kSimulatedTiltDeg at a site at kSimulatedLatitudeDeg, the simulated GPIO chip, a simulated
 // pyrheliometer served over Modbus TCP on loopback ([illuminance] transport "sim"; only in a
-// build with libmodbus), and the α-targets schedule (or a fixed interval). Time runs as a time lapse from a summer morning, so
-// that the sun sweeps α from 80° down to ≈ 0° at noon and back within minutes.
+// build with libmodbus), and the α-targets schedule (or a fixed interval). Time runs as a time
+// lapse from a summer morning, so that the sun sweeps α from 80° down to ≈ 0° at noon and back
+// within minutes.
 #pragma once
 
 #include <chrono>

@@ -158,18 +158,18 @@ class ScriptedCamera final : public capture::Camera, public capture::SceneTruthS
 };
 
 daemon::CameraOpener ScriptedCameras::opener() {
-  return [this](std::string_view uri, const capture::CameraOptions& options,
-                const capture::SceneSource& scene_source)
-             -> Result<std::unique_ptr<capture::Camera>> {
-    ++opens_;
-    {
-      const std::lock_guard lock(mutex_);
-      if (opens_fail_) return hardwareError(std::string(uri) + ": no such camera (scripted)");
-    }
-    std::unique_ptr<capture::Camera> camera;
-    GLARECAM_ASSIGN(camera, capture::openCamera(uri, options, scene_source));
-    return std::unique_ptr<capture::Camera>(new ScriptedCamera(std::move(camera), *this));
-  };
+  return
+      [this](std::string_view uri, const capture::CameraOptions& options,
+             const capture::SceneSource& scene_source) -> Result<std::unique_ptr<capture::Camera>> {
+        ++opens_;
+        {
+          const std::lock_guard lock(mutex_);
+          if (opens_fail_) return hardwareError(std::string(uri) + ": no such camera (scripted)");
+        }
+        std::unique_ptr<capture::Camera> camera;
+        GLARECAM_ASSIGN(camera, capture::openCamera(uri, options, scene_source));
+        return std::unique_ptr<capture::Camera>(new ScriptedCamera(std::move(camera), *this));
+      };
 }
 
 std::optional<Error> ScriptedCameras::beforeCapture(

@@ -89,9 +89,8 @@ TEST_F(RigDoctor, AnUnsynchronisedClockFailsARealRigButNotTheSimulatedOne) {
 // on a sensor whose least gain is above 0 dB (1×).
 TEST_F(RigDoctor, TheTestFrameIsTakenWithinTheCamerasGainRange) {
   DoctorOptions doctor = options();
-  doctor.open_camera =
-      [](std::string_view, const capture::CameraOptions&,
-         const capture::SceneSource&) -> Result<std::unique_ptr<capture::Camera>> {
+  doctor.open_camera = [](std::string_view, const capture::CameraOptions&,
+                          const capture::SceneSource&) -> Result<std::unique_ptr<capture::Camera>> {
     return std::make_unique<testing::CountingCamera>(capture::CameraLimits{
         .min_exposure_us = 10, .max_exposure_us = 1e6, .min_gain_db = 1.5, .max_gain_db = 24});
   };
@@ -101,9 +100,8 @@ TEST_F(RigDoctor, TheTestFrameIsTakenWithinTheCamerasGainRange) {
 
 TEST_F(RigDoctor, AFailingCameraIsNamedInItsCheck) {
   DoctorOptions doctor = options();
-  doctor.open_camera =
-      [](std::string_view, const capture::CameraOptions&,
-         const capture::SceneSource&) -> Result<std::unique_ptr<capture::Camera>> {
+  doctor.open_camera = [](std::string_view, const capture::CameraOptions&,
+                          const capture::SceneSource&) -> Result<std::unique_ptr<capture::Camera>> {
     return std::make_unique<testing::CountingCamera>(
         capture::CameraLimits{.min_exposure_us = 10, .max_exposure_us = 1e6},
         testing::CountingCamera::Answer::kError);

@@ -197,7 +197,6 @@ class SimCamera final : public Camera, public SceneTruthSource {
     if (moved.alpha_deg == options_.alpha_deg &&
         moved.source_illuminance_lx == options_.source_illuminance_lx)
       return {};
-    GLARECAM_CHECK(moved.validate());
     SimulatedScene scene;
     GLARECAM_ASSIGN(scene, renderSimulatedScene(moved));
     options_ = std::move(moved);

@@ -102,7 +102,7 @@ Result<SourceIlluminance> parseGivenIlluminance(std::string_view text, const std
     if (!u || !std::isfinite(*u) || *u < 0)
       return badInput(quoted + ": the uncertainty must be a number >= 0 (lx)");
     if (*u >= *lx)
-      return badInput(quoted + ": the uncertainty is as large as the illuminance itself");
+      return badInput(quoted + ": the uncertainty is at least as large as the illuminance itself");
     source.illuminance_u_lx = *u;
   }
   return source;

@@ -293,7 +293,8 @@ Result<std::optional<ProfileContour>> contourAt(const GlareProfile& profile, dou
   if (profile.referred != true || !profile.reference_illuminance_lx)
     return badInput(fmt::format(
         "the glare profile of {} is {}: the contour under a source illuminance needs a profile "
-        "referred to a reference illuminance (docs/method.md \"Reference illuminance\")",
+        "referred to a reference illuminance (docs/method.md \"Reference illuminance and the "
+        "contour ladder\")",
         profile.module,
         profile.referred ? "unreferred"
                          : "of glarecam.glare-profile/1, which "

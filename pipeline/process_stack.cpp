@@ -435,6 +435,11 @@ Result<std::optional<SourceIlluminance>> sourceIlluminance(const Stack& stack,
                  stack.directory.string(), describe(*estimate));
     return std::optional(*estimate);
   }
+  if (recorded && options.estimate_source)
+    spdlog::warn(
+        "{}: records a source illuminance of {}, kept: the clear-sky estimate is only "
+        "for a stack that records none",
+        (stack.directory / kManifestFileName).string(), describe(*recorded));
   if (!options.source_illuminance) return recorded;
   if (recorded && recorded->illuminance_lx != options.source_illuminance->illuminance_lx)
     spdlog::warn("{}: records a source illuminance of {}; --source-illuminance {} replaces it",

@@ -292,10 +292,10 @@ Result<SweepSummary> runSweep(const StackSearch& search, const SweepOptions& opt
   }
   if (const std::string mixed = mixedReferences(summary.table); !mixed.empty()) {
     if (!options.allow_mixed)
-      return badInput("sweep: the stacks' luminances are not referred to one illuminance (" +
-                      mixed +
-                      "): give every stack its source illuminance, or --mixed to write the "
-                      "table anyway (docs/method.md \"Reference illuminance\")");
+      return badInput(
+          "sweep: the stacks' luminances are not referred to one illuminance (" + mixed +
+          "): give every stack its source illuminance, or --mixed to write the "
+          "table anyway (docs/method.md \"Reference illuminance and the contour ladder\")");
     spdlog::warn("sweep: the stacks are referred differently: {} (--mixed)", mixed);
     summary.table.notes.push_back("mixed references: " + mixed);
   }

@@ -155,6 +155,10 @@ expect "a given source is recorded as given" grep -q '"origin": "given"' "$WORK/
 check "clear-sky without a sun" 2 "$GLARECAM" process --no-progress --out "$WORK/ru2" \
   --source-illuminance clear-sky "$WORK/su"
 expect "clear-sky without a sun says why" one_line_naming "records no sun"
+check "clear-sky on a stack with a source" 0 "$GLARECAM" process --no-progress --json --out "$WORK/ru" \
+  --source-illuminance clear-sky "$WORK/s"
+expect "the recorded source is kept" grep -q '"origin": "given"' "$WORK/out"
+expect "keeping it is warned about" grep -q "kept: the clear-sky estimate is only for a stack that records none" "$WORK/err"
 python3 - "$WORK/su/stack.json" <<'PY'
 import json, sys
 path = sys.argv[1]

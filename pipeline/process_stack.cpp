@@ -268,40 +268,6 @@ std::string pictureTitle(const std::optional<double>& alpha_deg) {
   return alpha_deg ? fmt::format("\u03b1 {:.0f}\u00b0", *alpha_deg) : std::string();
 }
 
-// luminance.exr, quality.exr, luminance.png, then result.json: each atomically, result last.
-// The three images are encoded at once as far as the thread budget allows, each encoder on one
-// thread and each thread taking the next when it is free, longest first (5 MP, one thread each:
-// the quality EXR about 160 ms, the luminance EXR 180, the picture 150). After a failure (a full
-// disk) the images not yet started are skipped.
-Status writeOutputs(const fs::path& out, const calibration::MergedImage& merged,
-                    const ProcessSummary& summary, const FalseColourOptions& picture_options,
-                    const ProcessOptions& options, Progress& progress) {
-  GLARECAM_CHECK(prepareOutputDirectory(out));
-  enum Output { kLuminance, kQuality, kPicture, kOutputCount };  // longest first
-  const std::function<Status()> writers[kOutputCount] = {
-      [&] { return writeLuminanceExr(out / "luminance.exr", merged, options.float32); },
-      [&] { return writeQualityExr(out / "quality.exr", merged, options.float32); },
-      [&]() -> Status {
-        render::RgbImage picture;
-        GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
-        return writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb);
-      }};
-  Status written[kOutputCount];
-  std::atomic<bool> failed{false};
-  parallelTasks(kOutputCount, availableThreads(), [&](int i) {
-    if (failed) return;
-    written[i] = catchExceptions(writers[i]);
-    if (!written[i]) failed = true;
-  });
-  for (const Status& status : written) GLARECAM_CHECK(status);
-  progress.advance("luminance.exr");
-  progress.advance("quality.exr");
-  progress.advance("luminance.png");
-  GLARECAM_CHECK(writeJsonFile(out / kResultFileName, toJson(summary.result)));
-  progress.advance("result.json");
-  return {};
-}
-
 // An ellipse lost to a camera model that cannot be inverted is the calibration's fault: say
 // which file to fix (the luminance results stand).
 void warnAboutCameraModel(const GlareAnalysis& glare, const fs::path& calibration_file) {
@@ -475,6 +441,49 @@ std::optional<double> glareLimit(const Stack& stack, const ProcessOptions& optio
 
 }  // namespace
 
+// luminance.exr, quality.exr, luminance.png, then result.json: each atomically, result last.
+// The three images are encoded at once as far as the thread budget allows, each encoder on one
+// thread and each thread taking the next when it is free, longest first (5 MP, one thread each:
+// the quality EXR about 160 ms, the luminance EXR 180, the picture 150). After a failure (a full
+// disk) the images not yet started are skipped.
+Status writeResultFiles(const fs::path& out, const calibration::MergedImage& merged,
+                        const calibration::CameraModel& camera, const GlareAnalysis& glare,
+                        const LuminancePeak& peak, const StackResult& result, bool float32,
+                        Progress& progress) {
+  FalseColourOptions picture_options;
+  picture_options.limit_cd_m2 = result.limit.limit_cd_m2;
+  picture_options.title = pictureTitle(result.alpha_deg);
+  picture_options.min_image_height_px = kPictureMinImageHeightPx;
+  picture_options.overlay = glareOverlay(glare, camera, peak);
+  picture_options.caption = pictureCaption(result);
+  if (result.luminance.frames_consistent == false)
+    picture_options.banner = "SUSPECT: frames disagree with the merge";
+  GLARECAM_CHECK(prepareOutputDirectory(out));
+  enum Output { kLuminance, kQuality, kPicture, kOutputCount };  // longest first
+  const std::function<Status()> writers[kOutputCount] = {
+      [&] { return writeLuminanceExr(out / "luminance.exr", merged, float32); },
+      [&] { return writeQualityExr(out / "quality.exr", merged, float32); },
+      [&]() -> Status {
+        render::RgbImage picture;
+        GLARECAM_ASSIGN(picture, renderFalseColour(merged, picture_options));
+        return writePngRgb(out / "luminance.png", picture.width, picture.height, picture.rgb);
+      }};
+  Status written[kOutputCount];
+  std::atomic<bool> failed{false};
+  parallelTasks(kOutputCount, availableThreads(), [&](int i) {
+    if (failed) return;
+    written[i] = catchExceptions(writers[i]);
+    if (!written[i]) failed = true;
+  });
+  for (const Status& status : written) GLARECAM_CHECK(status);
+  progress.advance("luminance.exr");
+  progress.advance("quality.exr");
+  progress.advance("luminance.png");
+  GLARECAM_CHECK(writeJsonFile(out / kResultFileName, toJson(result)));
+  progress.advance("result.json");
+  return {};
+}
+
 Status ProcessOptions::validate() const {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   if (threshold_cd_m2 && !positive(*threshold_cd_m2))
@@ -551,16 +560,8 @@ Result<ProcessSummary> processStack(const fs::path& stack_directory,
        .constant_limit = options.threshold_cd_m2.has_value(),
        .glare = glare,
        .ladder = options.ladder});
-  FalseColourOptions picture_options;
-  picture_options.limit_cd_m2 = limit;
-  picture_options.title = pictureTitle(stack.manifest.alpha_deg);
-  picture_options.min_image_height_px = kPictureMinImageHeightPx;
-  picture_options.overlay = glareOverlay(glare, camera, stats.max);
-  picture_options.caption = pictureCaption(summary.result);
-  if (summary.result.luminance.frames_consistent == false)
-    picture_options.banner = "SUSPECT: frames disagree with the merge";
-  GLARECAM_CHECK(
-      writeOutputs(summary.output_directory, merged, summary, picture_options, options, progress));
+  GLARECAM_CHECK(writeResultFiles(summary.output_directory, merged, camera, glare, stats.max,
+                                  summary.result, options.float32, progress));
   return summary;
 }
 

@@ -18,7 +18,10 @@
 #include <vector>
 
 #include "calibration/calibration_file.h"
+#include "calibration/camera_model.h"
+#include "calibration/hdr_merge.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/source_illuminance.h"
 #include "pipeline/result.h"
 
@@ -68,6 +71,18 @@ struct ProcessSummary {
   StackResult result;
   std::string briefReport() const;  // one line for logs
 };
+
+// The files of an analysed luminance image, as `process` writes them into `directory` (made when
+// missing): luminance.exr, quality.exr, luminance.png (false colour with `glare`'s ellipses,
+// captioned from `result`) and result.json last, each atomically. `glarecam brdf` writes its
+// pictures through it too.
+Status writeResultFiles(const std::filesystem::path& directory,
+                        const calibration::MergedImage& merged,
+                        const calibration::CameraModel& camera, const GlareAnalysis& glare,
+                        const LuminancePeak& peak, const StackResult& result, bool float32,
+                        Progress& progress);
+// The steps writeResultFiles() advances a Progress by.
+inline constexpr int kResultFileSteps = 4;
 
 Result<ProcessSummary> processStack(const std::filesystem::path& stack_directory,
                                     const ProcessOptions& options = {});

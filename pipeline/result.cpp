@@ -456,10 +456,20 @@ std::string StackResult::cameraText(std::string_view key) const {
   return it != camera.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
+const char* toString(Route route) { return route == Route::kBrdf ? "brdf" : "camera"; }
+
+std::optional<Route> routeFromString(std::string_view text) {
+  if (text == "camera") return Route::kCamera;
+  if (text == "brdf") return Route::kBrdf;
+  return std::nullopt;
+}
+
 StackResult makeResult(const ResultInputs& in) {
   const LuminanceStats& s = in.stats;
   StackResult result;
   result.stack = in.stack_id;
+  result.route = in.route;
+  result.brdf = in.brdf;
   result.alpha_deg = in.alpha_deg;
   if (!in.alpha_source.empty()) result.alpha_source = in.alpha_source;
   result.alpha_uncertainty_deg = in.alpha_uncertainty_deg;
@@ -550,6 +560,7 @@ json toJson(const StackResult& r) {
   }
   return {{"schema", kResultSchema},
           {"stack", r.stack},
+          {"route", toString(r.route)},
           {"alpha_deg", jsonOrNull(r.alpha_deg)},
           {"alpha_source", jsonOrNull(r.alpha_source)},
           {"alpha_uncertainty_deg", jsonOrNull(r.alpha_uncertainty_deg)},
@@ -576,6 +587,7 @@ json toJson(const StackResult& r) {
            {{"luminance_exr", r.outputs.luminance_exr},
             {"quality_exr", r.outputs.quality_exr},
             {"luminance_png", r.outputs.luminance_png}}},
+          {"brdf", r.brdf},
           {"generator", toJson(r.generator)}};
 }
 
@@ -585,7 +597,12 @@ Result<StackResult> resultFromJson(const json& document, const std::string& file
   StackResult result;
   GLARECAM_ASSIGN(result.stack, r.text("stack"));
   GLARECAM_ASSIGN(result.alpha_deg, r.optionalNumberIn("alpha_deg", 0, kMaxStackAlphaDeg, "°"));
-  GLARECAM_ASSIGN(result.alpha_source, r.optionalWord("alpha_source", {"manifest", "given"}));
+  // Written before the BRDF route: absent is the camera's.
+  std::optional<std::string> route;
+  GLARECAM_ASSIGN(route, r.optionalWord("route", {"camera", "brdf"}));
+  result.route = route ? *routeFromString(*route) : Route::kCamera;
+  GLARECAM_ASSIGN(result.alpha_source,
+                  r.optionalWord("alpha_source", {"manifest", "given", "measurement"}));
   if (result.alpha_source.has_value() != result.alpha_deg.has_value())
     return r.fail("alpha_source", "must be given exactly when alpha_deg is");
   GLARECAM_ASSIGN(result.alpha_uncertainty_deg, r.optionalNonNegative("alpha_uncertainty_deg"));
@@ -618,6 +635,9 @@ Result<StackResult> resultFromJson(const json& document, const std::string& file
   if (result.glare && !result.limit.limit_cd_m2)
     return r.fail("glare", "is a verdict without a limit");
   GLARECAM_ASSIGN(result.outputs, readOutputs(r));
+  GLARECAM_ASSIGN(result.brdf, readCopiedBlock(r, "brdf"));
+  if ((result.route == Route::kBrdf) != result.brdf.is_object())
+    return r.fail("brdf", "must be an object exactly when the route is brdf");
   JsonReader generator;
   GLARECAM_ASSIGN(generator, r.member("generator"));
   GLARECAM_ASSIGN(result.generator, generatorFromJson(generator));

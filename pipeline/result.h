@@ -179,10 +179,18 @@ struct ResultOutputs {
   bool operator==(const ResultOutputs&) const = default;
 };
 
+// How a result was measured (docs/brdf.md): the camera route (a stack photographed under the sun
+// or a lamp) or the BRDF route (a goniophotometer's file seen under the reference sun).
+enum class Route { kCamera, kBrdf };
+const char* toString(Route route);  // "camera", "brdf"
+std::optional<Route> routeFromString(std::string_view text);
+
 struct StackResult {
-  std::string stack = {};  // the stack's id
+  std::string stack = {};  // the stack's id (the BRDF route: the file and its θ_i)
+  Route route = Route::kCamera;
   std::optional<double> alpha_deg = std::nullopt;
-  std::optional<std::string> alpha_source = std::nullopt;  // "manifest" or "given"; none without α
+  // "manifest", "given" or (the BRDF route) "measurement"; none without α.
+  std::optional<std::string> alpha_source = std::nullopt;
   std::optional<double> alpha_uncertainty_deg = std::nullopt;
   int width = 0, height = 0;        // image
   nlohmann::json camera = nullptr;  // the manifest's camera block (backend, model, serial), or null
@@ -200,6 +208,9 @@ struct StackResult {
   // Lmax at or above the limit; nullopt without a limit, or when a bound cannot decide.
   std::optional<bool> glare = std::nullopt;
   ResultOutputs outputs;
+  // The BRDF route's account of its input (brdf_route.h: the file, its grid and noise, the
+  // Gaussian approximation); null on the camera route.
+  nlohmann::json brdf = nullptr;
   Generator generator;
   bool operator==(const StackResult&) const = default;
 
@@ -214,8 +225,11 @@ struct FrameCheck {
 
 struct ResultInputs {
   std::string stack_id = {};
+  Route route = Route::kCamera;
+  nlohmann::json brdf = nullptr;  // the BRDF route's block
   std::optional<double> alpha_deg = std::nullopt;
-  std::string alpha_source = {};  // "manifest", "given" (process --alpha), or empty: no α
+  // "manifest", "given" (process --alpha), "measurement" (a BRDF file's θ_i), or empty: no α.
+  std::string alpha_source = {};
   // The manifest's geometry.alpha_uncertainty_deg (inclinometer and clock), when α is its.
   std::optional<double> alpha_uncertainty_deg = std::nullopt;
   nlohmann::json camera = nullptr;  // the manifest's camera block (backend, model, serial), or null

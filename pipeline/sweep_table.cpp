@@ -47,6 +47,7 @@ enum Column {
   kSourceIlluminanceU,
   kSourceOrigin,
   kReferenceIlluminance,
+  kRoute,
   kStackId,
   kStack,
   kColumnCount
@@ -82,6 +83,7 @@ constexpr std::array<const char*, kColumnCount> kColumnNames{"alpha_deg",
                                                              "source_illuminance_u_lx",
                                                              "source_origin",
                                                              "reference_illuminance_lx",
+                                                             "route",
                                                              "stack_id",
                                                              "stack"};
 
@@ -251,6 +253,9 @@ Result<SweepRow> parseRow(const Header& header, const std::vector<std::string>& 
   GLARECAM_CHECK(parseRowIlluminance(header, fields, numbers, row));
   if (row.frames_consistent == false && row.suspect.empty())
     row.suspect = "frames disagree with the merge";
+  row.route = field(header, fields, kRoute);
+  if (!row.route.empty() && !routeFromString(row.route))
+    return badInput(fmt::format("route: \"{}\" is not camera or brdf", row.route));
   row.stack_id = field(header, fields, kStackId);
   row.stack = field(header, fields, kStack);
   return row;
@@ -364,6 +369,7 @@ std::string formatSweepTable(const SweepTable& table) {
         number(r.source_illuminance_u_lx),
         r.isReferred() ? r.source_origin : std::string(kUnreferredWord),
         number(r.reference_illuminance_lx),
+        r.route.empty() ? std::string("camera") : r.route,
         quoteCsvField(oneLine(r.stack_id)),
         quoteCsvField(oneLine(r.stack))};
     text += csvLine(fields);
@@ -447,6 +453,7 @@ Result<SweepRow> sweepRowFromResult(const StackResult& result, const std::string
   row.luminance_factor_u = result.calibration.luminance_factor_u;
   row.width = result.width;
   row.height = result.height;
+  row.route = toString(result.route);
   row.stack_id = result.stack;
   row.stack = stack;
   return row;
@@ -488,6 +495,15 @@ std::vector<std::string> tableFrameSizes(const SweepTable& table) {
   return distinctValues(table, [](const SweepRow& row) {
     return row.width && row.height ? fmt::format("{}x{}", *row.width, *row.height) : std::string();
   });
+}
+
+std::string routeText(const SweepRow& row) { return row.route.empty() ? "camera" : row.route; }
+
+std::vector<std::string> tableRoutes(const SweepTable& table) {
+  std::vector<std::string> routes;
+  for (const SweepRow& row : table.rows)
+    if (std::ranges::find(routes, routeText(row)) == routes.end()) routes.push_back(routeText(row));
+  return routes;
 }
 
 std::string referenceText(const SweepRow& row) {

@@ -51,6 +51,9 @@ struct SweepRow {
   std::optional<double> source_illuminance_lx, source_illuminance_u_lx;
   std::string source_origin;
   std::optional<double> reference_illuminance_lx;
+  // How the row was measured (result.json's route): "camera", "brdf"; empty in tables written
+  // before the BRDF route (the camera's).
+  std::string route;
   std::string stack_id, stack;
   bool isSuspect() const { return !suspect.empty(); }
   bool isReferred() const { return reference_illuminance_lx.has_value(); }
@@ -84,6 +87,11 @@ inline constexpr const char* kUnreferredWord = "unreferred";
 // What every output made from unreferred rows says beside its UNREFERRED mark.
 inline constexpr const char* kUnreferredNote =
     "at the day's own sun, not referred to a stated source illuminance";
+
+// The row's route ("camera" when the table does not say) and the distinct routes of the rows, in
+// order: a sheet names its route, and one made of both routes says so.
+std::string routeText(const SweepRow& row);
+std::vector<std::string> tableRoutes(const SweepTable& table);
 
 // What a row refers to, as people read it: "100 klx" or "unreferred".
 std::string referenceText(const SweepRow& row);

@@ -1,0 +1,60 @@
+// The luminance picture of a BRDF measurement under the reference sun (docs/method.md "Relation
+// to the BRDF", docs/brdf.md): L(ω_r) = f_r(ω_i, ω_r) · E_ref · cos θ_i, convolved with the
+// solar disc, in the angular plane around the specular direction, and seen by a pinhole camera
+// looking along it, so that the camera route's glare analysis measures it unchanged.
+//
+// The steps: the samples go to the angular plane (SpecularFrame); a Delaunay triangulation
+// interpolates ln f_r linearly onto a square grid (the largest around the specular direction
+// that the samples cover, at most `max_half_width_deg`); the grid is convolved with the sun's
+// uniform disc (radius kSunHalfAngleDeg; 0 for a point source); the pinhole image takes each
+// pixel's ray from the grid (bilinear). Every pixel's relative uncertainty is the data's noise
+// (stated by the file or estimated: brdf_measurement.h) and the grid's interpolation error in
+// quadrature.
+#pragma once
+
+#include "brdf/brdf_measurement.h"
+#include "calibration/hdr_merge.h"
+#include "core/stack_manifest.h"
+#include "core/source_illuminance.h"
+
+namespace glarecam::brdf {
+
+// The sun's angular radius: 4.65 mrad (docs/method.md "Why"; 0.53° full angle).
+inline constexpr double kSunHalfAngleDeg = 0.2664;
+
+// The noise assumed when the file states none and the data are too few to estimate it.
+inline constexpr double kAssumedRelativeNoise = 0.02;
+
+struct LuminanceImageOptions {
+  double reference_illuminance_lx = kDefaultReferenceIlluminanceLx;  // E_ref
+  double sun_half_angle_deg = kSunHalfAngleDeg;  // 0: no convolution (a point source)
+  double max_half_width_deg = 20;  // the picture's half width at most
+  int max_size_px = 801;           // its pixels across at most (odd: a pixel on the specular ray)
+  double min_pixel_deg = 0.01;     // its pixels no finer than this
+  Status validate() const;
+};
+
+struct BrdfLuminance {
+  calibration::MergedImage image;      // cd/m² under E_ref; relative uncertainty
+  Intrinsics intrinsics;                 // the pinhole camera of the picture
+  double pixel_deg = 0;                // at the centre
+  double half_width_deg = 0;           // of the grid
+  double covered_deg = 0;              // the samples' coverage around the specular direction
+  double relative_noise = 0;
+  std::string noise_origin;            // "stated", "estimated" or "assumed"
+  // The grid's share: linear interpolation of ln f between samples h apart under-reads a lobe
+  // of σ by up to h²/8σ² (at the narrower σ): that bound over √3, the standard uncertainty of a
+  // rectangular distribution of that half-width (GUM 4.3.7).
+  double grid_relative_uncertainty = 0;
+};
+
+// Needs `sampling` from checkSampling() of the same measurement.
+Result<BrdfLuminance> luminanceUnderSun(const BrdfMeasurement& measurement,
+                                        const SamplingCheck& sampling,
+                                        const LuminanceImageOptions& options = {});
+
+// The disc's weights on a square grid of `pixel_deg` (odd side, centred): each pixel's share of
+// the disc's area, from 16 × 16 points a pixel; they sum to 1.
+std::vector<double> discKernel(double radius_deg, double pixel_deg, int& side);
+
+}  // namespace glarecam::brdf

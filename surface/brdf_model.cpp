@@ -153,13 +153,14 @@ MicrofacetBrdf::MicrofacetBrdf(const MicrofacetParameters& parameters)
 
 std::string MicrofacetBrdf::describe() const {
   const MicrofacetParameters& p = parameters_;
-  std::string text = fmt::format("microfacet {}: widths {:g}° × {:g}° (x × y), n {:g}",
-                                 toString(p.distribution), p.width_x_deg, p.width_y_deg,
-                                 p.refractive_index);
+  std::string text =
+      fmt::format("microfacet {}: widths {:g}° × {:g}° (x × y), n {:g}", toString(p.distribution),
+                  p.width_x_deg, p.width_y_deg, p.refractive_index);
   if (p.coating_index)
     text += fmt::format(", AR coating n {:g} × {:g} nm", *p.coating_index, p.coating_thickness_nm);
   if (p.second_lobe_weight > 0)
-    text += fmt::format(", second lobe {:g} × {:g}°", p.second_lobe_weight, p.second_lobe_width_deg);
+    text +=
+        fmt::format(", second lobe {:g} × {:g}°", p.second_lobe_weight, p.second_lobe_width_deg);
   if (p.diffuse_reflectance > 0) text += fmt::format(", diffuse {:g}", p.diffuse_reflectance);
   return text;
 }
@@ -175,8 +176,8 @@ double MicrofacetBrdf::evaluate(const Ray& i, const Ray& o) const {
   const SlopeDistribution kind = p.distribution;
   const double shadowing =
       1 / (1 + smithLambda(kind, i, alpha_x_, alpha_y_) + smithLambda(kind, o, alpha_x_, alpha_y_));
-  double f = distribution(kind, h, alpha_x_, alpha_y_) * fresnelReflectance(cos_ih, p) *
-             shadowing / denominator;
+  double f = distribution(kind, h, alpha_x_, alpha_y_) * fresnelReflectance(cos_ih, p) * shadowing /
+             denominator;
   if (p.second_lobe_weight > 0)
     f += p.second_lobe_weight * distribution(SlopeDistribution::kGgx, h, alpha_2_, alpha_2_) /
          denominator;

@@ -20,7 +20,7 @@
 namespace glarecam::surface {
 
 struct LobeOptions {
-  double illuminance_lx = 100'000;    // E (the reference sun)
+  double illuminance_lx = 100'000;     // E (the reference sun)
   double sun_half_angle_deg = 0.2664;  // the disc's radius; 0: a point source
   int disc_rings = 6;                  // the disc's quadrature: 6 k points on ring k, equal areas
   double search_deg = 40;              // how far from the specular direction a contour is sought

@@ -75,8 +75,10 @@ TEST(MicrofacetBrdf, NarrowFacetsReflectTheFresnelFractionOfTheLight) {
 }
 
 TEST(GaussianLobeBrdf, IsTheGivenLobeAroundTheSpecularDirection) {
-  const GaussianLobeBrdf lobe({.peak_brdf_sr = 50, .sigma_horizontal_deg = 2,
-                               .sigma_vertical_deg = 1, .floor_brdf_sr = 0.1});
+  const GaussianLobeBrdf lobe({.peak_brdf_sr = 50,
+                               .sigma_horizontal_deg = 2,
+                               .sigma_vertical_deg = 1,
+                               .floor_brdf_sr = 0.1});
   const SpecularFrame frame(25, 0);
   const calibration::Ray incident = sampleDirection(25, 0);
   EXPECT_NEAR(lobe.brdfSr(incident, frame.sampleRayAt({0, 0})), 50.1, 1e-9);

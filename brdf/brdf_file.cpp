@@ -129,7 +129,8 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
         } else if (kind == "btdf") {
           return fail("BTDF data (transmission): glare is reflection, a BRDF is needed");
         } else {
-          return fail(fmt::format("#format: unknown quantity \"{}\" (BSDF or DSF)", words[kind_at]));
+          return fail(
+              fmt::format("#format: unknown quantity \"{}\" (BSDF or DSF)", words[kind_at]));
         }
       } else if (key == "intheta") {
         GLARECAM_ASSIGN(theta, number(1));
@@ -143,9 +144,9 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
       } else if (key == "colorimetry:" || key == "colorimetry") {
         const std::string value = words.size() > 1 ? lower(words.back()) : "";
         if (value != "cie-y")
-          return fail(fmt::format(
-              "#colorimetry {}: only CIE-Y (luminance) data give a luminance picture",
-              words.size() > 1 ? std::string(words.back()) : "(empty)"));
+          return fail(
+              fmt::format("#colorimetry {}: only CIE-Y (luminance) data give a luminance picture",
+                          words.size() > 1 ? std::string(words.back()) : "(empty)"));
       } else if (key == "sample_name") {
         const std::size_t open = header.find('"'), close = header.rfind('"');
         m.sample_name = open != std::string::npos && close > open
@@ -165,8 +166,8 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
       return fail("data before the angle of incidence (#intheta and #inphi, or #incident_angle)");
     const std::vector<std::string_view> words = splitBlanks(content);
     if (words.size() != 3)
-      return fail(fmt::format("a sample row is \"theta phi value\", this one has {} fields",
-                              words.size()));
+      return fail(
+          fmt::format("a sample row is \"theta phi value\", this one has {} fields", words.size()));
     double v[3];
     for (int i = 0; i < 3; ++i) {
       const std::optional<double> x = parseNumber(words[i]);
@@ -264,10 +265,11 @@ class ZemaxParser {
       double v = 0;
       GLARECAM_ASSIGN(v, number(what));
       if (v < low || v > high)
-        return fail(value_line, fmt::format("{} {:g}° is outside [{:g}, {:g}]°", what, v, low, high));
+        return fail(value_line,
+                    fmt::format("{} {:g}° is outside [{:g}, {:g}]°", what, v, low, high));
       if (!values.empty() && v <= values.back())
-        return fail(value_line, fmt::format("{} must ascend: {:g}° after {:g}°", what, v,
-                                            values.back()));
+        return fail(value_line,
+                    fmt::format("{} must ascend: {:g}° after {:g}°", what, v, values.back()));
       values.push_back(v);
     }
     return values;
@@ -340,8 +342,9 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
     return fail(header_end,
                 "AngleOfIncidence, ScatterAzimuth and ScatterRadial must come before the data");
   if (*plane_symmetric && azimuths.back() > 180)
-    return fail(header_end, fmt::format("a PlaneSymmetrical table's azimuths end at 180°, not {:g}°",
-                                        azimuths.back()));
+    return fail(
+        header_end,
+        fmt::format("a PlaneSymmetrical table's azimuths end at 180°, not {:g}°", azimuths.back()));
   const std::size_t per_block = azimuths.size() * radials.size();
   if (per_block > kMaxSamples)
     return fail(header_end, fmt::format("{} values a block, more than {}", per_block, kMaxSamples));
@@ -417,9 +420,9 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
   return out;
 }
 
-constexpr std::string_view kZemaxKeywords[] = {"Source",         "Symmetry",        "SpectralContent",
-                                               "ScatterType",    "SampleRotation",  "AngleOfIncidence",
-                                               "ScatterAzimuth", "ScatterRadial"};
+constexpr std::string_view kZemaxKeywords[] = {
+    "Source",         "Symmetry",         "SpectralContent", "ScatterType",
+    "SampleRotation", "AngleOfIncidence", "ScatterAzimuth",  "ScatterRadial"};
 
 }  // namespace
 
@@ -464,10 +467,9 @@ std::string formatPabOpto(const BrdfMeasurement& m) {
   std::string out;
   if (!m.sample_name.empty()) out += fmt::format("#sample_name \"{}\"\n", m.sample_name);
   out += "#format: theta phi BSDF\n";
-  out += fmt::format("#incident_angle {:.10g} {:.10g}\n", m.incident_theta_deg,
-                     m.incident_phi_deg);
-  out += fmt::format("#intheta {:.10g}\n#inphi {:.10g}\n", m.incident_theta_deg,
-                     m.incident_phi_deg);
+  out += fmt::format("#incident_angle {:.10g} {:.10g}\n", m.incident_theta_deg, m.incident_phi_deg);
+  out +=
+      fmt::format("#intheta {:.10g}\n#inphi {:.10g}\n", m.incident_theta_deg, m.incident_phi_deg);
   out += "#upphi 0\n#colorimetry: CIE-Y\n";
   if (m.relative_noise) out += fmt::format("#relative_noise {:.6g}\n", *m.relative_noise);
   for (const BrdfSample& s : m.samples)

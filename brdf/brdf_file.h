@@ -47,13 +47,13 @@ std::string formatPabOpto(const BrdfMeasurement& measurement);
 // values per angle of incidence (sample rotation 0).
 struct ZemaxTable {
   std::string source = "Measured";
-  bool plane_symmetric = true;          // azimuths 0–180° mirrored across the plane of incidence
-  std::vector<double> radial_deg;       // ascending, from 0
-  std::vector<double> azimuth_deg;      // ascending, from 0
+  bool plane_symmetric = true;      // azimuths 0–180° mirrored across the plane of incidence
+  std::vector<double> radial_deg;   // ascending, from 0
+  std::vector<double> azimuth_deg;  // ascending, from 0
   struct Block {
     double incident_theta_deg = 0;
-    double tis = 0;                     // total integrated scatter (written as given)
-    std::vector<double> values;         // f_r in sr⁻¹, azimuth-major: [azimuth][radial]
+    double tis = 0;              // total integrated scatter (written as given)
+    std::vector<double> values;  // f_r in sr⁻¹, azimuth-major: [azimuth][radial]
   };
   std::vector<Block> blocks;
 };

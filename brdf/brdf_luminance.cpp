@@ -183,9 +183,8 @@ Result<BrdfLuminance> luminanceUnderSun(const BrdfMeasurement& m, const Sampling
   const PlaneSamples samples = planeSamples(m);
   out.covered_deg = coverageDeg(samples.points);
   // The grid must hold the lobe's core: at least a few FWHM of the Gaussian approximation.
-  const double fwhm_deg =
-      2.3548200450309493 *
-      std::max(sampling.lobe.sigma_vertical_deg, sampling.lobe.sigma_horizontal_deg);
+  const double fwhm_deg = 2.3548200450309493 * std::max(sampling.lobe.sigma_vertical_deg,
+                                                        sampling.lobe.sigma_horizontal_deg);
   constexpr double kMinFwhmCovered = 1.0;
   if (!(out.covered_deg >= kMinFwhmCovered * fwhm_deg))
     return badInput(fmt::format(
@@ -201,8 +200,7 @@ Result<BrdfLuminance> luminanceUnderSun(const BrdfMeasurement& m, const Sampling
   out.half_width_deg = half * pixel;
 
   cv::Mat ln_grid = interpolateOnGrid(samples, n, pixel);
-  const double floor_ln =
-      samples.ln_brdf.empty() ? 0 : *std::ranges::min_element(samples.ln_brdf);
+  const double floor_ln = samples.ln_brdf.empty() ? 0 : *std::ranges::min_element(samples.ln_brdf);
   cv::Mat brdf_grid(n, n, CV_64F);
   std::size_t uncovered = 0;
   for (int y = 0; y < n; ++y)
@@ -222,8 +220,7 @@ Result<BrdfLuminance> luminanceUnderSun(const BrdfMeasurement& m, const Sampling
     std::vector<double> weights = discKernel(options.sun_half_angle_deg, pixel, side);
     const cv::Mat kernel(side, side, CV_64F, weights.data());
     cv::Mat convolved;
-    cv::filter2D(brdf_grid, convolved, CV_64F, kernel, cv::Point(-1, -1), 0,
-                 cv::BORDER_REPLICATE);
+    cv::filter2D(brdf_grid, convolved, CV_64F, kernel, cv::Point(-1, -1), 0, cv::BORDER_REPLICATE);
     brdf_grid = convolved;
   }
   const double scale = options.reference_illuminance_lx * std::cos(radians(m.incident_theta_deg));
@@ -261,9 +258,8 @@ Result<BrdfLuminance> luminanceUnderSun(const BrdfMeasurement& m, const Sampling
       for (int u = 0; u < n; ++u) {
         const calibration::Ray ray{(u - half) / focal_px, (v - half) / focal_px, 1};
         const PlanePointDeg p = plane.toPlane(ray);
-        image.luminance_cd_m2.at(u, v) =
-            static_cast<float>(scale * bilinear(brdf_grid, p.x_deg / pixel + half,
-                                                p.y_deg / pixel + half));
+        image.luminance_cd_m2.at(u, v) = static_cast<float>(
+            scale * bilinear(brdf_grid, p.x_deg / pixel + half, p.y_deg / pixel + half));
       }
   });
   return out;

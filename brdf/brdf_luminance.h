@@ -14,8 +14,8 @@
 
 #include "brdf/brdf_measurement.h"
 #include "calibration/hdr_merge.h"
-#include "core/stack_manifest.h"
 #include "core/source_illuminance.h"
+#include "core/stack_manifest.h"
 
 namespace glarecam::brdf {
 
@@ -28,20 +28,20 @@ inline constexpr double kAssumedRelativeNoise = 0.02;
 struct LuminanceImageOptions {
   double reference_illuminance_lx = kDefaultReferenceIlluminanceLx;  // E_ref
   double sun_half_angle_deg = kSunHalfAngleDeg;  // 0: no convolution (a point source)
-  double max_half_width_deg = 20;  // the picture's half width at most
-  int max_size_px = 801;           // its pixels across at most (odd: a pixel on the specular ray)
-  double min_pixel_deg = 0.01;     // its pixels no finer than this
+  double max_half_width_deg = 20;                // the picture's half width at most
+  int max_size_px = 801;        // its pixels across at most (odd: a pixel on the specular ray)
+  double min_pixel_deg = 0.01;  // its pixels no finer than this
   Status validate() const;
 };
 
 struct BrdfLuminance {
-  calibration::MergedImage image;      // cd/m² under E_ref; relative uncertainty
-  Intrinsics intrinsics;                 // the pinhole camera of the picture
-  double pixel_deg = 0;                // at the centre
-  double half_width_deg = 0;           // of the grid
-  double covered_deg = 0;              // the samples' coverage around the specular direction
+  calibration::MergedImage image;  // cd/m² under E_ref; relative uncertainty
+  Intrinsics intrinsics;           // the pinhole camera of the picture
+  double pixel_deg = 0;            // at the centre
+  double half_width_deg = 0;       // of the grid
+  double covered_deg = 0;          // the samples' coverage around the specular direction
   double relative_noise = 0;
-  std::string noise_origin;            // "stated", "estimated" or "assumed"
+  std::string noise_origin;  // "stated", "estimated" or "assumed"
   // The grid's share: linear interpolation of ln f between samples h apart under-reads a lobe
   // of σ by up to h²/8σ² (at the narrower σ): that bound over √3, the standard uncertainty of a
   // rectangular distribution of that half-width (GUM 4.3.7).

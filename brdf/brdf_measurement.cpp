@@ -79,8 +79,8 @@ std::optional<GaussianLobe> fitGaussian(const LobePoints& lobe) {
   GaussianLobe g;
   g.centre = {centre(0), centre(1)};
   const double x = centre(0), y = centre(1);
-  g.peak_brdf_sr = std::exp(c(0) + c(1) * x + c(2) * y + c(3) * x * x + c(4) * x * y +
-                            c(5) * y * y);
+  g.peak_brdf_sr =
+      std::exp(c(0) + c(1) * x + c(2) * y + c(3) * x * x + c(4) * x * y + c(5) * y * y);
   // σ² along each principal axis is the inverse of the curvature there.
   const Eigen::Vector2d e0 = curvature.eigenvectors().col(0), e1 = curvature.eigenvectors().col(1);
   const double s0 = 1 / std::sqrt(curvature.eigenvalues()(0));
@@ -111,8 +111,7 @@ Result<SamplingCheck> checkSampling(const BrdfMeasurement& m) {
   SamplingCheck check;
   const auto peak = std::ranges::max_element(m.samples, {}, &BrdfSample::brdf_sr);
   check.peak_index = static_cast<std::size_t>(peak - m.samples.begin());
-  const std::string where =
-      peak->line > 0 ? fmt::format("{}:{}", m.file, peak->line) : m.file;
+  const std::string where = peak->line > 0 ? fmt::format("{}:{}", m.file, peak->line) : m.file;
   if (!(peak->brdf_sr > 0)) return badInput(m.file + ": every BRDF sample is zero");
   const SpecularFrame frame(m.incident_theta_deg, m.incident_phi_deg);
   const PlanePointDeg peak_point = frame.toPlane(peak->theta_deg, peak->phi_deg);
@@ -135,8 +134,7 @@ Result<SamplingCheck> checkSampling(const BrdfMeasurement& m) {
       "peak{}; at least {:g} samples across the FWHM are needed to draw a glare spot a few "
       "degrees wide (docs/brdf.md)",
       where, m.incident_theta_deg, lobe.points.size(), kLobeFitFraction,
-      nearest.empty() ? std::string()
-                      : fmt::format(", {:.3g}° apart", medianOf(nearest)),
+      nearest.empty() ? std::string() : fmt::format(", {:.3g}° apart", medianOf(nearest)),
       kMinSamplesAcrossFwhm);
   if (!gaussian || nearest.empty()) return badInput(coarse);
   check.lobe = *gaussian;

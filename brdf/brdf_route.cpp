@@ -105,16 +105,15 @@ Result<BrdfAngle> processMeasurement(const BrdfMeasurement& m, const fs::path& r
   BrdfLuminance luminance;
   GLARECAM_ASSIGN(luminance, luminanceUnderSun(m, sampling, options.image));
   const pipeline::LuminanceStats stats = pipeline::luminanceStats(luminance.image);
-  const std::optional<double> limit =
-      options.threshold_cd_m2 ? options.threshold_cd_m2
-                              : pipeline::glareLimitCdM2(m.incident_theta_deg);
+  const std::optional<double> limit = options.threshold_cd_m2
+                                          ? options.threshold_cd_m2
+                                          : pipeline::glareLimitCdM2(m.incident_theta_deg);
   const calibration::CameraModel camera(luminance.intrinsics);
-  const pipeline::GlareAnalysis glare =
-      pipeline::analyseGlare(luminance.image, camera, stats.max,
-                             {.limit_cd_m2 = limit,
-                              .thresholds_cd_m2 = {},
-                              .scale_relative_uncertainty = 0,
-                              .ladder = options.ladder});
+  const pipeline::GlareAnalysis glare = pipeline::analyseGlare(luminance.image, camera, stats.max,
+                                                               {.limit_cd_m2 = limit,
+                                                                .thresholds_cd_m2 = {},
+                                                                .scale_relative_uncertainty = 0,
+                                                                .ladder = options.ladder});
   pipeline::ResultIlluminance illuminance;
   // The picture is computed under the reference sun itself: E = E_ref exactly.
   illuminance.source = SourceIlluminance{
@@ -167,25 +166,25 @@ Result<BrdfRouteSummary> runBrdfRoute(const std::vector<fs::path>& files,
   GLARECAM_CHECK(ensureDirectory(options.output_directory));
   std::vector<std::size_t> order(measurements.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::ranges::stable_sort(order, {}, [&](std::size_t i) {
-    return measurements[i].incident_theta_deg;
-  });
+  std::ranges::stable_sort(order, {},
+                           [&](std::size_t i) { return measurements[i].incident_theta_deg; });
   BrdfRouteSummary summary;
   std::set<std::string> ids;
   Progress progress("brdf", static_cast<int>(measurements.size()), options.show_progress);
   for (std::size_t i : order) {
     const BrdfMeasurement& m = measurements[i];
     std::string id = measurementId(m, several[i]);
-    for (int n = 2; ids.contains(id); ++n) id = fmt::format("{}-{}", measurementId(m, several[i]), n);
+    for (int n = 2; ids.contains(id); ++n)
+      id = fmt::format("{}-{}", measurementId(m, several[i]), n);
     ids.insert(id);
     BrdfAngle angle;
-    GLARECAM_ASSIGN(angle, processMeasurement(
-                               m, options.output_directory / pipeline::kSweepResultsDirectory / id,
-                               options));
+    GLARECAM_ASSIGN(
+        angle, processMeasurement(
+                   m, options.output_directory / pipeline::kSweepResultsDirectory / id, options));
     for (const std::string& warning : angle.warnings) spdlog::warn("{}", warning);
     pipeline::SweepRow row;
-    GLARECAM_ASSIGN(row, pipeline::sweepRowFromResult(angle.result,
-                                                      angle.result_directory.string()));
+    GLARECAM_ASSIGN(row,
+                    pipeline::sweepRowFromResult(angle.result, angle.result_directory.string()));
     summary.table.rows.push_back(std::move(row));
     for (pipeline::ContourRow& c : pipeline::contourRowsFromResult(angle.result))
       summary.contours.rows.push_back(std::move(c));

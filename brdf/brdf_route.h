@@ -24,23 +24,23 @@ namespace glarecam::brdf {
 
 struct BrdfRouteOptions {
   std::filesystem::path output_directory = "brdf";
-  LuminanceImageOptions image;             // E_ref, the sun's disc, the picture's size
-  std::optional<double> threshold_cd_m2;   // a constant limit instead of the α curve
+  LuminanceImageOptions image;            // E_ref, the sun's disc, the picture's size
+  std::optional<double> threshold_cd_m2;  // a constant limit instead of the α curve
   bool ladder = true;
-  bool float32 = false;                    // the images at full float32 precision
+  bool float32 = false;  // the images at full float32 precision
   bool show_progress = true;
   Status validate() const;
 };
 
 struct BrdfAngle {
-  std::string file;                         // the measurement's file
-  std::filesystem::path result_directory;   // OUT/results/<id>
+  std::string file;                        // the measurement's file
+  std::filesystem::path result_directory;  // OUT/results/<id>
   pipeline::StackResult result;
-  std::vector<std::string> warnings;        // the peak off the specular direction
+  std::vector<std::string> warnings;  // the peak off the specular direction
 };
 
 struct BrdfRouteSummary {
-  std::vector<BrdfAngle> angles;            // by α
+  std::vector<BrdfAngle> angles;  // by α
   pipeline::SweepTable table;
   pipeline::ContourTable contours;
   std::filesystem::path sweep_csv, contours_csv;

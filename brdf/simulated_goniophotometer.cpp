@@ -18,8 +18,8 @@ Status GoniophotometerOptions::validate() const {
   if (alphas_deg.empty()) return badInput("simulate-brdf: no angles of incidence");
   for (double alpha : alphas_deg)
     if (!(alpha >= 0 && alpha <= kMaxIncidentThetaDeg))
-      return badInput(fmt::format("simulate-brdf: α {:g}° is outside [0, {:g}]°", alpha,
-                                  kMaxIncidentThetaDeg));
+      return badInput(
+          fmt::format("simulate-brdf: α {:g}° is outside [0, {:g}]°", alpha, kMaxIncidentThetaDeg));
   if (!(fine_step_deg >= 0.01 && fine_step_deg <= fine_radius_deg &&
         fine_radius_deg <= medium_radius_deg && medium_step_deg >= fine_step_deg &&
         medium_radius_deg <= 80 && coarse_step_deg >= medium_step_deg && coarse_step_deg <= 30))
@@ -78,11 +78,11 @@ BrdfMeasurement simulateMeasurement(const surface::BrdfModel& model, double alph
   for (std::size_t k = 0; k < radii.size(); ++k) {
     const double rho = radii[k];
     const double step = rho <= o.fine_radius_deg + 1e-9 ? o.fine_step_deg : o.medium_step_deg;
-    const int n = rho == 0 ? 1 : std::max(8, static_cast<int>(std::ceil(2 * std::numbers::pi * rho / step)));
+    const int n =
+        rho == 0 ? 1 : std::max(8, static_cast<int>(std::ceil(2 * std::numbers::pi * rho / step)));
     for (int j = 0; j < n; ++j) {
       const double psi = 2 * std::numbers::pi * j / n;
-      const auto [theta, phi] =
-          frame.fromPlane({rho * std::cos(psi), rho * std::sin(psi)});
+      const auto [theta, phi] = frame.fromPlane({rho * std::cos(psi), rho * std::sin(psi)});
       constexpr double kMaxThetaDeg = 89;  // the instrument's detector cannot graze the sample
       if (theta <= kMaxThetaDeg) add(theta, phi);
     }
@@ -138,7 +138,8 @@ Result<SimulatedFiles> writeSimulatedMeasurements(const surface::BrdfModel& mode
   }
   if (formats != SimulatedFormats::kPabOpto) {
     files.zemax = directory / "surface.bsdf";
-    GLARECAM_CHECK(writeFileAtomic(files.zemax, formatZemaxBsdf(simulateZemaxTable(model, options))));
+    GLARECAM_CHECK(
+        writeFileAtomic(files.zemax, formatZemaxBsdf(simulateZemaxTable(model, options))));
   }
   return files;
 }

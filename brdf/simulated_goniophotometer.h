@@ -37,8 +37,7 @@ struct GoniophotometerOptions {
 
 // One angle of incidence measured (file name `file` in the measurement).
 BrdfMeasurement simulateMeasurement(const surface::BrdfModel& model, double alpha_deg,
-                                    const GoniophotometerOptions& options,
-                                    const std::string& file);
+                                    const GoniophotometerOptions& options, const std::string& file);
 
 // Every angle of incidence on the Zemax grid.
 ZemaxTable simulateZemaxTable(const surface::BrdfModel& model,

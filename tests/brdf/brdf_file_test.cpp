@@ -12,8 +12,10 @@
 namespace glarecam::brdf {
 namespace {
 
-const surface::GaussianLobeBrdf kFileLobe({.peak_brdf_sr = 60, .sigma_horizontal_deg = 2,
-                                       .sigma_vertical_deg = 1.5, .floor_brdf_sr = 0.05});
+const surface::GaussianLobeBrdf kFileLobe({.peak_brdf_sr = 60,
+                                           .sigma_horizontal_deg = 2,
+                                           .sigma_vertical_deg = 1.5,
+                                           .floor_brdf_sr = 0.05});
 
 GoniophotometerOptions quickOptions() {
   GoniophotometerOptions o;
@@ -43,8 +45,7 @@ TEST(PabOptoFile, WrittenAndReadBackIsTheSameMeasurement) {
 }
 
 TEST(PabOptoFile, DsfIsTheBsdfTimesTheCosine) {
-  const std::string text =
-      "#format: theta phi DSF\n#intheta 20\n#inphi 0\n0 0 0.5\n60 90 0.5\n";
+  const std::string text = "#format: theta phi DSF\n#intheta 20\n#inphi 0\n0 0 0.5\n60 90 0.5\n";
   const auto read = parseBrdfText(text, "dsf.dat");
   ASSERT_TRUE(read) << read.error().message;
   EXPECT_NEAR(read->front().samples[0].brdf_sr, 0.5, 1e-12);
@@ -113,8 +114,7 @@ INSTANTIATE_TEST_SUITE_P(
     Formats, BadBrdfFile,
     ::testing::Values(
         BadFile{"unknown", "hello world\n1 2 3\n", "bad.dat:1: unknown BRDF format"},
-        BadFile{"klems", "<?xml version=\"1.0\"?>\n<WindowElement>LBNL/Klems Full",
-                "Klems basis"},
+        BadFile{"klems", "<?xml version=\"1.0\"?>\n<WindowElement>LBNL/Klems Full", "Klems basis"},
         BadFile{"btdf", "#format: theta phi BTDF\n#intheta 10\n#inphi 0\n", "bad.dat:1: BTDF"},
         BadFile{"behind", "#format: theta phi BSDF\n#intheta 10\n#inphi 0\n120 0 1\n",
                 "bad.dat:4: θ 120° lies behind the sample"},

@@ -38,8 +38,10 @@ struct Case {
 class GaussianLobeThroughTheRoute : public ::testing::TestWithParam<Case> {};
 
 TEST_P(GaussianLobeThroughTheRoute, MeasuresTheLobesOwnContours) {
-  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 60, .sigma_horizontal_deg = 1.6,
-                                        .sigma_vertical_deg = 1.1, .floor_brdf_sr = 0.02});
+  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 60,
+                                        .sigma_horizontal_deg = 1.6,
+                                        .sigma_vertical_deg = 1.1,
+                                        .floor_brdf_sr = 0.02});
   GoniophotometerOptions o;
   o.fine_step_deg = 0.15;
   o.medium_radius_deg = 20;
@@ -71,8 +73,7 @@ TEST_P(GaussianLobeThroughTheRoute, MeasuresTheLobesOwnContours) {
   EXPECT_NEAR(r.limit.ellipse->horizontal_deg, *truth.contours[0].horizontal_deg,
               kAxisToleranceDeg);
   EXPECT_NEAR(r.fwhm.ellipse->vertical_deg, *truth.contours[1].vertical_deg, kAxisToleranceDeg);
-  EXPECT_NEAR(r.fwhm.ellipse->horizontal_deg, *truth.contours[1].horizontal_deg,
-              kAxisToleranceDeg);
+  EXPECT_NEAR(r.fwhm.ellipse->horizontal_deg, *truth.contours[1].horizontal_deg, kAxisToleranceDeg);
   // The Gaussian approximation, reported beside: the lobe's own σ; the floor of 0.02 sr⁻¹ beside
   // values of at least 15 sr⁻¹ bends ln f by up to 0.13 % over the fitted samples.
   EXPECT_NEAR(r.brdf["gaussian"]["sigma_vertical_deg"].get<double>(), 1.1, 1e-3);
@@ -84,8 +85,10 @@ INSTANTIATE_TEST_SUITE_P(Sun, GaussianLobeThroughTheRoute,
                                            Case{60, kSunHalfAngleDeg}));
 
 TEST(LuminanceUnderSun, SamplesThatMissTheSpecularDirectionAreRefused) {
-  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 60, .sigma_horizontal_deg = 1.6,
-                                        .sigma_vertical_deg = 1.1, .floor_brdf_sr = 0.02});
+  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 60,
+                                        .sigma_horizontal_deg = 1.6,
+                                        .sigma_vertical_deg = 1.1,
+                                        .floor_brdf_sr = 0.02});
   GoniophotometerOptions o;
   o.relative_noise = 0;
   BrdfMeasurement m = simulateMeasurement(lobe, 20, o, "half.dat");

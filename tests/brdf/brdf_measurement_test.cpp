@@ -19,8 +19,10 @@ GoniophotometerOptions options(double fine_step_deg, double noise) {
 }
 
 TEST(CheckSampling, TheGaussianApproximationOfAGaussianLobeIsTheLobe) {
-  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 40, .sigma_horizontal_deg = 2,
-                                        .sigma_vertical_deg = 1.25, .floor_brdf_sr = 0});
+  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 40,
+                                        .sigma_horizontal_deg = 2,
+                                        .sigma_vertical_deg = 1.25,
+                                        .floor_brdf_sr = 0});
   const BrdfMeasurement m = simulateMeasurement(lobe, 30, options(0.2, 0), "g.dat");
   const auto check = checkSampling(m);
   ASSERT_TRUE(check) << check.error().message;
@@ -38,8 +40,10 @@ TEST(CheckSampling, TheGaussianApproximationOfAGaussianLobeIsTheLobe) {
 
 TEST(CheckSampling, AGridTooCoarseForTheLobeIsRefused) {
   // FWHM 1.18° sampled every 0.5°: 2.4 samples across, fewer than 5.
-  const surface::GaussianLobeBrdf narrow({.peak_brdf_sr = 400, .sigma_horizontal_deg = 0.5,
-                                          .sigma_vertical_deg = 0.5, .floor_brdf_sr = 0});
+  const surface::GaussianLobeBrdf narrow({.peak_brdf_sr = 400,
+                                          .sigma_horizontal_deg = 0.5,
+                                          .sigma_vertical_deg = 0.5,
+                                          .floor_brdf_sr = 0});
   const BrdfMeasurement m = simulateMeasurement(narrow, 20, options(0.5, 0), "coarse.dat");
   const auto check = checkSampling(m);
   ASSERT_FALSE(check);
@@ -51,8 +55,10 @@ TEST(CheckSampling, AGridTooCoarseForTheLobeIsRefused) {
 TEST(CheckSampling, APeakAwayFromTheSpecularDirectionIsWarnedAbout) {
   // The file's φ_i the direction away from the source: the data's peak then lies 2 θ_i from the
   // specular direction the file implies.
-  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 40, .sigma_horizontal_deg = 2,
-                                        .sigma_vertical_deg = 2, .floor_brdf_sr = 0.01});
+  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 40,
+                                        .sigma_horizontal_deg = 2,
+                                        .sigma_vertical_deg = 2,
+                                        .floor_brdf_sr = 0.01});
   BrdfMeasurement m = simulateMeasurement(lobe, 10, options(0.2, 0), "flipped.dat");
   m.incident_phi_deg = 180;
   const auto check = checkSampling(m);
@@ -63,16 +69,17 @@ TEST(CheckSampling, APeakAwayFromTheSpecularDirectionIsWarnedAbout) {
 }
 
 TEST(EstimateRelativeNoise, FindsTheNoiseOfTheData) {
-  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 40, .sigma_horizontal_deg = 2,
-                                        .sigma_vertical_deg = 1.5, .floor_brdf_sr = 0.01});
+  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 40,
+                                        .sigma_horizontal_deg = 2,
+                                        .sigma_vertical_deg = 1.5,
+                                        .floor_brdf_sr = 0.01});
   // Noiseless: only the 8-digit rounding and the lobe's departure from a line remain.
   const auto clean = estimateRelativeNoise(simulateMeasurement(lobe, 30, options(0.2, 0), "c"));
   ASSERT_TRUE(clean);
   EXPECT_LT(*clean, 1e-3);
   // 2 % noise: thousands of runs make the median's estimate good to a few per cent; the
   // rings' curvature adds a little (runs are along arcs).
-  const auto noisy =
-      estimateRelativeNoise(simulateMeasurement(lobe, 30, options(0.2, 0.02), "n"));
+  const auto noisy = estimateRelativeNoise(simulateMeasurement(lobe, 30, options(0.2, 0.02), "n"));
   ASSERT_TRUE(noisy);
   EXPECT_NEAR(*noisy, 0.02, 0.002);
 }

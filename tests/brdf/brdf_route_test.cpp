@@ -14,8 +14,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const surface::GaussianLobeBrdf kRouteLobe({.peak_brdf_sr = 60, .sigma_horizontal_deg = 1.6,
-                                       .sigma_vertical_deg = 1.1, .floor_brdf_sr = 0.02});
+const surface::GaussianLobeBrdf kRouteLobe({.peak_brdf_sr = 60,
+                                            .sigma_horizontal_deg = 1.6,
+                                            .sigma_vertical_deg = 1.1,
+                                            .floor_brdf_sr = 0.02});
 
 GoniophotometerOptions labOptions() {
   GoniophotometerOptions o;
@@ -91,7 +93,8 @@ TEST(BrdfRoute, ARefusedFileStopsTheRunBeforeAnyPicture) {
   const auto files =
       writeSimulatedMeasurements(kRouteLobe, labOptions(), SimulatedFormats::kPabOpto, dir / "lab");
   ASSERT_TRUE(files);
-  glarecam::testing::writeText(dir / "bad.dat", "#format: theta phi BSDF\n#intheta 10\n#inphi 0\n1 0 -1\n");
+  glarecam::testing::writeText(dir / "bad.dat",
+                               "#format: theta phi BSDF\n#intheta 10\n#inphi 0\n1 0 -1\n");
   std::vector<fs::path> inputs = files->pabopto;
   inputs.push_back(dir / "bad.dat");
   const auto summary = runBrdfRoute(inputs, routeOptions(dir / "out"));

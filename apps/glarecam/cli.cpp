@@ -75,6 +75,7 @@ int runGlarecam(int argc, char** argv) {
   addDoctorCommand(app, action);
   addCalibrateCommand(app, action);
   addHazardCommand(app, action);
+  addBrdfCommand(app, action);
   nameOptionValues(app);
 
   try {

@@ -31,6 +31,7 @@ void addDoctorCommand(CLI::App& app, Action& action);
 void addCalibrateCommand(CLI::App& app, Action& action);
 void addSimulateCalibrationCommand(CLI::App& app, Action& action);
 void addHazardCommand(CLI::App& app, Action& action);
+void addBrdfCommand(CLI::App& app, Action& action);
 
 // A JSON document on stdout, as every --json prints it.
 void printJson(const nlohmann::json& document);

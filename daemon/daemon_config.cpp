@@ -6,7 +6,7 @@
 #include <cctype>
 #include <fstream>
 
-#include "rig/config_table.h"
+#include "core/config_table.h"
 
 namespace glarecam::daemon {
 
@@ -31,7 +31,7 @@ Result<capture::CaptureConfig> readCapture(const std::filesystem::path& file,
                                            const toml::table* table) {
   capture::CaptureConfig capture;
   if (!table) return capture;
-  rig::TableReader reader(file, *table, "capture");
+  TableReader reader(file, *table, "capture");
   if (const toml::node* exposures = reader.node("exposures");
       exposures && !(exposures->is_string() && *exposures->value<std::string>() == "auto")) {
     if (!exposures->is_array())
@@ -72,7 +72,7 @@ Result<ScheduleConfig> readSchedule(const std::filesystem::path& file, const tom
                                     bool has_site) {
   ScheduleConfig schedule{.alpha_targets_deg = defaultAlphaTargetsDeg()};
   if (!table) return schedule;
-  rig::TableReader reader(file, *table, "schedule");
+  TableReader reader(file, *table, "schedule");
   std::optional<std::string> mode;
   GLARECAM_ASSIGN(mode, reader.choice("mode", {"interval", "alpha-targets", "button"}));
   if (mode == "alpha-targets") schedule.mode = ScheduleMode::kAlphaTargets;
@@ -103,7 +103,7 @@ Result<ScheduleConfig> readSchedule(const std::filesystem::path& file, const tom
 Result<OutputConfig> readOutput(const std::filesystem::path& file, const toml::table* table) {
   OutputConfig output;
   if (!table) return output;
-  rig::TableReader reader(file, *table, "output");
+  TableReader reader(file, *table, "output");
   std::optional<std::string> root, module;
   GLARECAM_ASSIGN(root, reader.string("root"));
   if (root) output.root = (file.parent_path() / *root).lexically_normal();
@@ -129,7 +129,7 @@ Result<OutputConfig> readOutput(const std::filesystem::path& file, const toml::t
   return output;
 }
 
-Result<std::optional<std::chrono::seconds>> seconds(rig::TableReader& reader, const char* key) {
+Result<std::optional<std::chrono::seconds>> seconds(TableReader& reader, const char* key) {
   std::optional<std::int64_t> value;
   GLARECAM_ASSIGN(value, reader.integer(key, 1, kMaxBackoffS));
   if (!value) return std::nullopt;
@@ -139,7 +139,7 @@ Result<std::optional<std::chrono::seconds>> seconds(rig::TableReader& reader, co
 Result<FaultConfig> readFaults(const std::filesystem::path& file, const toml::table* table) {
   FaultConfig faults;
   if (!table) return faults;
-  rig::TableReader reader(file, *table, "faults");
+  TableReader reader(file, *table, "faults");
   std::optional<std::string> policy;
   GLARECAM_ASSIGN(policy, reader.choice("inclinometer", {"continue", "pause"}));
   if (policy == "pause") faults.inclinometer = InclinometerFaultPolicy::kPause;
@@ -171,7 +171,7 @@ Result<FaultConfig> readFaults(const std::filesystem::path& file, const toml::ta
 Result<StatusConfig> readStatus(const std::filesystem::path& file, const toml::table* table) {
   StatusConfig status;
   if (!table) return status;
-  rig::TableReader reader(file, *table, "status");
+  TableReader reader(file, *table, "status");
   const toml::node* listen = reader.node("listen");
   GLARECAM_CHECK(reader.checkNoUnknownKeys());
   if (!listen) return status;
@@ -220,7 +220,7 @@ Result<Config> readConfig(const std::filesystem::path& path) {
   std::vector<std::string_view> sections(rig::kRigSections.begin(), rig::kRigSections.end());
   sections.insert(sections.end(), kDaemonSections.begin(), kDaemonSections.end());
   toml::table root;
-  GLARECAM_ASSIGN(root, rig::readConfigFile(path, sections));
+  GLARECAM_ASSIGN(root, readConfigFile(path, sections));
   Config config;
   GLARECAM_ASSIGN(config.rig, rig::readRigSections(path, root));
   DaemonConfig& daemon = config.daemon;

@@ -5,13 +5,46 @@
 
 #include <cmath>
 
+#include "core/config_table.h"
 #include "core/json.h"
 #include "core/stack_io.h"
-#include "rig/config_table.h"
 
 namespace glarecam::rig {
 
 namespace {
+
+// Far beyond any chip; the chip itself checks.
+constexpr std::int64_t kMaxGpioOffset = 65535;
+
+// A GPIO line: its offset (an integer) or its name (a string), with `KEY_active_low` (default
+// `default_active_low`).
+Result<std::optional<GpioLine>> readGpioLine(TableReader& reader, const std::string& key,
+                                             bool default_active_low = false) {
+  reader.markUsed(key);
+  const std::string active_low_key = key + "_active_low";
+  std::optional<bool> active_low;
+  GLARECAM_ASSIGN(active_low, reader.boolean(active_low_key.c_str()));
+  const toml::node* line_node = reader.table().get(key);
+  if (!line_node) {
+    if (active_low)
+      return reader.error(
+          *reader.table().get(active_low_key),
+          fmt::format("{} without {}", reader.qualified(active_low_key), reader.qualified(key)));
+    return std::nullopt;
+  }
+  GpioLine line;
+  if (line_node->is_integer() && *line_node->value<std::int64_t>() >= 0 &&
+      *line_node->value<std::int64_t>() <= kMaxGpioOffset) {
+    line.line = static_cast<unsigned>(*line_node->value<std::int64_t>());
+  } else if (line_node->is_string() && !line_node->value<std::string>()->empty()) {
+    line.line = *line_node->value<std::string>();
+  } else {
+    return reader.error(*line_node, fmt::format("{} must be a line offset (0..{}) or a line name",
+                                                reader.qualified(key), kMaxGpioOffset));
+  }
+  line.active_low = active_low.value_or(default_active_low);
+  return line;
+}
 
 constexpr std::int64_t kMaxTiltSamples = 100000;  // ≈ 2 h at the ADXL355's 15.6 Hz
 
@@ -91,10 +124,10 @@ Result<std::optional<RigIoConfig>> readGpio(const std::filesystem::path& file,
   std::optional<bool> pull_up;
   GLARECAM_ASSIGN(pull_up, reader.boolean("button_pull_up"));
   if (pull_up) gpio.button_pull_up = *pull_up;
-  GLARECAM_ASSIGN(gpio.trigger, reader.gpioLine("trigger"));
-  GLARECAM_ASSIGN(gpio.led, reader.gpioLine("led"));
+  GLARECAM_ASSIGN(gpio.trigger, readGpioLine(reader, "trigger"));
+  GLARECAM_ASSIGN(gpio.led, readGpioLine(reader, "led"));
   // A button on the pull-up goes to ground: active-low unless said otherwise.
-  GLARECAM_ASSIGN(gpio.button, reader.gpioLine("button", gpio.button_pull_up));
+  GLARECAM_ASSIGN(gpio.button, readGpioLine(reader, "button", gpio.button_pull_up));
   std::optional<std::int64_t> debounce_ms, pulse_us;
   GLARECAM_ASSIGN(debounce_ms, reader.integer("debounce_ms", 0, kMaxDebounce.count()));
   GLARECAM_ASSIGN(pulse_us, reader.integer("trigger_pulse_us", 1, kMaxTriggerPulse.count()));

@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "core/source_illuminance.h"
-#include "rig/config_table.h"
+#include "core/config_table.h"
 
 namespace glarecam::rig {
 

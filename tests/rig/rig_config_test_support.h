@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "rig/config_table.h"
+#include "core/config_table.h"
 #include "rig/rig_config.h"
 #include "support/test_support.h"
 
@@ -17,7 +17,7 @@ namespace glarecam::testing {
 // daemon::readConfig reads it whole).
 inline Result<rig::RigConfig> readRigConfig(const std::filesystem::path& path) {
   toml::table root;
-  GLARECAM_ASSIGN(root, rig::readConfigFile(path, rig::kRigSections));
+  GLARECAM_ASSIGN(root, readConfigFile(path, rig::kRigSections));
   return rig::readRigSections(path, root);
 }
 

@@ -1,7 +1,8 @@
-// Typed, range-checked reads out of one table of a TOML config (the rig's glarecam.toml). Every
-// error is kBadInput and names FILE:LINE and the key ("rig.toml:12: schedule.interval_s = -1 is
-// outside [1, 604800]"); a key nobody read is reported by checkNoUnknownKeys() as a typo. Shared
-// by the rig's sections (rig_config.cpp) and the daemon's (daemon/daemon_config.cpp).
+// Typed, range-checked reads out of one table of a TOML file (the rig's glarecam.toml, a surface
+// model's parameters). Every error is kBadInput and names FILE:LINE and the key ("rig.toml:12:
+// schedule.interval_s = -1 is outside [1, 604800]"); a key nobody read is reported by
+// checkNoUnknownKeys() as a typo. Shared by the rig's sections (rig/rig_config.cpp), the daemon's
+// (daemon/daemon_config.cpp) and the surface files (surface/surface_catalogue.cpp).
 #pragma once
 
 #include <toml++/toml.h>
@@ -18,9 +19,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "rig/gpio/rig_io.h"
 
-namespace glarecam::rig {
+namespace glarecam {
 
 // Parses the TOML file at `path`, whose sub-tables must each be one of `sections` (the sections
 // its readers know). kBadInput "FILE: no such file", "FILE:LINE: <TOML syntax error>" or
@@ -48,12 +48,11 @@ class TableReader {
   Result<std::optional<std::vector<double>>> numberList(const char* key, double min, double max,
                                                         std::size_t min_count,
                                                         std::size_t max_count);
-  // A GPIO line: its offset (an integer) or its name (a string), with `KEY_active_low`
-  // (default `default_active_low`).
-  Result<std::optional<GpioLine>> gpioLine(const std::string& key, bool default_active_low = false);
-
   // The node at `key` (marked as read), or nullptr: for keys of more than one type.
   const toml::node* node(const char* key);
+  // A key read by the caller's own means (rig/: a GPIO line and its `_active_low`).
+  void markUsed(const std::string& key) { used_.insert(key); }
+  const toml::table& table() const { return table_; }
 
   // An error about the whole table: "FILE:LINE: [gpio] ...".
   std::unexpected<Error> tableError(const std::string& message) const;
@@ -75,4 +74,4 @@ class TableReader {
   std::set<std::string> used_;
 };
 
-}  // namespace glarecam::rig
+}  // namespace glarecam

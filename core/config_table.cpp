@@ -1,4 +1,4 @@
-#include "rig/config_table.h"
+#include "core/config_table.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -6,10 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace glarecam::rig {
+namespace glarecam {
 
 namespace {
-constexpr std::int64_t kMaxGpioOffset = 65535;  // far beyond any chip; the chip itself checks
 
 Status checkSections(const std::filesystem::path& file, const toml::table& root,
                      std::span<const std::string_view> sections) {
@@ -144,33 +143,6 @@ Result<std::optional<std::vector<double>>> TableReader::numberList(const char* k
   return values;
 }
 
-Result<std::optional<GpioLine>> TableReader::gpioLine(const std::string& key,
-                                                      bool default_active_low) {
-  used_.insert(key);
-  const std::string active_low_key = key + "_active_low";
-  std::optional<bool> active_low;
-  GLARECAM_ASSIGN(active_low, boolean(active_low_key.c_str()));
-  const toml::node* line_node = table_.get(key);
-  if (!line_node) {
-    if (active_low)
-      return error(*table_.get(active_low_key),
-                   fmt::format("{} without {}", qualified(active_low_key), qualified(key)));
-    return std::nullopt;
-  }
-  GpioLine line;
-  if (line_node->is_integer() && *line_node->value<std::int64_t>() >= 0 &&
-      *line_node->value<std::int64_t>() <= kMaxGpioOffset) {
-    line.line = static_cast<unsigned>(*line_node->value<std::int64_t>());
-  } else if (line_node->is_string() && !line_node->value<std::string>()->empty()) {
-    line.line = *line_node->value<std::string>();
-  } else {
-    return error(*line_node, fmt::format("{} must be a line offset (0..{}) or a line name",
-                                         qualified(key), kMaxGpioOffset));
-  }
-  line.active_low = active_low.value_or(default_active_low);
-  return line;
-}
-
 std::unexpected<Error> TableReader::tableError(const std::string& message) const {
   return badInput(fmt::format("{}:{}: [{}] {}", file_.string(), line(table_), name_, message));
 }
@@ -198,4 +170,4 @@ std::unexpected<Error> TableReader::missing(const char* key) const {
   return tableError(fmt::format("needs {}", key));
 }
 
-}  // namespace glarecam::rig
+}  // namespace glarecam

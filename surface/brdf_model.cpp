@@ -72,6 +72,9 @@ Status MicrofacetParameters::validate() const {
   GLARECAM_CHECK(width(width_x_deg, "width_x_deg"));
   GLARECAM_CHECK(width(width_y_deg, "width_y_deg"));
   GLARECAM_CHECK(width(second_lobe_width_deg, "second_lobe_width_deg"));
+  constexpr double kMaxLobeWeight = 100;
+  if (!(lobe_weight > 0 && lobe_weight <= kMaxLobeWeight))
+    return badInput(fmt::format("surface: lobe_weight must be in (0, {:g}]", kMaxLobeWeight));
   if (!(refractive_index > 1 && refractive_index <= 3))
     return badInput("surface: refractive_index must be in (1, 3]");
   if (coating_index && !(*coating_index > 1 && *coating_index <= 3))
@@ -153,9 +156,9 @@ MicrofacetBrdf::MicrofacetBrdf(const MicrofacetParameters& parameters)
 
 std::string MicrofacetBrdf::describe() const {
   const MicrofacetParameters& p = parameters_;
-  std::string text =
-      fmt::format("microfacet {}: widths {:g}° × {:g}° (x × y), n {:g}", toString(p.distribution),
-                  p.width_x_deg, p.width_y_deg, p.refractive_index);
+  std::string text = fmt::format(
+      "microfacet {}: widths {:.4g}° × {:.4g}° (x × y), lobe weight {:.4g}, n {:g}",
+      toString(p.distribution), p.width_x_deg, p.width_y_deg, p.lobe_weight, p.refractive_index);
   if (p.coating_index)
     text += fmt::format(", AR coating n {:g} × {:g} nm", *p.coating_index, p.coating_thickness_nm);
   if (p.second_lobe_weight > 0)
@@ -176,8 +179,8 @@ double MicrofacetBrdf::evaluate(const Ray& i, const Ray& o) const {
   const SlopeDistribution kind = p.distribution;
   const double shadowing =
       1 / (1 + smithLambda(kind, i, alpha_x_, alpha_y_) + smithLambda(kind, o, alpha_x_, alpha_y_));
-  double f = distribution(kind, h, alpha_x_, alpha_y_) * fresnelReflectance(cos_ih, p) * shadowing /
-             denominator;
+  double f = p.lobe_weight * distribution(kind, h, alpha_x_, alpha_y_) *
+             fresnelReflectance(cos_ih, p) * shadowing / denominator;
   if (p.second_lobe_weight > 0)
     f += p.second_lobe_weight * distribution(SlopeDistribution::kGgx, h, alpha_2_, alpha_2_) /
          denominator;

@@ -69,6 +69,10 @@ struct MicrofacetParameters {
   // The widths as angles: atan of the distribution's α along x and y (Beckmann: α = √2 · rms
   // slope; GGX: α of Walter et al.).
   double width_x_deg = 1.5, width_y_deg = 1.5;
+  // The share of the glass whose facets make the narrow lobe (the rest: a rougher population,
+  // the second lobe, the floor). Above 1 it is no share but the statement that the lobe is
+  // brighter than glass of this index under the reference sun can make it (docs/brdf.md).
+  double lobe_weight = 1;
   // Soda-lime solar glass at 550 nm (Rubin 1985, "Optical properties of soda lime silica
   // glasses", Sol. Energy Mater. 12: n = 1.52).
   double refractive_index = 1.52;

@@ -43,10 +43,11 @@ double luminanceAt(const BrdfModel& model, double alpha_deg, const PlanePointDeg
 namespace {
 
 // Along the line from `from` in `direction` (unit, degrees): the distance where L falls below
-// `level` (bisected to 1e-5°), none within `search`.
+// `level` (bisected to 1e-10°), none within `search`.
 std::optional<double> crossing(const BrdfModel& model, double alpha, const PlanePointDeg& from,
                                double dx, double dy, double level, const LobeOptions& options) {
-  constexpr double kStepDeg = 0.05, kToleranceDeg = 1e-5;
+  // Bisected far below any use (1e-10°): a fit differentiates the axes numerically.
+  constexpr double kStepDeg = 0.05, kToleranceDeg = 1e-10;
   double inside = 0;
   for (double t = kStepDeg; t <= options.search_deg; t += kStepDeg) {
     const PlanePointDeg p{from.x_deg + t * dx, from.y_deg + t * dy};
@@ -71,7 +72,7 @@ LobeContours lobeContours(const BrdfModel& model, double alpha_deg,
   LobeContours out;
   out.alpha_deg = alpha_deg;
   // The peak on the plane of incidence: a scan, then golden-section refinement.
-  constexpr double kScanDeg = 10, kScanStepDeg = 0.02;
+  constexpr double kScanDeg = 10, kScanStepDeg = 0.05;
   double best_y = 0, best = -1;
   for (double y = -kScanDeg; y <= kScanDeg; y += kScanStepDeg) {
     const double l = luminanceAt(model, alpha_deg, {0, y}, options);

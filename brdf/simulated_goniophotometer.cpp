@@ -6,7 +6,11 @@
 #include <numbers>
 #include <random>
 
+#include "brdf/brdf_luminance.h"
 #include "core/atomic_file.h"
+#include "core/json.h"
+#include "pipeline/limit_curve.h"
+#include "surface/lobe_contours.h"
 #include "surface/specular_frame.h"
 
 namespace glarecam::brdf {
@@ -121,6 +125,36 @@ ZemaxTable simulateZemaxTable(const surface::BrdfModel& model, const Goniophotom
   return table;
 }
 
+nlohmann::json surfaceTruth(const surface::BrdfModel& model, const std::vector<double>& alphas_deg,
+                            double reference_illuminance_lx, double sun_half_angle_deg) {
+  const surface::LobeOptions lobe{.illuminance_lx = reference_illuminance_lx,
+                                  .sun_half_angle_deg = sun_half_angle_deg};
+  const auto axes = [](const surface::ContourAxes& c) -> nlohmann::json {
+    if (!c.vertical_deg || !c.horizontal_deg) return nullptr;
+    return {{"level_cd_m2", c.level_cd_m2},
+            {"vertical_deg", *c.vertical_deg},
+            {"horizontal_deg", *c.horizontal_deg}};
+  };
+  nlohmann::json rows = nlohmann::json::array();
+  for (double alpha : alphas_deg) {
+    const std::optional<double> limit = pipeline::glareLimitCdM2(alpha);
+    std::vector<double> levels;
+    if (limit) levels.push_back(*limit);
+    const surface::LobeContours at_limit = surface::lobeContours(model, alpha, levels, lobe);
+    const double half[] = {at_limit.peak_cd_m2 / 2};
+    const surface::LobeContours at_half = surface::lobeContours(model, alpha, half, lobe);
+    rows.push_back({{"alpha_deg", alpha},
+                    {"lmax_cd_m2", at_limit.peak_cd_m2},
+                    {"limit", limit ? axes(at_limit.contours[0]) : nlohmann::json(nullptr)},
+                    {"fwhm", axes(at_half.contours[0])}});
+  }
+  return {{"surface", model.describe()},
+          {"reference_illuminance_lx", reference_illuminance_lx},
+          {"sun_half_angle_deg", sun_half_angle_deg},
+          {"computed", "surface/lobe_contours.h: bisection on the model, not the glare analysis"},
+          {"angles", rows}};
+}
+
 Result<SimulatedFiles> writeSimulatedMeasurements(const surface::BrdfModel& model,
                                                   const GoniophotometerOptions& options,
                                                   SimulatedFormats formats,
@@ -141,6 +175,11 @@ Result<SimulatedFiles> writeSimulatedMeasurements(const surface::BrdfModel& mode
     GLARECAM_CHECK(
         writeFileAtomic(files.zemax, formatZemaxBsdf(simulateZemaxTable(model, options))));
   }
+  files.truth = directory / "truth.json";
+  nlohmann::json truth =
+      surfaceTruth(model, options.alphas_deg, kDefaultReferenceIlluminanceLx, kSunHalfAngleDeg);
+  truth["relative_noise"] = options.relative_noise;
+  GLARECAM_CHECK(writeJsonFile(files.truth, truth));
   return files;
 }
 

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,7 @@ namespace glarecam::brdf {
 struct GoniophotometerOptions {
   // Lab instruments stop at about 70° (the sample's holder shades the beam beyond).
   std::vector<double> alphas_deg = {5, 10, 20, 30, 40, 50, 60, 70};
-  double fine_step_deg = 0.2, fine_radius_deg = 8;
+  double fine_step_deg = 0.1, fine_radius_deg = 5;
   double medium_step_deg = 1, medium_radius_deg = 30;
   double coarse_step_deg = 5;
   double azimuth_step_deg = 2;  // the Zemax grid's
@@ -46,12 +47,18 @@ ZemaxTable simulateZemaxTable(const surface::BrdfModel& model,
 struct SimulatedFiles {
   std::vector<std::filesystem::path> pabopto;  // one per α
   std::filesystem::path zemax;                 // empty when not written
+  std::filesystem::path truth;                 // truth.json
 };
+
+// The surface's own glare spot per α under the reference sun (surface/lobe_contours.h, never
+// the analysis): Lmax and the limit and half-maximum axes, as truth.json holds them.
+nlohmann::json surfaceTruth(const surface::BrdfModel& model, const std::vector<double>& alphas_deg,
+                            double reference_illuminance_lx, double sun_half_angle_deg);
 
 enum class SimulatedFormats { kPabOpto, kZemax, kBoth };
 
-// Writes the files into `directory` (made when missing), each atomically: a<α>.dat and
-// surface.bsdf.
+// Writes the files into `directory` (made when missing), each atomically: a<α>.dat,
+// surface.bsdf and truth.json (surfaceTruth() at 100 klx under the sun's disc, and the model).
 Result<SimulatedFiles> writeSimulatedMeasurements(const surface::BrdfModel& model,
                                                   const GoniophotometerOptions& options,
                                                   SimulatedFormats formats,

@@ -76,6 +76,7 @@ int runGlarecam(int argc, char** argv) {
   addCalibrateCommand(app, action);
   addHazardCommand(app, action);
   addBrdfCommand(app, action);
+  addSimulateBrdfCommand(app, action);
   nameOptionValues(app);
 
   try {

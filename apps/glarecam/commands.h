@@ -32,6 +32,7 @@ void addCalibrateCommand(CLI::App& app, Action& action);
 void addSimulateCalibrationCommand(CLI::App& app, Action& action);
 void addHazardCommand(CLI::App& app, Action& action);
 void addBrdfCommand(CLI::App& app, Action& action);
+void addSimulateBrdfCommand(CLI::App& app, Action& action);
 
 // A JSON document on stdout, as every --json prints it.
 void printJson(const nlohmann::json& document);

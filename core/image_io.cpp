@@ -502,28 +502,29 @@ std::uint32_t exrUint(float pixel) {
   return value > 0 ? static_cast<std::uint32_t>(std::round(std::min(value, kMax))) : 0u;
 }
 
-// n pixels in the type they are stored as (OpenEXR converts only when reading), to `out`.
+// n pixels in the type they are stored as (OpenEXR converts only when reading), to `out`. `out`
+// need not be aligned for that type: a row of the packed layout puts a channel after an odd
+// number of half pixels (an odd width) at any byte, so each value is copied, not stored
+// through a typed pointer.
 template <typename T>
 void convertExrPixels(const T* pixels, std::size_t n, ExrStorage storage, std::byte* out) {
+  const auto put = [&out](std::size_t i, auto value) {
+    std::memcpy(out + i * sizeof(value), &value, sizeof(value));
+  };
   switch (storage) {
-    case ExrStorage::kHalf: {
-      auto* halves = reinterpret_cast<half*>(out);
-      for (std::size_t i = 0; i < n; ++i) halves[i] = half(static_cast<float>(pixels[i]));
+    case ExrStorage::kHalf:
+      for (std::size_t i = 0; i < n; ++i) put(i, half(static_cast<float>(pixels[i])));
       return;
-    }
-    case ExrStorage::kUint: {
-      auto* integers = reinterpret_cast<std::uint32_t*>(out);
-      for (std::size_t i = 0; i < n; ++i) integers[i] = exrUint(pixels[i]);
+    case ExrStorage::kUint:
+      for (std::size_t i = 0; i < n; ++i) put(i, exrUint(pixels[i]));
       return;
-    }
     case ExrStorage::kFloat24:
     case ExrStorage::kFloat:
       break;
   }
-  auto* floats = reinterpret_cast<float*>(out);
   for (std::size_t i = 0; i < n; ++i) {
     const auto value = static_cast<float>(pixels[i]);
-    floats[i] = storage == ExrStorage::kFloat24 ? roundTo24Bits(value) : value;
+    put(i, storage == ExrStorage::kFloat24 ? roundTo24Bits(value) : value);
   }
 }
 

@@ -372,7 +372,13 @@ TextTable datasheetSweepTable(const SweepTable& sweep) {
 // What the sheet's luminances refer to, for its subtitle: "Luminances referred to E = 100 klx
 // direct normal (the stacks' sources 61.2–98.4 klx, sensor)." or that they are not.
 std::string referenceSentence(const SweepTable& table) {
-  if (const std::optional<double> reference = tableReferenceIlluminance(table))
+  const std::optional<double> reference = tableReferenceIlluminance(table);
+  if (reference && tableRoutes(table) == std::vector<std::string>{"brdf"})
+    return fmt::format(
+        " Luminances computed from the BRDF under E = {:g} klx direct normal (L = BRDF \u00b7 E \u00b7 cos "
+        "\u03b1 over the sun's disc).",
+        *reference / 1000);
+  if (reference)
     return fmt::format(" Luminances at E = {:g} klx direct normal, referred from sources of {}.",
                        *reference / 1000, sourceIlluminanceRange(table));
   if (tableReferences(table).size() > 1)
@@ -502,17 +508,25 @@ std::string subtitle(const DatasheetContent& content) {
   // What the rows were measured with, when the table says: " Camera sim SIM-0001; calibration
   // 55e5f09d95ab9da6 of 2026-06-21, K 1500 ± 18.9 cd/m² per DN/µs."
   std::vector<std::string> measured;
-  if (const auto cameras = tableCameras(*content.table); !cameras.empty())
+  const std::vector<std::string> routes = tableRoutes(*content.table);
+  const bool brdf = routes == std::vector<std::string>{"brdf"};
+  if (const auto cameras = tableCameras(*content.table); !cameras.empty() && !brdf)
     measured.push_back(fmt::format("Camera {}", fmt::join(cameras, ", ")));
   if (const auto calibrations = tableCalibrationSummaries(*content.table); !calibrations.empty())
     measured.push_back(fmt::format("calibration {}", fmt::join(calibrations, "; ")));
   const std::string measured_with =
       measured.empty() ? std::string() : fmt::format(" {}.", fmt::join(measured, "; "));
   // α as the table shows it: to its own uncertainty (not "4.99985").
+  // The route first: a sheet of goniophotometer files says so, one of both routes too.
+  const std::string what =
+      brdf                ? fmt::format("BRDF route: {} goniophotometer measurement{}", n,
+                                        n == 1 ? "" : "s")
+      : routes.size() > 1 ? fmt::format("Routes MIXED (camera and BRDF): {} rows", n)
+                          : fmt::format("Sweep of {} stack{}", n, n == 1 ? "" : "s");
   return fmt::format(
-      "Sweep of {} stack{}, \u03b1 {}\u00b0 to {}\u00b0 (angle of incidence from the module "
+      "{}, \u03b1 {}\u00b0 to {}\u00b0 (angle of incidence from the module "
       "normal).{} Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.{}",
-      n, n == 1 ? "" : "s",
+      what,
       formatToUncertainty(lo->alpha_deg, lo->alpha_uncertainty_deg, kAlphaDefaultDecimals),
       formatToUncertainty(hi->alpha_deg, hi->alpha_uncertainty_deg, kAlphaDefaultDecimals),
       referenceSentence(*content.table), limit, glareRangesText(content), measured_with);

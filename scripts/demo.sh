@@ -127,6 +127,36 @@ echo "glare profile:   $OUT/sweep/glare-profile.json"
 echo "sweep table:     $sweep_csv; fits: $OUT/sweep/fits.json"
 echo "per-stack results and pictures: $OUT/sweep/results/alpha-*/"
 
+# The method's second route (docs/brdf.md): the standard surface (the microfacet model fitted to
+# the paper's Table III) measured by the simulated goniophotometer, through `glarecam brdf` to its
+# own sheet; then the model fitted back to the camera sweep. Side by side: the camera route's
+# simulator still draws from the empirical curves, the BRDF route from the surface fitted to
+# them, so a difference is the model's departure from Table III, not a disagreement of routes
+# (that check, one surface through both, is still to come).
+echo "demo: the BRDF route: the standard surface measured by a simulated goniophotometer" >&2
+rm -rf "$OUT/brdf-lab" "$OUT/brdf"
+"$BIN/glarecam" simulate-brdf --surface standard --out "$OUT/brdf-lab" >/dev/null
+brdf_csv=$("$BIN/glarecam" brdf --no-progress "$OUT"/brdf-lab/a*.dat --out "$OUT/brdf")
+brdf_pdf=$("$BIN/glarecam" datasheet -q "$brdf_csv" --module "standard surface (BRDF route)")
+"$BIN/glarecam" model fit "$sweep_csv" --out "$OUT/sweep/surface.toml" >"$OUT/sweep/model-fit.txt"
+echo
+echo "the two sheets side by side (camera route: simulated rig; BRDF route: standard surface):"
+awk -F, '
+  FNR == 1 { file++ }
+  /^#/ || $1 == "alpha_deg" { next }
+  { a = int($1 + 0.5); l[file, a] = $3; v[file, a] = $4; h[file, a] = $5; seen[a] = 1 }
+  END {
+    printf "%5s  %-22s  %-18s  %-18s\n", "α (°)", "Lmax cd/m²: cam / brdf", "vertical °", "horizontal °"
+    for (a = 0; a <= 90; ++a) {
+      if (!((1, a) in l) || !((2, a) in l)) continue
+      printf "%5d  %9.0f / %9.0f  %6.2f / %6.2f     %6.2f / %6.2f\n", a, l[1, a], l[2, a], v[1, a],
+             v[2, a], h[1, a], h[2, a]
+    }
+  }' "$sweep_csv" "$brdf_csv"
+sed -n 1,7p "$OUT/sweep/model-fit.txt"
+echo "BRDF route:      $brdf_pdf; lab files $OUT/brdf-lab/ (truth.json: the surface's own spots)"
+echo "model fit:       $OUT/sweep/model-fit.txt, the fitted surface $OUT/sweep/surface.toml"
+
 # The same rig left to itself: glarecamd on the simulated rig (docs/operator.md), the sun
 # sweeping α in a time lapse (300 simulated seconds a second) on the solstice morning at 48° N,
 # a stack at each α target from 80° to 5°, each processed as it lands, the day's sheet redrawn.

@@ -23,7 +23,7 @@ Status LuminanceImageOptions::validate() const {
   if (!(max_half_width_deg >= 1 && max_half_width_deg <= 60))
     return badInput("--half-width: must be in [1, 60]°");
   if (max_size_px < 65 || max_size_px > 4001 || max_size_px % 2 == 0)
-    return badInput("--size: must be an odd number of pixels in [65, 4001]");
+    return badInput("--pixels: must be an odd number of pixels in [65, 4001]");
   if (!(min_pixel_deg > 0 && min_pixel_deg <= 1))
     return badInput("the finest pixel must be in (0, 1]°");
   return {};

@@ -55,6 +55,9 @@ constexpr std::pair<std::string_view, std::string_view> kValueTypes[] = {
     {"profile", "FILE"},
     {"models", "MODEL,..."},
     {"criteria", "ID,..."},
+    {"surface", "NAME|FILE"},
+    {"distribution", "NAME"},
+    {"format", "FORMAT"},
 };
 
 }  // namespace

@@ -97,7 +97,7 @@ void addBrdfCommand(CLI::App& app, Action& action) {
                   "the picture's half width in degrees around the specular direction, at most "
                   "(default 20; less where the samples stop)")
       ->check(CLI::Range(1.0, 60.0));
-  sub->add_option("--size", args->size_px,
+  sub->add_option("--pixels", args->size_px,
                   "the picture's pixels across, at most (odd; default 801)")
       ->check(CLI::Range(65, 4001));
   sub->add_flag("--no-ladder", args->no_ladder, "no contour ladder (result.json contours null)");

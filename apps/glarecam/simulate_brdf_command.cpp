@@ -62,10 +62,12 @@ void addSimulateBrdfCommand(CLI::App& app, Action& action) {
                   "or a surface file FILE.toml (default standard)");
   sub->add_option("--out", args->out, "output directory")->required();
   sub->add_option("--format", args->format, "pabopto, zemax or both (default both)")
-      ->check(CLI::IsMember({"pabopto", "zemax", "both"}));
+      ->check(CLI::IsMember({"pabopto", "zemax", "both"}))
+      ->option_text("pabopto|zemax|both");
   sub->add_option("--alpha", args->alpha,
                   "angles of incidence in degrees, comma-separated (default 5,10,20,...,70: a lab "
-                  "instrument's range)");
+                  "instrument's range)")
+      ->option_text("DEG,...");
   sub->add_option("--noise", args->noise,
                   "relative standard deviation of each sample's noise (default 0.01)")
       ->check(CLI::Range(0.0, 0.49));

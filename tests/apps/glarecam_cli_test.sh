@@ -15,7 +15,8 @@ expect "help lists commands" grep -q "simulate" "$WORK/out"
 check "process help" 0 "$GLARECAM" process --help
 expect "process help types --alpha" grep -qE -- "--alpha DEG" "$WORK/out"
 # Every option's value is named in --help (DEG, CD_M2, WxH, FILE, ...), never CLI11's bare TEXT.
-for command in simulate simulate-calibration process sweep fit datasheet model cameras capture \
+for command in simulate simulate-calibration process sweep fit datasheet model "model fit" brdf \
+    simulate-brdf cameras capture \
     fake-camera sun alpha "inclinometer read" "inclinometer flip" gpio doctor "calibrate dark" \
     "calibrate flat" "calibrate linearity" "calibrate noise" "calibrate luminance" \
     "calibrate intrinsics" "calibrate merge"; do
@@ -332,6 +333,32 @@ check "model: missing --beta" 2 "$GLARECAM" model
 check "model: beta 0" 2 "$GLARECAM" model --beta 0
 check "model: alpha 100" 2 "$GLARECAM" model --beta 2 --alpha 100
 expect "model alpha error is one line" one_line_naming "--alpha: 100"
+
+# The BRDF route (docs/brdf.md): a simulated lab, the route, the model fit, and bad inputs.
+check "simulate-brdf" 0 "$GLARECAM" simulate-brdf --surface standard --alpha 10,40 --format both \
+  --out "$WORK/lab"
+expect "simulate-brdf writes both formats and the truth" \
+  test -s "$WORK/lab/a10.dat" -a -s "$WORK/lab/surface.bsdf" -a -s "$WORK/lab/truth.json"
+check "brdf" 0 "$GLARECAM" brdf --no-progress "$WORK/lab/a10.dat" "$WORK/lab/a40.dat" \
+  --out "$WORK/brdf" --pixels 301
+expect "brdf rows are marked brdf" grep -q ',brdf,' "$WORK/brdf/sweep.csv"
+check "brdf of the Zemax file" 0 "$GLARECAM" brdf --no-progress --json "$WORK/lab/surface.bsdf" \
+  --out "$WORK/brdf-z" --pixels 301
+expect "brdf --json names the sweep" grep -q '"sweep_csv"' "$WORK/out"
+check "model fit" 0 "$GLARECAM" model fit "$TABLE3" --out "$WORK/fitted.toml"
+expect "model fit reports R² beside the empirical fits" grep -q '^  empirical' "$WORK/out"
+check "simulate-brdf from the fitted file" 0 "$GLARECAM" simulate-brdf --surface "$WORK/fitted.toml" \
+  --alpha 30 --format pabopto --out "$WORK/lab2"
+printf '#format: theta phi BSDF\n#intheta 10\n#inphi 0\n1 0 -1\n' > "$WORK/negative.dat"
+check "brdf: negative value" 2 "$GLARECAM" brdf --no-progress "$WORK/negative.dat" --out "$WORK/b2"
+expect "brdf: the error names the file and line" one_line_naming "negative.dat:4: negative value"
+check "brdf: missing file" 2 "$GLARECAM" brdf --no-progress "$WORK/none.dat" --out "$WORK/b3"
+check "brdf: unknown format" 2 "$GLARECAM" brdf --no-progress "$TABLE3" --out "$WORK/b4"
+expect "brdf: unknown format is said" one_line_naming "unknown BRDF format"
+check "brdf: even pixels" 2 "$GLARECAM" brdf --no-progress "$WORK/lab/a10.dat" --pixels 300
+check "simulate-brdf: unknown surface" 2 "$GLARECAM" simulate-brdf --surface velvet --out "$WORK/x"
+expect "unknown surface lists the names" one_line_naming "standard, glare-reduced, gaussian"
+check "model fit: not a table" 2 "$GLARECAM" model fit "$WORK/lab/a10.dat"
 
 # Cameras: the simulator through the camera interface, and the no-device error paths.
 check "cameras" 0 "$GLARECAM" cameras

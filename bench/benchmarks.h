@@ -26,6 +26,8 @@ inline constexpr const char* kSunLibnova = "sun/libnova";
 inline constexpr const char* kSunYearSpa = "sun/year_spa";
 inline constexpr const char* kHazardYear = "hazard/year";
 inline constexpr const char* kHazardScene = "hazard/scene";
+inline constexpr const char* kBrdfAngle = "brdf/angle";
+inline constexpr const char* kBrdfAnalysisFloor = "brdf/analysis_floor";
 
 // Each returns the names it registered.
 std::vector<std::string> registerMergeBenchmarks();     // merge/*
@@ -35,5 +37,6 @@ std::vector<std::string> registerSweepBenchmarks();     // sweep/*
 std::vector<std::string> registerCaptureBenchmarks();   // capture/* (with Aravis only)
 std::vector<std::string> registerSunBenchmarks();       // sun/* (with libnova only)
 std::vector<std::string> registerHazardBenchmarks();    // sun/year_spa, hazard/*
+std::vector<std::string> registerBrdfBenchmarks();      // brdf/*
 
 }  // namespace glarecam::bench

@@ -20,6 +20,8 @@
 //                                                and observer near the cost of its sun alone
 //   per extra array–observer pair ÷ sun/year_spa target <= 0.1x: (hazard/scene − hazard/year)
 //                                                ÷ (pairs − 1), the sun shared by every pair
+//   brdf/angle ÷ brdf/analysis_floor             (no target yet: what reading a goniophotometer
+//                                                file costs beyond the glare analysis)
 // A ratio is printed only when both of its benchmarks ran (--benchmark_filter may skip some).
 // Google Benchmark's flags work as in any benchmark binary: --benchmark_format=console|json|csv
 // chooses the report on stdout (the ratio lines then go to stderr, so stdout stays one JSON
@@ -236,6 +238,7 @@ int main(int argc, char** argv) {
   for (std::string& name : registerSunBenchmarks()) names.push_back(std::move(name));
 #endif
   for (std::string& name : registerHazardBenchmarks()) names.push_back(std::move(name));
+  for (std::string& name : registerBrdfBenchmarks()) names.push_back(std::move(name));
   std::size_t longest_name = 0;
   for (const std::string& name : names) longest_name = std::max(longest_name, name.size());
 
@@ -270,6 +273,7 @@ int main(int argc, char** argv) {
   printRatio(reporter, kSunGlarecamSpa, kSunLibnova, 2, Target::kNone, 0);
   printRatio(reporter, kHazardYear, kSunYearSpa, 2, Target::kAtMost, kHazardTargetRatio);
   printPairRatio(reporter);
+  printRatio(reporter, kBrdfAngle, kBrdfAnalysisFloor, 2, Target::kNone, 0);
   benchmark::Shutdown();
   return 0;
 }

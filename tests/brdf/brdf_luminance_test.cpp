@@ -9,6 +9,7 @@
 #include "brdf/simulated_goniophotometer.h"
 #include "surface/lobe_contours.h"
 #include "surface/surface_catalogue.h"
+#include "tests/brdf/brdf_test_support.h"
 #include "tests/support/test_support.h"
 
 namespace glarecam::brdf {
@@ -39,14 +40,8 @@ struct Case {
 class GaussianLobeThroughTheRoute : public ::testing::TestWithParam<Case> {};
 
 TEST_P(GaussianLobeThroughTheRoute, MeasuresTheLobesOwnContours) {
-  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 60,
-                                        .sigma_horizontal_deg = 1.6,
-                                        .sigma_vertical_deg = 1.1,
-                                        .floor_brdf_sr = 0.02});
-  GoniophotometerOptions o;
-  o.fine_step_deg = 0.15;
-  o.medium_radius_deg = 20;
-  o.relative_noise = 0;
+  const surface::GaussianLobeBrdf lobe(testing::kTestLobe);
+  const GoniophotometerOptions o = testing::noiselessLab(0.15);
   const double alpha = GetParam().alpha_deg;
   const BrdfMeasurement m = simulateMeasurement(lobe, alpha, o, "lobe.dat");
   const glarecam::testing::TempDir dir;
@@ -86,13 +81,8 @@ INSTANTIATE_TEST_SUITE_P(Sun, GaussianLobeThroughTheRoute,
                                            Case{60, kSunHalfAngleDeg}));
 
 TEST(LuminanceUnderSun, SamplesThatMissTheSpecularDirectionAreRefused) {
-  const surface::GaussianLobeBrdf lobe({.peak_brdf_sr = 60,
-                                        .sigma_horizontal_deg = 1.6,
-                                        .sigma_vertical_deg = 1.1,
-                                        .floor_brdf_sr = 0.02});
-  GoniophotometerOptions o;
-  o.relative_noise = 0;
-  BrdfMeasurement m = simulateMeasurement(lobe, 20, o, "half.dat");
+  const surface::GaussianLobeBrdf lobe(testing::kTestLobe);
+  BrdfMeasurement m = simulateMeasurement(lobe, 20, testing::noiselessLab(), "half.dat");
   // Only the half plane y > 0.5°: the specular direction lies outside the samples' hull.
   const surface::SpecularFrame frame(20, 0);
   std::erase_if(m.samples, [&](const BrdfSample& s) {

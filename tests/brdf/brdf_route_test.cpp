@@ -7,6 +7,7 @@
 #include "pipeline/glare_fits.h"
 #include "pipeline/result.h"
 #include "pipeline/sweep_table.h"
+#include "tests/brdf/brdf_test_support.h"
 #include "tests/support/test_support.h"
 
 namespace glarecam::brdf {
@@ -14,10 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const surface::GaussianLobeBrdf kRouteLobe({.peak_brdf_sr = 60,
-                                            .sigma_horizontal_deg = 1.6,
-                                            .sigma_vertical_deg = 1.1,
-                                            .floor_brdf_sr = 0.02});
+const surface::GaussianLobeBrdf kRouteLobe(testing::kTestLobe);
 
 GoniophotometerOptions labOptions() {
   GoniophotometerOptions o;

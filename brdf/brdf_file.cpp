@@ -24,6 +24,16 @@ std::optional<double> parseNumber(std::string_view text) {
   return value;
 }
 
+// A file's text as a message quotes it: control bytes (a NUL would end the message) as '?', at
+// most 40 characters.
+std::string printable(std::string_view text) {
+  constexpr std::size_t kMaxChars = 40;
+  std::string out(text.substr(0, kMaxChars));
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return text.size() > kMaxChars ? out + "..." : out;
+}
+
 std::vector<std::string_view> splitBlanks(std::string_view line) {
   std::vector<std::string_view> words;
   std::size_t i = 0;
@@ -112,7 +122,7 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
         if (i >= words.size()) return fail("#" + key + " needs a number");
         const std::optional<double> v = parseNumber(words[i]);
         if (!v || !std::isfinite(*v))
-          return fail(fmt::format("#{}: \"{}\" is not a number", key, words[i]));
+          return fail(fmt::format("#{}: \"{}\" is not a number", key, printable(words[i])));
         return *v;
       };
       if (key == "format:" || key == "format") {
@@ -129,16 +139,29 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
         } else if (kind == "btdf") {
           return fail("BTDF data (transmission): glare is reflection, a BRDF is needed");
         } else {
-          return fail(
-              fmt::format("#format: unknown quantity \"{}\" (BSDF or DSF)", words[kind_at]));
+          return fail(fmt::format("#format: unknown quantity \"{}\" (BSDF or DSF)",
+                                  printable(words[kind_at])));
         }
-      } else if (key == "intheta") {
-        GLARECAM_ASSIGN(theta, number(1));
-      } else if (key == "inphi") {
-        GLARECAM_ASSIGN(phi, number(1));
-      } else if (key == "incident_angle") {
-        GLARECAM_ASSIGN(theta, number(1));
-        GLARECAM_ASSIGN(phi, number(2));
+      } else if (key == "intheta" || key == "inphi" || key == "incident_angle") {
+        // Each angle once, or again with the same value: two headers that disagree leave the
+        // source's direction unknown.
+        const auto set = [&](std::optional<double>& angle, std::size_t word,
+                             const char* what) -> Status {
+          double value = 0;
+          GLARECAM_ASSIGN(value, number(word));
+          if (angle && *angle != value)
+            return fail(fmt::format("#{} gives {} {:g}°, an earlier header {:g}°", key, what, value,
+                                    *angle));
+          angle = value;
+          return {};
+        };
+        const std::size_t expected = key == "incident_angle" ? 3 : 2;
+        if (words.size() != expected)
+          return fail(fmt::format("#{} takes {} number{}", key, expected - 1,
+                                  expected == 3 ? "s (θ φ)" : ""));
+        if (key != "inphi") GLARECAM_CHECK(set(theta, 1, "θ_i"));
+        if (key == "inphi") GLARECAM_CHECK(set(phi, 1, "φ_i"));
+        if (key == "incident_angle") GLARECAM_CHECK(set(phi, 2, "φ_i"));
       } else if (key == "upphi") {
         GLARECAM_CHECK(number(1));  // a common rotation of every azimuth: checked, not needed
       } else if (key == "colorimetry:" || key == "colorimetry") {
@@ -146,7 +169,7 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
         if (value != "cie-y")
           return fail(
               fmt::format("#colorimetry {}: only CIE-Y (luminance) data give a luminance picture",
-                          words.size() > 1 ? std::string(words.back()) : "(empty)"));
+                          words.size() > 1 ? printable(words.back()) : "(empty)"));
       } else if (key == "sample_name") {
         const std::size_t open = header.find('"'), close = header.rfind('"');
         m.sample_name = open != std::string::npos && close > open
@@ -171,8 +194,8 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
     double v[3];
     for (int i = 0; i < 3; ++i) {
       const std::optional<double> x = parseNumber(words[i]);
-      if (!x) return fail(fmt::format("\"{}\" is not a number", words[i]));
-      if (!std::isfinite(*x)) return fail(fmt::format("{} is not finite", words[i]));
+      if (!x) return fail(fmt::format("\"{}\" is not a number", printable(words[i])));
+      if (!std::isfinite(*x)) return fail(fmt::format("{} is not finite", printable(words[i])));
       v[i] = *x;
     }
     if (v[0] < 0) return fail(fmt::format("θ {:g}° is negative", v[0]));
@@ -246,8 +269,9 @@ class ZemaxParser {
     const int at_line = line();
     GLARECAM_ASSIGN(text, word(what));
     const std::optional<double> v = parseNumber(text);
-    if (!v) return fail(at_line, fmt::format("{}: \"{}\" is not a number", what, text));
-    if (!std::isfinite(*v)) return fail(at_line, fmt::format("{}: {} is not finite", what, text));
+    if (!v) return fail(at_line, fmt::format("{}: \"{}\" is not a number", what, printable(text)));
+    if (!std::isfinite(*v))
+      return fail(at_line, fmt::format("{}: {} is not finite", what, printable(text)));
     return *v;
   }
   // "Keyword N v1 … vN", angles in [low, high] and ascending.
@@ -304,21 +328,23 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
       } else {
         return fail(keyword.line, fmt::format("Symmetry {}: PlaneSymmetrical or Asymmetrical "
                                               "(a 4-D table is not supported)",
-                                              value));
+                                              printable(value)));
       }
     } else if (keyword.text == "SpectralContent") {
       GLARECAM_ASSIGN(value, word("SpectralContent"));
       if (value == "XYZ") {
         xyz = true;
       } else if (value != "Monochrome") {
-        return fail(keyword.line, fmt::format("SpectralContent {}: Monochrome or XYZ", value));
+        return fail(keyword.line,
+                    fmt::format("SpectralContent {}: Monochrome or XYZ", printable(value)));
       }
     } else if (keyword.text == "ScatterType") {
       GLARECAM_ASSIGN(value, word("ScatterType"));
       if (value == "BTDF")
         return fail(keyword.line,
                     "ScatterType BTDF (transmission): glare is reflection, a BRDF is needed");
-      if (value != "BRDF") return fail(keyword.line, fmt::format("ScatterType {}: BRDF", value));
+      if (value != "BRDF")
+        return fail(keyword.line, fmt::format("ScatterType {}: BRDF", printable(value)));
       brdf = true;
     } else if (keyword.text == "SampleRotation") {
       GLARECAM_ASSIGN(rotations, angleList("SampleRotation", 0, 360));
@@ -332,7 +358,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
       GLARECAM_ASSIGN(radials, angleList("ScatterRadial", 0, 90));
       have_radial = true;
     } else {
-      return fail(keyword.line, fmt::format("unknown keyword \"{}\"", keyword.text));
+      return fail(keyword.line, fmt::format("unknown keyword \"{}\"", printable(keyword.text)));
     }
   }
   const int header_end = line();
@@ -370,14 +396,15 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
       keep = false;
     } else if (channel.text == "TristimulusY") {
     } else if (channel.text != "DataBegin") {
-      return fail(channel.line, fmt::format("expected a data block, not \"{}\"", channel.text));
+      return fail(channel.line,
+                  fmt::format("expected a data block, not \"{}\"", printable(channel.text)));
     }
     if (channel.text != "DataBegin") {
       std::string_view begin;
       const int begin_line = line();
       GLARECAM_ASSIGN(begin, word("DataBegin"));
       if (begin != "DataBegin")
-        return fail(begin_line, fmt::format("expected DataBegin, not \"{}\"", begin));
+        return fail(begin_line, fmt::format("expected DataBegin, not \"{}\"", printable(begin)));
     }
     if (keep && read_y) return fail(channel.line, "a second block of luminance data");
     for (BrdfMeasurement& m : out) {
@@ -386,7 +413,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
       GLARECAM_ASSIGN(tis, word("TIS"));
       if (tis != "TIS")
         return fail(tis_line, fmt::format("expected TIS for the block of θ_i {:g}°, not \"{}\"",
-                                          m.incident_theta_deg, tis));
+                                          m.incident_theta_deg, printable(tis)));
       GLARECAM_CHECK(number("TIS"));
       for (double azimuth : azimuths)
         for (double radial : radials) {
@@ -413,7 +440,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
     GLARECAM_ASSIGN(end, word("DataEnd"));
     if (end != "DataEnd")
       return fail(end_line, fmt::format("expected DataEnd after {} values a block, not \"{}\"",
-                                        per_block, end));
+                                        per_block, printable(end)));
     read_y = read_y || keep;
   }
   if (!read_y) return fail(lastLine(), xyz ? "no TristimulusY block" : "no data block");

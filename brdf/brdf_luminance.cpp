@@ -62,14 +62,18 @@ struct PlaneSamples {
   std::vector<double> ln_brdf;  // one per point (duplicates averaged)
 };
 
-// The samples in the angular plane, ln f_r with zeros floored at half the smallest positive
-// value (a contour never reaches there: it lies decades below the peak).
+// The samples in the angular plane, ln f_r, with zeros (below the detector's floor) at a
+// thousandth of the smallest positive value.
 PlaneSamples planeSamples(const BrdfMeasurement& m) {
   const SpecularFrame frame(m.incident_theta_deg, m.incident_phi_deg);
   double smallest = std::numeric_limits<double>::infinity();
   for (const BrdfSample& s : m.samples)
     if (s.brdf_sr > 0) smallest = std::min(smallest, s.brdf_sr);
-  const double floor = 0.5 * smallest;
+  // Zeros are below the detector's floor: a thousandth of the smallest measured value, so that a
+  // contour between a measured sample and a zero lies near the last measured one (the caller
+  // warns that contours there are not measured).
+  constexpr double kZeroFloorFraction = 1e-3;
+  const double floor = kZeroFloorFraction * smallest;
   // In the file's order (a scan's neighbours follow each other): the triangulation walks from
   // each point to the next, so that order keeps it short (sorted by x it is ten times slower).
   std::map<std::pair<float, float>, std::size_t> index;
@@ -180,6 +184,13 @@ Result<BrdfLuminance> luminanceUnderSun(const BrdfMeasurement& m, const Sampling
                                         const LuminanceImageOptions& options) {
   GLARECAM_CHECK(options.validate());
   BrdfLuminance out;
+  const auto zeros =
+      std::ranges::count_if(m.samples, [](const BrdfSample& s) { return s.brdf_sr <= 0; });
+  if (zeros > 0)
+    spdlog::warn(
+        "{}: {} of {} samples at θ_i {:g}° are 0 (below the detector's floor?): taken as a "
+        "thousandth of the smallest measured value; a contour among them is not measured",
+        m.file, zeros, m.samples.size(), m.incident_theta_deg);
   const PlaneSamples samples = planeSamples(m);
   out.covered_deg = coverageDeg(samples.points);
   // The grid must hold the lobe's core: at least a few FWHM of the Gaussian approximation.

@@ -129,6 +129,14 @@ Result<SamplingCheck> checkSampling(const BrdfMeasurement& m) {
     if (std::isfinite(best)) nearest.push_back(best);
   }
   const std::optional<GaussianLobe> gaussian = fitGaussian(lobe);
+  // Many samples near the peak value that do not make a peak: no lobe at all (flat or noisy
+  // data, or a file cut before the specular direction), not a coarse grid.
+  constexpr std::size_t kManyLobeSamples = 50;
+  if (!gaussian && lobe.points.size() >= kManyLobeSamples)
+    return badInput(fmt::format(
+        "{}: no glare lobe at θ_i {:g}°: the {} samples of at least {:g} of the peak do not rise "
+        "to a maximum (flat or noisy data, or the specular direction not measured)",
+        where, m.incident_theta_deg, lobe.points.size(), kLobeFitFraction));
   const std::string coarse = fmt::format(
       "{}: the grid is too coarse for the lobe at θ_i {:g}°: {} samples of at least {:g} of the "
       "peak{}; at least {:g} samples across the FWHM are needed to draw a glare spot a few "
@@ -150,11 +158,15 @@ Result<SamplingCheck> checkSampling(const BrdfMeasurement& m) {
         where, m.incident_theta_deg, check.samples_across_fwhm,
         kFwhmPerSigma * std::min(gaussian->sigma_vertical_deg, gaussian->sigma_horizontal_deg),
         check.spacing_deg, kMinSamplesAcrossFwhm));
-  if (check.peak_offset_deg > std::max(kPeakOffsetWarningDeg, 2 * check.spacing_deg)) {
+  // A real lobe's peak may sit off the specular direction (Fresnel and the 1/cos θ_o of grazing
+  // reflection move it toward grazing), by a fraction of its width: only more is suspect.
+  const double half_fwhm =
+      0.5 * kFwhmPerSigma * std::min(gaussian->sigma_vertical_deg, gaussian->sigma_horizontal_deg);
+  if (check.peak_offset_deg > std::max({kPeakOffsetWarningDeg, 2 * check.spacing_deg, half_fwhm})) {
     const auto [theta, phi] = frame.fromPlane({0, 0});
     check.warnings.push_back(fmt::format(
         "{}: the peak lies {:.2f}° from the specular direction (θ {:g}°, φ {:g}°), at θ {:g}°, "
-        "φ {:g}°: is the incident φ the direction toward the source (docs/brdf.md)?",
+        "φ {:g}°: is the incident direction (θ_i, φ_i) the one toward the source (docs/brdf.md)?",
         where, check.peak_offset_deg, theta, phi, peak->theta_deg, peak->phi_deg));
   }
   return check;

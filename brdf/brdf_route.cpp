@@ -66,7 +66,7 @@ nlohmann::json brdfBlock(const BrdfMeasurement& m, const SamplingCheck& sampling
   // the method's, of the cone before any convolution).
   const double scale = image.reference_illuminance_lx * std::cos(radians(m.incident_theta_deg));
   const double peak_cd_m2 = g.peak_brdf_sr * scale;
-  return {{"file", m.file},
+  return {{"file", fs::absolute(m.file).lexically_normal().string()},
           {"format", toString(m.format)},
           {"sample_name",
            m.sample_name.empty() ? nlohmann::json(nullptr) : nlohmann::json(m.sample_name)},
@@ -182,16 +182,32 @@ Result<BrdfRouteSummary> runBrdfRoute(const std::vector<fs::path>& files,
         angle, processMeasurement(
                    m, options.output_directory / pipeline::kSweepResultsDirectory / id, options));
     for (const std::string& warning : angle.warnings) spdlog::warn("{}", warning);
-    pipeline::SweepRow row;
-    GLARECAM_ASSIGN(row,
-                    pipeline::sweepRowFromResult(angle.result, angle.result_directory.string()));
-    summary.table.rows.push_back(std::move(row));
+    auto row = pipeline::sweepRowFromResult(angle.result, angle.result_directory.string());
+    if (!row) return badInput(fmt::format("{}: {}", m.file, row.error().message));
+    summary.table.rows.push_back(std::move(*row));
     for (pipeline::ContourRow& c : pipeline::contourRowsFromResult(angle.result))
       summary.contours.rows.push_back(std::move(c));
     progress.advance(fmt::format("α {:g}°", m.incident_theta_deg));
     summary.angles.push_back(std::move(angle));
   }
   progress.finish();
+  // The same α twice (two files of one angle, a file given twice): both rows are kept, as a
+  // sweep keeps repeated stacks, and said.
+  for (std::size_t i = 1; i < summary.angles.size(); ++i) {
+    const double a = *summary.angles[i - 1].result.alpha_deg,
+                 b = *summary.angles[i].result.alpha_deg;
+    if (a == b)
+      spdlog::warn("brdf: α {:g}° twice ({} and {}): both rows are in sweep.csv", b,
+                   summary.angles[i - 1].file, summary.angles[i].file);
+  }
+  // Results of an earlier run into the same directory that this one did not write.
+  std::error_code ec;
+  const fs::path results = options.output_directory / pipeline::kSweepResultsDirectory;
+  for (const auto& entry : fs::directory_iterator(results, ec)) {
+    if (!entry.is_directory(ec) || ids.contains(entry.path().filename().string())) continue;
+    spdlog::warn("brdf: {} is an earlier run's result, not in this sweep.csv",
+                 entry.path().string());
+  }
   summary.table.notes.push_back(fmt::format(
       "route brdf: {} angles of incidence from {} files, under E_ref {:g} klx{}",
       measurements.size(), files.size(), options.image.reference_illuminance_lx / 1000,

@@ -20,6 +20,11 @@ using surface::SpecularFrame;
 
 Status GoniophotometerOptions::validate() const {
   if (alphas_deg.empty()) return badInput("simulate-brdf: no angles of incidence");
+  for (std::size_t i = 1; i < alphas_deg.size(); ++i)
+    if (!(alphas_deg[i] > alphas_deg[i - 1]))
+      return badInput(
+          fmt::format("simulate-brdf: --alpha must ascend, each angle once ({:g}° after {:g}°)",
+                      alphas_deg[i], alphas_deg[i - 1]));
   for (double alpha : alphas_deg)
     if (!(alpha >= 0 && alpha <= kMaxIncidentThetaDeg))
       return badInput(
@@ -117,7 +122,10 @@ ZemaxTable simulateZemaxTable(const surface::BrdfModel& model, const Goniophotom
     for (double azimuth : table.azimuth_deg)
       for (double radial : table.radial_deg) {
         const calibration::Ray out = frame.sampleRay(zemaxScatterRay(radial, azimuth));
-        const double f = model.brdfSr(incident, out);
+        // The detector cannot graze the sample: nothing is measured beyond 89° (a Zemax grid's
+        // directions there hold 0, as instruments write them).
+        constexpr double kMaxMeasuredCos = 0.0174524;  // cos 89°
+        const double f = out.z > kMaxMeasuredCos ? model.brdfSr(incident, out) : 0.0;
         block.values.push_back(o.relative_noise > 0 ? noisy(f, noise, random) : f);
       }
     table.blocks.push_back(std::move(block));

@@ -375,7 +375,8 @@ std::string referenceSentence(const SweepTable& table) {
   const std::optional<double> reference = tableReferenceIlluminance(table);
   if (reference && tableRoutes(table) == std::vector<std::string>{"brdf"})
     return fmt::format(
-        " Luminances computed from the BRDF under E = {:g} klx direct normal (L = BRDF \u00b7 E \u00b7 cos "
+        " Luminances computed from the BRDF under E = {:g} klx direct normal (L = BRDF \u00b7 E "
+        "\u00b7 cos "
         "\u03b1 over the sun's disc).",
         *reference / 1000);
   if (reference)
@@ -509,9 +510,10 @@ std::string subtitle(const DatasheetContent& content) {
   // 55e5f09d95ab9da6 of 2026-06-21, K 1500 ± 18.9 cd/m² per DN/µs."
   std::vector<std::string> measured;
   const std::vector<std::string> routes = tableRoutes(*content.table);
-  const bool brdf = routes == std::vector<std::string>{"brdf"};
-  if (const auto cameras = tableCameras(*content.table); !cameras.empty() && !brdf)
-    measured.push_back(fmt::format("Camera {}", fmt::join(cameras, ", ")));
+  const bool brdf = routes == std::vector<std::string>{"brdf"};  // the goniophotometer's rows
+  std::vector<std::string> cameras = tableCameras(*content.table);
+  std::erase_if(cameras, [](const std::string& c) { return c.starts_with("brdf"); });
+  if (!cameras.empty()) measured.push_back(fmt::format("Camera {}", fmt::join(cameras, ", ")));
   if (const auto calibrations = tableCalibrationSummaries(*content.table); !calibrations.empty())
     measured.push_back(fmt::format("calibration {}", fmt::join(calibrations, "; ")));
   const std::string measured_with =
@@ -519,15 +521,13 @@ std::string subtitle(const DatasheetContent& content) {
   // α as the table shows it: to its own uncertainty (not "4.99985").
   // The route first: a sheet of goniophotometer files says so, one of both routes too.
   const std::string what =
-      brdf                ? fmt::format("BRDF route: {} goniophotometer measurement{}", n,
-                                        n == 1 ? "" : "s")
+      brdf ? fmt::format("BRDF route: {} goniophotometer measurement{}", n, n == 1 ? "" : "s")
       : routes.size() > 1 ? fmt::format("Routes MIXED (camera and BRDF): {} rows", n)
                           : fmt::format("Sweep of {} stack{}", n, n == 1 ? "" : "s");
   return fmt::format(
       "{}, \u03b1 {}\u00b0 to {}\u00b0 (angle of incidence from the module "
       "normal).{} Glare when Lmax reaches {}: {}. Axes: full angles of the limit ellipse.{}",
-      what,
-      formatToUncertainty(lo->alpha_deg, lo->alpha_uncertainty_deg, kAlphaDefaultDecimals),
+      what, formatToUncertainty(lo->alpha_deg, lo->alpha_uncertainty_deg, kAlphaDefaultDecimals),
       formatToUncertainty(hi->alpha_deg, hi->alpha_uncertainty_deg, kAlphaDefaultDecimals),
       referenceSentence(*content.table), limit, glareRangesText(content), measured_with);
 }

@@ -181,8 +181,12 @@ double MicrofacetBrdf::evaluate(const Ray& i, const Ray& o) const {
       1 / (1 + smithLambda(kind, i, alpha_x_, alpha_y_) + smithLambda(kind, o, alpha_x_, alpha_y_));
   double f = p.lobe_weight * distribution(kind, h, alpha_x_, alpha_y_) *
              fresnelReflectance(cos_ih, p) * shadowing / denominator;
+  // The second lobe shadowed as the first (Smith, its own width): without it its 1/cos θ_o
+  // diverges at grazing.
   if (p.second_lobe_weight > 0)
     f += p.second_lobe_weight * distribution(SlopeDistribution::kGgx, h, alpha_2_, alpha_2_) /
+         (1 + smithLambda(SlopeDistribution::kGgx, i, alpha_2_, alpha_2_) +
+          smithLambda(SlopeDistribution::kGgx, o, alpha_2_, alpha_2_)) /
          denominator;
   return f + p.diffuse_reflectance / std::numbers::pi;
 }

@@ -85,6 +85,15 @@ Result<std::unique_ptr<BrdfModel>> readSurfaceFile(const std::filesystem::path& 
   return out;
 }
 
+Result<MicrofacetParameters> readMicrofacetFile(const std::filesystem::path& path) {
+  std::unique_ptr<BrdfModel> model;
+  GLARECAM_ASSIGN(model, readSurfaceFile(path));
+  const auto* microfacet = dynamic_cast<const MicrofacetBrdf*>(model.get());
+  if (!microfacet)
+    return badInput(path.string() + ": not a microfacet surface (model = \"microfacet\")");
+  return microfacet->parameters();
+}
+
 Result<std::unique_ptr<BrdfModel>> surfaceModel(std::string_view name_or_file) {
   if (name_or_file == "standard") return std::make_unique<MicrofacetBrdf>(standardSurface());
   if (name_or_file == "glare-reduced")

@@ -32,5 +32,7 @@ std::vector<std::string> surfaceNames();
 
 // A surface file's model (kBadInput naming FILE:LINE and the key).
 Result<std::unique_ptr<BrdfModel>> readSurfaceFile(const std::filesystem::path& path);
+// The same for a microfacet surface's parameters (a Gaussian one is refused naming the file).
+Result<MicrofacetParameters> readMicrofacetFile(const std::filesystem::path& path);
 
 }  // namespace glarecam::surface

@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/json.h"
 #include "pipeline/facet_model.h"
+#include "surface/surface_catalogue.h"
 
 namespace glarecam::apps {
 namespace {
@@ -62,8 +63,8 @@ Status runModel(const ModelArgs& args) {
 
 struct ModelFitArgs {
   std::string table;
-  std::string distribution = "ggx";
-  double refractive_index = 1.52;
+  std::optional<std::string> distribution, start;
+  std::optional<double> refractive_index;
   double source_radius_deg = 0.2664;
   std::optional<std::string> out;
   bool json = false;
@@ -76,12 +77,15 @@ std::string orNone(const std::optional<double>& v, const char* format) {
 Status runModelFit(const ModelFitArgs& args) {
   if (args.table.empty()) return badInput("TABLE: expected a path, got an empty string");
   brdf::ModelFitOptions options;
-  const auto distribution = surface::slopeDistributionFromString(args.distribution);
-  if (!distribution)
-    return badInput(
-        fmt::format("--distribution: \"{}\" is not ggx or beckmann", args.distribution));
-  options.start.distribution = *distribution;
-  options.start.refractive_index = args.refractive_index;
+  if (args.start) GLARECAM_ASSIGN(options.start, surface::readMicrofacetFile(*args.start));
+  if (args.distribution) {
+    const auto distribution = surface::slopeDistributionFromString(*args.distribution);
+    if (!distribution)
+      return badInput(
+          fmt::format("--distribution: \"{}\" is not ggx or beckmann", *args.distribution));
+    options.start.distribution = *distribution;
+  }
+  if (args.refractive_index) options.start.refractive_index = *args.refractive_index;
   options.sun_half_angle_deg = args.source_radius_deg;
   brdf::ModelFitReport report;
   GLARECAM_ASSIGN(report, brdf::fitModelToTable(args.table, options));
@@ -151,10 +155,14 @@ void addModelCommand(CLI::App& app, Action& action) {
       "its widths and lobe weight with σ, R² beside the empirical fits, the prediction over α "
       "(docs/brdf.md)");
   fit->add_option("TABLE", fit_args->table, "sweep.csv or contours.csv")->required();
+  fit->add_option("--start", fit_args->start,
+                  "a surface file (TOML, model microfacet) to start from: its coating, second lobe "
+                  "and floor are held, its widths and lobe weight fitted")
+      ->option_text("FILE");
   fit->add_option("--distribution", fit_args->distribution,
                   "the facets' slope distribution: ggx (default) or beckmann");
   fit->add_option("--refractive-index", fit_args->refractive_index,
-                  "the glass's index, held fixed (default 1.52)")
+                  "the glass's index, held fixed (default 1.52, or --start's)")
       ->check(CLI::Range(1.01, 3.0));
   fit->add_option("--source-radius", fit_args->source_radius_deg,
                   "the source's angular radius in degrees (default 0.2664: the sun; 0: a point)")

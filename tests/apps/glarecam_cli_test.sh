@@ -359,6 +359,9 @@ check "brdf: even pixels" 2 "$GLARECAM" brdf --no-progress "$WORK/lab/a10.dat" -
 check "simulate-brdf: unknown surface" 2 "$GLARECAM" simulate-brdf --surface velvet --out "$WORK/x"
 expect "unknown surface lists the names" one_line_naming "standard, glare-reduced, gaussian"
 check "model fit: not a table" 2 "$GLARECAM" model fit "$WORK/lab/a10.dat"
+check "simulate-brdf: α must ascend" 2 "$GLARECAM" simulate-brdf --alpha 30,10 --out "$WORK/x"
+expect "descending α is said" one_line_naming "must ascend"
+check "model fit from a start file" 0 "$GLARECAM" model fit "$TABLE3" --start "$WORK/fitted.toml"
 
 # Cameras: the simulator through the camera interface, and the no-device error paths.
 check "cameras" 0 "$GLARECAM" cameras

@@ -129,6 +129,14 @@ INSTANTIATE_TEST_SUITE_P(
                 "bad.dat:4: a sample row is \"theta phi value\", this one has 2 fields"},
         BadFile{"colour", "#format: theta phi BSDF\n#colorimetry: CIE-X\n#intheta 1\n#inphi 0\n",
                 "bad.dat:2: #colorimetry CIE-X"},
+        BadFile{"conflicting incidence",
+                "#format: theta phi BSDF\n#intheta 30\n#inphi 0\n#incident_angle 40 0\n1 0 1\n",
+                "bad.dat:4: #incident_angle gives θ_i 40°, an earlier header 30°"},
+        BadFile{"extra word", "#format: theta phi BSDF\n#intheta 30 40\n",
+                "bad.dat:2: #intheta takes 1 number"},
+        BadFile{"nul byte",
+                std::string("#format: theta phi BSDF\n#intheta 3\n#inphi 0\n1 0 1") + '\0' + "x\n",
+                "bad.dat:4: \"1?x\" is not a number"},
         BadFile{"zemax btdf", "Symmetry PlaneSymmetrical\nScatterType BTDF\n",
                 "bad.dat:2: ScatterType BTDF"},
         BadFile{"zemax radial",
@@ -148,6 +156,25 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
       return name;
     });
+
+TEST(ZemaxFile, ASecondLobeAtGrazingAnglesStaysFinite) {
+  // The second lobe's 1/cos θ_o once diverged at the Zemax grid's 90° directions (a simulated
+  // file its own reader then refused): shadowed now, and nothing measured beyond 89°.
+  surface::MicrofacetParameters p;
+  p.distribution = surface::SlopeDistribution::kBeckmann;
+  p.width_x_deg = 1.2;
+  p.width_y_deg = 2;
+  p.second_lobe_weight = 0.05;
+  const surface::MicrofacetBrdf model(p);
+  GoniophotometerOptions o;
+  o.alphas_deg = {60, 70};
+  const auto read = parseBrdfText(formatZemaxBsdf(simulateZemaxTable(model, o)), "s.bsdf");
+  ASSERT_TRUE(read) << read.error().message;
+  for (const BrdfMeasurement& m : *read) {
+    for (const BrdfSample& s : m.samples) ASSERT_LT(s.brdf_sr, 1e3) << s.theta_deg;
+    EXPECT_TRUE(checkSampling(m)) << m.incident_theta_deg;
+  }
+}
 
 TEST(BrdfFile, AMissingFileOrADirectoryIsBadInput) {
   const glarecam::testing::TempDir dir;

@@ -52,6 +52,20 @@ TEST(CheckSampling, AGridTooCoarseForTheLobeIsRefused) {
   EXPECT_EQ(check.error().message.rfind("coarse.dat", 0), 0u);
 }
 
+TEST(CheckSampling, DataWithoutALobeAreSaidToBeSo) {
+  // A flat distribution: every sample near the peak value, none a maximum.
+  BrdfMeasurement m;
+  m.file = "flat.dat";
+  m.incident_theta_deg = 20;
+  for (double t = 0; t <= 80; t += 0.5)
+    for (double p = 0; p < 360; p += 5)
+      m.samples.push_back({t, p, 1.0 + 1e-3 * std::sin(t + p), 1});
+  const auto check = checkSampling(m);
+  ASSERT_FALSE(check);
+  EXPECT_NE(check.error().message.find("no glare lobe"), std::string::npos)
+      << check.error().message;
+}
+
 TEST(CheckSampling, APeakAwayFromTheSpecularDirectionIsWarnedAbout) {
   // The file's φ_i the direction away from the source: the data's peak then lies 2 θ_i from the
   // specular direction the file implies.

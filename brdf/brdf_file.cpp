@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/angles.h"
+#include "core/csv.h"
 
 namespace glarecam::brdf {
 
@@ -68,12 +69,8 @@ std::string lower(std::string_view text) {
   return out;
 }
 
-std::string trim(std::string_view text) {
-  const std::size_t first = text.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const std::size_t last = text.find_last_not_of(" \t\r");
-  return std::string(text.substr(first, last - first + 1));
-}
+// Blanks around a line or header (core's: the same blanks as the CSV reader's).
+std::string trim(std::string_view text) { return trimCsvText(text); }
 
 // A whole file's text (size-limited), or kBadInput naming it.
 Result<std::string> readText(const std::filesystem::path& path) {

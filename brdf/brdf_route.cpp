@@ -94,13 +94,18 @@ nlohmann::json brdfBlock(const BrdfMeasurement& m, const SamplingCheck& sampling
 }
 
 Result<BrdfAngle> processMeasurement(const BrdfMeasurement& m, const fs::path& result_directory,
-                                     const BrdfRouteOptions& options) {
+                                     const BrdfRouteOptions& options,
+                                     const SamplingCheck* checked) {
   GLARECAM_CHECK(options.validate());
   BrdfAngle angle;
   angle.file = m.file;
   angle.result_directory = result_directory;
   SamplingCheck sampling;
-  GLARECAM_ASSIGN(sampling, checkSampling(m));
+  if (checked) {
+    sampling = *checked;
+  } else {
+    GLARECAM_ASSIGN(sampling, checkSampling(m));
+  }
   angle.warnings = sampling.warnings;
   BrdfLuminance luminance;
   GLARECAM_ASSIGN(luminance, luminanceUnderSun(m, sampling, options.image));
@@ -162,7 +167,12 @@ Result<BrdfRouteSummary> runBrdfRoute(const std::vector<fs::path>& files,
     }
   }
   // Check every grid before the minutes of pictures: a refused file stops the run at once.
-  for (const BrdfMeasurement& m : measurements) GLARECAM_CHECK(checkSampling(m));
+  std::vector<SamplingCheck> checks;
+  for (const BrdfMeasurement& m : measurements) {
+    SamplingCheck check;
+    GLARECAM_ASSIGN(check, checkSampling(m));
+    checks.push_back(std::move(check));
+  }
   GLARECAM_CHECK(ensureDirectory(options.output_directory));
   std::vector<std::size_t> order(measurements.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -178,9 +188,9 @@ Result<BrdfRouteSummary> runBrdfRoute(const std::vector<fs::path>& files,
       id = fmt::format("{}-{}", measurementId(m, several[i]), n);
     ids.insert(id);
     BrdfAngle angle;
-    GLARECAM_ASSIGN(
-        angle, processMeasurement(
-                   m, options.output_directory / pipeline::kSweepResultsDirectory / id, options));
+    GLARECAM_ASSIGN(angle, processMeasurement(
+                               m, options.output_directory / pipeline::kSweepResultsDirectory / id,
+                               options, &checks[i]));
     for (const std::string& warning : angle.warnings) spdlog::warn("{}", warning);
     auto row = pipeline::sweepRowFromResult(angle.result, angle.result_directory.string());
     if (!row) return badInput(fmt::format("{}: {}", m.file, row.error().message));

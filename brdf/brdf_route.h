@@ -46,10 +46,13 @@ struct BrdfRouteSummary {
   std::filesystem::path sweep_csv, contours_csv;
 };
 
-// One measurement through the route: its result and picture in `result_directory`.
+// One measurement through the route: its result and picture in `result_directory`. `sampling`:
+// checkSampling()'s of the measurement when the caller has it (runBrdfRoute checks every file
+// first), else it is checked here.
 Result<BrdfAngle> processMeasurement(const BrdfMeasurement& measurement,
                                      const std::filesystem::path& result_directory,
-                                     const BrdfRouteOptions& options);
+                                     const BrdfRouteOptions& options,
+                                     const SamplingCheck* sampling = nullptr);
 
 // Every file's measurements (a file the readers refuse stops the run: exit 2 naming it and the
 // line), in order of α; OUT/sweep.csv and OUT/contours.csv written atomically at the end.

@@ -16,11 +16,12 @@
 #include "calibration/hdr_merge.h"
 #include "core/source_illuminance.h"
 #include "core/stack_manifest.h"
+#include "surface/sun_disc.h"
 
 namespace glarecam::brdf {
 
-// The sun's angular radius: 4.65 mrad (docs/method.md "Why"; 0.53° full angle).
-inline constexpr double kSunHalfAngleDeg = 0.2664;
+using surface::discKernel;
+using surface::kSunHalfAngleDeg;
 
 // The noise assumed when the file states none and the data are too few to estimate it.
 inline constexpr double kAssumedRelativeNoise = 0.02;
@@ -52,9 +53,5 @@ struct BrdfLuminance {
 Result<BrdfLuminance> luminanceUnderSun(const BrdfMeasurement& measurement,
                                         const SamplingCheck& sampling,
                                         const LuminanceImageOptions& options = {});
-
-// The disc's weights on a square grid of `pixel_deg` (odd side, centred): each pixel's share of
-// the disc's area, from 16 × 16 points a pixel; they sum to 1.
-std::vector<double> discKernel(double radius_deg, double pixel_deg, int& side);
 
 }  // namespace glarecam::brdf

@@ -13,13 +13,14 @@
 
 #include "core/error.h"
 #include "pipeline/sweep_table.h"
+#include "surface/sun_disc.h"
 #include "surface/surface_fit.h"
 
 namespace glarecam::brdf {
 
 struct ModelFitOptions {
   surface::MicrofacetParameters start;  // the fixed parameters and the start
-  double sun_half_angle_deg = 0.2664;
+  double sun_half_angle_deg = surface::kSunHalfAngleDeg;
   // The α of the prediction table: 0, 5, ... 85.
   double predict_step_deg = 5, predict_max_deg = 85;
   Status validate() const;

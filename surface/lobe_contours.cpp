@@ -67,8 +67,7 @@ std::optional<double> crossing(const BrdfModel& model, double alpha, const Plane
 
 }  // namespace
 
-LobeContours lobeContours(const BrdfModel& model, double alpha_deg,
-                          std::span<const double> levels_cd_m2, const LobeOptions& options) {
+LobeContours lobePeak(const BrdfModel& model, double alpha_deg, const LobeOptions& options) {
   LobeContours out;
   out.alpha_deg = alpha_deg;
   // The peak on the plane of incidence: a scan, then golden-section refinement.
@@ -93,22 +92,31 @@ LobeContours lobeContours(const BrdfModel& model, double alpha_deg,
   }
   out.peak = {0, (lo + hi) / 2};
   out.peak_cd_m2 = luminanceAt(model, alpha_deg, out.peak, options);
-  for (double level : levels_cd_m2) {
-    ContourAxes axes;
-    axes.level_cd_m2 = level;
-    if (level < out.peak_cd_m2) {
-      const auto up = crossing(model, alpha_deg, out.peak, 0, 1, level, options);
-      const auto down = crossing(model, alpha_deg, out.peak, 0, -1, level, options);
-      if (up && down) {
-        axes.vertical_deg = *up + *down;
-        const PlanePointDeg centre{0, out.peak.y_deg + (*up - *down) / 2};
-        const auto right = crossing(model, alpha_deg, centre, 1, 0, level, options);
-        const auto left = crossing(model, alpha_deg, centre, -1, 0, level, options);
-        if (right && left) axes.horizontal_deg = *right + *left;
-      }
-    }
-    out.contours.push_back(axes);
+  return out;
+}
+
+ContourAxes contourAxes(const BrdfModel& model, const LobeContours& peak, double level,
+                        const LobeOptions& options) {
+  ContourAxes axes;
+  axes.level_cd_m2 = level;
+  if (!(level < peak.peak_cd_m2)) return axes;
+  const double alpha_deg = peak.alpha_deg;
+  const auto up = crossing(model, alpha_deg, peak.peak, 0, 1, level, options);
+  const auto down = crossing(model, alpha_deg, peak.peak, 0, -1, level, options);
+  if (up && down) {
+    axes.vertical_deg = *up + *down;
+    const PlanePointDeg centre{0, peak.peak.y_deg + (*up - *down) / 2};
+    const auto right = crossing(model, alpha_deg, centre, 1, 0, level, options);
+    const auto left = crossing(model, alpha_deg, centre, -1, 0, level, options);
+    if (right && left) axes.horizontal_deg = *right + *left;
   }
+  return axes;
+}
+
+LobeContours lobeContours(const BrdfModel& model, double alpha_deg,
+                          std::span<const double> levels_cd_m2, const LobeOptions& options) {
+  LobeContours out = lobePeak(model, alpha_deg, options);
+  for (double level : levels_cd_m2) out.contours.push_back(contourAxes(model, out, level, options));
   return out;
 }
 

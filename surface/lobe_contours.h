@@ -16,14 +16,15 @@
 #include "core/error.h"
 #include "surface/brdf_model.h"
 #include "surface/specular_frame.h"
+#include "surface/sun_disc.h"
 
 namespace glarecam::surface {
 
 struct LobeOptions {
-  double illuminance_lx = 100'000;     // E (the reference sun)
-  double sun_half_angle_deg = 0.2664;  // the disc's radius; 0: a point source
-  int disc_rings = 6;                  // the disc's quadrature: 6 k points on ring k, equal areas
-  double search_deg = 40;              // how far from the specular direction a contour is sought
+  double illuminance_lx = 100'000;               // E (the reference sun)
+  double sun_half_angle_deg = kSunHalfAngleDeg;  // the disc's radius; 0: a point source
+  int disc_rings = 6;      // the disc's quadrature: 6 k points on ring k, equal areas
+  double search_deg = 40;  // how far from the specular direction a contour is sought
 };
 
 // The luminance (cd/m²) reflected toward the angular-plane point `p` around the specular direction
@@ -43,6 +44,12 @@ struct LobeContours {
   calibration::PlanePointDeg peak;  // where (on the plane of incidence)
   std::vector<ContourAxes> contours;
 };
+
+// The peak alone (on the plane of incidence), and one contour's axes around a found peak: what
+// lobeContours() does for every level, for a caller that picks its levels from the peak.
+LobeContours lobePeak(const BrdfModel& model, double alpha_deg, const LobeOptions& options = {});
+ContourAxes contourAxes(const BrdfModel& model, const LobeContours& peak, double level_cd_m2,
+                        const LobeOptions& options = {});
 
 LobeContours lobeContours(const BrdfModel& model, double alpha_deg,
                           std::span<const double> levels_cd_m2, const LobeOptions& options = {});

@@ -11,6 +11,7 @@
 
 #include "apps/glarecam/commands.h"
 #include "apps/glarecam/option_parsing.h"
+#include "capture/sim/module_model.h"
 #include "core/build_config.h"
 #include "core/interruption.h"
 #if GLARECAM_WITH_ARAVIS
@@ -29,9 +30,11 @@ struct FakeCameraArgs {
   std::string seed = "1";
   std::optional<std::string> calibration_out;
   double duration_s = 0;
+  std::optional<std::string> module;  // --module NAME: --surface curves:NAME
 };
 
 Status runFakeCamera(FakeCameraArgs& args) {
+  if (args.module) args.options.scene.surface = std::string(capture::kCurvesPrefix) + *args.module;
   std::pair<int, int> size;
   GLARECAM_ASSIGN(size, parseSize(args.size, "--size"));
   std::tie(args.options.scene.width, args.options.scene.height) = size;
@@ -74,8 +77,18 @@ void addFakeCameraCommand(CLI::App& app, Action& action) {
       ->capture_default_str();
   sub->add_option("--alpha", args->options.scene.alpha_deg, "α of the scene, degrees 0..80")
       ->capture_default_str();
-  sub->add_option("--module", args->options.scene.module, "module glare model")
-      ->capture_default_str();
+  std::string modules;
+  for (const auto& name : capture::moduleNames()) modules += (modules.empty() ? "" : ", ") + name;
+  auto* module = sub->add_option("--module", args->module,
+                                 "the lobe of a module's empirical curves (" + modules +
+                                     "): the same as --surface curves:MODULE");
+  sub->add_option(
+         "--surface", args->options.scene.surface,
+         "what the camera looks at: a physical surface (standard, glare-reduced, gaussian or a "
+         "surface FILE.toml, rendered under the sun's disc, truth from its own contours) "
+         "or curves:MODULE, the lobe of a module's empirical curves (docs/brdf.md)")
+      ->capture_default_str()
+      ->excludes(module);
   sub->add_option("--size", args->size, "frame size WIDTHxHEIGHT (at most 2048x2048)")
       ->capture_default_str();
   sub->add_option("--fov", args->options.scene.horizontal_fov_deg,

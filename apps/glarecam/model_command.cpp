@@ -65,7 +65,7 @@ struct ModelFitArgs {
   std::string table;
   std::optional<std::string> distribution, start;
   std::optional<double> refractive_index;
-  double source_radius_deg = 0.2664;
+  double source_radius_deg = surface::kSunHalfAngleDeg;
   std::optional<std::string> out;
   bool json = false;
 };

@@ -21,10 +21,12 @@ struct SimulateArgs {
   bool unreferred = false;
   std::string seed = "1";
   std::string sensor_seed = "1";
+  std::optional<std::string> module;  // --module NAME: --surface curves:NAME
   capture::SimulationOptions options;
 };
 
 Status runSimulate(SimulateArgs& args) {
+  if (args.module) args.options.surface = std::string(capture::kCurvesPrefix) + *args.module;
   auto size = parseSize(args.size, "--size");
   if (!size) return std::unexpected(size.error());
   std::tie(args.options.width, args.options.height) = *size;
@@ -78,8 +80,16 @@ void addSimulateCommand(CLI::App& app, Action& action) {
       ->required();
   sub->add_option("--alpha", args->options.alpha_deg, "angle of incidence in degrees, 0..80")
       ->capture_default_str();
-  sub->add_option("--module", args->options.module, "module glare model (" + modules + ")")
-      ->capture_default_str();
+  auto* module = sub->add_option("--module", args->module,
+                                 "the lobe of a module's empirical curves (" + modules +
+                                     "): the same as --surface curves:MODULE");
+  sub->add_option(
+         "--surface", args->options.surface,
+         "what the camera looks at: a physical surface (standard, glare-reduced, gaussian or a "
+         "surface FILE.toml, rendered under the sun's disc, truth from its own contours) "
+         "or curves:MODULE, the lobe of a module's empirical curves (docs/brdf.md)")
+      ->capture_default_str()
+      ->excludes(module);
   sub->add_option("--size", args->size, "frame size WIDTHxHEIGHT")->capture_default_str();
   sub->add_option("--seed", args->seed, "noise seed (whole number >= 0); same seed, same stack")
       ->capture_default_str()

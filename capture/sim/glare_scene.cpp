@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/angles.h"
-#include "core/parallel.h"
 
 namespace glarecam::capture {
 namespace {
@@ -16,6 +15,17 @@ double contourRadius(double peak, double background, double level) {
 }
 
 }  // namespace
+
+EllipseAxes measuredAxes(double own_vertical_deg, double own_horizontal_deg,
+                         double orientation_deg) {
+  // The lobe's major axis lies at its orientation, 90° further when the vertical one is longer.
+  const double major_deg = orientation_deg + (own_vertical_deg > own_horizontal_deg ? 90.0 : 0.0);
+  const double wrapped = std::abs(std::remainder(major_deg, 180.0));  // [0, 90]
+  const bool major_is_vertical = wrapped >= 45.0;
+  const double major = std::max(own_vertical_deg, own_horizontal_deg);
+  const double minor = std::min(own_vertical_deg, own_horizontal_deg);
+  return major_is_vertical ? EllipseAxes{major, minor} : EllipseAxes{minor, major};
+}
 
 Result<GlareLobe> lobeWithAxesAt(double level_cd_m2, double peak_cd_m2, double background_cd_m2,
                                  double vertical_deg, double horizontal_deg) {
@@ -69,16 +79,7 @@ std::optional<EllipseAxes> GlareScene::axesAt(double level_cd_m2) const {
   const double radius = contourRadius(lobe_.peak_cd_m2, lobe_.background_cd_m2, level_cd_m2);
   const double own_vertical = 2.0 * lobe_.sigma_v_deg * radius;
   const double own_horizontal = 2.0 * lobe_.sigma_h_deg * radius;
-  // Named as the measurement names them (pipeline/glare_ellipse.h): vertical is the axis closer
-  // to the vertical, at exactly 45° the major one. The lobe's own horizontal axis lies at its
-  // orientation from the horizontal, its major axis 90° further when the vertical one is longer.
-  const double major_deg =
-      lobe_.orientation_deg + (lobe_.sigma_v_deg > lobe_.sigma_h_deg ? 90.0 : 0.0);
-  const double wrapped = std::abs(std::remainder(major_deg, 180.0));  // [0, 90]
-  const bool major_is_vertical = wrapped >= 45.0;
-  const double major = std::max(own_vertical, own_horizontal);
-  const double minor = std::min(own_vertical, own_horizontal);
-  return major_is_vertical ? EllipseAxes{major, minor} : EllipseAxes{minor, major};
+  return measuredAxes(own_vertical, own_horizontal, lobe_.orientation_deg);
 }
 
 SceneTruth GlareScene::truth(double limit_cd_m2) const {
@@ -89,20 +90,8 @@ SceneTruth GlareScene::truth(double limit_cd_m2) const {
 }
 
 FloatImage GlareScene::render(const calibration::CameraModel& camera, int width, int height) const {
-  FloatImage image(width, height);
-  parallelRows(height, availableThreads(), [&](int begin, int end) {
-    std::vector<calibration::PixelPoint> pixels(static_cast<std::size_t>(width));
-    for (int y = begin; y < end; ++y) {
-      for (int x = 0; x < width; ++x)
-        pixels[static_cast<std::size_t>(x)] = {static_cast<double>(x), static_cast<double>(y)};
-      const auto rays = camera.rays(pixels);
-      auto row = image.row(y);
-      for (int x = 0; x < width; ++x)
-        row[static_cast<std::size_t>(x)] =
-            static_cast<float>(luminanceCdM2(rays[static_cast<std::size_t>(x)]));
-    }
-  });
-  return image;
+  return renderRays(camera, width, height,
+                    [this](const calibration::Ray& ray) { return luminanceCdM2(ray); });
 }
 
 }  // namespace glarecam::capture

@@ -10,11 +10,13 @@
 
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "calibration/angular_plane.h"
 #include "calibration/camera_model.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/parallel.h"
 
 namespace glarecam::capture {
 
@@ -36,12 +38,38 @@ struct EllipseAxes {
   double vertical_deg = 0, horizontal_deg = 0;
 };
 
+// A lobe's own full axes (along its vertical and horizontal) named as the measurement names them
+// (pipeline/glare_ellipse.h): vertical is the axis closer to the image vertical, at exactly 45°
+// the major one; the lobe's own horizontal axis lies at `orientation_deg` from the horizontal.
+EllipseAxes measuredAxes(double own_vertical_deg, double own_horizontal_deg,
+                         double orientation_deg);
+
 struct SceneTruth {
   double peak_cd_m2 = 0;
   double limit_cd_m2 = 0;
   std::optional<EllipseAxes> limit_axes;  // none when the peak does not reach the limit
   std::optional<EllipseAxes> fwhm_axes;   // none when the peak is not above twice the background
 };
+
+// The image of a scene: `luminance(ray)` of each pixel's ray of the camera, rows in parallel.
+template <typename Luminance>
+FloatImage renderRays(const calibration::CameraModel& camera, int width, int height,
+                      const Luminance& luminance) {
+  FloatImage image(width, height);
+  parallelRows(height, availableThreads(), [&](int begin, int end) {
+    std::vector<calibration::PixelPoint> pixels(static_cast<std::size_t>(width));
+    for (int y = begin; y < end; ++y) {
+      for (int x = 0; x < width; ++x)
+        pixels[static_cast<std::size_t>(x)] = {static_cast<double>(x), static_cast<double>(y)};
+      const auto rays = camera.rays(pixels);
+      auto row = image.row(y);
+      for (int x = 0; x < width; ++x)
+        row[static_cast<std::size_t>(x)] =
+            static_cast<float>(luminance(rays[static_cast<std::size_t>(x)]));
+    }
+  });
+  return image;
+}
 
 class GlareScene {
  public:

@@ -33,7 +33,11 @@ Result<double> parseNumber(std::string_view text, std::string_view uri_key) {
 
 Status applyParameter(std::string_view key, std::string_view value, SimulationOptions& sim) {
   if (key == "module") {
-    sim.module = std::string(value);
+    sim.surface = std::string(kCurvesPrefix) + std::string(value);
+    return {};
+  }
+  if (key == "surface") {
+    sim.surface = std::string(value);
     return {};
   }
   if (key == "target") {
@@ -77,8 +81,8 @@ Status applyParameter(std::string_view key, std::string_view value, SimulationOp
     sim.source_illuminance_lx = number;  // validate() names the range
   } else {
     return badInput(fmt::format(
-        "camera URI sim: unknown parameter '{}' (known: module, seed, size, fov, alpha, "
-        "illuminance, target)",
+        "camera URI sim: unknown parameter '{}' (known: module, surface, seed, size, fov, "
+        "alpha, illuminance, target)",
         key));
   }
   return {};
@@ -127,7 +131,7 @@ class SimCamera final : public Camera, public SceneTruthSource {
     info_ = {.uri = std::move(uri),
              .backend = "sim",
              .vendor = "glarecam",
-             .model = "simulated rig (" + options_.module + " module)",
+             .model = "simulated rig (" + options_.moduleLabel() + " module)",
              .serial = std::string(kSimSerial),
              .detail = sceneDetail(options_),
              .optics = {.f_number = options_.f_number, .nd_transmission = options_.nd_transmission},
@@ -244,13 +248,14 @@ class SimCameraBackend final : public CameraBackend {
   std::string_view scheme() const override { return "sim"; }
 
   Result<std::vector<CameraInfo>> list() override {
-    return std::vector<CameraInfo>{{.uri = "sim:",
-                                    .backend = "sim",
-                                    .vendor = "glarecam",
-                                    .model = "simulated rig",
-                                    .serial = std::string(kSimSerial),
-                                    .detail = "parameters: module, seed, size, fov, alpha, target",
-                                    .optics = {}}};
+    return std::vector<CameraInfo>{
+        {.uri = "sim:",
+         .backend = "sim",
+         .vendor = "glarecam",
+         .model = "simulated rig",
+         .serial = std::string(kSimSerial),
+         .detail = "parameters: module, surface, seed, size, fov, alpha, illuminance, target",
+         .optics = {}}};
   }
 
   Result<std::unique_ptr<Camera>> open(std::string_view id, const CameraOptions& options) override {

@@ -3,7 +3,9 @@
 // frames exactly as the merge's radiometry expects. It stands in for hardware in tests, in the
 // demo and for users without a camera. URI parameters, comma-separated after "sim:":
 //   module=NAME  seed=N  size=WxH  fov=DEG  alpha=DEG  illuminance=LX
-//   (e.g. "sim:module=standard,size=640x512")
+//   surface=NAME|FILE.toml   a physical surface instead of a module's curves (module=NAME is
+//                            surface=curves:NAME; SimulationOptions::surface)
+//   (e.g. "sim:module=standard,size=640x512", "sim:surface=glare-reduced")
 //   target=dark|flat|linearity|noise|luminance|board   a calibration target instead of the module
 // The scene's α comes from the camera's SceneSource (camera_registry.h: the rig's measured α,
 // or the capture's --alpha), asked before each bracket; the scene is rendered again when it

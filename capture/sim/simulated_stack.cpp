@@ -5,16 +5,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
+#include <span>
 
 #include "calibration/radiometry.h"
 #include "capture/sim/module_model.h"
+#include "capture/sim/surface_scene.h"
 #include "core/angles.h"
 #include "core/json.h"
 #include "core/progress.h"
 #include "core/stack_io.h"
 #include "core/stack_manifest.h"
 #include "pipeline/limit_curve.h"
+#include "surface/surface_catalogue.h"
 
 namespace glarecam::capture {
 namespace {
@@ -42,8 +46,8 @@ namespace {
 
 std::string stackId(const SimulationOptions& options) {
   char id[96];
-  std::snprintf(id, sizeof id, "sim-%s-a%05.2f-s%llu", options.module.c_str(), options.alpha_deg,
-                static_cast<unsigned long long>(options.seed));
+  std::snprintf(id, sizeof id, "sim-%.40s-a%05.2f-s%llu", options.moduleLabel().c_str(),
+                options.alpha_deg, static_cast<unsigned long long>(options.seed));
   return id;
 }
 
@@ -86,9 +90,10 @@ StackManifest makeManifest(const SimulationOptions& options, const Calibration& 
                        {"pixel_format", "Mono" + std::to_string(options.sensor.adc_bits)},
                        {"width", options.width},
                        {"height", options.height}}},
-                     {"module", "simulated " + options.module + " module"},
+                     {"module", "simulated " + options.moduleLabel() + " module"},
                      {"simulation",
-                      {{"module", options.module},
+                      {{"module", options.moduleLabel()},
+                       {"surface", options.surface},
                        {"seed", options.seed},
                        {"background_cd_m2", options.background_cd_m2},
                        {"peak_scale", options.peak_scale},
@@ -121,7 +126,15 @@ Intrinsics pinholeIntrinsics(int width, int height, double horizontal_fov_deg,
   return k;
 }
 
+std::string SimulationOptions::moduleLabel() const {
+  if (surface.starts_with(kCurvesPrefix)) return surface.substr(kCurvesPrefix.size());
+  const std::filesystem::path path(surface);
+  return "surface-" + (path.has_extension() ? path.stem().string() : surface);
+}
+
 Status SimulationOptions::validate() const {
+  if (surface.empty() || surface == kCurvesPrefix)
+    return badInput("simulate: --surface must name a surface, a file or curves:MODULE");
   if (!(alpha_deg >= 0 && alpha_deg <= pipeline::kMaxLimitAlphaDeg)) {
     return badInput("simulate: --alpha must be between 0 and 80 degrees (the method's range)");
   }
@@ -221,17 +234,14 @@ nlohmann::json SimulatedStack::truthJson() const {
   return document;
 }
 
-Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options) {
-  GLARECAM_CHECK(options.validate());
+namespace {
+
+// The lobe of a module's empirical curves: an elliptical Gaussian whose limit contour has the
+// curves' axes (glare_scene.h).
+Status renderCurvesScene(const SimulationOptions& options, double limit,
+                         const calibration::CameraModel& camera, SimulatedScene& result) {
   ModuleGlareModel module;
-  GLARECAM_ASSIGN(module, moduleModel(options.module));
-  const double limit =
-      pipeline::glareLimitCdM2(options.alpha_deg).value_or(pipeline::kConstantGlareLimitCdM2);
-  if (options.background_cd_m2 >= limit) {
-    return badInput(fmt::format(
-        "simulate: --background ({:g} cd/m²) must be below the glare limit at this α ({:g} cd/m²)",
-        options.background_cd_m2, limit));
-  }
+  GLARECAM_ASSIGN(module, moduleModel(options.surface.substr(kCurvesPrefix.size())));
   // The lobe's shape comes from the module's axes at the limit for its own peak; peak_scale
   // then changes only the brightness (a dimmer module glares less and over a smaller ellipse).
   const double model_peak = module.lmax_cd_m2(options.alpha_deg);
@@ -251,20 +261,66 @@ Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options) {
   lobe->background_cd_m2 *= lit;
   auto scene = GlareScene::create(*lobe);
   if (!scene) return std::unexpected(scene.error());
+  const auto centre = camera.project(scene->centreRay());
+  result.centre_pixel = {centre.x, centre.y};
+  result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
+  result.truth = reference_scene->truth(limit);
+  result.truth_as_lit = scene->truth(limit);
+  return {};
+}
+
+// The lobe of a physical surface under the sun's disc (surface_scene.h): its truth from the
+// surface's own contours.
+Status renderSurfaceScene(const SimulationOptions& options, double limit,
+                          const calibration::CameraModel& camera, SimulatedScene& result) {
+  std::unique_ptr<surface::BrdfModel> model;
+  GLARECAM_ASSIGN(model, surface::surfaceModel(options.surface));
+  auto scene =
+      SurfaceScene::create(std::move(model), {.alpha_deg = options.alpha_deg,
+                                              .background_cd_m2 = options.background_cd_m2,
+                                              .peak_scale = options.peak_scale,
+                                              .orientation_deg = options.lobe_orientation_deg,
+                                              .centre_direction_deg = options.lobe_offset_deg});
+  if (!scene) return std::unexpected(scene.error());
+  const double lit = options.source_illuminance_lx / kDefaultReferenceIlluminanceLx;
+  const SceneTruths truths = scene->truth(limit, lit);
+  const auto peak = camera.project(truths.peak_ray);
+  result.centre_pixel = {peak.x, peak.y};
+  result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
+  for (float& value :
+       std::span(result.true_luminance_cd_m2.data(), result.true_luminance_cd_m2.pixelCount()))
+    value = static_cast<float>(value * lit);
+  result.truth = truths.reference;
+  result.truth_as_lit = truths.as_lit;
+  return {};
+}
+
+}  // namespace
+
+Result<SimulatedScene> renderSimulatedScene(const SimulationOptions& options) {
+  GLARECAM_CHECK(options.validate());
+  const double limit =
+      pipeline::glareLimitCdM2(options.alpha_deg).value_or(pipeline::kConstantGlareLimitCdM2);
+  if (options.background_cd_m2 >= limit) {
+    return badInput(fmt::format(
+        "simulate: --background ({:g} cd/m²) must be below the glare limit at this α ({:g} cd/m²)",
+        options.background_cd_m2, limit));
+  }
   SimulatedScene result;
   result.source_illuminance_lx = options.source_illuminance_lx;
   result.calibration = simulatedCalibration(options);
   const calibration::CameraModel camera(result.calibration.intrinsics);
   GLARECAM_CHECK(checkLensInvertible(camera, options.width, options.height));
-  const auto centre = camera.project(scene->centreRay());
+  // The lobe's centre (the specular direction) must be in the frame.
+  const auto centre = camera.project(
+      calibration::rayFromDirection({options.lobe_offset_deg[0], options.lobe_offset_deg[1]}));
   if (!(centre.x >= 0 && centre.y >= 0 && centre.x <= options.width - 1 &&
         centre.y <= options.height - 1)) {
     return badInput("simulate: --offset-deg puts the lobe centre outside the frame");
   }
-  result.centre_pixel = {centre.x, centre.y};
-  result.true_luminance_cd_m2 = scene->render(camera, options.width, options.height);
-  result.truth = reference_scene->truth(limit);
-  result.truth_as_lit = scene->truth(limit);
+  GLARECAM_CHECK(options.surface.starts_with(kCurvesPrefix)
+                     ? renderCurvesScene(options, limit, camera, result)
+                     : renderSurfaceScene(options, limit, camera, result));
   return result;
 }
 

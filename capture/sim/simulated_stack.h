@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "capture/bracketing.h"
@@ -18,10 +19,17 @@
 
 namespace glarecam::capture {
 
+// The prefix of a `surface` drawn from a module's empirical curves instead of a surface model.
+inline constexpr std::string_view kCurvesPrefix = "curves:";
+
 // The camera (SimulatedCameraModel: size, seed, sensor, lens, K) and the scene in front of it.
 struct SimulationOptions : SimulatedCameraModel {
   double alpha_deg = 40.0;
-  std::string module = "standard";
+  // What the camera looks at: "curves:NAME", the lobe drawn from a registered module's empirical
+  // curves (module_model.h; the default, the paper's standard module), or a physical surface by
+  // name or TOML file (surface/surface_catalogue.h: standard, glare-reduced, gaussian, FILE.toml)
+  // rendered under the sun's disc (surface_scene.h).
+  std::string surface = std::string(kCurvesPrefix) + "standard";
   std::array<double, 2> lobe_offset_deg{0, 0};  // lobe centre from the optical axis [h, v]
   double lobe_orientation_deg = 0.0;
   double background_cd_m2 = 3000.0;  // sky reflected in the module glass, an overcast-sky order
@@ -41,6 +49,9 @@ struct SimulationOptions : SimulatedCameraModel {
   // The `sim:` camera only: a calibration target (calibration_targets.h) instead of the module.
   std::string calibration_target;
   Status validate() const;
+  // The module's name in stack ids and manifests: the curves' module ("standard"), or the
+  // surface's name or file stem after "surface-" ("surface-glare-reduced").
+  std::string moduleLabel() const;
 };
 
 struct SimulatedStack {

@@ -48,6 +48,11 @@ expect "alpha error is one line" one_line_naming "--alpha"
 check "bad size" 2 "$GLARECAM" simulate --out "$WORK/x" --size 100by20
 check "unknown module" 2 "$GLARECAM" simulate --out "$WORK/x" --module bifacial
 expect "unknown module lists the known ones" one_line_naming "known: standard"
+check "unknown surface" 2 "$GLARECAM" simulate --out "$WORK/x" --surface velvet
+check "a missing surface file" 2 "$GLARECAM" simulate --out "$WORK/x" --surface "$WORK/none.toml"
+check "module and surface" 2 "$GLARECAM" simulate --out "$WORK/x" --module standard --surface standard
+check "a surface's stack" 0 "$GLARECAM" simulate -q --out "$WORK/surface-stack" --size 96x80 --surface glare-reduced --alpha 50
+expect "the stack names its surface" grep -q '"surface": "glare-reduced"' "$WORK/surface-stack/stack.json"
 check "unknown command named" 2 "$GLARECAM" frobnicate
 expect "unknown command is named" one_line_naming 'unknown command "frobnicate"'
 check "misspelt command" 2 "$GLARECAM" procss

@@ -15,22 +15,6 @@
 namespace glarecam::brdf {
 namespace {
 
-TEST(DiscKernel, HoldsTheDiscsAreaAndSumsToOne) {
-  int side = 0;
-  const std::vector<double> w = discKernel(0.2664, 0.05, side);
-  EXPECT_EQ(side % 2, 1);
-  EXPECT_NEAR(std::accumulate(w.begin(), w.end(), 0.0), 1.0, 1e-12);
-  // Its second moment is the disc's: R²/4 per axis, to the 1/16-pixel sampling of the edge.
-  double m2 = 0;
-  const int half = side / 2;
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x) m2 += w[y * side + x] * std::pow((x - half) * 0.05, 2);
-  EXPECT_NEAR(m2, 0.2664 * 0.2664 / 4, 0.02 * 0.2664 * 0.2664 / 4);
-  int one = 0;
-  EXPECT_EQ(discKernel(0, 0.05, one), std::vector<double>{1.0});
-  EXPECT_EQ(one, 1);
-}
-
 // The route's ellipses of a Gaussian lobe against its contours computed independently
 // (surface/lobe_contours.h: by bisection along the axes, the disc by the incidence).
 struct Case {

@@ -29,12 +29,23 @@ TEST(SimCamera, ParsesItsParametersAndRefusesBadOnes) {
   EXPECT_EQ(options->seed, 3u);
   EXPECT_DOUBLE_EQ(options->alpha_deg, 55.0);
   EXPECT_DOUBLE_EQ(parseSimCameraId("", 20.0)->alpha_deg, 20.0);
+  EXPECT_EQ(options->surface, "curves:standard");  // module=NAME is the module's curves
+  EXPECT_EQ(parseSimCameraId("surface=glare-reduced", {})->surface, "glare-reduced");
   for (const char* bad : {"size=320", "fov=wide", "colour=red", "seed", "seed=-1", "seed=1e300",
                           "size=1e10x5", "size=0x0"}) {
     auto parsed = parseSimCameraId(bad, {});
     ASSERT_FALSE(parsed) << bad;
     EXPECT_EQ(parsed.error().code, ErrorCode::kBadInput) << bad;
   }
+  // A surface the catalogue does not know is refused when the camera opens, naming the known ones.
+  auto unknown = openCamera("sim:size=64x48,surface=velvet", {});
+  ASSERT_FALSE(unknown);
+  EXPECT_EQ(unknown.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(unknown.error().message.find("glare-reduced"), std::string::npos)
+      << unknown.error().message;
+  auto surface = openCamera("sim:size=64x48,surface=glare-reduced", {});
+  ASSERT_TRUE(surface) << surface.error().message;
+  EXPECT_NE((*surface)->info().model.find("surface-glare-reduced"), std::string::npos);
   auto tiny = openCamera("sim:size=8x8", {});
   ASSERT_FALSE(tiny);
   EXPECT_EQ(tiny.error().code, ErrorCode::kBadInput);

@@ -223,9 +223,18 @@ Result<BrdfLuminance> luminanceUnderSun(const BrdfMeasurement& m, const Sampling
 
   const double sigma_min =
       std::min(sampling.lobe.sigma_vertical_deg, sampling.lobe.sigma_horizontal_deg);
-  out.grid_relative_uncertainty =
-      sampling.spacing_deg * sampling.spacing_deg / (8 * sigma_min * sigma_min) / std::sqrt(3.0);
-  const double pixel_u = std::hypot(out.relative_noise, out.grid_relative_uncertainty);
+  const auto under_read = [&](double spacing_deg) {
+    return spacing_deg * spacing_deg / (8 * sigma_min * sigma_min);
+  };
+  out.grid_relative_uncertainty = under_read(sampling.spacing_deg);
+  out.contour_grid_relative_uncertainty = under_read(sampling.coarsest_spacing_deg);
+  // Each pixel's noise is its samples', shared by every pixel within a sample spacing: the
+  // analysis, which averages pixels as independent (the peak's fit, the contours), must see the
+  // noise of one independent value per spacing², so each pixel carries it times spacing / pixel.
+  // The grid's under-read is no pixel noise at all: it is alike over the lobe's top (the route
+  // states it as the picture's scale uncertainty, brdf_route.h).
+  out.noise_correlation = std::max(1.0, sampling.spacing_deg / pixel);
+  const double pixel_u = out.relative_noise * out.noise_correlation;
 
   // The pinhole camera along the specular direction: a pixel at the centre spans `pixel`.
   const double focal_px = 1 / std::tan(radians(pixel));

@@ -147,6 +147,7 @@ Result<SamplingCheck> checkSampling(const BrdfMeasurement& m) {
   if (!gaussian || nearest.empty()) return badInput(coarse);
   check.lobe = *gaussian;
   check.spacing_deg = medianOf(nearest);
+  check.coarsest_spacing_deg = *std::ranges::max_element(nearest);
   check.samples_across_fwhm =
       kFwhmPerSigma * std::min(gaussian->sigma_vertical_deg, gaussian->sigma_horizontal_deg) /
       check.spacing_deg;

@@ -72,6 +72,7 @@ struct SamplingCheck {
   std::size_t peak_index = 0;         // the largest sample, in measurement.samples
   double peak_offset_deg = 0;         // its angle from the specular direction
   double spacing_deg = 0;             // median nearest-neighbour distance on the lobe
+  double coarsest_spacing_deg = 0;    // the largest (where a lab's rings widen)
   double samples_across_fwhm = 0;     // across the narrower FWHM
   std::vector<std::string> warnings;  // the peak off the specular direction
 };

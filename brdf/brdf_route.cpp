@@ -45,14 +45,17 @@ std::string measurementId(const BrdfMeasurement& m, bool several) {
   return several ? fmt::format("{}-{:g}deg", stem, m.incident_theta_deg) : stem;
 }
 
-pipeline::CalibrationIdentity fileIdentity(const BrdfMeasurement& m) {
+pipeline::CalibrationIdentity fileIdentity(const BrdfMeasurement& m, double scale_u) {
   pipeline::CalibrationIdentity identity;
   identity.origin = "brdf";
   const fs::path file = fs::absolute(m.file).lexically_normal();
   identity.file = file.string();
   if (auto digest = sha256OfFile(file)) identity.sha256 = std::move(*digest);
   // No camera, no K: the values are f_r · E_ref · cos α themselves (id empty: nothing to mix).
+  // Its uncertainty is the grid's: linear interpolation of ln f_r between samples under-reads the
+  // lobe's top alike over it, as an error of K would scale it (brdf_luminance.h).
   identity.luminance_factor = 1;
+  identity.luminance_factor_u = scale_u;
   return identity;
 }
 
@@ -80,6 +83,9 @@ nlohmann::json brdfBlock(const BrdfMeasurement& m, const SamplingCheck& sampling
           {"relative_noise", luminance.relative_noise},
           {"noise", luminance.noise_origin},
           {"grid_relative_uncertainty", luminance.grid_relative_uncertainty},
+          {"contour_grid_relative_uncertainty", luminance.contour_grid_relative_uncertainty},
+          {"noise_correlation_px", luminance.noise_correlation},
+          {"coarsest_spacing_deg", sampling.coarsest_spacing_deg},
           {"covered_deg", luminance.covered_deg},
           {"pixel_deg", luminance.pixel_deg},
           {"sun_half_angle_deg", image.sun_half_angle_deg},
@@ -114,11 +120,12 @@ Result<BrdfAngle> processMeasurement(const BrdfMeasurement& m, const fs::path& r
                                           ? options.threshold_cd_m2
                                           : pipeline::glareLimitCdM2(m.incident_theta_deg);
   const calibration::CameraModel camera(luminance.intrinsics);
-  const pipeline::GlareAnalysis glare = pipeline::analyseGlare(luminance.image, camera, stats.max,
-                                                               {.limit_cd_m2 = limit,
-                                                                .thresholds_cd_m2 = {},
-                                                                .scale_relative_uncertainty = 0,
-                                                                .ladder = options.ladder});
+  const pipeline::GlareAnalysis glare = pipeline::analyseGlare(
+      luminance.image, camera, stats.max,
+      {.limit_cd_m2 = limit,
+       .thresholds_cd_m2 = {},
+       .scale_relative_uncertainty = luminance.contour_grid_relative_uncertainty,
+       .ladder = options.ladder});
   pipeline::ResultIlluminance illuminance;
   // The picture is computed under the reference sun itself: E = E_ref exactly.
   illuminance.source = SourceIlluminance{
@@ -139,7 +146,7 @@ Result<BrdfAngle> processMeasurement(const BrdfMeasurement& m, const fs::path& r
        .module = m.sample_name.empty() ? std::nullopt : std::optional(m.sample_name),
        .width = luminance.image.luminance_cd_m2.width(),
        .height = luminance.image.luminance_cd_m2.height(),
-       .calibration = fileIdentity(m),
+       .calibration = fileIdentity(m, luminance.grid_relative_uncertainty),
        .illuminance = illuminance,
        .stats = stats,
        .limit_cd_m2 = limit,

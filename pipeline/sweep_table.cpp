@@ -417,12 +417,18 @@ Result<SweepRow> sweepRowFromResult(const StackResult& result, const std::string
   row.limit_cd_m2 = result.limit.limit_cd_m2;
   // The row's own uncertainty: the merge's noise and, for a referred row, u(E), which differs
   // from row to row (each stack its own reading). u(K), common to every row, moves the whole
-  // sweep alike and stays out (the sheet states it with the calibration).
+  // sweep alike and stays out (the sheet states it with the calibration). The BRDF route's "K"
+  // is 1 exactly and its u the grid's interpolation, which is each row's own (brdf/brdf_route.h).
   const ResultIlluminance& illuminance = result.illuminance;
   const double e_u = illuminance.referred() ? illuminance.source->relativeUncertainty() : 0.0;
+  const CalibrationIdentity& calibration = result.calibration;
+  const double grid_u = result.route == Route::kBrdf && calibration.luminance_factor_u &&
+                                calibration.luminance_factor > 0
+                            ? *calibration.luminance_factor_u / calibration.luminance_factor
+                            : 0.0;
   if (luminance.max_relative_uncertainty)
     row.lmax_uncertainty_cd_m2 =
-        std::hypot(*luminance.max_relative_uncertainty, e_u) * luminance.max_cd_m2;
+        std::hypot(*luminance.max_relative_uncertainty, e_u, grid_u) * luminance.max_cd_m2;
   if (illuminance.referred()) {
     row.source_illuminance_lx = illuminance.source->illuminance_lx;
     row.source_illuminance_u_lx = illuminance.source->illuminance_u_lx;

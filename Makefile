@@ -5,7 +5,7 @@ JOBS           ?= $(shell nproc)
 DEMO_DIR       ?= demo-out
 CMAKE_FLAGS    ?=
 
-.PHONY: deps demo-deps configure build test test-asan fuzz soak demo bench install package coverage-check kill-check clean format
+.PHONY: deps demo-deps configure build test test-asan fuzz soak demo bench install package coverage-check kill-check route-check clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -71,6 +71,18 @@ SOAK_DIR    ?= soak-out
 soak: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecamd
 	python3 scripts/soak --stacks $(SOAK_STACKS) --out $(SOAK_DIR) $(BUILD_DIR)/bin
+
+# The method's two routes checked against each other (docs/brdf.md, "The route check"): each named
+# surface swept by the simulated camera under the sun and by the simulated goniophotometer, Lmax
+# and the limit axes compared per α in units of their combined σ; fails when any |z| > 3. The
+# tables go to ROUTE_CHECK_DIR/<surface>/route-check.csv. `make test` runs a small version
+# (RouteCheck.* in brdf_tests: three α of the standard surface). About 20 s.
+ROUTE_CHECK_DIR ?= route-check-out
+route-check: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecam
+	for surface in standard glare-reduced; do \
+	  $(BUILD_DIR)/bin/glarecam route-check --surface $$surface --out $(ROUTE_CHECK_DIR)/$$surface || exit 1; \
+	done
 
 # Issue 9's 50 SIGKILLs while glarecamd writes (25 while a stack, 25 while a result is staged):
 # no partial stack visible, the next start cleans up. `make test` kills 8 of each. About 3 minutes.

@@ -77,6 +77,7 @@ int runGlarecam(int argc, char** argv) {
   addHazardCommand(app, action);
   addBrdfCommand(app, action);
   addSimulateBrdfCommand(app, action);
+  addRouteCheckCommand(app, action);
   nameOptionValues(app);
 
   try {

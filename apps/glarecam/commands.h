@@ -33,6 +33,7 @@ void addSimulateCalibrationCommand(CLI::App& app, Action& action);
 void addHazardCommand(CLI::App& app, Action& action);
 void addBrdfCommand(CLI::App& app, Action& action);
 void addSimulateBrdfCommand(CLI::App& app, Action& action);
+void addRouteCheckCommand(CLI::App& app, Action& action);
 
 // A JSON document on stdout, as every --json prints it.
 void printJson(const nlohmann::json& document);

@@ -119,4 +119,4 @@ format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_BUILD_DIR) $(DEMO_DIR) $(SOAK_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_BUILD_DIR) $(DEMO_DIR) $(SOAK_DIR) $(ROUTE_CHECK_DIR)

@@ -229,14 +229,19 @@ nlohmann::json quantityJson(const RouteQuantity& q) {
           {"truth", value(q.truth)},   {"z", value(q.z)}};
 }
 
-// "612.3k ± 1.1k" for luminances, "5.512 ± 0.003" for angles; "–" when absent.
+// A value to the second significant digit of its σ ("612.3k ± 1.1k", "29.58k ± 0.01k" for
+// luminances in thousands; "5.512 ± 0.003" for angles), "–" when absent.
 std::string shown(const std::optional<double>& value, const std::optional<double>& sigma,
-                  bool luminance) {
+                  bool luminance, bool show_sigma = true) {
   if (!value) return "–";
-  if (luminance)
-    return sigma ? fmt::format("{:.1f}k ± {:.1f}k", *value / 1e3, *sigma / 1e3)
-                 : fmt::format("{:.1f}k", *value / 1e3);
-  return sigma ? fmt::format("{:.3f} ± {:.3f}", *value, *sigma) : fmt::format("{:.3f}", *value);
+  const double unit = luminance ? 1e3 : 1.0;
+  const char* suffix = luminance ? "k" : "";
+  int decimals = luminance ? 1 : 3;
+  if (sigma && *sigma > 0)
+    decimals = std::clamp(1 - static_cast<int>(std::floor(std::log10(*sigma / unit))), 0, 6);
+  if (!sigma || !show_sigma) return fmt::format("{:.{}f}{}", *value / unit, decimals, suffix);
+  return fmt::format("{:.{}f}{} ± {:.{}f}{}", *value / unit, decimals, suffix, *sigma / unit,
+                     decimals, suffix);
 }
 
 }  // namespace
@@ -274,7 +279,9 @@ std::string formatRouteCheckMarkdown(const RouteCheckSummary& summary) {
       const bool luminance = q == &row.lmax_cd_m2;
       text += fmt::format("| {} | {} | {} | {} ", shown(q->camera, q->camera_sigma, luminance),
                           shown(q->brdf, q->brdf_sigma, luminance),
-                          shown(q->truth, std::nullopt, luminance), z(*q));
+                          shown(q->truth, q->camera_sigma ? q->camera_sigma : q->brdf_sigma,
+                                luminance, false),
+                          z(*q));
     }
     text += "| " + row.note + " |\n";
   }

@@ -16,7 +16,7 @@ check "process help" 0 "$GLARECAM" process --help
 expect "process help types --alpha" grep -qE -- "--alpha DEG" "$WORK/out"
 # Every option's value is named in --help (DEG, CD_M2, WxH, FILE, ...), never CLI11's bare TEXT.
 for command in simulate simulate-calibration process sweep fit datasheet model "model fit" brdf \
-    simulate-brdf cameras capture \
+    simulate-brdf route-check cameras capture \
     fake-camera sun alpha "inclinometer read" "inclinometer flip" gpio doctor "calibrate dark" \
     "calibrate flat" "calibrate linearity" "calibrate noise" "calibrate luminance" \
     "calibrate intrinsics" "calibrate merge"; do
@@ -367,6 +367,27 @@ check "model fit: not a table" 2 "$GLARECAM" model fit "$WORK/lab/a10.dat"
 check "simulate-brdf: α must ascend" 2 "$GLARECAM" simulate-brdf --alpha 30,10 --out "$WORK/x"
 expect "descending α is said" one_line_naming "must ascend"
 check "model fit from a start file" 0 "$GLARECAM" model fit "$TABLE3" --start "$WORK/fitted.toml"
+
+# The route check: one α of each route, small; its refusals.
+check "route-check" 0 "$GLARECAM" route-check --no-progress --alpha 30,75 --size 320x256 --fov 24 \
+  --out "$WORK/rc"
+expect "route-check prints its verdict and table" grep -q "the routes agree within" "$WORK/out"
+expect "route-check names the α it cannot compare" grep -q "beyond the goniophotometer" "$WORK/out"
+expect "route-check writes its CSV" test -s "$WORK/rc/route-check.csv"
+check "route-check --json" 0 "$GLARECAM" route-check --no-progress --alpha 30 --size 320x256 --fov 24 \
+  --out "$WORK/rc" --json
+expect "route-check --json says agree" grep -q '"agree": true' "$WORK/out"
+check "route-check: α 0" 2 "$GLARECAM" route-check --alpha 0,30 --out "$WORK/rc"
+check "route-check: α descending" 2 "$GLARECAM" route-check --alpha 30,10 --out "$WORK/rc"
+expect "descending α is said" one_line_naming "ascend"
+check "route-check: unknown surface" 2 "$GLARECAM" route-check --surface velvet --alpha 30 --out "$WORK/rc"
+check "route-check: bad size" 2 "$GLARECAM" route-check --size 10x10 --alpha 30 --out "$WORK/rc"
+check "route-check: empty --out" 2 "$GLARECAM" route-check --alpha 30 --out ""
+check "route-check: --json and --markdown" 2 "$GLARECAM" route-check --json --markdown --alpha 30
+# Agreement asked far tighter than the routes can: they "disagree", exit 1 with the verdict.
+check "route-check: an impossible agreement" 1 "$GLARECAM" route-check --no-progress --alpha 30 \
+  --size 320x256 --fov 24 --out "$WORK/rc" --agreement 0.001
+expect "the disagreement is said" one_line_naming "BEYOND"
 
 # Cameras: the simulator through the camera interface, and the no-device error paths.
 check "cameras" 0 "$GLARECAM" cameras

@@ -5,12 +5,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "core/angles.h"
 #include "core/csv.h"
+#include "core/text_file.h"
 
 namespace glarecam::brdf {
 
@@ -71,25 +70,6 @@ std::string lower(std::string_view text) {
 
 // Blanks around a line or header (core's: the same blanks as the CSV reader's).
 std::string trim(std::string_view text) { return trimCsvText(text); }
-
-// A whole file's text (size-limited), or kBadInput naming it.
-Result<std::string> readText(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    return badInput(name + ": file is missing or not a regular file");
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) return ioError(name + ": cannot read its size: " + ec.message());
-  if (size > kMaxBrdfFileBytes)
-    return badInput(fmt::format("{}: {} MB, more than the {} MB a BRDF file may have", name,
-                                size >> 20, kMaxBrdfFileBytes >> 20));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return badInput(name + ": cannot open for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return ioError(name + ": read failed");
-  return std::move(text).str();
-}
 
 // The glarecam-wide cap on samples of one angle of incidence (a dense pab-opto scan: ~20 000).
 constexpr std::size_t kMaxSamples = 2'000'000;
@@ -483,7 +463,7 @@ Result<std::vector<BrdfMeasurement>> parseBrdfText(std::string_view text, const 
 
 Result<std::vector<BrdfMeasurement>> readBrdfFile(const std::filesystem::path& path) {
   std::string text;
-  GLARECAM_ASSIGN(text, readText(path));
+  GLARECAM_ASSIGN(text, readTextFile(path, kMaxBrdfFileBytes, "a BRDF file"));
   return parseBrdfText(text, path.string());
 }
 

@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/spelling.h"
+#include "core/text_file.h"
 
 namespace glarecam {
 
@@ -37,16 +36,9 @@ Result<json> parseJsonText(std::string_view text, const std::string& where) {
 }
 
 Result<json> readJsonFile(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    return badInput(name + ": file is missing or not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return badInput(name + ": cannot open for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return ioError(name + ": read failed");
-  return parseJsonText(text.view(), name);
+  std::string text;
+  GLARECAM_ASSIGN(text, readTextFile(path));
+  return parseJsonText(text, path.string());
 }
 
 std::string jsonText(const json& document) {

@@ -28,6 +28,8 @@ inline constexpr const char* kHazardYear = "hazard/year";
 inline constexpr const char* kHazardScene = "hazard/scene";
 inline constexpr const char* kBrdfAngle = "brdf/angle";
 inline constexpr const char* kBrdfAnalysisFloor = "brdf/analysis_floor";
+inline constexpr const char* kSimSurfaceScene = "sim/surface_scene";
+inline constexpr const char* kSimCurvesScene = "sim/curves_scene";
 
 // Each returns the names it registered.
 std::vector<std::string> registerMergeBenchmarks();     // merge/*
@@ -38,5 +40,6 @@ std::vector<std::string> registerCaptureBenchmarks();   // capture/* (with Aravi
 std::vector<std::string> registerSunBenchmarks();       // sun/* (with libnova only)
 std::vector<std::string> registerHazardBenchmarks();    // sun/year_spa, hazard/*
 std::vector<std::string> registerBrdfBenchmarks();      // brdf/*
+std::vector<std::string> registerSimBenchmarks();       // sim/*
 
 }  // namespace glarecam::bench

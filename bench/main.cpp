@@ -22,6 +22,8 @@
 //                                                ÷ (pairs − 1), the sun shared by every pair
 //   brdf/angle ÷ brdf/analysis_floor             (no target yet: what reading a goniophotometer
 //                                                file costs beyond the glare analysis)
+//   sim/surface_scene ÷ sim/curves_scene         (no target: the price of drawing the simulated
+//                                                camera's scene from a physical surface)
 // A ratio is printed only when both of its benchmarks ran (--benchmark_filter may skip some).
 // Google Benchmark's flags work as in any benchmark binary: --benchmark_format=console|json|csv
 // chooses the report on stdout (the ratio lines then go to stderr, so stdout stays one JSON
@@ -239,6 +241,7 @@ int main(int argc, char** argv) {
 #endif
   for (std::string& name : registerHazardBenchmarks()) names.push_back(std::move(name));
   for (std::string& name : registerBrdfBenchmarks()) names.push_back(std::move(name));
+  for (std::string& name : registerSimBenchmarks()) names.push_back(std::move(name));
   std::size_t longest_name = 0;
   for (const std::string& name : names) longest_name = std::max(longest_name, name.size());
 
@@ -274,6 +277,7 @@ int main(int argc, char** argv) {
   printRatio(reporter, kHazardYear, kSunYearSpa, 2, Target::kAtMost, kHazardTargetRatio);
   printPairRatio(reporter);
   printRatio(reporter, kBrdfAngle, kBrdfAnalysisFloor, 2, Target::kNone, 0);
+  printRatio(reporter, kSimSurfaceScene, kSimCurvesScene, 2, Target::kNone, 0);
   benchmark::Shutdown();
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -48,9 +49,20 @@ void compare(RouteQuantity& q) {
   if (sigma > 0) q.z = (*q.camera - *q.brdf) / sigma;
 }
 
+// One route's row at one α, and whether its limit ellipse runs off its picture (then its axes
+// are not the contour's).
+struct RouteRow {
+  pipeline::SweepRow row;
+  bool truncated = false;
+};
+
+bool limitTruncated(const pipeline::StackResult& result) {
+  return result.limit.ellipse && result.limit.ellipse->truncated;
+}
+
 // The camera route at one α: a stack of the simulated rig looking at the surface, processed.
-Result<pipeline::SweepRow> cameraRoute(const RouteCheckOptions& options, double alpha_deg,
-                                       std::uint64_t seed, const std::string& id) {
+Result<RouteRow> cameraRoute(const RouteCheckOptions& options, double alpha_deg, std::uint64_t seed,
+                             const std::string& id) {
   capture::SimulationOptions sim;
   sim.surface = options.surface;
   sim.alpha_deg = alpha_deg;
@@ -69,15 +81,18 @@ Result<pipeline::SweepRow> cameraRoute(const RouteCheckOptions& options, double 
   process.show_progress = false;
   pipeline::ProcessSummary processed;
   GLARECAM_ASSIGN(processed, pipeline::processStack(stack_directory, process));
-  return pipeline::sweepRowFromResult(processed.result, stack_directory.string());
+  RouteRow out;
+  out.truncated = limitTruncated(processed.result);
+  GLARECAM_ASSIGN(out.row,
+                  pipeline::sweepRowFromResult(processed.result, stack_directory.string()));
+  return out;
 }
 
 // The BRDF route at one α: the goniophotometer's file written and analysed; a grid the route
 // refuses is the row's note, not an error.
-Result<std::optional<pipeline::SweepRow>> brdfRoute(const surface::BrdfModel& model,
-                                                    const RouteCheckOptions& options,
-                                                    double alpha_deg, const std::string& id,
-                                                    std::string& note) {
+Result<std::optional<RouteRow>> brdfRoute(const surface::BrdfModel& model,
+                                          const RouteCheckOptions& options, double alpha_deg,
+                                          const std::string& id, std::string& note) {
   const fs::path file = options.output_directory / "goniophotometer" / (id + ".dat");
   const BrdfMeasurement m =
       simulateMeasurement(model, alpha_deg, options.goniophotometer, file.string());
@@ -86,7 +101,7 @@ Result<std::optional<pipeline::SweepRow>> brdfRoute(const surface::BrdfModel& mo
   if (!sampling) {
     if (sampling.error().code != ErrorCode::kBadInput) return std::unexpected(sampling.error());
     addNote(note, "BRDF route refuses the grid: " + sampling.error().message);
-    return std::optional<pipeline::SweepRow>{};
+    return std::optional<RouteRow>{};
   }
   BrdfRouteOptions route;
   route.output_directory = options.output_directory / "brdf";
@@ -96,9 +111,45 @@ Result<std::optional<pipeline::SweepRow>> brdfRoute(const surface::BrdfModel& mo
       angle, processMeasurement(m, route.output_directory / pipeline::kSweepResultsDirectory / id,
                                 route, &*sampling));
   for (const std::string& warning : angle.warnings) addNote(note, warning);
-  pipeline::SweepRow row;
-  GLARECAM_ASSIGN(row, pipeline::sweepRowFromResult(angle.result, file.string()));
-  return std::optional<pipeline::SweepRow>(std::move(row));
+  RouteRow out;
+  out.truncated = limitTruncated(angle.result);
+  GLARECAM_ASSIGN(out.row, pipeline::sweepRowFromResult(angle.result, file.string()));
+  return std::optional<RouteRow>(std::move(out));
+}
+
+// The names a route check writes into its directory.
+constexpr std::array<const char*, 5> kOutputNames = {"camera", "goniophotometer", "brdf",
+                                                     "route-check.csv", "route-check.json"};
+
+// The output directory: made when missing; one that holds anything but a route check's own
+// outputs is refused (a check writes five names into it and removes the last one's first, so it
+// never mixes two runs, and never touches what it did not make).
+Status prepareOutputDirectory(const fs::path& directory) {
+  const std::string name = directory.string();
+  std::error_code ec;
+  if (fs::exists(directory, ec)) {
+    if (!fs::is_directory(directory, ec))
+      return badInput(fmt::format("route-check: --out {}: not a directory", name));
+    for (const auto& entry : fs::directory_iterator(directory, ec)) {
+      const std::string file = entry.path().filename().string();
+      if (std::ranges::find(kOutputNames, file) == kOutputNames.end())
+        return badInput(fmt::format(
+            "route-check: --out {} holds {}, which no route check wrote: give a new or a route "
+            "check's own directory",
+            name, file));
+    }
+    if (ec) return badInput(fmt::format("route-check: --out {}: {}", name, ec.message()));
+    for (const char* file : kOutputNames) {
+      fs::remove_all(directory / file, ec);
+      if (ec)
+        return ioError(fmt::format("route-check: cannot remove the earlier {}: {}",
+                                   (directory / file).string(), ec.message()));
+    }
+  }
+  GLARECAM_CHECK(ensureDirectory(directory));
+  for (const char* sub : {"camera", "goniophotometer", "brdf"})
+    GLARECAM_CHECK(ensureDirectory(directory / sub));
+  return {};
 }
 
 }  // namespace
@@ -113,6 +164,8 @@ Status RouteCheckOptions::validate() const {
   if (!std::ranges::is_sorted(alphas_deg) ||
       std::ranges::adjacent_find(alphas_deg) != alphas_deg.end())
     return badInput("route-check: --alpha must ascend without repeats");
+  if (!(horizontal_fov_deg >= 5 && horizontal_fov_deg <= 120))
+    return badInput("route-check: --fov must be between 5 and 120 degrees");
   if (width < kMinSide || height < kMinSide || width > kMaxSide || height > kMaxSide)
     return badInput(
         fmt::format("route-check: --size must be between {0}x{0} and {1}x{1}", kMinSide, kMaxSide));
@@ -138,6 +191,8 @@ double familyThresholdZ(int comparisons, double confidence) {
   return (lo + hi) / 2;
 }
 
+bool RouteCheckRow::compared() const { return lmax_cd_m2.z || vertical_deg.z || horizontal_deg.z; }
+
 bool RouteCheckRow::agrees(double agreement_z) const {
   for (const RouteQuantity* q : {&lmax_cd_m2, &vertical_deg, &horizontal_deg})
     if (q->z && !(std::abs(*q->z) <= agreement_z)) return false;
@@ -148,8 +203,7 @@ Result<RouteCheckSummary> runRouteCheck(const RouteCheckOptions& options) {
   GLARECAM_CHECK(options.validate());
   std::unique_ptr<surface::BrdfModel> model;
   GLARECAM_ASSIGN(model, surface::surfaceModel(options.surface));
-  for (const char* sub : {"camera", "goniophotometer", "brdf"})
-    GLARECAM_CHECK(ensureDirectory(options.output_directory / sub));
+  GLARECAM_CHECK(prepareOutputDirectory(options.output_directory));
   RouteCheckSummary summary;
   summary.surface = options.surface;
   const int steps = static_cast<int>(options.alphas_deg.size());
@@ -170,21 +224,31 @@ Result<RouteCheckSummary> runRouteCheck(const RouteCheckOptions& options) {
     row.vertical_deg.truth = axes.vertical_deg;
     row.horizontal_deg.truth = axes.horizontal_deg;
 
-    pipeline::SweepRow camera;
+    RouteRow camera;
     GLARECAM_ASSIGN(camera, cameraRoute(options, alpha, options.seed + i, id));
     // The camera sees the sun's reflection over the sky's B, the goniophotometer the reflection
     // alone: B, known exactly here, comes off the camera's maximum.
-    camera.lmax_cd_m2 -= options.camera_background_cd_m2;
-    fillRoute(camera, true, row);
+    camera.row.lmax_cd_m2 -= options.camera_background_cd_m2;
+    fillRoute(camera.row, true, row);
     progress.advance(fmt::format("α {:g}°: camera", alpha));
 
     if (alpha > options.instrument_max_alpha_deg) {
       addNote(row.note, fmt::format("beyond the goniophotometer's range ({:g}°)",
                                     options.instrument_max_alpha_deg));
     } else {
-      std::optional<pipeline::SweepRow> brdf;
+      std::optional<RouteRow> brdf;
       GLARECAM_ASSIGN(brdf, brdfRoute(*model, options, alpha, id, row.note));
-      if (brdf) fillRoute(*brdf, false, row);
+      if (brdf) fillRoute(brdf->row, false, row);
+      if (brdf && brdf->truncated) {
+        addNote(row.note,
+                "the BRDF picture cuts the limit ellipse (its samples stop): axes not compared");
+        row.vertical_deg.brdf = row.horizontal_deg.brdf = std::nullopt;
+      }
+    }
+    if (camera.truncated) {
+      addNote(row.note,
+              "the camera's frame cuts the limit ellipse (--size, --fov): axes not compared");
+      row.vertical_deg.camera = row.horizontal_deg.camera = std::nullopt;
     }
     progress.advance(fmt::format("α {:g}°: goniophotometer", alpha));
 
@@ -205,8 +269,15 @@ Result<RouteCheckSummary> runRouteCheck(const RouteCheckOptions& options) {
   }
   progress.finish();
   summary.threshold_z = options.agreement_z.value_or(familyThresholdZ(summary.compared));
-  for (const RouteCheckRow& row : summary.rows)
+  summary.agree = summary.compared > 0;  // nothing compared is no agreement
+  for (const RouteCheckRow& row : summary.rows) {
     summary.agree = summary.agree && row.agrees(summary.threshold_z);
+    for (const auto& [name, q] :
+         {std::pair{"Lmax", &row.lmax_cd_m2}, std::pair{"vertical", &row.vertical_deg},
+          std::pair{"horizontal", &row.horizontal_deg}})
+      if (q->z && std::abs(*q->z) == summary.worst_abs_z && summary.worst.empty())
+        summary.worst = fmt::format("{} at α {:g}°", name, row.alpha_deg);
+  }
   summary.csv = options.output_directory / "route-check.csv";
   summary.json = options.output_directory / "route-check.json";
   GLARECAM_CHECK(writeFileAtomic(summary.csv, formatRouteCheckCsv(summary)));
@@ -277,11 +348,11 @@ std::string formatRouteCheckMarkdown(const RouteCheckSummary& summary) {
     text += fmt::format("| {:g} ", row.alpha_deg);
     for (const RouteQuantity* q : {&row.lmax_cd_m2, &row.vertical_deg, &row.horizontal_deg}) {
       const bool luminance = q == &row.lmax_cd_m2;
-      text += fmt::format("| {} | {} | {} | {} ", shown(q->camera, q->camera_sigma, luminance),
-                          shown(q->brdf, q->brdf_sigma, luminance),
-                          shown(q->truth, q->camera_sigma ? q->camera_sigma : q->brdf_sigma,
-                                luminance, false),
-                          z(*q));
+      text += fmt::format(
+          "| {} | {} | {} | {} ", shown(q->camera, q->camera_sigma, luminance),
+          shown(q->brdf, q->brdf_sigma, luminance),
+          shown(q->truth, q->camera_sigma ? q->camera_sigma : q->brdf_sigma, luminance, false),
+          z(*q));
     }
     text += "| " + row.note + " |\n";
   }
@@ -296,7 +367,8 @@ nlohmann::json routeCheckJson(const RouteCheckSummary& summary, const RouteCheck
                     {"lmax_cd_m2", quantityJson(row.lmax_cd_m2)},
                     {"vertical_deg", quantityJson(row.vertical_deg)},
                     {"horizontal_deg", quantityJson(row.horizontal_deg)},
-                    {"agrees", row.agrees(summary.threshold_z)},
+                    {"agrees", row.compared() ? nlohmann::json(row.agrees(summary.threshold_z))
+                                              : nlohmann::json(nullptr)},
                     {"note", row.note}});
   return {{"schema", "glarecam.route-check/1"},
           {"surface", summary.surface},
@@ -315,6 +387,7 @@ nlohmann::json routeCheckJson(const RouteCheckSummary& summary, const RouteCheck
             {"max_alpha_deg", options.instrument_max_alpha_deg}}},
           {"compared", summary.compared},
           {"worst_abs_z", summary.worst_abs_z},
+          {"worst", summary.worst},
           {"agree", summary.agree},
           {"rows", rows}};
 }

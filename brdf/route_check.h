@@ -7,7 +7,9 @@
 // axes are compared in units of their combined standard uncertainty, z = (camera − brdf) /
 // √(σ_camera² + σ_brdf²), beside the surface's own truth (surface/lobe_contours.h). Where the two
 // cannot be compared the row says why instead of a number: α beyond the goniophotometer's range,
-// a grid too coarse for the lobe (the BRDF route refuses it), no glare ellipse on either side.
+// a grid too coarse for the lobe (the BRDF route refuses it), no glare ellipse on either side, an
+// ellipse cut by the camera's frame or by the picture's edge. A check that compares nothing does
+// not agree.
 //
 // The camera's sky is dark (RouteCheckOptions::camera_background_cd_m2): the BRDF route measures
 // the sun's reflection alone, and a field sky of 3000 cd/m² in the glass would move the limit
@@ -67,7 +69,8 @@ struct RouteCheckRow {
   // Why a quantity has no z (empty when all three have one): "beyond the goniophotometer's range
   // (70°)", "grid too coarse: …", "no glare ellipse (Lmax below the limit)", ….
   std::string note;
-  bool agrees(double agreement_z) const;
+  bool agrees(double agreement_z) const;  // every compared quantity within it
+  bool compared() const;                  // any quantity has a z
 };
 
 // Two-sided 3σ: P(|z| ≤ 3) for a standard normal.
@@ -82,8 +85,9 @@ struct RouteCheckSummary {
   std::vector<RouteCheckRow> rows;
   double worst_abs_z = 0;  // over every compared quantity
   int compared = 0;        // quantities with a z
+  std::string worst;       // which: "Lmax at α 50°"
   double threshold_z = 3;  // the agreement threshold used
-  bool agree = true;       // every compared quantity within it
+  bool agree = false;      // something compared, and every compared quantity within it
   std::filesystem::path csv, json;
 };
 

@@ -38,7 +38,8 @@ Result<std::unique_ptr<BrdfModel>> readSurfaceFile(const std::filesystem::path& 
   toml::table root;
   GLARECAM_ASSIGN(root, readConfigFile(path, kSections));
   const toml::table* table = root["surface"].as_table();
-  if (!table) return badInput(path.string() + ": no [surface] table (docs/brdf.md, \"Surfaces\")");
+  if (!table)
+    return badInput(path.string() + ": no [surface] table (docs/brdf.md, \"The surface model\")");
   TableReader reader(path, *table, "surface");
   std::optional<std::string> model;
   GLARECAM_ASSIGN(model, reader.choice("model", {"microfacet", "gaussian"}));

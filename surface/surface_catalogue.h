@@ -1,4 +1,4 @@
-// Surfaces by name or file (docs/brdf.md, "Surfaces"): what `--surface` takes.
+// Surfaces by name or file (docs/brdf.md, "The surface model"): what `--surface` takes.
 //   standard        the microfacet model fitted to the paper's Table III (the standard module),
 //                   `glarecam model fit ../shared/data/standard-module-table3.csv` (GGX)
 //   glare-reduced   fitted to the paper's Table VI curves of the glare-reduced module,

@@ -18,6 +18,7 @@ struct RouteCheckArgs {
   brdf::RouteCheckOptions options;
   std::optional<std::string> alpha, out;
   std::string size = "640x512";
+  std::string seed = "1";
   bool no_progress = false, json = false, markdown = false;
 };
 
@@ -28,13 +29,20 @@ Status runRouteCheck(RouteCheckArgs& args) {
     GLARECAM_ASSIGN(args.options.alphas_deg, parseNumberList(*args.alpha, "--alpha", 1, 90));
   GLARECAM_ASSIGN(std::tie(args.options.width, args.options.height),
                   parseSize(args.size, "--size"));
+  GLARECAM_ASSIGN(args.options.seed, parseUnsigned(args.seed, "--seed"));
   args.options.show_progress = !args.no_progress;
   brdf::RouteCheckSummary summary;
   GLARECAM_ASSIGN(summary, brdf::runRouteCheck(args.options));
-  const std::string verdict = fmt::format(
-      "route-check: {}: {} quantities compared, worst |z| {:.2f} ({} {:.2f}σ{})", summary.surface,
-      summary.compared, summary.worst_abs_z, summary.agree ? "the routes agree within" : "BEYOND",
-      summary.threshold_z, args.options.agreement_z ? "" : ", 3σ for the whole check");
+  const std::string threshold =
+      fmt::format("{:.2f}σ{}", summary.threshold_z,
+                  args.options.agreement_z ? "" : " (3σ for the whole check)");
+  const std::string verdict =
+      summary.compared == 0
+          ? fmt::format("route-check: {}: nothing compared (every row says why): no agreement",
+                        summary.surface)
+          : fmt::format("route-check: {}: {} quantities compared, worst |z| {:.2f} ({}): {} {}",
+                        summary.surface, summary.compared, summary.worst_abs_z, summary.worst,
+                        summary.agree ? "the routes agree within" : "BEYOND", threshold);
   if (args.json) {
     printJson(brdf::routeCheckJson(summary, args.options));
   } else if (args.markdown) {
@@ -44,9 +52,13 @@ Status runRouteCheck(RouteCheckArgs& args) {
       const auto z = [](const brdf::RouteQuantity& q) {
         return q.z ? fmt::format("{:+5.1f}σ", *q.z) : std::string("    –");
       };
-      std::printf("α %5.1f°  Lmax %s  vertical %s  horizontal %s  %s\n", row.alpha_deg,
-                  z(row.lmax_cd_m2).c_str(), z(row.vertical_deg).c_str(),
-                  z(row.horizontal_deg).c_str(), row.note.c_str());
+      const bool beyond = row.compared() && !row.agrees(summary.threshold_z);
+      std::string line =
+          fmt::format("α {:5.1f}°  Lmax {}  vertical {}  horizontal {}", row.alpha_deg,
+                      z(row.lmax_cd_m2), z(row.vertical_deg), z(row.horizontal_deg));
+      if (beyond) line += "  BEYOND " + threshold;
+      if (!row.note.empty()) line += "  " + row.note;
+      std::printf("%s\n", line.c_str());
     }
     if (summary.agree) std::printf("%s\n", verdict.c_str());
     std::printf("%s\n", summary.csv.c_str());
@@ -76,21 +88,23 @@ void addRouteCheckCommand(CLI::App& app, Action& action) {
          "--alpha", args->alpha,
          "angles of incidence in degrees, ascending, comma-separated (default 5,10,...,80)")
       ->option_text("DEG,...");
-  sub->add_option("--size", args->size, "the simulated camera's frame WIDTHxHEIGHT")
+  sub->add_option("--size", args->size,
+                  "the simulated camera's frame WIDTHxHEIGHT, 64x64 to 4096x4096 (a GGX tip a few "
+                  "pixels across reads low: keep 16 px a degree, docs/brdf.md)")
       ->capture_default_str();
-  sub->add_option("--fov", o.horizontal_fov_deg, "the simulated camera's horizontal field of view")
+  sub->add_option("--fov", o.horizontal_fov_deg,
+                  "the simulated camera's horizontal field of view, 5 to 120 degrees")
+      ->capture_default_str();
+  sub->add_option("--seed", args->seed,
+                  "the camera's noise seed at the first α (then +1 per α), a whole number >= 0")
       ->capture_default_str()
-      ->check(CLI::Range(5.0, 120.0));
-  sub->add_option("--seed", o.seed, "the camera's noise seed at the first α (then +1 per α)")
-      ->capture_default_str();
+      ->type_name("UINT");
   sub->add_option("--fine-step", o.goniophotometer.fine_step_deg,
-                  "the goniophotometer's step near the specular direction in degrees")
-      ->capture_default_str()
-      ->check(CLI::Range(0.01, 5.0));
+                  "the goniophotometer's step near the specular direction, degrees (0.01 to 5)")
+      ->capture_default_str();
   sub->add_option("--noise", o.goniophotometer.relative_noise,
-                  "the goniophotometer's relative noise per sample")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.49));
+                  "the goniophotometer's relative noise per sample, [0, 0.5)")
+      ->capture_default_str();
   sub->add_option("--instrument-max-alpha", o.instrument_max_alpha_deg,
                   "the largest α the goniophotometer measures, degrees")
       ->capture_default_str();

@@ -310,9 +310,13 @@ Result<SimulationOptions> parseSimCameraId(std::string_view id,
                                            std::optional<double> scene_alpha_deg) {
   SimulationOptions sim;
   bool alpha_given = false;
-  GLARECAM_CHECK(
-      forEachUriParameter(id, kUriName, [&](std::string_view key, std::string_view value) {
+  int scene_keys = 0;  // module= and surface= name the same thing: one of them
+  GLARECAM_CHECK(forEachUriParameter(
+      id, kUriName, [&](std::string_view key, std::string_view value) -> Status {
         alpha_given = alpha_given || key == "alpha";
+        if ((key == "module" || key == "surface") && ++scene_keys > 1)
+          return badInput(fmt::format(
+              "{} give module= or surface= once: both name what the camera looks at", kUriName));
         return applyParameter(key, value, sim);
       }));
   if (scene_alpha_deg && alpha_given) {

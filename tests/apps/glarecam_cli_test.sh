@@ -384,6 +384,14 @@ check "route-check: unknown surface" 2 "$GLARECAM" route-check --surface velvet 
 check "route-check: bad size" 2 "$GLARECAM" route-check --size 10x10 --alpha 30 --out "$WORK/rc"
 check "route-check: empty --out" 2 "$GLARECAM" route-check --alpha 30 --out ""
 check "route-check: --json and --markdown" 2 "$GLARECAM" route-check --json --markdown --alpha 30
+check "route-check: negative seed" 2 "$GLARECAM" route-check --seed -1 --alpha 30 --out "$WORK/rc"
+mkdir -p "$WORK/busy" && echo mine >"$WORK/busy/notes.txt"
+check "route-check: a directory of other files" 2 "$GLARECAM" route-check --alpha 30 --out "$WORK/busy"
+expect "the busy directory is named with what it holds" one_line_naming "notes.txt"
+check "route-check: --out a file" 2 "$GLARECAM" route-check --alpha 30 --out "$WORK/busy/notes.txt"
+check "route-check: nothing to compare" 1 "$GLARECAM" route-check --no-progress --alpha 30 \
+  --size 320x256 --fov 24 --fine-step 1 --out "$WORK/rc"
+expect "nothing compared is said" one_line_naming "nothing compared"
 # Agreement asked far tighter than the routes can: they "disagree", exit 1 with the verdict.
 check "route-check: an impossible agreement" 1 "$GLARECAM" route-check --no-progress --alpha 30 \
   --size 320x256 --fov 24 --out "$WORK/rc" --agreement 0.001

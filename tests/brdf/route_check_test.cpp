@@ -94,6 +94,58 @@ TEST(RouteCheck, SaysWhyWhereTheRoutesCannotBeCompared) {
   EXPECT_FALSE(row.lmax_cd_m2.z);
   EXPECT_NE(row.note.find("too coarse"), std::string::npos) << row.note;
   EXPECT_EQ(summary->compared, 0);
+  EXPECT_FALSE(row.compared());
+  EXPECT_FALSE(summary->agree);  // a check that compares nothing does not agree
+}
+
+// The glare-reduced lobe at 70° is 19° tall: a 20° view cuts it, and the camera's axes are then
+// the frame's, not the contour's. The row says so and compares Lmax alone.
+TEST(RouteCheck, AnEllipseCutByTheFrameIsNotCompared) {
+  glarecam::testing::TempDir dir;
+  RouteCheckOptions options = smallCheck(dir / "cut");
+  options.surface = "glare-reduced";
+  options.alphas_deg = {70};
+  options.horizontal_fov_deg = 20;
+  auto summary = runRouteCheck(options);
+  ASSERT_TRUE(summary) << summary.error().message;
+  const RouteCheckRow& row = summary->rows.at(0);
+  EXPECT_NE(row.note.find("the camera's frame cuts the limit ellipse"), std::string::npos)
+      << row.note;
+  EXPECT_FALSE(row.vertical_deg.z);
+  EXPECT_FALSE(row.horizontal_deg.z);
+  EXPECT_TRUE(row.lmax_cd_m2.z);
+  EXPECT_EQ(summary->compared, 1);
+}
+
+// The output directory: a route check's own is reused (its earlier outputs removed first, so two
+// runs never mix); one holding anything else, or a file, is refused before anything is written.
+TEST(RouteCheck, WritesOnlyIntoItsOwnDirectory) {
+  glarecam::testing::TempDir dir;
+  RouteCheckOptions options = smallCheck(dir / "own");
+  options.alphas_deg = {30};
+  options.goniophotometer.fine_step_deg = 1.0;  // refused at once: no picture, quick
+  ASSERT_TRUE(runRouteCheck(options));
+  ASSERT_TRUE(std::filesystem::exists(dir / "own" / "camera" / "stacks" / "alpha-30.00"));
+  options.alphas_deg = {40};
+  ASSERT_TRUE(runRouteCheck(options));
+  EXPECT_FALSE(std::filesystem::exists(dir / "own" / "camera" / "stacks" / "alpha-30.00"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "own" / "camera" / "stacks" / "alpha-40.00"));
+
+  std::filesystem::create_directories(dir / "busy");
+  std::ofstream(dir / "busy" / "notes.txt") << "mine";
+  options.output_directory = dir / "busy";
+  auto busy = runRouteCheck(options);
+  ASSERT_FALSE(busy);
+  EXPECT_EQ(busy.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(busy.error().message.find("notes.txt"), std::string::npos) << busy.error().message;
+  EXPECT_FALSE(std::filesystem::exists(dir / "busy" / "camera"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "busy" / "notes.txt"));
+
+  std::ofstream(dir / "a-file") << "x";
+  options.output_directory = dir / "a-file";
+  auto file = runRouteCheck(options);
+  ASSERT_FALSE(file);
+  EXPECT_EQ(file.error().code, ErrorCode::kBadInput);
 }
 
 // Šidák's threshold against the normal distribution's tabulated quantiles: one comparison is the
@@ -128,6 +180,9 @@ TEST(RouteCheck, RefusesBadOptions) {
   }
   options = smallCheck(dir / "bad");
   options.width = 8;
+  EXPECT_FALSE(options.validate());
+  options = smallCheck(dir / "bad");
+  options.horizontal_fov_deg = 2;
   EXPECT_FALSE(options.validate());
   options = smallCheck(dir / "bad");
   options.surface = "velvet";

@@ -31,8 +31,9 @@ TEST(SimCamera, ParsesItsParametersAndRefusesBadOnes) {
   EXPECT_DOUBLE_EQ(parseSimCameraId("", 20.0)->alpha_deg, 20.0);
   EXPECT_EQ(options->surface, "curves:standard");  // module=NAME is the module's curves
   EXPECT_EQ(parseSimCameraId("surface=glare-reduced", {})->surface, "glare-reduced");
-  for (const char* bad : {"size=320", "fov=wide", "colour=red", "seed", "seed=-1", "seed=1e300",
-                          "size=1e10x5", "size=0x0"}) {
+  for (const char* bad :
+       {"size=320", "fov=wide", "colour=red", "seed", "seed=-1", "seed=1e300", "size=1e10x5",
+        "size=0x0", "module=standard,surface=standard", "surface=standard,surface=glare-reduced"}) {
     auto parsed = parseSimCameraId(bad, {});
     ASSERT_FALSE(parsed) << bad;
     EXPECT_EQ(parsed.error().code, ErrorCode::kBadInput) << bad;

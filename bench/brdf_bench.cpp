@@ -44,12 +44,18 @@ pipeline::GlareAnalysis analyse(const calibration::MergedImage& image,
                                  .ladder = true});
 }
 
+// What `glarecam brdf` computes of a measurement before the analysis: the sampling check and
+// the picture under the sun.
+Result<brdf::BrdfLuminance> picture(const brdf::BrdfMeasurement& m) {
+  brdf::SamplingCheck sampling;
+  GLARECAM_ASSIGN(sampling, brdf::checkSampling(m));
+  return brdf::luminanceUnderSun(m, sampling);
+}
+
 void brdfAngle(benchmark::State& state) {
   const brdf::BrdfMeasurement& m = benchMeasurement();
   for (auto _ : state) {
-    const auto sampling = brdf::checkSampling(m);
-    const auto picture = sampling ? brdf::luminanceUnderSun(m, *sampling)
-                                  : Result<brdf::BrdfLuminance>(std::unexpected(sampling.error()));
+    const auto picture = bench::picture(m);
     if (!picture) {
       state.SkipWithError(picture.error().message.c_str());
       break;
@@ -62,9 +68,7 @@ void brdfAngle(benchmark::State& state) {
 
 void brdfAnalysisFloor(benchmark::State& state) {
   const brdf::BrdfMeasurement& m = benchMeasurement();
-  const auto sampling = brdf::checkSampling(m);
-  const auto picture = sampling ? brdf::luminanceUnderSun(m, *sampling)
-                                : Result<brdf::BrdfLuminance>(std::unexpected(sampling.error()));
+  const auto picture = bench::picture(m);
   if (!picture) {
     state.SkipWithError(picture.error().message.c_str());
     return;

@@ -41,8 +41,8 @@ struct PlaneGrid {
     return values[static_cast<std::size_t>(j) * nx + i];
   }
   // Catmull–Rom bicubic sampling (Keys 1981, a = −0.5), clamped at the edges and at 0.
-  double sample(const PlaneGrid& grid, const PlanePointDeg& p) const {
-    const double gx = (p.x_deg - grid.x0) / grid.step, gy = (p.y_deg - grid.y0) / grid.step;
+  double sample(const PlanePointDeg& p) const {
+    const double gx = (p.x_deg - x0) / step, gy = (p.y_deg - y0) / step;
     const double fx = std::floor(gx), fy = std::floor(gy);
     const double tx = gx - fx, ty = gy - fy;
     const auto weights = [](double t, double w[4]) {
@@ -161,7 +161,7 @@ FloatImage SurfaceScene::render(const calibration::CameraModel& camera, int widt
     convolved.copyTo(values);  // into grid.values
   }
   return renderRays(camera, width, height, [&](const Ray& ray) {
-    return lobe_.background_cd_m2 + lobe_.peak_scale * grid.sample(grid, plane_.toPlane(ray));
+    return lobe_.background_cd_m2 + lobe_.peak_scale * grid.sample(plane_.toPlane(ray));
   });
 }
 

@@ -171,23 +171,57 @@ double normalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes, 
   return scale * scale * (u * u + v * v);
 }
 
-PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m) {
+namespace {
+
+PolygonView emptyView(const ArrayPolygon& array, Vec3 observer_m) {
   PolygonView view;
   view.observer_m = observer_m;
   view.in_front = seesFront(array, observer_m);
   view.centre_direction = normalised(array.centroid_m - observer_m);
-  for (const Vec3& vertex : array.vertices_m) {
-    const Vec3 direction = normalised(vertex - observer_m);
+  return view;
+}
+
+// A ring's directions and arcs, from its vertices in the scene's frame.
+void addRing(PolygonView& view, const std::vector<Vec3>& vertices_m) {
+  const std::size_t first = view.directions.size();
+  for (const Vec3& vertex : vertices_m) {
+    const Vec3 direction = normalised(vertex - view.observer_m);
     view.directions.push_back(direction);
     view.angular_radius_rad =
         std::max(view.angular_radius_rad, angleBetweenRad(view.centre_direction, direction));
   }
-  for (std::size_t i = 0; i < view.directions.size(); ++i) {
-    const Vec3 a = view.directions[i], b = view.directions[(i + 1) % view.directions.size()];
+  for (std::size_t i = 0; i < vertices_m.size(); ++i) {
+    const Vec3 a = view.directions[first + i];
+    const Vec3 b = view.directions[first + (i + 1) % vertices_m.size()];
     view.arcs.push_back({a, normalised(b - dot(a, b) * a), angleBetweenRad(a, b)});
   }
-  // A cap wider than a hemisphere no longer holds the polygon's hull: no bound then.
+}
+
+// A cap wider than a hemisphere no longer holds the polygon's hull: no bound then.
+void boundRadius(PolygonView& view) {
   if (view.angular_radius_rad >= kPi / 2) view.angular_radius_rad = kPi;
+}
+
+}  // namespace
+
+PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m) {
+  PolygonView view = emptyView(array, observer_m);
+  view.region = arrayRegion(array);
+  addRing(view, array.vertices_m);
+  boundRadius(view);
+  return view;
+}
+
+PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m, PlaneRegion region) {
+  PolygonView view = emptyView(array, observer_m);
+  for (const PlaneRing& ring : region.rings) {
+    std::vector<Vec3> vertices_m;
+    vertices_m.reserve(ring.size());
+    for (const PlanePoint& point : ring) vertices_m.push_back(planeToScene(array, point));
+    addRing(view, vertices_m);
+  }
+  view.region = std::move(region);
+  boundRadius(view);
   return view;
 }
 
@@ -197,7 +231,8 @@ double minNormalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axe
   const double toward = dot(frame.c, array.normal);
   if (toward < 0) {
     const double t = dot(array.centroid_m - view.observer_m, array.normal) / toward;
-    if (t > 0 && containsPlanePoint(array, view.observer_m + t * frame.c)) return 0;
+    if (t > 0 && contains(view.region, sceneToPlane(array, view.observer_m + t * frame.c)))
+      return 0;
   }
   // Every arc that reaches the region is refined (the least sample of one arc need not lie on
   // the arc with the least q).

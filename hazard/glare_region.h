@@ -36,6 +36,7 @@
 
 #include <vector>
 
+#include "hazard/plane_region.h"
 #include "hazard/scene.h"
 #include "hazard/vec3.h"
 
@@ -60,13 +61,16 @@ RegionHalfAxes halfAxesRad(double vertical_deg, double horizontal_deg);
 // f(g) for a unit direction g.
 double normalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes, Vec3 direction);
 
-// The array seen from an observer: constant over the year, computed once per pair.
+// The array, or a region of its plane (what obstructions, shadows and a field of view leave of
+// it: plane_region.h), seen from an observer. The whole array's view is constant over the year
+// and computed once per pair.
 struct PolygonView {
   Vec3 observer_m;
   bool in_front = false;  // (O − P₀)·n > 1 cm (the planarity tolerance): else edge-on or behind
-  std::vector<Vec3> directions;  // unit, observer → each vertex
-  // Each edge as seen: the great-circle arc from directions[i] toward directions[i + 1], as its
-  // start, the unit tangent there and its angle.
+  PlaneRegion region;     // what is seen, in the array's plane frame (even–odd rings)
+  std::vector<Vec3> directions;  // unit, observer → each vertex of every ring
+  // Each edge of every ring as seen: the great-circle arc from one vertex's direction toward the
+  // next one's, as its start, the unit tangent there and its angle.
   struct Arc {
     Vec3 start, tangent;
     double angle_rad = 0;
@@ -76,6 +80,9 @@ struct PolygonView {
   double angular_radius_rad = 0;  // every vertex lies within this of centre_direction
 };
 PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m);
+// A region of the array's plane (within the array) seen from the observer; an empty region has
+// no arcs and never glares.
+PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m, PlaneRegion region);
 
 // min over the polygon of f; exact (see above) when it is ≤ 1, otherwise only some value > 1.
 double minNormalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes,

@@ -12,6 +12,8 @@
 #include "core/parallel.h"
 #include "core/time.h"
 #include "hazard/glare_region.h"
+#include "hazard/obstruction.h"
+#include "hazard/plane_region.h"
 #include "sun/solar_track.h"
 
 namespace glarecam::hazard {
@@ -45,11 +47,17 @@ struct ArrayStep {
   double alpha_deg = 0;
   RegionFrame frame;
   std::array<ModelRegion, kMaxModels> regions{};
+  // With obstructions: the part of the array the sun lights, found when a pair first needs it.
+  bool lit_resolved = false;
+  PlaneRegion lit_part;
 };
 
-// One observer and one array: what never changes over the year.
+// One observer and one array: what never changes over the year. `view` is the part of the
+// array the observer can see glare from: all of it, or what its field of view and the
+// obstructions leave.
 struct Pair {
   PolygonView view;
+  bool clipped = false;                         // view is less than the whole array
   std::array<double, kMaxModels> reject_cos{};  // c·d below this: the region cannot reach it
 };
 
@@ -143,11 +151,71 @@ UnknownSpreads unknownSpreads(const std::vector<GlareModel>& models, const Profi
   return unknown;
 }
 
-// Whether the region reaches the polygon, and q when it does.
-std::optional<double> regionMeets(const ArrayStep& step, const ModelRegion& region,
-                                  const ArrayPolygon& array, const Pair& pair) {
+// The part of the array a receptor's field of view holds: the horizontal directions within
+// field_of_view_deg of one of its azimuths. Each azimuth's wedge is the intersection (half-angle
+// ≤ 90°) or the union (> 90°) of two vertical half-spaces through the receptor, whose traces on
+// the array's plane are half-planes.
+PlaneRegion fieldOfViewRegion(const ArrayPolygon& array, const Observer& observer) {
+  const double extent = array.radius_m * 1.01 + 1e-3;
+  std::vector<PlaneRing> wedges;
+  for (const double azimuth_deg : observer.view_azimuths_deg) {
+    // Compass azimuth φ to the mathematical angle θ = 90° − φ in (east, north).
+    const double theta = radians(90 - azimuth_deg), half = radians(observer.field_of_view_deg);
+    std::array<PlaneRegion, 2> sides;
+    for (int k = 0; k < 2; ++k) {
+      const double normal_angle =
+          k == 0 ? theta + half - std::numbers::pi / 2 : theta - half + std::numbers::pi / 2;
+      const Vec3 m{std::cos(normal_angle), std::sin(normal_angle), 0};
+      sides[static_cast<std::size_t>(k)] =
+          halfPlane(dot(m, array.axis_u), dot(m, array.axis_w),
+                    dot(m, array.centroid_m - observer.position_m), extent);
+    }
+    const PlaneRegion wedge =
+        observer.field_of_view_deg <= 90 ? intersect(sides[0], sides[1]) : unite([&] {
+          std::vector<PlaneRing> rings = sides[0].rings;
+          rings.insert(rings.end(), sides[1].rings.begin(), sides[1].rings.end());
+          return rings;
+        }());
+    wedges.insert(wedges.end(), wedge.rings.begin(), wedge.rings.end());
+  }
+  return intersect(arrayRegion(array), unite(wedges));
+}
+
+// The part of the array an observer can see glare from (Pair::view).
+Pair makePair(const Scene& scene, const ArrayPolygon& array, const Observer& observer) {
+  Pair pair;
+  if (observer.view_azimuths_deg.empty() && scene.obstructions.empty()) {
+    pair.view = viewFrom(array, observer.position_m);
+    return pair;
+  }
+  PlaneRegion region = observer.view_azimuths_deg.empty() || observer.field_of_view_deg >= 180
+                           ? arrayRegion(array)
+                           : fieldOfViewRegion(array, observer);
+  if (seesFront(array, observer.position_m))
+    region = subtract(region, hiddenRings(array, scene.obstructions, observer.position_m));
+  pair.clipped = true;
+  pair.view = viewFrom(array, observer.position_m, std::move(region));
+  return pair;
+}
+
+// Whether the region reaches the part of the array the observer sees and the sun lights, and q
+// there when it does. The sun's shadows are found only for a region that reaches the part seen
+// (q over a part is never below q over the whole).
+std::optional<double> regionMeets(const Context& context, std::size_t a, ArrayStep& step,
+                                  const ModelRegion& region, const Pair& pair) {
+  const ArrayPolygon& array = context.scene.arrays[a];
   const double q = minNormalisedDistance(step.frame, region.axes, array, pair.view);
-  if (q <= 1) return q;
+  if (q > 1) return std::nullopt;
+  if (context.scene.obstructions.empty()) return q;
+  if (!step.lit_resolved) {
+    step.lit_resolved = true;
+    step.lit_part =
+        subtract(arrayRegion(array), sunShadowRings(array, context.scene.obstructions, step.sun));
+  }
+  const PolygonView lit_view =
+      viewFrom(array, pair.view.observer_m, intersect(pair.view.region, step.lit_part));
+  const double lit_q = minNormalisedDistance(step.frame, region.axes, array, lit_view);
+  if (lit_q <= 1) return lit_q;
   return std::nullopt;
 }
 
@@ -229,10 +297,10 @@ Result<DayOutput> computeDay(const Context& context, int index,
                 break;
               case RegionState::kBeyond:
                 beyond = beyond || !region.has_axes ||
-                         regionMeets(array_step, region, scene.arrays[a], pair).has_value();
+                         regionMeets(context, a, array_step, region, pair).has_value();
                 break;
               case RegionState::kGlare:
-                q = regionMeets(array_step, region, scene.arrays[a], pair);
+                q = regionMeets(context, a, array_step, region, pair);
                 break;
             }
           }
@@ -380,8 +448,7 @@ Result<HazardResult> computeHazard(const Scene& scene,
   for (const Observer& observer : scene.observers) {
     std::vector<Pair> row;
     for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
-      Pair pair;
-      pair.view = viewFrom(scene.arrays[a], observer.position_m);
+      Pair pair = makePair(scene, scene.arrays[a], observer);
       for (std::size_t m = 0; m < options.models.size(); ++m) {
         const double reach = radians(maxFullAxisDeg(options.models[m], *profiles[a]) / 2) +
                              pair.view.angular_radius_rad;

@@ -6,6 +6,7 @@
 
 #include "core/angles.h"
 #include "core/json.h"
+#include "hazard/obstruction.h"
 
 namespace glarecam::hazard {
 namespace {
@@ -193,51 +194,327 @@ Status readArrays(const JsonReader& document, const std::filesystem::path& base,
   return {};
 }
 
-Status readObservers(const JsonReader& document, Scene& scene) {
-  JsonReader list;
-  GLARECAM_ASSIGN(list, nonEmptyArray(document, "observers", "an observer"));
-  std::set<std::string> names;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const JsonReader json = list.element(i);
-    GLARECAM_CHECK(json.onlyKeys({"name", "position_m", "hours"}));
+// An optional [from, to] window of local standard hours.
+Status readHours(const JsonReader& json, double& from_h, double& to_h) {
+  std::optional<JsonReader> hours;
+  GLARECAM_ASSIGN(hours, json.optionalArray("hours"));
+  if (!hours) return {};
+  if (hours->size() != 2) return hours->fail("is not [from, to] in hours");
+  GLARECAM_ASSIGN(from_h, hours->element(0).numberIn(0, 24, " h"));
+  GLARECAM_ASSIGN(to_h, hours->element(1).numberIn(0, 24, " h"));
+  if (from_h >= to_h) return hours->fail("is an empty window (from must be before to)");
+  return {};
+}
+
+Result<double> readFieldOfView(const JsonReader& json, double default_deg) {
+  std::optional<double> field_of_view_deg;
+  GLARECAM_ASSIGN(field_of_view_deg, json.optionalNumberIn("field_of_view_deg", 0, 180, "°"));
+  if (field_of_view_deg && *field_of_view_deg <= 0)
+    return json.fail("field_of_view_deg", "is 0° (no direction would count)");
+  return field_of_view_deg.value_or(default_deg);
+}
+
+// A receptor's points are the scene's observers from `first` on.
+void addReceptor(Scene& scene, ReceptorKind kind, std::string name, std::size_t first) {
+  for (std::size_t i = first; i < scene.observers.size(); ++i)
+    scene.observers[i].receptor = scene.receptors.size();
+  scene.receptors.push_back({.kind = kind,
+                             .name = std::move(name),
+                             .first = first,
+                             .count = scene.observers.size() - first});
+}
+
+Status checkPointCount(const JsonReader& json, std::size_t count) {
+  if (count > kMaxReceptorPoints) {
+    return json.fail("spacing_m", "samples " + std::to_string(count) + " points, more than " +
+                                      std::to_string(kMaxReceptorPoints) + " (is it too fine?)");
+  }
+  return {};
+}
+
+Status readObservers(const JsonReader& document, Scene& scene, std::set<std::string>& names) {
+  std::optional<JsonReader> list;
+  if (scene.version == 1) {
+    JsonReader required;
+    GLARECAM_ASSIGN(required, nonEmptyArray(document, "observers", "an observer"));
+    list = required;
+  } else {
+    GLARECAM_ASSIGN(list, document.optionalArray("observers"));
+  }
+  if (!list) return {};
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const JsonReader json = list->element(i);
+    if (scene.version == 1)
+      GLARECAM_CHECK(json.onlyKeys({"name", "position_m", "hours"}));
+    else
+      GLARECAM_CHECK(json.onlyKeys(
+          {"name", "position_m", "hours", "facing_azimuth_deg", "field_of_view_deg"}));
     Observer observer;
     GLARECAM_ASSIGN(observer.name, readName(json, names, "observer"));
     JsonReader position;
     GLARECAM_ASSIGN(position, json.member("position_m"));
     GLARECAM_ASSIGN(observer.position_m, readPoint(position));
-    std::optional<JsonReader> hours;
-    GLARECAM_ASSIGN(hours, json.optionalArray("hours"));
-    if (hours) {
-      if (hours->size() != 2) return hours->fail("is not [from, to] in hours");
-      GLARECAM_ASSIGN(observer.from_h, hours->element(0).numberIn(0, 24, " h"));
-      GLARECAM_ASSIGN(observer.to_h, hours->element(1).numberIn(0, 24, " h"));
-      if (observer.from_h >= observer.to_h)
-        return hours->fail("is an empty window (from must be before to)");
+    GLARECAM_CHECK(readHours(json, observer.from_h, observer.to_h));
+    std::optional<double> facing_deg;
+    GLARECAM_ASSIGN(facing_deg, json.optionalNumberIn("facing_azimuth_deg", 0, 360, "°"));
+    if (facing_deg) {
+      observer.view_azimuths_deg = {*facing_deg};
+      GLARECAM_ASSIGN(observer.field_of_view_deg, readFieldOfView(json, kWindowFieldOfViewDeg));
+    } else if (json.has("field_of_view_deg")) {
+      return json.fail("field_of_view_deg", "needs facing_azimuth_deg (the direction it is about)");
     }
+    const std::size_t first = scene.observers.size();
+    std::string name = observer.name;
     scene.observers.push_back(std::move(observer));
+    addReceptor(scene, ReceptorKind::kObserver, std::move(name), first);
   }
   return {};
 }
 
-// An observer behind an array's plane, or on it, never sees its front: the array can add no
-// minute there. Inside the building, on the roof, or a facade listed the wrong way round.
+// The compass azimuth of a horizontal direction, [0, 360).
+double azimuthDeg(double east, double north) {
+  const double azimuth_deg = degrees(std::atan2(east, north));
+  return azimuth_deg < 0 ? azimuth_deg + 360 : azimuth_deg;
+}
+
+std::string metresText(double metres) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", std::round(metres * 100) / 100);
+  return text;
+}
+
+Status readRoutes(const JsonReader& document, Scene& scene, std::set<std::string>& names) {
+  std::optional<JsonReader> list;
+  GLARECAM_ASSIGN(list, document.optionalArray("routes"));
+  if (!list) return {};
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const JsonReader json = list->element(i);
+    GLARECAM_CHECK(json.onlyKeys(
+        {"name", "points_m", "spacing_m", "direction", "field_of_view_deg", "hours"}));
+    std::string name;
+    GLARECAM_ASSIGN(name, readName(json, names, "receptor"));
+    JsonReader points_json;
+    GLARECAM_ASSIGN(points_json, json.arrayMember("points_m"));
+    if (points_json.size() < 2)
+      return points_json.fail("has fewer than 2 points (a route is a line)");
+    std::vector<Vec3> points;
+    for (std::size_t p = 0; p < points_json.size(); ++p) {
+      Vec3 point;
+      GLARECAM_ASSIGN(point, readPoint(points_json.element(p)));
+      if (!points.empty() &&
+          std::hypot(point.x - points.back().x, point.y - points.back().y) < kSameVertexM) {
+        return points_json.element(p).fail(
+            "is straight above or below the point before it (a route runs along the ground)");
+      }
+      points.push_back(point);
+    }
+    std::optional<double> spacing_m;
+    GLARECAM_ASSIGN(spacing_m, json.optionalPositive("spacing_m"));
+    const double spacing = spacing_m.value_or(kDefaultRouteSpacingM);
+    std::optional<std::string> direction;
+    GLARECAM_ASSIGN(direction, json.optionalWord("direction", {"forward", "backward", "both"}));
+    const std::string travel = direction.value_or("both");
+    double field_of_view_deg = 0;
+    GLARECAM_ASSIGN(field_of_view_deg, readFieldOfView(json, kDriverFieldOfViewDeg));
+    double from_h = 0, to_h = 24;
+    GLARECAM_CHECK(readHours(json, from_h, to_h));
+
+    double length_m = 0;
+    for (std::size_t p = 1; p < points.size(); ++p) length_m += norm(points[p] - points[p - 1]);
+    const std::size_t count = static_cast<std::size_t>(std::floor(length_m / spacing)) + 1;
+    GLARECAM_CHECK(checkPointCount(json, count + 1));
+    // Samples at 0, spacing, 2·spacing, … along the line, and its end.
+    std::vector<double> stations;
+    for (std::size_t k = 0; k < count; ++k) stations.push_back(static_cast<double>(k) * spacing);
+    if (length_m - stations.back() > kSameVertexM) stations.push_back(length_m);
+    const std::size_t first = scene.observers.size();
+    std::size_t segment = 0;
+    double segment_start_m = 0;
+    for (const double station : stations) {
+      while (segment + 2 < points.size() &&
+             station >= segment_start_m + norm(points[segment + 1] - points[segment])) {
+        segment_start_m += norm(points[segment + 1] - points[segment]);
+        ++segment;
+      }
+      const Vec3 a = points[segment], b = points[segment + 1];
+      const double t = std::clamp((station - segment_start_m) / norm(b - a), 0.0, 1.0);
+      Observer observer;
+      observer.name = name + "@" + metresText(station) + "m";
+      observer.position_m = a + t * (b - a);
+      observer.from_h = from_h, observer.to_h = to_h;
+      const double forward_deg = azimuthDeg(b.x - a.x, b.y - a.y);
+      const double backward_deg = std::fmod(forward_deg + 180, 360);
+      if (travel != "backward") observer.view_azimuths_deg.push_back(forward_deg);
+      if (travel != "forward") observer.view_azimuths_deg.push_back(backward_deg);
+      observer.field_of_view_deg = field_of_view_deg;
+      scene.observers.push_back(std::move(observer));
+    }
+    addReceptor(scene, ReceptorKind::kRoute, std::move(name), first);
+  }
+  return {};
+}
+
+Status readAreas(const JsonReader& document, Scene& scene, std::set<std::string>& names) {
+  std::optional<JsonReader> list;
+  GLARECAM_ASSIGN(list, document.optionalArray("areas"));
+  if (!list) return {};
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const JsonReader json = list->element(i);
+    GLARECAM_CHECK(json.onlyKeys({"name", "vertices_m", "eye_height_m", "spacing_m", "hours"}));
+    std::string name;
+    GLARECAM_ASSIGN(name, readName(json, names, "receptor"));
+    JsonReader vertices_json;
+    GLARECAM_ASSIGN(vertices_json, json.arrayMember("vertices_m"));
+    std::vector<Vec3> vertices;
+    for (std::size_t v = 0; v < vertices_json.size(); ++v) {
+      Vec3 point;
+      GLARECAM_ASSIGN(point, readPoint(vertices_json.element(v)));
+      vertices.push_back(point);
+    }
+    ArrayPolygon polygon;
+    GLARECAM_ASSIGN(polygon,
+                    makeArrayPolygon(name, std::move(vertices), json.file(), vertices_json.path()));
+    std::optional<double> eye_height_m, spacing_m;
+    GLARECAM_ASSIGN(eye_height_m, json.optionalNumberIn("eye_height_m", 0, 1000, " m"));
+    GLARECAM_ASSIGN(spacing_m, json.optionalPositive("spacing_m"));
+    const double spacing = spacing_m.value_or(kDefaultAreaSpacingM);
+    double from_h = 0, to_h = 24;
+    GLARECAM_CHECK(readHours(json, from_h, to_h));
+    // Cell centres of a grid in the polygon's own plane, aligned with its bounding box there;
+    // a polygon smaller than one cell gets its centroid.
+    double u_min = 0, u_max = 0, w_min = 0, w_max = 0;
+    for (const auto& [u, w] : polygon.outline) {
+      u_min = std::min(u_min, u), u_max = std::max(u_max, u);
+      w_min = std::min(w_min, w), w_max = std::max(w_max, w);
+    }
+    const double columns = std::max(1.0, std::ceil((u_max - u_min) / spacing - 1e-9));
+    const double rows = std::max(1.0, std::ceil((w_max - w_min) / spacing - 1e-9));
+    GLARECAM_CHECK(checkPointCount(json, static_cast<std::size_t>(std::min(columns * rows, 1e12))));
+    const double u0 = (u_min + u_max) / 2 - (columns - 1) * spacing / 2;
+    const double w0 = (w_min + w_max) / 2 - (rows - 1) * spacing / 2;
+    const Vec3 eye{0, 0, eye_height_m.value_or(kDefaultEyeHeightM)};
+    const std::size_t first = scene.observers.size();
+    auto add = [&](Vec3 ground) {
+      Observer observer;
+      observer.name = name + "[" + std::to_string(scene.observers.size() - first) + "]";
+      observer.position_m = ground + eye;
+      observer.from_h = from_h, observer.to_h = to_h;
+      scene.observers.push_back(std::move(observer));
+    };
+    for (int r = 0; r < static_cast<int>(rows); ++r) {
+      for (int c = 0; c < static_cast<int>(columns); ++c) {
+        const Vec3 ground = polygon.centroid_m + (u0 + c * spacing) * polygon.axis_u +
+                            (w0 + r * spacing) * polygon.axis_w;
+        if (containsPlanePoint(polygon, ground)) add(ground);
+      }
+    }
+    if (scene.observers.size() == first) add(polygon.centroid_m);
+    addReceptor(scene, ReceptorKind::kArea, std::move(name), first);
+  }
+  return {};
+}
+
+Status readObstructions(const JsonReader& document, Scene& scene) {
+  std::optional<JsonReader> list;
+  GLARECAM_ASSIGN(list, document.optionalArray("obstructions"));
+  if (!list) return {};
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const JsonReader json = list->element(i);
+    GLARECAM_CHECK(json.onlyKeys({"name", "footprint_m", "base_m", "height_m", "vertices_m"}));
+    std::string name;
+    GLARECAM_ASSIGN(name, readName(json, names, "obstruction"));
+    const bool footprint = json.has("footprint_m"), planar = json.has("vertices_m");
+    if (footprint == planar)
+      return json.fail(
+          std::string(footprint ? "has both footprint_m and" : "has neither footprint_m nor") +
+          " vertices_m (give one: an extruded footprint or a polygon)");
+    Obstruction obstruction;
+    if (planar) {
+      if (json.has("base_m") || json.has("height_m"))
+        return json.fail("base_m and height_m belong to a footprint_m, not to vertices_m");
+      JsonReader vertices_json;
+      GLARECAM_ASSIGN(vertices_json, json.arrayMember("vertices_m"));
+      std::vector<Vec3> vertices;
+      for (std::size_t v = 0; v < vertices_json.size(); ++v) {
+        Vec3 point;
+        GLARECAM_ASSIGN(point, readPoint(vertices_json.element(v)));
+        vertices.push_back(point);
+      }
+      GLARECAM_ASSIGN(obstruction, makePlanarObstruction(std::move(name), std::move(vertices),
+                                                         json.file(), vertices_json.path()));
+    } else {
+      JsonReader footprint_json;
+      GLARECAM_ASSIGN(footprint_json, json.arrayMember("footprint_m"));
+      std::vector<std::array<double, 2>> footprint_m;
+      for (std::size_t v = 0; v < footprint_json.size(); ++v) {
+        const JsonReader point = footprint_json.element(v);
+        GLARECAM_CHECK(point.array());
+        if (point.size() != 2) return point.fail("is not [x, y] (2 numbers in metres)");
+        std::array<double, 2> xy{};
+        for (std::size_t k = 0; k < 2; ++k)
+          GLARECAM_ASSIGN(xy[k],
+                          point.element(k).numberIn(-kMaxCoordinateM, kMaxCoordinateM, " m"));
+        footprint_m.push_back(xy);
+      }
+      std::optional<double> base_m;
+      GLARECAM_ASSIGN(base_m,
+                      json.optionalNumberIn("base_m", -kMaxCoordinateM, kMaxCoordinateM, " m"));
+      double height_m = 0;
+      GLARECAM_ASSIGN(height_m, json.numberIn("height_m", -kMaxCoordinateM, kMaxCoordinateM, " m"));
+      GLARECAM_ASSIGN(obstruction,
+                      makeExtrudedObstruction(std::move(name), footprint_m, base_m.value_or(0),
+                                              height_m, json.file(), json.path()));
+    }
+    scene.obstructions.push_back(std::move(obstruction));
+  }
+  return {};
+}
+
+// A receptor behind an array's plane, or on it, never sees its front: the array can add no
+// minute there. Inside the building, on the roof, or a facade listed the wrong way round. A
+// route or area is warned about when none of its points sees it.
 void warnHiddenFronts(const std::string& file, Scene& scene) {
   for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
     const ArrayPolygon& array = scene.arrays[a];
-    for (std::size_t o = 0; o < scene.observers.size(); ++o) {
-      const Observer& observer = scene.observers[o];
-      if (seesFront(array, observer.position_m)) continue;
-      scene.warnings.push_back(
-          file + ": observer \"" + observer.name + "\" (observers[" + std::to_string(o) +
-          "]) is behind or on the plane of array \"" + array.name + "\" (arrays[" +
-          std::to_string(a) +
-          "]) and never sees its front, so that array adds no glare there (are the array's "
-          "vertices listed the wrong way round?)");
+    for (const Receptor& receptor : scene.receptors) {
+      bool seen = false;
+      for (std::size_t o = receptor.first; o < receptor.first + receptor.count; ++o)
+        seen = seen || seesFront(array, scene.observers[o].position_m);
+      if (seen) continue;
+      const std::string who = receptor.kind == ReceptorKind::kObserver
+                                  ? "observer \"" + receptor.name + "\" (observers[" +
+                                        std::to_string(receptor.first) + "]) is"
+                                  : std::string(receptorKindName(receptor.kind)) + " \"" +
+                                        receptor.name + "\" lies wholly";
+      scene.warnings.push_back(file + ": " + who + " behind or on the plane of array \"" +
+                               array.name + "\" (arrays[" + std::to_string(a) +
+                               "]) and never sees its front, so that array adds no glare there "
+                               "(are the array's vertices listed the wrong way round?)");
     }
   }
 }
 
 }  // namespace
+
+Scene::Scene() = default;
+Scene::~Scene() = default;
+Scene::Scene(const Scene&) = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(const Scene&) = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+const char* receptorKindName(ReceptorKind kind) {
+  switch (kind) {
+    case ReceptorKind::kObserver:
+      return "observer";
+    case ReceptorKind::kRoute:
+      return "route";
+    case ReceptorKind::kArea:
+      return "area";
+  }
+  return "receptor";
+}
 
 Result<ArrayPolygon> makeArrayPolygon(std::string name, std::vector<Vec3> vertices_m,
                                       const std::string& file, const std::string& field) {
@@ -336,30 +613,29 @@ double tiltDeg(const ArrayPolygon& array) {
   return degrees(angleBetweenRad(array.normal, Vec3{0, 0, 1}));
 }
 
-bool containsPlanePoint(const ArrayPolygon& array, Vec3 point_m) {
-  const Vec3 d = point_m - array.centroid_m;
-  const double u = dot(d, array.axis_u), w = dot(d, array.axis_w);
-  bool inside = false;
-  const auto& outline = array.outline;
-  for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
-    const double ui = outline[i][0], wi = outline[i][1];
-    const double uj = outline[j][0], wj = outline[j][1];
-    if ((wi > w) != (wj > w) && u < (uj - ui) * (w - wi) / (wj - wi) + ui) inside = !inside;
-  }
-  return inside;
-}
-
 Result<Scene> parseScene(const nlohmann::json& document, const std::string& file,
                          const std::filesystem::path& base) {
   const JsonReader fields(document, file);
-  GLARECAM_CHECK(fields.schema(kSceneSchema, "a hazard scene"));
+  std::string schema;
+  GLARECAM_ASSIGN(schema, fields.schema(kSceneSchema, "a hazard scene", {kSceneSchemaV1}));
+  Scene scene;
+  scene.version = schema == kSceneSchemaV1 ? 1 : 2;
   // Every object's keys are checked: a typo in an optional key ("profil", "hour") must never
   // silently change the result.
-  GLARECAM_CHECK(fields.onlyKeys({"schema", "site", "arrays", "observers"}));
-  Scene scene;
+  if (scene.version == 1)
+    GLARECAM_CHECK(fields.onlyKeys({"schema", "site", "arrays", "observers"}));
+  else
+    GLARECAM_CHECK(fields.onlyKeys(
+        {"schema", "site", "arrays", "observers", "routes", "areas", "obstructions"}));
   GLARECAM_CHECK(readSite(fields, scene.site));
   GLARECAM_CHECK(readArrays(fields, base, scene));
-  GLARECAM_CHECK(readObservers(fields, scene));
+  std::set<std::string> receptor_names;
+  GLARECAM_CHECK(readObservers(fields, scene, receptor_names));
+  GLARECAM_CHECK(readRoutes(fields, scene, receptor_names));
+  GLARECAM_CHECK(readAreas(fields, scene, receptor_names));
+  if (scene.observers.empty())
+    return fields.fail("has no observer, route or area (the scene needs a receptor)");
+  GLARECAM_CHECK(readObstructions(fields, scene));
   warnHiddenFronts(file, scene);
   return scene;
 }

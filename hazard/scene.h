@@ -1,6 +1,11 @@
-// The hazard scene, glarecam.hazard-scene/1 (docs/hazard.md, ../shared/docs/hazard.md): the
-// site, the arrays (planar polygons in local east–north–up metres, each optionally with its own
-// glare profile) and the observers (a point and the local hours in which glare counts there).
+// The hazard scene, glarecam.hazard-scene/1 and /2 (docs/hazard.md, ../shared/docs/hazard.md):
+// the site, the arrays (planar polygons in local east–north–up metres, each optionally with its
+// own glare profile) and the receptors: observers (a point, the local hours in which glare
+// counts there and, since /2, the direction a window looks out to), and since /2 routes (a
+// polyline sampled every spacing_m, glare counting within a field of view around the direction
+// of travel) and areas (a polygon sampled on a grid at eye height); since /2 also obstructions
+// (obstruction.h). Every receptor is expanded into points (Scene::observers), each knowing its
+// receptor, so that the calculation sees points only; a /1 scene reads as it always did.
 // Reading validates everything the calculation relies on and refuses the first problem with one
 // line naming the file and the field: a key the format does not define, at any level (with the
 // closest known one); an array with fewer than 3 vertices, a repeated vertex, all on one line,
@@ -23,7 +28,8 @@
 
 namespace glarecam::hazard {
 
-inline constexpr const char* kSceneSchema = "glarecam.hazard-scene/1";
+inline constexpr const char* kSceneSchema = "glarecam.hazard-scene/2";
+inline constexpr const char* kSceneSchemaV1 = "glarecam.hazard-scene/1";
 
 // hazard.md: "refuse one that is not planar within 1 cm".
 inline constexpr double kPlanarityToleranceM = 0.01;
@@ -32,6 +38,14 @@ inline constexpr double kMinArrayAreaM2 = 1e-4;
 // Coordinates are local: a scene larger than a thousand kilometres is a typing error (and would
 // overflow the geometry's squares long before doubles do).
 inline constexpr double kMaxCoordinateM = 1e6;
+// A route or area sampled more finely than this many points is a typing error in spacing_m.
+inline constexpr std::size_t kMaxReceptorPoints = 20000;
+// hazard.md: a driver's field of view, half-angle, and a window's (the half-space in front).
+inline constexpr double kDriverFieldOfViewDeg = 50, kWindowFieldOfViewDeg = 90;
+// An area's receptors stand this high above it unless eye_height_m says otherwise (a standing
+// adult's eye, DIN 33402), and are this far apart unless spacing_m does.
+inline constexpr double kDefaultEyeHeightM = 1.6, kDefaultAreaSpacingM = 2,
+                        kDefaultRouteSpacingM = 10;
 // Local standard time is UTC + utc_offset_h; the offsets in use run from −12 h to +14 h.
 inline constexpr double kMinUtcOffsetH = -12, kMaxUtcOffsetH = 14;
 
@@ -55,19 +69,48 @@ struct ArrayPolygon {
   std::vector<std::array<double, 2>> outline;  // vertices in (axis_u, axis_w) about centroid_m
 };
 
-struct Observer {
+enum class ReceptorKind { kObserver, kRoute, kArea };
+const char* receptorKindName(ReceptorKind kind);  // "observer", "route", "area"
+
+// One receptor of the scene as written: its points are Scene::observers[first, first + count).
+struct Receptor {
+  ReceptorKind kind = ReceptorKind::kObserver;
   std::string name;
+  std::size_t first = 0, count = 0;
+};
+
+// A point at which glare is counted: an observer, or one sample of a route or an area.
+struct Observer {
+  std::string name;  // "window-3"; a route's "road-b@30m", an area's "terrace[4]"
   Vec3 position_m;
   double from_h = 0, to_h = 24;  // local standard hours [from, to) in which glare counts
+  // The horizontal directions glare counts around (azimuths clockwise from north: a window's
+  // facing, a route's direction(s) of travel there), each within field_of_view_deg (half-angle,
+  // measured horizontally); empty: from every direction.
+  std::vector<double> view_azimuths_deg;
+  double field_of_view_deg = 180;
+  std::size_t receptor = 0;  // index into Scene::receptors
 };
+
+struct Obstruction;
 
 struct Scene {
   std::filesystem::path path;
   HazardSite site;
   std::vector<ArrayPolygon> arrays;
-  std::vector<Observer> observers;
+  std::vector<Observer> observers;  // every receptor's points, receptor by receptor
+  std::vector<Receptor> receptors;
+  std::vector<Obstruction> obstructions;
+  int version = 2;  // of the scene's schema
   // e.g. an array facing downward, an observer that never sees an array's front
   std::vector<std::string> warnings;
+
+  Scene();
+  ~Scene();
+  Scene(const Scene&);
+  Scene(Scene&&) noexcept;
+  Scene& operator=(const Scene&);
+  Scene& operator=(Scene&&) noexcept;
 };
 
 // Reads and validates a scene file. An array's relative `profile` path is taken relative to the

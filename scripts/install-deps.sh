@@ -39,6 +39,8 @@ DEMO_PACKAGES=(
   libspdlog-dev libfmt-dev libcli11-dev
   # vision and maths (libopencv-dev carries OpenCV's CMake package config)
   libopencv-dev libeigen3-dev libceres-dev
+  # the glare hazard's polygon clipping (obstructions, fields of view)
+  libpolyclipping-dev
   # pictures and data sheets
   libcairo2-dev fonts-dejavu-core
   # rig hardware: cameras, GPIO, I2C, systemd (the backends are built when their package is

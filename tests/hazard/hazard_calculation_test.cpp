@@ -7,6 +7,7 @@
 
 #include "core/angles.h"
 #include "hazard/glare_region.h"
+#include "hazard/obstruction.h"
 #include "sun/solar_position.h"
 #include "tests/hazard/hazard_fixtures.h"
 
@@ -475,6 +476,128 @@ TEST(HazardOptions, AYearFarFromNowIsComputedButWarnedAbout) {
             "--year 1800 is outside 1950\u20132200; computed for the year 1800 as given");
   options.year = 2201;
   EXPECT_TRUE(options.yearWarning());
+}
+
+}  // namespace
+}  // namespace glarecam::hazard
+
+namespace glarecam::hazard {
+namespace {
+
+// Compass azimuth of a direction's horizontal part.
+double azimuthOf(Vec3 d) { return std::fmod(degrees(std::atan2(d.x, d.y)) + 360, 360); }
+
+// A square screen of `side_m` at `distance_m` along `direction` from `from_m`, facing it; with
+// `half`, only the part on one side of the vertical line through its centre.
+Obstruction screenAcross(Vec3 from_m, Vec3 direction, double distance_m, double side_m,
+                         bool half = false) {
+  const Vec3 h = normalised(cross(direction, {0, 0, 1}));
+  const Vec3 up = cross(h, direction);
+  const Vec3 centre = from_m + distance_m * direction;
+  const double left = half ? 0 : -side_m / 2, right = side_m / 2;
+  return *makePlanarObstruction(
+      "screen",
+      {centre + left * h - side_m / 2 * up, centre + right * h - side_m / 2 * up,
+       centre + right * h + side_m / 2 * up, centre + left * h + side_m / 2 * up},
+      "scene.json", "obstructions[0]");
+}
+
+TEST(HazardReceptors, AFieldOfViewExcludesGlareFromBehind) {
+  // A driver at the origin sees the array's noon glare in direction c. Travelling toward it
+  // (50° each side) the glare counts; travelling away it never does; both ways, it does as if
+  // there were no field of view. A window facing it (90°) sees it too.
+  const HazardSite site = zurichSite();
+  const SolarNoon noon = solarNoon(site, kApril20);
+  const Vec3 sun = sunVector(noon.position);
+  const Vec3 c = normalised(sun - 2 * dot(kSouthTilted30, sun) * kSouthTilted30);
+  const double toward_deg = azimuthOf(c), away_deg = std::fmod(toward_deg + 180, 360);
+  const Scene scene = sceneOf(site, {arrayReflecting(sun, kSouthTilted30, 60, 8)},
+                              {{.name = "free", .position_m = {0, 0, 0}},
+                               {.name = "toward",
+                                .position_m = {0, 0, 0},
+                                .view_azimuths_deg = {toward_deg},
+                                .field_of_view_deg = 50},
+                               {.name = "away",
+                                .position_m = {0, 0, 0},
+                                .view_azimuths_deg = {away_deg},
+                                .field_of_view_deg = 50},
+                               {.name = "both",
+                                .position_m = {0, 0, 0},
+                                .view_azimuths_deg = {toward_deg, away_deg},
+                                .field_of_view_deg = 50},
+                               {.name = "window",
+                                .position_m = {0, 0, 0},
+                                .view_azimuths_deg = {toward_deg},
+                                .field_of_view_deg = 90}});
+  const ProfileTable profile = constantProfile(4, 6);
+  const Result<HazardResult> result =
+      computeHazard(scene, {&profile}, oneDay(kApril20, 60, {{ModelKind::kEllipse}}));
+  ASSERT_TRUE(result) << result.error().message;
+  const double free = result->observers[0].models[0].minutes_per_day[0];
+  EXPECT_GT(free, 10);
+  EXPECT_EQ(result->observers[1].models[0].minutes_per_day[0], free);
+  EXPECT_EQ(result->observers[2].models[0].minutes_per_day[0], 0);
+  EXPECT_EQ(result->observers[3].models[0].minutes_per_day[0], free);
+  EXPECT_EQ(result->observers[4].models[0].minutes_per_day[0], free);
+}
+
+TEST(HazardObstructions, AScreenThatCoversTheArrayRemovesAllGlare) {
+  const HazardSite site = zurichSite();
+  const SolarNoon noon = solarNoon(site, kApril20);
+  const Vec3 sun = sunVector(noon.position);
+  const ArrayPolygon array = arrayReflecting(sun, kSouthTilted30, 60, 8);
+  const Vec3 c = normalised(array.centroid_m);
+  const ProfileTable profile = constantProfile(4, 6);
+  const HazardOptions options = oneDay(kApril20, 60, {{ModelKind::kEllipse}, {ModelKind::kCircle}});
+  Scene scene = sceneOf(site, {array}, {{.name = "window", .position_m = {0, 0, 0}}});
+  const Result<HazardResult> open = computeHazard(scene, {&profile}, options);
+  ASSERT_TRUE(open) << open.error().message;
+  ASSERT_GT(open->observers[0].models[0].minutes_per_day[0], 10);
+  // Between the observer and the array: hides it (a 20 m screen at 30 m covers 37°, the array
+  // 8 m at 60 m only 7.6°).
+  scene.obstructions = {screenAcross({0, 0, 0}, c, 30, 20)};
+  Result<HazardResult> hidden = computeHazard(scene, {&profile}, options);
+  ASSERT_TRUE(hidden) << hidden.error().message;
+  for (const ModelSummary& model : hidden->observers[0].models)
+    EXPECT_EQ(model.minutes_per_year, 0);
+  // Between the sun and the array: shades it (30 m across, 10 m toward the noon sun, so the
+  // shadow covers the array for an hour around noon, longer than the glare lasts).
+  scene.obstructions = {screenAcross(array.centroid_m, sun, 10, 30)};
+  hidden = computeHazard(scene, {&profile}, options);
+  ASSERT_TRUE(hidden) << hidden.error().message;
+  for (const ModelSummary& model : hidden->observers[0].models)
+    EXPECT_EQ(model.minutes_per_year, 0);
+  // Behind the observer, or behind the array: nothing changes.
+  scene.obstructions = {screenAcross({0, 0, 0}, -1 * c, 5, 20),
+                        screenAcross(array.centroid_m, c, 5, 20)};
+  const Result<HazardResult> behind = computeHazard(scene, {&profile}, options);
+  ASSERT_TRUE(behind) << behind.error().message;
+  EXPECT_EQ(behind->observers[0].steps, open->observers[0].steps);
+}
+
+TEST(HazardObstructions, HalfCoveredHalvesAFarObserversGlare) {
+  // A 40 m array 1 km away (2.3°) and a tiny 0.05° region: the glare lasts while the mirror
+  // image crosses the array, which at noon it does horizontally. A screen halfway hiding the
+  // half of it on one side of the vertical through its centre halves that crossing: the pass
+  // takes (2.3° + 0.05°)/(0.25°/min) against (1.15° + 0.05°)/(0.25°/min), a ratio of 0.51; the
+  // 60-s steps give each duration to ±1 min, so 0.51 ± 0.15.
+  const HazardSite site = zurichSite();
+  const SolarNoon noon = solarNoon(site, kApril20);
+  const Vec3 sun = sunVector(noon.position);
+  const ArrayPolygon array = arrayReflecting(sun, kSouthTilted30, 1000, 40);
+  const Vec3 c = normalised(array.centroid_m);
+  const ProfileTable profile = constantProfile(0.05, 0.05);
+  const HazardOptions options = oneDay(kApril20, 60, {{ModelKind::kEllipse}});
+  Scene scene = sceneOf(site, {array}, {{.name = "window", .position_m = {0, 0, 0}}});
+  const Result<HazardResult> open = computeHazard(scene, {&profile}, options);
+  ASSERT_TRUE(open) << open.error().message;
+  scene.obstructions = {screenAcross({0, 0, 0}, c, 500, 60, /*half=*/true)};
+  const Result<HazardResult> half = computeHazard(scene, {&profile}, options);
+  ASSERT_TRUE(half) << half.error().message;
+  const double full_min = open->observers[0].models[0].minutes_per_day[0];
+  const double half_min = half->observers[0].models[0].minutes_per_day[0];
+  EXPECT_NEAR(full_min, 2.35 / 0.25, 1.5);
+  EXPECT_NEAR(half_min / full_min, 0.51, 0.15);
 }
 
 }  // namespace

@@ -69,6 +69,11 @@ Scene sceneOf(HazardSite site, std::vector<ArrayPolygon> arrays, std::vector<Obs
   scene.site = site;
   scene.arrays = std::move(arrays);
   scene.observers = std::move(observers);
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    scene.observers[o].receptor = o;
+    scene.receptors.push_back(
+        {.kind = ReceptorKind::kObserver, .name = scene.observers[o].name, .first = o, .count = 1});
+  }
   return scene;
 }
 

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "core/angles.h"
+#include "hazard/obstruction.h"
 #include "tests/hazard/hazard_fixtures.h"
 #include "tests/support/test_support.h"
 
@@ -221,7 +222,7 @@ struct BadScene {
 
 TEST(HazardScene, RefusesEachBadInputNamingTheField) {
   const std::vector<BadScene> cases{
-      {"wrong schema", [](json& s) { s["schema"] = "glarecam.hazard-scene/2"; }, "schema"},
+      {"wrong schema", [](json& s) { s["schema"] = "glarecam.hazard-scene/3"; }, "schema"},
       {"no schema", [](json& s) { s.erase("schema"); }, "schema is missing"},
       {"latitude", [](json& s) { s["site"]["latitude_deg"] = 91; },
        "site.latitude_deg 91° is outside [-90, 90]"},
@@ -328,6 +329,166 @@ TEST(HazardScene, ReadsAFileAndNamesAMissingOne) {
   const Result<Scene> broken = readScene(dir / "broken.json");
   ASSERT_FALSE(broken);
   EXPECT_NE(broken.error().message.find("broken.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace glarecam::hazard
+
+namespace glarecam::hazard {
+namespace {
+
+json sceneV2() {
+  json scene = goodScene();
+  scene["schema"] = "glarecam.hazard-scene/2";
+  scene["observers"][0]["facing_azimuth_deg"] = 180;
+  scene["routes"] = json::parse(R"([{"name": "road-b", "points_m": [[60, -50, 1.1], [60, 0, 1.1],
+      [90, 0, 1.1]], "spacing_m": 10, "direction": "forward", "field_of_view_deg": 50}])");
+  scene["areas"] = json::parse(R"([{"name": "garden", "vertices_m": [[5, 35, 0], [15, 35, 0],
+      [15, 45, 0], [5, 45, 0]], "eye_height_m": 1.6, "spacing_m": 2}])");
+  scene["obstructions"] = json::parse(R"([
+      {"name": "house-7", "footprint_m": [[-8, 15], [8, 15], [8, 20], [-8, 20]], "height_m": 9},
+      {"name": "wall", "vertices_m": [[20, 0, 0], [20, 10, 0], [20, 10, 3], [20, 0, 3]]}])");
+  return scene;
+}
+
+TEST(HazardSceneV2, ExpandsRoutesAndAreasIntoPoints) {
+  const Result<Scene> scene = parseScene(sceneV2(), "scene.json", "/base");
+  ASSERT_TRUE(scene) << scene.error().message;
+  EXPECT_EQ(scene->version, 2);
+  ASSERT_EQ(scene->receptors.size(), 4u);  // two observers, a route, an area
+  const Observer& window = scene->observers[0];
+  ASSERT_EQ(window.view_azimuths_deg.size(), 1u);
+  EXPECT_EQ(window.view_azimuths_deg[0], 180);
+  EXPECT_EQ(window.field_of_view_deg, kWindowFieldOfViewDeg);  // the default: the half-space
+  EXPECT_TRUE(scene->observers[1].view_azimuths_deg.empty());  // no facing: every direction
+
+  // The route: 80 m long, every 10 m with both ends: 9 points, names by their station; the
+  // first leg runs north (0°), the second east (90°), forward only.
+  const Receptor& road = scene->receptors[2];
+  EXPECT_EQ(road.kind, ReceptorKind::kRoute);
+  ASSERT_EQ(road.count, 9u);
+  const Observer& start = scene->observers[road.first];
+  EXPECT_EQ(start.name, "road-b@0m");
+  EXPECT_EQ(start.view_azimuths_deg, std::vector<double>{0});
+  EXPECT_EQ(start.field_of_view_deg, 50);
+  const Observer& corner = scene->observers[road.first + 5];
+  EXPECT_EQ(corner.name, "road-b@50m");
+  EXPECT_NEAR(corner.position_m.x, 60, 1e-12);
+  EXPECT_NEAR(corner.position_m.y, 0, 1e-12);
+  EXPECT_NEAR(corner.view_azimuths_deg[0], 90, 1e-9);  // at the corner: the leg leaving it
+  const Observer& end = scene->observers[road.first + 8];
+  EXPECT_EQ(end.name, "road-b@80m");
+  EXPECT_NEAR(end.position_m.x, 90, 1e-12);
+  EXPECT_EQ(end.receptor, 2u);
+
+  // The area: 10 × 10 m at 2 m: the centres of a 5 × 5 grid of cells, 1.6 m above the ground.
+  const Receptor& garden = scene->receptors[3];
+  EXPECT_EQ(garden.kind, ReceptorKind::kArea);
+  EXPECT_EQ(garden.count, 25u);
+  for (std::size_t o = garden.first; o < garden.first + garden.count; ++o) {
+    const Vec3 p = scene->observers[o].position_m;
+    EXPECT_NEAR(p.z, 1.6, 1e-12);
+    EXPECT_GE(p.x, 6 - 1e-9);
+    EXPECT_LE(p.x, 14 + 1e-9);
+  }
+  EXPECT_EQ(scene->observers[garden.first].name, "garden[0]");
+
+  ASSERT_EQ(scene->obstructions.size(), 2u);
+  EXPECT_EQ(scene->obstructions[0].faces.size(), 6u);  // bottom, top, four walls
+  EXPECT_EQ(scene->obstructions[1].faces.size(), 1u);
+}
+
+TEST(HazardSceneV2, BothDirectionsAndTheDefaults) {
+  json scene = sceneV2();
+  scene["routes"][0].erase("direction");
+  scene["routes"][0].erase("field_of_view_deg");
+  const Result<Scene> read = parseScene(scene, "scene.json", "/base");
+  ASSERT_TRUE(read) << read.error().message;
+  const Observer& start = read->observers[read->receptors[2].first];
+  EXPECT_EQ(start.view_azimuths_deg, (std::vector<double>{0, 180}));
+  EXPECT_EQ(start.field_of_view_deg, kDriverFieldOfViewDeg);
+}
+
+TEST(HazardSceneV2, AVersion1SceneReadsAsBeforeAndRefusesTheNewKeys) {
+  const Result<Scene> v1 = parseScene(goodScene(), "scene.json", "/base");
+  ASSERT_TRUE(v1);
+  EXPECT_EQ(v1->version, 1);
+  EXPECT_EQ(v1->receptors.size(), 2u);
+  json scene = goodScene();
+  scene["routes"] = json::array();
+  EXPECT_NE(errorOf(scene).find("unknown key \"routes\""), std::string::npos) << errorOf(scene);
+  scene = goodScene();
+  scene["observers"][0]["facing_azimuth_deg"] = 180;
+  EXPECT_NE(errorOf(scene).find("observers[0] has an unknown key \"facing_azimuth_deg\""),
+            std::string::npos)
+      << errorOf(scene);
+}
+
+TEST(HazardSceneV2, RefusesEachBadInputNamingTheField) {
+  const std::vector<BadScene> cases{
+      {"route typo", [](json& s) { s["routes"][0]["spacing"] = 5; },
+       "routes[0] has an unknown key \"spacing\" (did you mean \"spacing_m\"?)"},
+      {"one point",
+       [](json& s) {
+         s["routes"][0]["points_m"] = {{0, 0, 1}};
+       },
+       "routes[0].points_m has fewer than 2 points"},
+      {"vertical leg",
+       [](json& s) {
+         s["routes"][0]["points_m"][1] = {60, -50, 5};
+       },
+       "routes[0].points_m[1] is straight above or below"},
+      {"direction", [](json& s) { s["routes"][0]["direction"] = "north"; }, "routes[0].direction"},
+      {"field of view", [](json& s) { s["routes"][0]["field_of_view_deg"] = 0; },
+       "routes[0].field_of_view_deg is 0°"},
+      {"too fine", [](json& s) { s["routes"][0]["spacing_m"] = 0.001; },
+       "routes[0].spacing_m samples"},
+      {"fov without facing", [](json& s) { s["observers"][1]["field_of_view_deg"] = 30; },
+       "observers[1].field_of_view_deg needs facing_azimuth_deg"},
+      {"facing", [](json& s) { s["observers"][0]["facing_azimuth_deg"] = 400; },
+       "observers[0].facing_azimuth_deg"},
+      {"same name", [](json& s) { s["areas"][0]["name"] = "road-b"; },
+       "areas[0].name repeats the receptor name \"road-b\""},
+      {"area crossing",
+       [](json& s) {
+         s["areas"][0]["vertices_m"][1] = {5, 45, 0};
+       },
+       "areas[0].vertices_m"},
+      {"eye height", [](json& s) { s["areas"][0]["eye_height_m"] = -1; }, "areas[0].eye_height_m"},
+      {"both shapes",
+       [](json& s) {
+         s["obstructions"][0]["vertices_m"] = {{0, 0, 0}};
+       },
+       "obstructions[0] has both footprint_m and vertices_m"},
+      {"no shape", [](json& s) { s["obstructions"][1].erase("vertices_m"); },
+       "obstructions[1] has neither footprint_m nor vertices_m"},
+      {"no height", [](json& s) { s["obstructions"][0].erase("height_m"); },
+       "obstructions[0].height_m is missing"},
+      {"height below base", [](json& s) { s["obstructions"][0]["base_m"] = 10; },
+       "obstructions[0]: height_m 9"},
+      {"footprint point",
+       [](json& s) {
+         s["obstructions"][0]["footprint_m"][0] = {1, 2, 3};
+       },
+       "obstructions[0].footprint_m[0] is not [x, y]"},
+      {"height on a polygon", [](json& s) { s["obstructions"][1]["height_m"] = 3; },
+       "base_m and height_m belong to a footprint_m"},
+      {"no receptor",
+       [](json& s) {
+         s.erase("observers");
+         s.erase("routes");
+         s.erase("areas");
+       },
+       "has no observer, route or area"},
+  };
+  for (const BadScene& bad : cases) {
+    json scene = sceneV2();
+    bad.change(scene);
+    const std::string message = errorOf(scene);
+    EXPECT_NE(message.find(bad.expected), std::string::npos)
+        << bad.what << ": \"" << message << "\" lacks \"" << bad.expected << "\"";
+    EXPECT_TRUE(message.starts_with("scene.json: ")) << bad.what << ": " << message;
+  }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@ The seeds are committed; run this only to change them, from a finished `make dem
     python3 tests/fuzz/make_seeds.py demo-out
 """
 import json
+import math
 import os
 import shutil
 import struct
@@ -43,6 +44,25 @@ def put(target, name, data):
         f.write(data)
 
 
+def epw_seeds():
+    """The epw target's: the real-format fixture (a header as climate.onebuilding.org writes it and
+    two days of records: it ends early), and a whole year with only the fields glarecam reads
+    (blank fields are the format's own), which parses, so the round trip and the interpolation
+    are reached."""
+    fixture = os.path.join(HERE, "..", "data", "weather", "freiburg-two-days.epw")
+    put("epw", "freiburg-two-days.epw", open(fixture, "rb").read())
+    lines = ["LOCATION,Sparse.Year,-,-,glarecam seed,000000,48.0,7.8,1,250", "DESIGN CONDITIONS,0",
+             "TYPICAL/EXTREME PERIODS,0", "GROUND TEMPERATURES,0", "HOLIDAYS/DAYLIGHT SAVINGS,No,0,0,0",
+             "COMMENTS 1,", "COMMENTS 2,", "DATA PERIODS,1,1,Data,Monday, 1/ 1,12/31"]
+    days = [31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31]
+    for month, count in enumerate(days, start=1):
+        for day in range(1, count + 1):
+            for hour in range(1, 25):
+                lx = max(0, round(90000 * math.sin(math.pi * (hour - 6.5) / 13))) if 7 <= hour <= 19 else 0
+                lines.append(f"2001,{month},{day},{hour},0" + "," * 13 + str(lx) + "," * 12)
+    put("epw", "year-sparse.epw", "\n".join(lines) + "\n")
+
+
 def main():
     demo = sys.argv[1]
     shutil.rmtree(SEEDS, ignore_errors=True)
@@ -69,6 +89,7 @@ def main():
     for name, uri in [("sim", "sim:alpha=40,size=64x48,seed=2"), ("aravis", "aravis:192.168.1.20"),
                       ("inclinometer", "30,roll_deg=1,offset_x_deg=0.3,noise_g=0.0001,seed=2,fault=saturated")]:
         put("uri", name + ".txt", uri)
+    epw_seeds()
 
 
 if __name__ == "__main__":

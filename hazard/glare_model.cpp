@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "core/spelling.h"
 #include "pipeline/glare_profile.h"
@@ -12,6 +13,20 @@ namespace glarecam::hazard {
 namespace {
 
 constexpr std::string_view kConePrefix = "cone:";
+constexpr std::string_view kSigmaPrefix = "sigma:";
+constexpr double kDegPerMrad = 180.0 / std::numbers::pi / 1000.0;
+// A slope error above this makes a cone wider than a hemisphere: no module's.
+constexpr double kMaxSlopeErrorMrad = 1000;
+
+// A whole item parsed as a finite number, or nullopt.
+std::optional<double> numberOf(const std::string& text) {
+  double value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
+      !std::isfinite(value))
+    return std::nullopt;
+  return value;
+}
 
 std::string trim(std::string_view text) {
   const auto first = text.find_first_not_of(" \t");
@@ -22,6 +37,10 @@ std::string trim(std::string_view text) {
 
 }  // namespace
 
+double sghatBeamDeg(double slope_error_mrad) {
+  return 2 * (pipeline::kSunHalfAngleMrad + slope_error_mrad) * kDegPerMrad;
+}
+
 std::string GlareModel::name() const {
   switch (kind) {
     case ModelKind::kEllipse:
@@ -30,7 +49,10 @@ std::string GlareModel::name() const {
       return "circle";
     case ModelKind::kCone: {
       char text[40];
-      std::snprintf(text, sizeof text, "cone:%g", cone_deg);
+      if (slope_error_mrad)
+        std::snprintf(text, sizeof text, "sigma:%g", *slope_error_mrad);
+      else
+        std::snprintf(text, sizeof text, "cone:%g", cone_deg);
       return text;
     }
   }
@@ -51,23 +73,28 @@ Result<std::vector<GlareModel>> parseModels(std::string_view list, std::string_v
     } else if (item == "circle") {
       model.kind = ModelKind::kCircle;
     } else if (item.starts_with(kConePrefix)) {
-      const std::string number = item.substr(kConePrefix.size());
-      double degrees = 0;
-      const auto [end, error] =
-          std::from_chars(number.data(), number.data() + number.size(), degrees);
-      if (number.empty() || error != std::errc{} || end != number.data() + number.size() ||
-          !std::isfinite(degrees) || degrees <= 0 || degrees > pipeline::kMaxFullAxisDeg) {
+      const std::optional<double> degrees = numberOf(item.substr(kConePrefix.size()));
+      if (!degrees || *degrees <= 0 || *degrees > pipeline::kMaxFullAxisDeg) {
         return badInput(where + ": \"" + item +
                         "\" is not cone:DEG with a full angle DEG in (0, 180] degrees");
       }
       model.kind = ModelKind::kCone;
-      model.cone_deg = degrees;
+      model.cone_deg = *degrees;
+    } else if (item.starts_with(kSigmaPrefix)) {
+      const std::optional<double> sigma = numberOf(item.substr(kSigmaPrefix.size()));
+      if (!sigma || *sigma < 0 || *sigma > kMaxSlopeErrorMrad) {
+        return badInput(where + ": \"" + item +
+                        "\" is not sigma:MRAD with a slope error MRAD in [0, 1000] mrad");
+      }
+      model.kind = ModelKind::kCone;
+      model.cone_deg = sghatBeamDeg(*sigma);
+      model.slope_error_mrad = *sigma;
     } else {
       std::string message = where + ": unknown model \"" + item + "\"";
-      const std::vector<std::string> known{"ellipse", "circle", "cone:DEG"};
+      const std::vector<std::string> known{"ellipse", "circle", "cone:DEG", "sigma:MRAD"};
       const std::optional<std::string> suggestion = closestSpelling(item, known);
       message += suggestion ? " (did you mean " + *suggestion + "?)"
-                            : " (models: ellipse, circle, cone:DEG)";
+                            : " (models: ellipse, circle, cone:DEG, sigma:MRAD)";
       return badInput(message);
     }
     if (std::find(models.begin(), models.end(), model) != models.end())

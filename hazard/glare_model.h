@@ -17,11 +17,17 @@ namespace glarecam::hazard {
 
 enum class ModelKind { kEllipse, kCircle, kCone };
 
+// SGHAT's circular beam: full angle β = 2 (4.65 mrad + σ) for a slope error σ (Ho & Sims, SGHAT
+// Technical Reference Manual; pipeline::kSunHalfAngleMrad).
+double sghatBeamDeg(double slope_error_mrad);
+
 struct GlareModel {
   ModelKind kind = ModelKind::kEllipse;
   double cone_deg = 0;  // kCone's full angle
+  // A kCone given as `sigma:MRAD`: SGHAT's slope error, cone_deg = sghatBeamDeg(it).
+  std::optional<double> slope_error_mrad{};
 
-  std::string name() const;  // "ellipse", "circle", "cone:0.5"
+  std::string name() const;  // "ellipse", "circle", "cone:0.5", "sigma:2"
   friend bool operator==(const GlareModel&, const GlareModel&) = default;
 };
 
@@ -30,7 +36,9 @@ struct RegionAxesDeg {
   double vertical_deg = 0, horizontal_deg = 0;
 };
 
-// "ellipse,circle,cone:0.5": names separated by commas, each once. kBadInput naming the
+// "ellipse,circle,cone:0.5,sigma:2": names separated by commas, each once (sigma:MRAD is the
+// constant cone SGHAT-style tools draw for a slope error of MRAD, as commonly set: 2 mrad for a
+// smooth glass module, hazard.md). kBadInput naming the
 // option (`what`, e.g. "--models") and the unknown or repeated model.
 Result<std::vector<GlareModel>> parseModels(std::string_view list, std::string_view what);
 

@@ -106,8 +106,11 @@ ArcBest arcBest(const RegionFrame& frame, const RegionHalfAxes& axes,
 }
 
 // q on the arc of `best` by golden-section search within a quarter of the smaller half-axis of
-// its best point (the region's scale: f has one minimum there).
-double refine(const RegionFrame& frame, const RegionHalfAxes& axes, const ArcBest& best) {
+// its best point (the region's scale: f has one minimum there), and where on the arc it is.
+struct ArcMinimum {
+  double f = kOutside, phi = 0;
+};
+ArcMinimum refine(const RegionFrame& frame, const RegionHalfAxes& axes, const ArcBest& best) {
   const double smaller = std::min(axes.vertical_rad, axes.horizontal_rad);
   auto f = [&](double phi) { return normalisedDistance(frame, axes, along(best.a, best.w, phi)); };
   double left = std::max(best.lo, best.phi - smaller / 4);
@@ -130,7 +133,10 @@ double refine(const RegionFrame& frame, const RegionHalfAxes& axes, const ArcBes
       f2 = f(x2);
     }
   }
-  return std::min({best.g * best.g, f1, f2});
+  ArcMinimum minimum{best.g * best.g, best.phi};
+  if (f1 < minimum.f) minimum = {f1, x1};
+  if (f2 < minimum.f) minimum = {f2, x2};
+  return minimum;
 }
 
 }  // namespace
@@ -226,23 +232,33 @@ PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m, PlaneRegion reg
 }
 
 double minNormalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes,
-                             const ArrayPolygon& array, const PolygonView& view) {
+                             const ArrayPolygon& array, const PolygonView& view,
+                             Vec3* glare_direction) {
   // The ray from O along c meets the plane at t > 0 (O in front, c·n = −n·s < 0).
   const double toward = dot(frame.c, array.normal);
   if (toward < 0) {
     const double t = dot(array.centroid_m - view.observer_m, array.normal) / toward;
-    if (t > 0 && contains(view.region, sceneToPlane(array, view.observer_m + t * frame.c)))
+    if (t > 0 && contains(view.region, sceneToPlane(array, view.observer_m + t * frame.c))) {
+      if (glare_direction) *glare_direction = frame.c;
       return 0;
+    }
   }
   // Every arc that reaches the region is refined (the least sample of one arc need not lie on
   // the arc with the least q).
   const bool circle = axes.vertical_rad == axes.horizontal_rad;
-  double best = kOutside;
+  ArcMinimum best;
+  Vec3 where;
   for (const PolygonView::Arc& edge : view.arcs) {
     const ArcBest arc = arcBest(frame, axes, edge);
-    best = std::min(best, arc.g > 1 || circle ? arc.g * arc.g : refine(frame, axes, arc));
+    const ArcMinimum minimum =
+        arc.g > 1 || circle ? ArcMinimum{arc.g * arc.g, arc.phi} : refine(frame, axes, arc);
+    if (minimum.f < best.f) {
+      best = minimum;
+      where = along(arc.a, arc.w, minimum.phi);
+    }
   }
-  return best;
+  if (glare_direction) *glare_direction = where;
+  return best.f;
 }
 
 }  // namespace glarecam::hazard

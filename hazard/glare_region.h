@@ -85,7 +85,10 @@ PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m);
 PolygonView viewFrom(const ArrayPolygon& array, Vec3 observer_m, PlaneRegion region);
 
 // min over the polygon of f; exact (see above) when it is ≤ 1, otherwise only some value > 1.
+// `glare_direction`, when given, receives the unit direction from the observer to where the
+// minimum lies (c itself when the ray along c meets the polygon): where the glare is seen.
 double minNormalisedDistance(const RegionFrame& frame, const RegionHalfAxes& axes,
-                             const ArrayPolygon& array, const PolygonView& view);
+                             const ArrayPolygon& array, const PolygonView& view,
+                             Vec3* glare_direction = nullptr);
 
 }  // namespace glarecam::hazard

@@ -34,6 +34,9 @@ struct ModelRegion {
   RegionState state = RegionState::kNone;
   bool has_axes = false;
   RegionHalfAxes axes;
+  double solid_angle_sr = 0;  // of the region (its equal-solid-angle cone's)
+  // The luminance seen at the lobe's peak and at the region's edge: L = peak (edge / peak)^q.
+  std::optional<double> peak_cd_m2, edge_cd_m2;
 };
 
 // One array in one step: shared by every observer. What the cheap rejection needs (lit, c) is
@@ -41,6 +44,7 @@ struct ModelRegion {
 struct ArrayStep {
   bool lit = false;  // the sun in front of it
   Vec3 sun;
+  double source_lx = 0;  // E(t), when the sun is not the reference
   double cos_alpha = 0;
   Vec3 c;  // the sun's mirror image
   bool resolved = false;
@@ -58,6 +62,7 @@ struct ArrayStep {
 struct Pair {
   PolygonView view;
   bool clipped = false;                         // view is less than the whole array
+  double solid_angle_sr = 0;                    // of the part seen, from the observer
   std::array<double, kMaxModels> reject_cos{};  // c·d below this: the region cannot reach it
 };
 
@@ -67,6 +72,8 @@ using UnknownSpreads = std::array<bool, kMaxModels>;
 
 struct Tally {
   int glare_steps = 0;
+  std::array<int, 3> ocular_steps{};  // per OcularClass: the worst of the step's arrays
+  int unclassified_steps = 0;
   std::optional<std::pair<int, int>> first_last;
   std::int64_t beyond = 0, unknown = 0;
 };
@@ -84,6 +91,7 @@ struct Context {
   std::vector<UnknownSpreads> unknown_spreads;  // [array]
   int steps_per_day = 0;
   int first_day = 0;
+  std::vector<double> reference_lx{};  // per array: E_ref of its profile (brightness only)
   std::chrono::sys_time<std::chrono::microseconds> year_start_utc;
 };
 
@@ -113,6 +121,72 @@ ModelRegion modelRegion(const GlareModel& model, const SpreadAt& spread,
   return region;
 }
 
+// The region's solid angle and the luminances seen at its peak and edge, under the reference sun.
+void addReferenceLuminances(ModelRegion& region, const ProfileTable& profile, double alpha_deg) {
+  if (!region.has_axes) return;
+  region.solid_angle_sr = pipeline::circularBeamSpread(degrees(2 * region.axes.vertical_rad),
+                                                       degrees(2 * region.axes.horizontal_rad))
+                              .solid_angle_sr;
+  const LuminancesAt luminances = profile.luminancesAt(alpha_deg);
+  region.peak_cd_m2 = luminances.lmax_cd_m2;
+  region.edge_cd_m2 = luminances.limit_cd_m2;
+}
+
+// The model's region at α under a source of illuminance E (sun_brightness.h): the referred
+// contour at L_limit(α) · E_ref / E; a constant cone wherever that contour exists.
+ModelRegion brightRegion(const GlareModel& model, const ProfileTable& profile, double alpha_deg,
+                         double source_lx, double reference_lx) {
+  ModelRegion region;
+  if (alpha_deg > pipeline::kProfileAlphaMaxDeg) {
+    region = modelRegion(model, profile.at(alpha_deg), profile);  // beyond the method
+    return region;
+  }
+  if (!(source_lx > 0)) return region;  // no direct sun: no glare
+  const LuminancesAt luminances = profile.luminancesAt(alpha_deg);
+  if (!luminances.limit_cd_m2 || !luminances.lmax_cd_m2) {
+    region.state = RegionState::kUnknown;
+    return region;
+  }
+  const double ratio = source_lx / reference_lx;
+  const LadderRegion ladder = profile.regionAtLevel(alpha_deg, *luminances.limit_cd_m2 / ratio);
+  switch (ladder.status) {
+    case LadderRegion::Status::kNoGlare:
+      return region;
+    case LadderRegion::Status::kUnknown:
+      region.state = RegionState::kUnknown;
+      return region;
+    case LadderRegion::Status::kRegion:
+      break;
+  }
+  std::optional<RegionAxesDeg> axes;
+  switch (model.kind) {
+    case ModelKind::kEllipse:
+      axes = RegionAxesDeg{ladder.vertical_deg, ladder.horizontal_deg};
+      break;
+    case ModelKind::kCircle: {
+      const double beta_deg = degrees(
+          pipeline::circularBeamSpread(ladder.vertical_deg, ladder.horizontal_deg).beta_mrad *
+          1e-3);
+      axes = RegionAxesDeg{beta_deg, beta_deg};
+      break;
+    }
+    case ModelKind::kCone:
+      axes = regionAxes(model, SpreadAt{});
+      break;
+  }
+  // A region shrunk to nothing at the peak is no region.
+  if (!axes || !(axes->vertical_deg >= kMinAxisDeg) || !(axes->horizontal_deg >= kMinAxisDeg))
+    return region;
+  region.state = RegionState::kGlare;
+  region.has_axes = true;
+  region.axes = halfAxesRad(axes->vertical_deg, axes->horizontal_deg);
+  region.solid_angle_sr =
+      pipeline::circularBeamSpread(axes->vertical_deg, axes->horizontal_deg).solid_angle_sr;
+  region.peak_cd_m2 = *luminances.lmax_cd_m2 * ratio;
+  region.edge_cd_m2 = *luminances.limit_cd_m2;
+  return region;
+}
+
 ArrayStep arrayStep(const Context& context, std::size_t a, Vec3 sun) {
   ArrayStep step;
   const ArrayPolygon& array = context.scene.arrays[a];
@@ -131,10 +205,18 @@ void resolve(const Context& context, std::size_t a, ArrayStep& step) {
   step.alpha_deg = degrees(std::acos(std::min(step.cos_alpha, 1.0)));
   step.frame = regionFrame(array.normal, step.sun, array.up_slope);
   const ProfileTable& profile = *context.profiles[a];
-  const SpreadAt spread = profile.at(step.alpha_deg);
   const std::size_t models = std::min(context.options.models.size(), kMaxModels);
-  for (std::size_t m = 0; m < models; ++m)
+  if (context.options.sun.kind != SunKind::kReference) {
+    for (std::size_t m = 0; m < models; ++m)
+      step.regions[m] = brightRegion(context.options.models[m], profile, step.alpha_deg,
+                                     step.source_lx, context.reference_lx[a]);
+    return;
+  }
+  const SpreadAt spread = profile.at(step.alpha_deg);
+  for (std::size_t m = 0; m < models; ++m) {
     step.regions[m] = modelRegion(context.options.models[m], spread, profile);
+    addReferenceLuminances(step.regions[m], profile, step.alpha_deg);
+  }
 }
 
 // Per model: some glaring α with no spread for it. A spread is the same over [k, k + 1) (it
@@ -181,11 +263,21 @@ PlaneRegion fieldOfViewRegion(const ArrayPolygon& array, const Observer& observe
   return intersect(arrayRegion(array), unite(wedges));
 }
 
+// The solid angle of `area_m2` of the array's plane about its centroid seen from a point: A cos θ
+// / d² (the array small against its distance; ocular hazard only).
+double solidAngleSeenSr(const ArrayPolygon& array, Vec3 point_m, double area_m2) {
+  const Vec3 d = point_m - array.centroid_m;
+  const double distance_m = norm(d);
+  if (!(distance_m > 0)) return 0;
+  return area_m2 * std::max(0.0, dot(array.normal, d)) / (distance_m * distance_m * distance_m);
+}
+
 // The part of the array an observer can see glare from (Pair::view).
 Pair makePair(const Scene& scene, const ArrayPolygon& array, const Observer& observer) {
   Pair pair;
   if (observer.view_azimuths_deg.empty() && scene.obstructions.empty()) {
     pair.view = viewFrom(array, observer.position_m);
+    pair.solid_angle_sr = solidAngleSeenSr(array, observer.position_m, array.area_m2);
     return pair;
   }
   PlaneRegion region = observer.view_azimuths_deg.empty() || observer.field_of_view_deg >= 180
@@ -195,6 +287,7 @@ Pair makePair(const Scene& scene, const ArrayPolygon& array, const Observer& obs
     region = subtract(region, hiddenRings(array, scene.obstructions, observer.position_m));
   pair.clipped = true;
   pair.view = viewFrom(array, observer.position_m, std::move(region));
+  pair.solid_angle_sr = solidAngleSeenSr(array, observer.position_m, areaM2(pair.view.region));
   return pair;
 }
 
@@ -202,9 +295,11 @@ Pair makePair(const Scene& scene, const ArrayPolygon& array, const Observer& obs
 // there when it does. The sun's shadows are found only for a region that reaches the part seen
 // (q over a part is never below q over the whole).
 std::optional<double> regionMeets(const Context& context, std::size_t a, ArrayStep& step,
-                                  const ModelRegion& region, const Pair& pair) {
+                                  const ModelRegion& region, const Pair& pair,
+                                  Vec3* glare_direction = nullptr) {
   const ArrayPolygon& array = context.scene.arrays[a];
-  const double q = minNormalisedDistance(step.frame, region.axes, array, pair.view);
+  const double q =
+      minNormalisedDistance(step.frame, region.axes, array, pair.view, glare_direction);
   if (q > 1) return std::nullopt;
   if (context.scene.obstructions.empty()) return q;
   if (!step.lit_resolved) {
@@ -214,9 +309,54 @@ std::optional<double> regionMeets(const Context& context, std::size_t a, ArraySt
   }
   const PolygonView lit_view =
       viewFrom(array, pair.view.observer_m, intersect(pair.view.region, step.lit_part));
-  const double lit_q = minNormalisedDistance(step.frame, region.axes, array, lit_view);
+  const double lit_q =
+      minNormalisedDistance(step.frame, region.axes, array, lit_view, glare_direction);
   if (lit_q <= 1) return lit_q;
   return std::nullopt;
+}
+
+double compassAzimuthDeg(Vec3 d) {
+  const double azimuth_deg = degrees(std::atan2(d.x, d.y));
+  return azimuth_deg < 0 ? azimuth_deg + 360 : azimuth_deg;
+}
+double elevationDeg(Vec3 d) { return degrees(std::asin(std::clamp(d.z, -1.0, 1.0))); }
+
+// What a glaring step looks like from the receptor (GlareSighting): where, how bright, and its
+// ocular hazard. The spot the eye sees is the region where it is smaller than the part of the
+// array seen (its mean luminance, the logarithmic mean of the peak and the edge for the
+// log-quadratic lobe of hazard.md step 7, over its solid angle), else the array (the luminance
+// at the point seen, over the array's solid angle).
+GlareSighting sighting(const Context& context, std::size_t a, const ArrayStep& step,
+                       const ModelRegion& region, const Pair& pair, double q, Vec3 direction,
+                       std::int64_t step_index) {
+  const ArrayPolygon& array = context.scene.arrays[a];
+  GlareSighting seen;
+  seen.step = step_index;
+  seen.alpha_deg = step.alpha_deg;
+  seen.glare_azimuth_deg = compassAzimuthDeg(direction);
+  seen.glare_elevation_deg = elevationDeg(direction);
+  const double toward = dot(direction, array.normal);
+  seen.distance_m = toward < 0 ? dot(array.centroid_m - pair.view.observer_m, array.normal) / toward
+                               : norm(array.centroid_m - pair.view.observer_m);
+  seen.sun_azimuth_deg = compassAzimuthDeg(step.sun);
+  seen.sun_elevation_deg = elevationDeg(step.sun);
+  if (context.options.sun.kind != SunKind::kReference) seen.source_illuminance_lx = step.source_lx;
+  if (!region.peak_cd_m2 || !region.edge_cd_m2 || !(*region.peak_cd_m2 > 0) ||
+      !(*region.edge_cd_m2 > 0))
+    return seen;
+  const double peak = *region.peak_cd_m2, edge = *region.edge_cd_m2;
+  seen.luminance_cd_m2 = peak * std::pow(edge / peak, q);
+  double spot_cd_m2 = *seen.luminance_cd_m2, spot_sr = pair.solid_angle_sr;
+  if (region.solid_angle_sr > 0 && region.solid_angle_sr <= pair.solid_angle_sr) {
+    spot_sr = region.solid_angle_sr;
+    spot_cd_m2 = peak > edge * (1 + 1e-9) ? (peak - edge) / std::log(peak / edge) : peak;
+  }
+  if (spot_sr > 0) {
+    const Result<OcularExposure> exposure =
+        ocularExposure(spot_cd_m2, std::min(spot_sr, 2 * std::numbers::pi), context.options.eye);
+    if (exposure) seen.ocular = *exposure;
+  }
+  return seen;
 }
 
 // Day `index` of the run, day first_day + index of the year.
@@ -264,8 +404,15 @@ Result<DayOutput> computeDay(const Context& context, int index,
       }
       continue;
     }
-    for (std::size_t a = 0; a < scene.arrays.size(); ++a)
+    double source_lx = 0;
+    if (options.sun.kind != SunKind::kReference) {
+      source_lx = sourceIlluminanceLx(options.sun, first_utc + k * step, elevationDeg(sun), day + 1,
+                                      scene.site);
+    }
+    for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
       array_steps[a] = arrayStep(context, a, sun);
+      array_steps[a].source_lx = source_lx;
+    }
     const double local_h = (k + 0.5) * options.step_s / 3600.0;
     for (std::size_t o = 0; o < scene.observers.size(); ++o) {
       const Observer& observer = scene.observers[o];
@@ -277,10 +424,13 @@ Result<DayOutput> computeDay(const Context& context, int index,
       std::uint8_t mask = 0;
       for (std::size_t m = 0; m < models; ++m) {
         bool glare = false, beyond = false, unknown = false;
+        std::optional<OcularClass> step_class;
+        bool unclassified = false;
         for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
           ArrayStep& array_step = array_steps[a];
           const Pair& pair = context.pairs[o][a];
           std::optional<double> q;
+          Vec3 direction;
           // The cheap rejection first: c too far from the array for any region of the profile.
           const bool reachable =
               array_step.lit && pair.view.in_front &&
@@ -300,7 +450,7 @@ Result<DayOutput> computeDay(const Context& context, int index,
                          regionMeets(context, a, array_step, region, pair).has_value();
                 break;
               case RegionState::kGlare:
-                q = regionMeets(context, a, array_step, region, pair);
+                q = regionMeets(context, a, array_step, region, pair, &direction);
                 break;
             }
           }
@@ -309,12 +459,15 @@ Result<DayOutput> computeDay(const Context& context, int index,
             continue;
           }
           glare = true;
-          std::optional<double> luminance;
-          const LuminancesAt luminances = context.profiles[a]->luminancesAt(array_step.alpha_deg);
-          if (luminances.lmax_cd_m2 && luminances.limit_cd_m2) {
-            luminance = *luminances.lmax_cd_m2 *
-                        std::pow(*luminances.limit_cd_m2 / *luminances.lmax_cd_m2, *q);
+          const GlareSighting seen = sighting(context, a, array_step, array_step.regions[m], pair,
+                                              *q, direction, day_first_step + k);
+          if (seen.ocular) {
+            if (!step_class || seen.ocular->ocular_class > *step_class)
+              step_class = seen.ocular->ocular_class;
+          } else {
+            unclassified = true;
           }
+          const std::optional<double> luminance = seen.luminance_cd_m2;
           std::optional<GlareEvent>& event = open[o][m][a];
           if (!event) {
             event = GlareEvent{.observer = o,
@@ -324,19 +477,30 @@ Result<DayOutput> computeDay(const Context& context, int index,
                                .end_step = day_first_step + k + 1,
                                .alpha_min_deg = array_step.alpha_deg,
                                .alpha_max_deg = array_step.alpha_deg,
-                               .peak_luminance_cd_m2 = luminance};
+                               .peak_luminance_cd_m2 = luminance,
+                               .peak = seen,
+                               .worst_class = std::nullopt};
           } else {
             event->end_step = day_first_step + k + 1;
             event->alpha_min_deg = std::min(event->alpha_min_deg, array_step.alpha_deg);
             event->alpha_max_deg = std::max(event->alpha_max_deg, array_step.alpha_deg);
             if (luminance &&
-                (!event->peak_luminance_cd_m2 || *luminance > *event->peak_luminance_cd_m2))
+                (!event->peak_luminance_cd_m2 || *luminance > *event->peak_luminance_cd_m2)) {
               event->peak_luminance_cd_m2 = luminance;
+              event->peak = seen;
+            }
           }
+          if (seen.ocular &&
+              (!event->worst_class || seen.ocular->ocular_class > *event->worst_class))
+            event->worst_class = seen.ocular->ocular_class;
         }
         Tally& tally = output.tallies[o][m];
         if (glare) {
           mask = static_cast<std::uint8_t>(mask | (1u << m));
+          if (step_class)
+            ++tally.ocular_steps[static_cast<std::size_t>(*step_class)];
+          else if (unclassified)
+            ++tally.unclassified_steps;
           ++tally.glare_steps;
           if (!tally.first_last) tally.first_last = std::pair{k, k};
           tally.first_last->second = k;
@@ -369,8 +533,12 @@ std::vector<GlareEvent> joinEvents(std::vector<GlareEvent> events) {
         last.alpha_max_deg = std::max(last.alpha_max_deg, event.alpha_max_deg);
         if (event.peak_luminance_cd_m2 &&
             (!last.peak_luminance_cd_m2 ||
-             *event.peak_luminance_cd_m2 > *last.peak_luminance_cd_m2))
+             *event.peak_luminance_cd_m2 > *last.peak_luminance_cd_m2)) {
           last.peak_luminance_cd_m2 = event.peak_luminance_cd_m2;
+          last.peak = event.peak;
+        }
+        if (event.worst_class && (!last.worst_class || *event.worst_class > *last.worst_class))
+          last.worst_class = event.worst_class;
         continue;
       }
     }
@@ -445,13 +613,50 @@ Result<HazardResult> computeHazard(const Scene& scene,
                         std::chrono::microseconds(std::llround(scene.site.utc_offset_h * 3600e6))};
   for (std::size_t a = 0; a < scene.arrays.size(); ++a)
     context.unknown_spreads.push_back(unknownSpreads(options.models, *profiles[a]));
+  // Under a sun of its own brightness each profile's contours scale with E_ref / E: every profile
+  // must say what its luminances refer to, and carry the ladder. The largest region a profile can
+  // make is its contour at the lowest level the year reaches, L_limit · E_ref / E_max.
+  std::vector<double> max_axis_deg(scene.arrays.size(), 0);
+  if (options.sun.kind != SunKind::kReference) {
+    const double max_lx = maxSourceIlluminanceLx(options.sun, scene.site);
+    for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
+      const ProfileTable& profile = *profiles[a];
+      if (!profile.ladderReferenceLx()) {
+        return badInput(
+            (profile.path().empty() ? "the glare profile of " + profile.module()
+                                    : profile.path().string()) +
+            ": the profile has no contour ladder referred to a reference illuminance "
+            "(glarecam.glare-profile/2 from a referred sweep), so the sun's brightness cannot "
+            "scale it: make it again with `glarecam fit` from referred stacks, or give --sun "
+            "reference");
+      }
+      context.reference_lx.push_back(*profile.ladderReferenceLx());
+      for (int alpha = 0; alpha <= pipeline::kProfileAlphaMaxDeg; ++alpha) {
+        const std::optional<double> limit = profile.luminancesAt(alpha).limit_cd_m2;
+        if (!limit || !(max_lx > 0)) continue;
+        // Between whole degrees a contour is linear in α, so its axes are largest at one.
+        const LadderRegion largest =
+            profile.regionAtLevel(alpha, *limit * context.reference_lx[a] / max_lx);
+        if (largest.status == LadderRegion::Status::kRegion)
+          max_axis_deg[a] =
+              std::max({max_axis_deg[a], largest.vertical_deg, largest.horizontal_deg});
+      }
+      // The limit between whole degrees is log-linear: at most the larger of its ends' regions
+      // differ by a degree's change; the ladder's lowest rung bounds them all.
+      max_axis_deg[a] = std::min(std::max(max_axis_deg[a], profile.maxFullAxisDeg()),
+                                 std::max(profile.maxLadderAxisDeg(), profile.maxFullAxisDeg()));
+    }
+  }
   for (const Observer& observer : scene.observers) {
     std::vector<Pair> row;
     for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
       Pair pair = makePair(scene, scene.arrays[a], observer);
       for (std::size_t m = 0; m < options.models.size(); ++m) {
-        const double reach = radians(maxFullAxisDeg(options.models[m], *profiles[a]) / 2) +
-                             pair.view.angular_radius_rad;
+        const double full_axis_deg =
+            options.sun.kind == SunKind::kReference || options.models[m].kind == ModelKind::kCone
+                ? maxFullAxisDeg(options.models[m], *profiles[a])
+                : max_axis_deg[a];
+        const double reach = radians(full_axis_deg / 2) + pair.view.angular_radius_rad;
         pair.reject_cos[m] = reach >= std::numbers::pi ? kNeverReject : std::cos(reach);
       }
       row.push_back(std::move(pair));
@@ -506,6 +711,9 @@ Result<HazardResult> computeHazard(const Scene& scene,
             std::max(summary.max_minutes_per_day, tally.glare_steps * minutes_per_step);
         summary.steps_beyond_method += tally.beyond;
         summary.steps_unknown_spread += tally.unknown;
+        for (std::size_t c = 0; c < summary.ocular_minutes.size(); ++c)
+          summary.ocular_minutes[c] += tally.ocular_steps[c] * minutes_per_step;
+        summary.unclassified_minutes += tally.unclassified_steps * minutes_per_step;
       }
       summary.minutes_per_year = static_cast<double>(year_steps) * minutes_per_step;
       summary.hours_per_year = summary.minutes_per_year / 60.0;

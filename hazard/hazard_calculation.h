@@ -10,6 +10,7 @@
 // A pure function of its inputs; days run in parallel (options.threads) with identical results.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -19,8 +20,10 @@
 #include "core/error.h"
 #include "hazard/criteria.h"
 #include "hazard/glare_model.h"
+#include "hazard/ocular_hazard.h"
 #include "hazard/profile_table.h"
 #include "hazard/scene.h"
+#include "hazard/sun_brightness.h"
 
 namespace glarecam::hazard {
 
@@ -37,6 +40,10 @@ struct HazardOptions {
   // Part of the year only (tests, previews): days [first_day, first_day + day_count) of it,
   // counted from 0 = 1 January; day_count 0 runs to the year's end.
   int first_day = 0, day_count = 0;
+  // The sun's brightness at each step (sun_brightness.h). Anything but kReference needs every
+  // profile referred, with its contour ladder.
+  SunBrightness sun;
+  EyeParameters eye;  // for the ocular hazard of each glaring step
 
   Status validate() const;  // kBadInput naming the option
   // A warning for a year that is valid but unlikely meant (outside kLikelyYears: "27" for 2027, a
@@ -54,11 +61,27 @@ inline constexpr int kLikelyFirstYear = 1950, kLikelyLastYear = 2200;
 inline constexpr std::uint8_t kOutsideHoursBit = 1u << 6;
 inline constexpr std::uint8_t kSunDownBit = 1u << 7;
 
+// Where a glaring step is seen from, and what it does to the eye.
+struct GlareSighting {
+  std::int64_t step = 0;  // from the year's start
+  double alpha_deg = 0;
+  // The glare as seen from the receptor: the direction to where the region meets the array
+  // (azimuth clockwise from north, elevation above the horizontal) and the distance to that
+  // point of the array.
+  double glare_azimuth_deg = 0, glare_elevation_deg = 0, distance_m = 0;
+  double sun_azimuth_deg = 0, sun_elevation_deg = 0;  // apparent, topocentric
+  std::optional<double> source_illuminance_lx;        // E(t), when the sun is not the reference
+  std::optional<double> luminance_cd_m2;              // L = Lmax (L_edge / Lmax)^q
+  std::optional<OcularExposure> ocular;               // of the spot seen (docs/ocular-hazard.md)
+};
+
 struct GlareEvent {
   std::size_t observer = 0, array = 0, model = 0;
   std::int64_t first_step = 0, end_step = 0;  // steps from the year's start, [first, end)
   double alpha_min_deg = 0, alpha_max_deg = 0;
   std::optional<double> peak_luminance_cd_m2;  // L = Lmax (L_limit / Lmax)^q, brightest step
+  GlareSighting peak{};                        // the brightest step (the first without L)
+  std::optional<OcularClass> worst_class{};    // the worst ocular class of its steps
 };
 
 struct ModelSummary {
@@ -71,6 +94,10 @@ struct ModelSummary {
   std::int64_t steps_beyond_method = 0;  // α > 80° where the 80° region would reach the observer
   std::int64_t steps_unknown_spread = 0;  // α glares, the profile gives this model no spread
   std::vector<Verdict> verdicts;          // per options.criteria
+  // Glaring minutes per ocular class (green, yellow, red), and those with no class (the
+  // profile gives no luminance there).
+  std::array<double, 3> ocular_minutes{};
+  double unclassified_minutes = 0;
 };
 
 struct ObserverHazard {

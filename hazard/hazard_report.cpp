@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <tuple>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/json.h"
 #include "core/version.h"
+#include "hazard/obstruction.h"
 #include "pipeline/sweep_table.h"
 
 namespace glarecam::hazard {
@@ -102,7 +104,51 @@ std::vector<std::string> reportWarnings(const HazardReport& report) {
   for (const std::string& profile : simulatedProfiles(report))
     warnings.push_back("SIMULATED profile of " + profile + ": " + pipeline::kSimulatedNote);
   if (auto year = report.options->yearWarning()) warnings.push_back(std::move(*year));
+  if (report.options->sun.weather) {
+    if (auto far =
+            sun::weatherSiteWarning(*report.options->sun.weather, report.scene->site.location))
+      warnings.push_back(std::move(*far));
+  }
   return warnings;
+}
+
+std::size_t worstPoint(const Receptor& receptor, const HazardResult& result) {
+  std::size_t worst = receptor.first;
+  for (std::size_t o = receptor.first; o < receptor.first + receptor.count; ++o) {
+    const ModelSummary& a = result.observers[o].models.front();
+    const ModelSummary& b = result.observers[worst].models.front();
+    if (std::tie(a.minutes_per_year, a.max_minutes_per_day) >
+        std::tie(b.minutes_per_year, b.max_minutes_per_day))
+      worst = o;
+  }
+  return worst;
+}
+
+std::vector<std::string> pictureStems(const Scene& scene, const HazardResult& result) {
+  std::vector<std::string> stems = pictureStems(scene);
+  std::vector<bool> pictured(scene.observers.size(), scene.receptors.empty());
+  for (const Receptor& receptor : scene.receptors) {
+    if (receptor.kind == ReceptorKind::kObserver) {
+      for (std::size_t o = receptor.first; o < receptor.first + receptor.count; ++o)
+        pictured[o] = true;
+    } else if (receptor.count > 0) {
+      pictured[worstPoint(receptor, result)] = true;
+    }
+  }
+  for (std::size_t o = 0; o < stems.size(); ++o)
+    if (!pictured[o]) stems[o].clear();
+  return stems;
+}
+
+std::array<double, 12> minutesPerMonth(const ModelSummary& summary, int year, int first_day) {
+  std::array<double, 12> months{};
+  const std::chrono::sys_days january_1{std::chrono::year{year} / 1 / 1};
+  for (std::size_t d = 0; d < summary.minutes_per_day.size(); ++d) {
+    const std::chrono::year_month_day date{january_1 +
+                                           std::chrono::days(first_day + static_cast<int>(d))};
+    months[static_cast<unsigned>(date.month()) - 1] += summary.minutes_per_day[d];
+  }
+  return months;
 }
 
 std::vector<std::string> pictureStems(const Scene& scene) {
@@ -186,24 +232,82 @@ json hazardJson(const HazardReport& report) {
                                             {"day_limit_exceeded", verdict.day_exceeded},
                                             {"year_limit_exceeded", verdict.year_exceeded}};
       }
-      by_model[options.models[m].name()] = {{"minutes_per_day", summary.minutes_per_day},
-                                            {"minutes_per_year", summary.minutes_per_year},
-                                            {"hours_per_year", summary.hours_per_year},
-                                            {"days_with_glare", summary.days_with_glare},
-                                            {"max_minutes_per_day", summary.max_minutes_per_day},
-                                            {"first_last_per_day", first_last},
-                                            {"steps_beyond_method", summary.steps_beyond_method},
-                                            {"steps_unknown_spread", summary.steps_unknown_spread},
-                                            {"verdicts", verdicts}};
+      by_model[options.models[m].name()] = {
+          {"minutes_per_day", summary.minutes_per_day},
+          {"minutes_per_year", summary.minutes_per_year},
+          {"hours_per_year", summary.hours_per_year},
+          {"days_with_glare", summary.days_with_glare},
+          {"max_minutes_per_day", summary.max_minutes_per_day},
+          {"first_last_per_day", first_last},
+          {"steps_beyond_method", summary.steps_beyond_method},
+          {"steps_unknown_spread", summary.steps_unknown_spread},
+          {"verdicts", verdicts},
+          {"minutes_per_month", minutesPerMonth(summary, result.year, result.first_day)},
+          {"ocular_minutes",
+           {{"green", summary.ocular_minutes[0]},
+            {"yellow", summary.ocular_minutes[1]},
+            {"red", summary.ocular_minutes[2]},
+            {"unclassified", summary.unclassified_minutes}}}};
     }
     const std::string& stem = report.picture_stems[o];
-    observers.push_back(
-        {{"name", observer.name},
-         {"position_m", {observer.position_m.x, observer.position_m.y, observer.position_m.z}},
-         {"hours", {observer.from_h, observer.to_h}},
-         {"models", by_model},
-         {"picture", {{"png", stem + ".png"}, {"svg", stem + ".svg"}}}});
+    json entry = {
+        {"name", observer.name},
+        {"position_m", {observer.position_m.x, observer.position_m.y, observer.position_m.z}},
+        {"hours", {observer.from_h, observer.to_h}},
+        {"models", by_model},
+        {"picture", stem.empty() ? json(nullptr)
+                                 : json{{"png", stem + ".png"},
+                                        {"svg", stem + ".svg"},
+                                        {"ocular_png", "ocular-" + stem + ".png"},
+                                        {"ocular_svg", "ocular-" + stem + ".svg"}}}};
+    if (!scene.receptors.empty()) {
+      const Receptor& receptor = scene.receptors[observer.receptor];
+      entry["receptor"] = receptor.name;
+      entry["kind"] = receptorKindName(receptor.kind);
+    }
+    if (!observer.view_azimuths_deg.empty()) {
+      entry["view_azimuths_deg"] = observer.view_azimuths_deg;
+      entry["field_of_view_deg"] = observer.field_of_view_deg;
+    }
+    observers.push_back(entry);
   }
+  json receptors = json::array();
+  for (const Receptor& receptor : scene.receptors) {
+    const std::size_t worst = worstPoint(receptor, result);
+    json worst_models = json::object();
+    for (std::size_t m = 0; m < options.models.size(); ++m) {
+      const ModelSummary& summary = result.observers[worst].models[m];
+      json verdicts = json::object();
+      for (std::size_t c = 0; c < options.criteria.size(); ++c)
+        verdicts[options.criteria[c].id] = summary.verdicts[c].text;
+      worst_models[options.models[m].name()] = {
+          {"minutes_per_year", summary.minutes_per_year},
+          {"max_minutes_per_day", summary.max_minutes_per_day},
+          {"days_with_glare", summary.days_with_glare},
+          {"verdicts", verdicts}};
+    }
+    receptors.push_back({{"name", receptor.name},
+                         {"kind", receptorKindName(receptor.kind)},
+                         {"points", receptor.count},
+                         {"worst_point", scene.observers[worst].name},
+                         {"worst", worst_models}});
+  }
+  json obstructions = json::array();
+  for (const Obstruction& obstruction : scene.obstructions)
+    obstructions.push_back({{"name", obstruction.name}, {"faces", obstruction.faces.size()}});
+  json sun = {{"kind", options.sun.name()}, {"description", options.sun.description()}};
+  sun["minutes"] = options.sun.kind == SunKind::kWeather
+                       ? "expected: with the weather file's direct sun, not the clear sky"
+                       : "possible: the sun is taken to shine at every step it is up";
+  if (options.sun.weather) {
+    const sun::EpwLocation& station = options.sun.weather->location;
+    sun["weather_file"] = {{"path", options.sun.weather->path.string()},
+                           {"station", station.city},
+                           {"latitude_deg", station.latitude_deg},
+                           {"longitude_deg", station.longitude_deg},
+                           {"distance_km", sun::distanceKm(station, scene.site.location)}};
+  }
+  const EyeParameters& eye = options.eye;
 
   return {{"schema", kHazardSchema},
           {"generator", {{"name", "glarecam"}, {"version", kVersion}}},
@@ -224,8 +328,17 @@ json hazardJson(const HazardReport& report) {
             {"days", result.days},
             {"step_s", result.step_s},
             {"models", models},
-            {"criteria", criteria}}},
+            {"criteria", criteria},
+            {"scene_schema", scene.version},
+            {"obstructions", obstructions},
+            {"sun", sun},
+            {"eye",
+             {{"pupil_diameter_m", eye.pupil_diameter_m},
+              {"focal_length_m", eye.focal_length_m},
+              {"ocular_transmission", eye.ocular_transmission},
+              {"luminous_efficacy_lm_w", eye.luminous_efficacy_lm_w}}}}},
           {"warnings", reportWarnings(report)},
+          {"receptors", receptors},
           {"observers", observers},
           {"events", {{"count", result.events.size()}, {"csv", kEventsCsv}}}};
 }
@@ -236,7 +349,9 @@ std::string eventsCsv(const HazardReport& report) {
   const bool with_seconds = result.step_s % 60 != 0;
   std::string csv =
       "observer,array,model,start_local,end_local,duration_min,alpha_min_deg,alpha_max_deg,"
-      "peak_luminance_cd_m2,simulated\n";
+      "peak_luminance_cd_m2,simulated,peak_local,glare_azimuth_deg,glare_elevation_deg,"
+      "distance_m,sun_azimuth_deg,sun_elevation_deg,source_illuminance_lx,ocular_class,"
+      "retinal_irradiance_w_cm2,subtended_angle_mrad\n";
   for (const GlareEvent& event : result.events) {
     const std::int64_t start_s = event.first_step * result.step_s;
     const std::int64_t end_s = event.end_step * result.step_s;
@@ -249,7 +364,19 @@ std::string eventsCsv(const HazardReport& report) {
            formatNumber("%.2f", event.alpha_min_deg) + "," +
            formatNumber("%.2f", event.alpha_max_deg) + "," +
            (event.peak_luminance_cd_m2 ? formatNumber("%.4g", *event.peak_luminance_cd_m2) : "") +
-           (report.profiles[event.array]->simulated() ? ",true\n" : ",false\n");
+           (report.profiles[event.array]->simulated() ? ",true," : ",false,");
+    const GlareSighting& peak = event.peak;
+    csv += localTimeText(result.year, peak.step * result.step_s, scene.site.utc_offset_h,
+                         with_seconds) +
+           "," + formatNumber("%.2f", peak.glare_azimuth_deg) + "," +
+           formatNumber("%.2f", peak.glare_elevation_deg) + "," +
+           formatNumber("%.1f", peak.distance_m) + "," +
+           formatNumber("%.2f", peak.sun_azimuth_deg) + "," +
+           formatNumber("%.2f", peak.sun_elevation_deg) + "," +
+           (peak.source_illuminance_lx ? formatNumber("%.0f", *peak.source_illuminance_lx) : "") +
+           "," + (event.worst_class ? std::string(ocularClassName(*event.worst_class)) : "") + "," +
+           (peak.ocular ? formatNumber("%.4g", peak.ocular->retinal_irradiance_w_cm2) : "") + "," +
+           (peak.ocular ? formatNumber("%.4g", peak.ocular->subtended_angle_mrad) : "") + "\n";
   }
   return csv;
 }
@@ -308,6 +435,38 @@ HazardChartContent chartContent(const HazardReport& report, std::size_t o) {
                              : HazardCell::kNone;
     }
     content.cells[i] = cell;
+  }
+  return content;
+}
+
+OcularPlotContent ocularContent(const HazardReport& report, std::size_t o) {
+  const Scene& scene = *report.scene;
+  const HazardResult& result = *report.result;
+  const HazardOptions& options = *report.options;
+  OcularPlotContent content;
+  content.title =
+      "Ocular hazard at " + scene.observers[o].name + ", " + std::to_string(result.year);
+  const EyeParameters& eye = options.eye;
+  char subtitle[256];
+  std::snprintf(subtitle, sizeof subtitle,
+                "each glare event at its brightest step · sun: %s · pupil %.1f mm, focal length "
+                "%.0f mm, transmission %.2f, %.0f lm/W (SGHAT's defaults)",
+                options.sun.name().c_str(), eye.pupil_diameter_m * 1e3, eye.focal_length_m * 1e3,
+                eye.ocular_transmission, eye.luminous_efficacy_lm_w);
+  content.subtitle = subtitle;
+  if (anySimulated(report)) {
+    content.mark = "SIMULATED";
+    content.mark_note = pipeline::kSimulatedNote;
+  }
+  const std::size_t shown = std::min<std::size_t>(options.models.size(), 2);
+  for (std::size_t m = 0; m < shown; ++m) {
+    OcularPlotSeries series{.label = options.models[m].name(), .points = {}};
+    for (const GlareEvent& event : result.events) {
+      if (event.observer != o || event.model != m || !event.peak.ocular) continue;
+      series.points.push_back(
+          {event.peak.ocular->subtended_angle_mrad, event.peak.ocular->retinal_irradiance_w_cm2});
+    }
+    content.series.push_back(std::move(series));
   }
   return content;
 }
@@ -375,8 +534,12 @@ Status writeHazardOutputs(const HazardReport& report, const std::filesystem::pat
   GLARECAM_CHECK(ensureDirectory(directory));
   for (std::size_t o = 0; o < report.scene->observers.size(); ++o) {
     const std::string& stem = report.picture_stems[o];
+    if (stem.empty()) continue;
     GLARECAM_CHECK(writeHazardChart(chartContent(report, o), directory / (stem + ".png"),
                                     directory / (stem + ".svg")));
+    GLARECAM_CHECK(writeOcularHazardPlot(ocularContent(report, o),
+                                         directory / ("ocular-" + stem + ".png"),
+                                         directory / ("ocular-" + stem + ".svg")));
   }
   GLARECAM_CHECK(writeFileAtomic(directory / kEventsCsv, eventsCsv(report)));
   GLARECAM_CHECK(writeFileAtomic(directory / kHazardJson, jsonText(hazardJson(report))));

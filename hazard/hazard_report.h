@@ -3,6 +3,7 @@
 // on stdout. Times are local standard time, "YYYY-MM-DDTHH:MM+HH:MM".
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "hazard/hazard_calculation.h"
 #include "hazard/hazard_chart.h"
+#include "hazard/ocular_hazard_plot.h"
 #include "hazard/profile_table.h"
 #include "hazard/scene.h"
 
@@ -24,11 +26,26 @@ struct HazardReport {
   std::vector<const ProfileTable*> profiles;  // per array
   const HazardOptions* options = nullptr;
   const HazardResult* result = nullptr;
-  std::vector<std::string> picture_stems;  // per observer: "glare-window-3" (+ .png, .svg)
+  // Per observer point: "glare-window-3" (+ .png, .svg; "ocular-" + the same for its ocular
+  // hazard plot), or empty for a point drawn by no picture (a route's or an area's points other
+  // than the worst).
+  std::vector<std::string> picture_stems;
 };
 
 // "glare-<name>" with every character outside [A-Za-z0-9._-] as '-', unique among observers.
 std::vector<std::string> pictureStems(const Scene& scene);
+// The stems of the points that get pictures: every observer, and each route's and area's worst
+// point (worstPoint); the others empty.
+std::vector<std::string> pictureStems(const Scene& scene, const HazardResult& result);
+
+// The point of a receptor with the most glare by the first model (minutes per year, then the
+// largest day; the first such point on a tie).
+std::size_t worstPoint(const Receptor& receptor, const HazardResult& result);
+
+// Minutes per calendar month of the run's days (12 values, months the run does not cover 0).
+std::array<double, 12> minutesPerMonth(const ModelSummary& summary, int year, int first_day);
+
+OcularPlotContent ocularContent(const HazardReport& report, std::size_t observer);
 
 // The local time at the start of a step of the year: "2027-03-21T18:02+01:00" (seconds shown
 // when steps are not whole minutes).
@@ -37,7 +54,8 @@ std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_off
 
 // Every warning of the run, as stderr and hazard.json's "warnings" give them: the scene's (an
 // array facing downward, an observer that never sees an array's front), each SIMULATED profile
-// (made from stacks of the simulated camera: not a measurement), an unlikely --year.
+// (made from stacks of the simulated camera: not a measurement), an unlikely --year, a weather
+// file whose station lies farther than 50 km from the site.
 std::vector<std::string> reportWarnings(const HazardReport& report);
 
 nlohmann::json hazardJson(const HazardReport& report);

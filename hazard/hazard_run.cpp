@@ -55,7 +55,7 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
                       .profiles = profiles,
                       .options = &options.hazard,
                       .result = &result,
-                      .picture_stems = pictureStems(scene)};
+                      .picture_stems = pictureStems(scene, result)};
   GLARECAM_CHECK(writeHazardOutputs(report, options.out));
   return HazardRunSummary{.document = hazardJson(report),
                           .table = summaryText(report),

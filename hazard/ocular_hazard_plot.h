@@ -4,12 +4,13 @@
 // for after-image; yellow: potential for after-image; red: potential for permanent eye damage)
 // with their two boundaries drawn as lines, and each glaring event a point.
 //
-// The axes are fixed, so that plots compare at a glance: ω from 0.1 to 100 mrad (the sun is
-// 9.3 mrad), E_r from 10⁻⁶ to 10³ W/cm² (the sun seen directly is about 9 W/cm²). A point outside
-// them is drawn at the nearest edge as a hollow marker (a bound, not a value) and counted in the
-// legend; none is dropped. Up to four series (e.g. one per array, or per glare model), each its
-// own marker, labelled with its events per class. The zones are pale so that the points stand
-// out; the boundaries are drawn over them; grid lines at the decades.
+// The axes are fixed, so that plots compare at a glance: ω from 0.1 to 1000 mrad (the sun is
+// 9.3 mrad; a module's spread glare spot spans tens to hundreds), E_r from 10⁻⁶ to 10³ W/cm² (the
+// sun seen directly is about 9 W/cm²). A point outside them is drawn at the nearest edge as a
+// hollow marker (a bound, not a value) and counted in the legend; none is dropped. Up to four
+// series (e.g. one per array, or per glare model), each its own marker, labelled with its events
+// per class. The zones are pale so that the points stand out; the boundaries are drawn over them;
+// grid lines at the decades.
 //
 // Two ways out: drawn into a box of a canvas (a report page embeds it: the box holds the data
 // area, tick labels and axis titles, nothing is drawn outside it), or as a page of its own (A4
@@ -39,7 +40,7 @@ namespace glarecam::hazard {
 
 // The axes' ranges.
 inline constexpr double kOcularPlotMinAngleMrad = 0.1;
-inline constexpr double kOcularPlotMaxAngleMrad = 100;
+inline constexpr double kOcularPlotMaxAngleMrad = 1000;
 inline constexpr double kOcularPlotMinIrradianceWCm2 = 1e-6;
 inline constexpr double kOcularPlotMaxIrradianceWCm2 = 1e3;
 

@@ -47,6 +47,15 @@ ProfileTable::ProfileTable(const pipeline::GlareProfile& profile)
       if (*axis) max_full_axis_deg_ = std::max(max_full_axis_deg_, **axis);
     }
   }
+  if (profile.referred == true && profile.reference_illuminance_lx && !profile.ladder.empty()) {
+    ladder_reference_lx_ = profile.reference_illuminance_lx;
+    profile_ = std::make_shared<const pipeline::GlareProfile>(profile);
+    for (const pipeline::ProfileLadderRow& row : profile.ladder) {
+      for (const pipeline::ProfileContour& contour : row.contours)
+        max_ladder_axis_deg_ =
+            std::max({max_ladder_axis_deg_, contour.vertical_deg, contour.horizontal_deg});
+    }
+  }
   for (int alpha = kProfileAlphaMaxDeg; alpha >= 0; --alpha) {
     const Row& row = rows_[static_cast<std::size_t>(alpha)];
     if (row.vertical_deg && row.horizontal_deg) {
@@ -115,6 +124,43 @@ LuminancesAt ProfileTable::luminancesAt(double alpha_deg) const {
   const Row& b = rows_[static_cast<std::size_t>(above)];
   return {.lmax_cd_m2 = lerpLog(a.lmax_cd_m2, b.lmax_cd_m2, t),
           .limit_cd_m2 = lerpLog(a.limit_cd_m2, b.limit_cd_m2, t)};
+}
+
+LadderRegion ProfileTable::regionAtLevel(double alpha_deg, double level_cd_m2) const {
+  LadderRegion region;
+  const std::optional<double> lmax_cd_m2 = luminancesAt(alpha_deg).lmax_cd_m2;
+  if (!profile_ || !lmax_cd_m2) return region;
+  if (level_cd_m2 > *lmax_cd_m2) {
+    region.status = LadderRegion::Status::kNoGlare;
+    return region;
+  }
+  const std::vector<pipeline::ProfileLadderRow>& ladder = profile_->ladder;
+  const double alpha = std::clamp(alpha_deg, ladder.front().alpha_deg, ladder.back().alpha_deg);
+  region.beyond_ladder = alpha != alpha_deg;
+  if (const std::optional<pipeline::ProfileContour> contour =
+          pipeline::contourAt(*profile_, alpha, level_cd_m2)) {
+    region.status = LadderRegion::Status::kRegion;
+    region.vertical_deg = contour->vertical_deg;
+    region.horizontal_deg = contour->horizontal_deg;
+    region.solid_angle_sr = contour->solid_angle_sr;
+    return region;
+  }
+  // Above the highest rung of the nearest degree: a log-quadratic peak's contours are similar
+  // ellipses with axes² ∝ ln(Lmax / level), so the rung's shrink by √(ln(Lmax/T) / ln(Lmax/T_top)).
+  const auto nearest = std::ranges::min_element(
+      ladder, {},
+      [&](const pipeline::ProfileLadderRow& row) { return std::abs(row.alpha_deg - alpha); });
+  if (nearest->contours.empty()) return region;
+  const pipeline::ProfileContour& top = nearest->contours.back();
+  if (level_cd_m2 < top.level_cd_m2 || !(*lmax_cd_m2 > top.level_cd_m2)) return region;
+  const double scale =
+      std::sqrt(std::log(*lmax_cd_m2 / level_cd_m2) / std::log(*lmax_cd_m2 / top.level_cd_m2));
+  region.status = LadderRegion::Status::kRegion;
+  region.above_rungs = true;
+  region.vertical_deg = top.vertical_deg * scale;
+  region.horizontal_deg = top.horizontal_deg * scale;
+  region.solid_angle_sr = top.solid_angle_sr * scale * scale;
+  return region;
 }
 
 }  // namespace glarecam::hazard

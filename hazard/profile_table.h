@@ -15,6 +15,7 @@
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -44,6 +45,20 @@ struct LuminancesAt {
   std::optional<double> lmax_cd_m2, limit_cd_m2;  // linear in ln L between the rows
 };
 
+// The glare region at one α for a referred luminance level, from the profile's contour ladder
+// (ProfileTable::regionAtLevel).
+struct LadderRegion {
+  enum class Status {
+    kNoGlare,  // the level lies above the referred peak Lmax(α)
+    kRegion,   // the contour at the level: full axes and solid angle
+    kUnknown,  // no Lmax at α, or the level below the ladder's lowest rung: no spread is claimed
+  };
+  Status status = Status::kUnknown;
+  double vertical_deg = 0, horizontal_deg = 0, solid_angle_sr = 0;
+  bool beyond_ladder = false;  // α outside the ladder's measured degrees: its nearest degree's
+  bool above_rungs = false;    // between the highest rung and the peak: shrunk toward the peak
+};
+
 class ProfileTable {
  public:
   explicit ProfileTable(const pipeline::GlareProfile& profile);
@@ -60,6 +75,18 @@ class ProfileTable {
   bool glaresWithin(double from_deg, double to_deg) const;
   // Lmax and the glare limit at α (0–80°; beyond, the 80° row's), for the luminance seen.
   LuminancesAt luminancesAt(double alpha_deg) const;
+  // The reference illuminance the profile's luminances are referred to, when it is referred and
+  // carries a contour ladder: what a sun of another brightness needs (--sun clear-sky, weather).
+  std::optional<double> ladderReferenceLx() const { return ladder_reference_lx_; }
+  // The region where the referred luminance reaches `level_cd_m2` at α (docs/hazard.md, "The
+  // sun's brightness"): none above the fitted Lmax(α); else the ladder's contour at the level
+  // (pipeline::contourAt: linear in ln level between rungs, linear in α between degrees); between
+  // the highest rung and the peak, the highest rung shrunk toward the peak as a log-quadratic
+  // peak does, axes ∝ √ln(Lmax / level); at an α outside the ladder's degrees, its nearest degree's
+  // ladder. Only for a profile with ladderReferenceLx().
+  LadderRegion regionAtLevel(double alpha_deg, double level_cd_m2) const;
+  // The largest full axis of any contour of the ladder (its lowest rung's, usually), degrees.
+  double maxLadderAxisDeg() const { return max_ladder_axis_deg_; }
   // The spread the method's last α gives (80°, or the largest α below it with axes): the region
   // used to count "beyond the method" steps. nullopt when the profile has no axes at all.
   const std::optional<SpreadAt>& lastDefined() const { return last_defined_; }
@@ -90,6 +117,9 @@ class ProfileTable {
   std::array<Row, pipeline::kProfileAlphaMaxDeg + 1> rows_{};
   std::optional<SpreadAt> last_defined_;
   double max_full_axis_deg_ = 0;
+  std::shared_ptr<const pipeline::GlareProfile> profile_;
+  std::optional<double> ladder_reference_lx_;
+  double max_ladder_axis_deg_ = 0;
 };
 
 }  // namespace glarecam::hazard

@@ -87,7 +87,7 @@ struct Observer {
   // The horizontal directions glare counts around (azimuths clockwise from north: a window's
   // facing, a route's direction(s) of travel there), each within field_of_view_deg (half-angle,
   // measured horizontally); empty: from every direction.
-  std::vector<double> view_azimuths_deg;
+  std::vector<double> view_azimuths_deg{};
   double field_of_view_deg = 180;
   std::size_t receptor = 0;  // index into Scene::receptors
 };

@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "apps/glarecam/commands.h"
 #include "hazard/criteria.h"
@@ -21,6 +22,7 @@ struct HazardArgs {
   int step_s = 60;
   std::string models = "ellipse,circle";
   std::string criteria = "lai,ch";
+  std::vector<std::string> sun = {"clear-sky"};
   unsigned threads = 0;
   bool json = false;
   bool no_progress = false;
@@ -37,6 +39,7 @@ Status runHazardCommand(const HazardArgs& args) {
   options.show_progress = !args.no_progress;
   GLARECAM_ASSIGN(options.hazard.models, hazard::parseModels(args.models, "--models"));
   GLARECAM_ASSIGN(options.hazard.criteria, hazard::parseCriteria(args.criteria, "--criteria"));
+  GLARECAM_ASSIGN(options.hazard.sun, hazard::parseSunBrightness(args.sun));
   hazard::HazardRunSummary summary;
   GLARECAM_ASSIGN(summary, hazard::runHazard(options));
   for (const std::string& warning : summary.warnings)
@@ -58,7 +61,9 @@ void addHazardCommand(CLI::App& app, Action& action) {
       "Glare minutes per day and year at observers (windows, terraces) from a module's glare "
       "profile and a scene of arrays, by the measured elliptical spread beside the circular cone "
       "(docs/hazard.md)");
-  sub->add_option("SCENE", args->scene, "scene file, glarecam.hazard-scene/1 (docs/hazard.md)")
+  sub->add_option("SCENE", args->scene,
+                  "scene file, glarecam.hazard-scene/1 or /2 (docs/hazard.md): arrays, observers, "
+                  "routes, areas, obstructions")
       ->required();
   sub->add_option("--profile", args->profile,
                   "glare-profile.json (glarecam datasheet) for every array without its own "
@@ -68,7 +73,9 @@ void addHazardCommand(CLI::App& app, Action& action) {
       ->required();
   sub->add_option("--models", args->models,
                   "glare regions to compare, comma-separated: ellipse (the measured spread), "
-                  "circle (its equal-solid-angle cone), cone:DEG (one constant full angle)")
+                  "circle (its equal-solid-angle cone: this module's, not SGHAT's default), "
+                  "cone:DEG (one constant full angle), sigma:MRAD (SGHAT's cone for a slope "
+                  "error: 2 (4.65 mrad + MRAD))")
       ->capture_default_str();
   sub->add_option("--step-s", args->step_s,
                   "time step in seconds (divides a day; sampled at its middle)")
@@ -76,6 +83,13 @@ void addHazardCommand(CLI::App& app, Action& action) {
   sub->add_option("--criteria", args->criteria,
                   "assessment criteria, comma-separated: lai (Germany, 30 min/day, 30 h/year), ch "
                   "(Switzerland, 30 min/day, 50 h/year)")
+      ->capture_default_str();
+  sub->add_option("--sun", args->sun,
+                  "the sun's brightness at each step: clear-sky (a clear sky's direct normal "
+                  "illuminance: the possible glare), reference (the profile's reference "
+                  "illuminance, as before), weather FILE.epw (an EnergyPlus weather file: the "
+                  "expected glare)")
+      ->expected(1, 2)
       ->capture_default_str();
   sub->add_option("--threads", args->threads, "worker threads (default: one per core)");
   sub->add_flag("--json", args->json, "print hazard.json on stdout instead of the table");

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include "tests/hazard/hazard_fixtures.h"
 
 namespace glarecam::hazard {
@@ -46,6 +48,30 @@ TEST(HazardGlareModel, EachModelsRegionFromTheProfile) {
   EXPECT_EQ(cone->vertical_deg, 2.5);
   EXPECT_EQ(maxFullAxisDeg({ModelKind::kCone, 2.5}, profile), 2.5);
   EXPECT_EQ(maxFullAxisDeg({ModelKind::kEllipse}, profile), 8);
+}
+
+}  // namespace
+}  // namespace glarecam::hazard
+
+namespace glarecam::hazard {
+namespace {
+
+TEST(HazardGlareModel, SigmaIsSghatsConeForASlopeError) {
+  // β = 2 (4.65 mrad + σ): σ = 2 mrad gives 13.3 mrad = 0.762°.
+  const Result<std::vector<GlareModel>> models = parseModels("ellipse,sigma:2", "--models");
+  ASSERT_TRUE(models) << models.error().message;
+  ASSERT_EQ(models->size(), 2u);
+  const GlareModel& sigma = (*models)[1];
+  EXPECT_EQ(sigma.kind, ModelKind::kCone);
+  EXPECT_NEAR(sigma.cone_deg, 13.3e-3 * 180 / std::numbers::pi, 1e-12);
+  EXPECT_EQ(sigma.name(), "sigma:2");
+  EXPECT_NEAR(sghatBeamDeg(0), 9.3e-3 * 180 / std::numbers::pi, 1e-12);  // the sun alone
+  for (const char* bad : {"sigma:-1", "sigma:", "sigma:x", "sigma:2000"}) {
+    const Result<std::vector<GlareModel>> refused = parseModels(bad, "--models");
+    ASSERT_FALSE(refused) << bad;
+    EXPECT_NE(refused.error().message.find("sigma:MRAD"), std::string::npos) << bad;
+  }
+  EXPECT_FALSE(parseModels("sigma:2,sigma:2", "--models"));
 }
 
 }  // namespace

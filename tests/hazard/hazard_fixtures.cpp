@@ -1,6 +1,7 @@
 #include "tests/hazard/hazard_fixtures.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "pipeline/glare_profile.h"
 #include "sun/incidence_angle.h"
@@ -31,6 +32,44 @@ nlohmann::json constantProfileJson(double vertical_deg, double horizontal_deg,
           {"module", "test module"},
           {"glare_ranges_deg", glare_ranges},
           {"profile", rows}};
+}
+
+nlohmann::json ladderProfileJson(double vertical_deg, double horizontal_deg, double reference_lx) {
+  nlohmann::json profile = constantProfileJson(vertical_deg, horizontal_deg);
+  profile["schema"] = "glarecam.glare-profile/2";
+  profile["illuminance"] = {{"status", "referred"}, {"reference_lx", reference_lx}};
+  // A log-quadratic lobe (hazard.md step 7) of peak 1e6 cd/m², whose contour at the limit 3e4
+  // has the given axes: axis(T) = axis · √(ln(Lmax/T) / ln(Lmax/limit)), on the ladder's rungs.
+  constexpr double kLmax = 1e6, kLimit = 3e4;
+  nlohmann::json ladder = nlohmann::json::array();
+  for (int alpha = 0; alpha <= 80; ++alpha) {
+    nlohmann::json contours = nlohmann::json::array();
+    for (const double level : {1e4, 2.15e4, 4.64e4, 1e5, 2.15e5, 4.64e5}) {
+      const double scale = std::sqrt(std::log(kLmax / level) / std::log(kLmax / kLimit));
+      const double v = vertical_deg * scale, h = horizontal_deg * scale;
+      contours.push_back({{"level_cd_m2", level},
+                          {"kind", "ladder"},
+                          {"vertical_deg", v},
+                          {"horizontal_deg", h},
+                          {"orientation_deg", 0},
+                          {"solid_angle_sr", pipeline::circularBeamSpread(v, h).solid_angle_sr},
+                          {"uncertainty",
+                           {{"vertical_deg", 0},
+                            {"horizontal_deg", 0},
+                            {"orientation_deg", 0},
+                            {"solid_angle_sr", 0}}}});
+    }
+    ladder.push_back({{"alpha_deg", alpha}, {"contours", contours}});
+  }
+  profile["ladder"] = ladder;
+  return profile;
+}
+
+ProfileTable ladderProfile(double vertical_deg, double horizontal_deg, double reference_lx) {
+  const Result<ProfileTable> table = ProfileTable::fromJson(
+      ladderProfileJson(vertical_deg, horizontal_deg, reference_lx), "ladder-profile.json");
+  if (!table) throw std::runtime_error(table.error().message);
+  return *table;
 }
 
 ProfileTable constantProfile(double vertical_deg, double horizontal_deg,

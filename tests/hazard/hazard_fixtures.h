@@ -19,6 +19,13 @@ nlohmann::json constantProfileJson(double vertical_deg, double horizontal_deg,
 ProfileTable constantProfile(double vertical_deg, double horizontal_deg,
                              std::vector<std::pair<double, double>> ranges = {{0, 80}});
 
+// The same as a glarecam.glare-profile/2 referred to `reference_lx`, with a contour ladder of a
+// log-quadratic lobe whose contour at the limit has exactly those axes at every α.
+nlohmann::json ladderProfileJson(double vertical_deg, double horizontal_deg,
+                                 double reference_lx = 100'000);
+ProfileTable ladderProfile(double vertical_deg, double horizontal_deg,
+                           double reference_lx = 100'000);
+
 // A square array of side `side_m` centred on `centre_m` facing `normal` (unit), vertices
 // counter-clockwise seen from the front.
 std::vector<Vec3> squareVertices(Vec3 centre_m, Vec3 normal, double side_m);

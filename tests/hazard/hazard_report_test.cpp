@@ -69,7 +69,20 @@ class HazardReportOutputs : public ::testing::Test {
                        .end_step = 79 * 1440 + 1082,
                        .alpha_min_deg = 61.2,
                        .alpha_max_deg = 61.31,
-                       .peak_luminance_cd_m2 = 123456.0},
+                       .peak_luminance_cd_m2 = 123456.0,
+                       .peak = {.step = 79 * 1440 + 1081,
+                                .alpha_deg = 61.25,
+                                .glare_azimuth_deg = 283.5,
+                                .glare_elevation_deg = 2.1,
+                                .distance_m = 35.47,
+                                .sun_azimuth_deg = 270.1,
+                                .sun_elevation_deg = 1.6,
+                                .source_illuminance_lx = 41000.0,
+                                .luminance_cd_m2 = 123456.0,
+                                .ocular = OcularExposure{.retinal_irradiance_w_cm2 = 0.0123,
+                                                         .subtended_angle_mrad = 4.56,
+                                                         .ocular_class = OcularClass::kAfterImage}},
+                       .worst_class = OcularClass::kAfterImage},
                       {.observer = 0,
                        .array = 0,
                        .model = 1,
@@ -77,7 +90,9 @@ class HazardReportOutputs : public ::testing::Test {
                        .end_step = 79 * 1440 + 1082,
                        .alpha_min_deg = 61.3,
                        .alpha_max_deg = 61.3,
-                       .peak_luminance_cd_m2 = std::nullopt}};
+                       .peak_luminance_cd_m2 = std::nullopt,
+                       .peak = {},
+                       .worst_class = std::nullopt}};
     report_ = {.scene = &scene_,
                .profiles = {&profile_},
                .options = &options_,
@@ -122,11 +137,14 @@ TEST_F(HazardReportOutputs, EventsCsvHasOneRowPerEvent) {
   const std::string csv = eventsCsv(report_);
   EXPECT_EQ(csv,
             "observer,array,model,start_local,end_local,duration_min,alpha_min_deg,alpha_max_deg,"
-            "peak_luminance_cd_m2,simulated\n"
+            "peak_luminance_cd_m2,simulated,peak_local,glare_azimuth_deg,glare_elevation_deg,"
+            "distance_m,sun_azimuth_deg,sun_elevation_deg,source_illuminance_lx,ocular_class,"
+            "retinal_irradiance_w_cm2,subtended_angle_mrad\n"
             "window,roof,ellipse,2027-03-21T18:00+01:00,2027-03-21T18:02+01:00,2,61.20,61.31,"
-            "1.235e+05,false\n"
+            "1.235e+05,false,2027-03-21T18:01+01:00,283.50,2.10,35.5,270.10,1.60,41000,yellow,"
+            "0.0123,4.56\n"
             "window,roof,circle,2027-03-21T18:01+01:00,2027-03-21T18:02+01:00,1,61.30,61.30,,"
-            "false\n");
+            "false,2027-01-01T00:00+01:00,0.00,0.00,0.0,0.00,0.00,,,,\n");
 }
 
 TEST_F(HazardReportOutputs, ASimulatedProfileIsMarkedInEveryOutput) {
@@ -148,8 +166,8 @@ TEST_F(HazardReportOutputs, ASimulatedProfileIsMarkedInEveryOutput) {
   EXPECT_TRUE(text.starts_with(mark + "\n")) << text;
   // Every event's row.
   const std::string csv = eventsCsv(report_);
-  EXPECT_NE(csv.find(",1.235e+05,true\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",61.30,,true\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",1.235e+05,true,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",61.30,,true,"), std::string::npos) << csv;
   // The picture's subtitle, and the module in it.
   const std::string subtitle = chartContent(report_, 0).subtitle;
   EXPECT_TRUE(

@@ -26,7 +26,8 @@ Obstruction box(double half, double base_m, double height_m) {
 
 TEST(Obstruction, ASunOverheadShadesTheFootprint) {
   const std::vector<Obstruction> obstructions = {box(1, 2, 3)};
-  EXPECT_NEAR(shadedAreaM2(sunShadowRings(kLevel, obstructions, {0, 0, 1})), 4, kShadowAreaToleranceM2);
+  EXPECT_NEAR(shadedAreaM2(sunShadowRings(kLevel, obstructions, {0, 0, 1})), 4,
+              kShadowAreaToleranceM2);
 }
 
 TEST(Obstruction, ALowSunStretchesTheShadowAwayFromIt) {

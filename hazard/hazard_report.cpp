@@ -181,6 +181,19 @@ std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_off
          offsetText(utc_offset_h);
 }
 
+std::string civilTimeText(const HazardReport& report, std::int64_t seconds_of_year,
+                          bool with_seconds) {
+  const int year = report.result->year;
+  const double standard_h = report.scene->site.utc_offset_h;
+  const UtcTime utc = std::chrono::time_point_cast<std::chrono::microseconds>(
+                          std::chrono::sys_days{std::chrono::year{year} / 1 / 1}) +
+                      std::chrono::seconds(seconds_of_year) -
+                      std::chrono::microseconds(std::llround(standard_h * 3600e6));
+  const double civil_h = civilOffsetH(report.daylight_saving, utc, standard_h);
+  const auto shift_s = static_cast<std::int64_t>(std::llround((civil_h - standard_h) * 3600));
+  return localTimeText(year, seconds_of_year + shift_s, civil_h, with_seconds);
+}
+
 json hazardJson(const HazardReport& report) {
   const Scene& scene = *report.scene;
   const HazardOptions& options = *report.options;
@@ -322,6 +335,7 @@ json hazardJson(const HazardReport& report) {
               {"utc_offset_h", scene.site.utc_offset_h}}},
             {"local_time",
              "UTC" + offsetText(scene.site.utc_offset_h) + " (standard time, no daylight saving)"},
+            {"daylight_saving", daylightSavingName(report.daylight_saving)},
             {"arrays", arrays},
             {"profiles", profiles},
             {"year", result.year},
@@ -351,7 +365,7 @@ std::string eventsCsv(const HazardReport& report) {
       "observer,array,model,start_local,end_local,duration_min,alpha_min_deg,alpha_max_deg,"
       "peak_luminance_cd_m2,simulated,peak_local,glare_azimuth_deg,glare_elevation_deg,"
       "distance_m,sun_azimuth_deg,sun_elevation_deg,source_illuminance_lx,ocular_class,"
-      "retinal_irradiance_w_cm2,subtended_angle_mrad\n";
+      "retinal_irradiance_w_cm2,subtended_angle_mrad,start_civil,end_civil\n";
   for (const GlareEvent& event : result.events) {
     const std::int64_t start_s = event.first_step * result.step_s;
     const std::int64_t end_s = event.end_step * result.step_s;
@@ -376,7 +390,9 @@ std::string eventsCsv(const HazardReport& report) {
            (peak.source_illuminance_lx ? formatNumber("%.0f", *peak.source_illuminance_lx) : "") +
            "," + (event.worst_class ? std::string(ocularClassName(*event.worst_class)) : "") + "," +
            (peak.ocular ? formatNumber("%.4g", peak.ocular->retinal_irradiance_w_cm2) : "") + "," +
-           (peak.ocular ? formatNumber("%.4g", peak.ocular->subtended_angle_mrad) : "") + "\n";
+           (peak.ocular ? formatNumber("%.4g", peak.ocular->subtended_angle_mrad) : "") + "," +
+           civilTimeText(report, start_s, with_seconds) + "," +
+           civilTimeText(report, end_s, with_seconds) + "\n";
   }
   return csv;
 }

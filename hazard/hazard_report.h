@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hazard/civil_time.h"
 #include "hazard/hazard_calculation.h"
 #include "hazard/hazard_chart.h"
 #include "hazard/ocular_hazard_plot.h"
@@ -30,6 +31,8 @@ struct HazardReport {
   // hazard plot), or empty for a point drawn by no picture (a route's or an area's points other
   // than the worst).
   std::vector<std::string> picture_stems;
+  // Clock times are also given in local civil time under this rule (civil_time.h).
+  DaylightSaving daylight_saving = DaylightSaving::kNone;
 };
 
 // "glare-<name>" with every character outside [A-Za-z0-9._-] as '-', unique among observers.
@@ -50,6 +53,10 @@ OcularPlotContent ocularContent(const HazardReport& report, std::size_t observer
 // The local time at the start of a step of the year: "2027-03-21T18:02+01:00" (seconds shown
 // when steps are not whole minutes).
 std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_offset_h,
+                          bool with_seconds);
+// The same instant (given in local standard seconds of the year) in local civil time under the
+// report's daylight-saving rule: "2027-07-01T13:02+02:00".
+std::string civilTimeText(const HazardReport& report, std::int64_t seconds_of_year,
                           bool with_seconds);
 
 // Every warning of the run, as stderr and hazard.json's "warnings" give them: the scene's (an

@@ -55,7 +55,8 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
                       .profiles = profiles,
                       .options = &options.hazard,
                       .result = &result,
-                      .picture_stems = pictureStems(scene, result)};
+                      .picture_stems = pictureStems(scene, result),
+                      .daylight_saving = options.daylight_saving};
   GLARECAM_CHECK(writeHazardOutputs(report, options.out));
   return HazardRunSummary{.document = hazardJson(report),
                           .table = summaryText(report),

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "hazard/civil_time.h"
 #include "hazard/hazard_calculation.h"
 
 namespace glarecam::hazard {
@@ -18,6 +19,7 @@ struct HazardRunOptions {
   std::optional<std::filesystem::path> profile;  // for arrays without their own
   std::filesystem::path out;
   HazardOptions hazard;
+  DaylightSaving daylight_saving = DaylightSaving::kNone;  // civil clock times beside standard
   bool show_progress = true;
 
   Status validate() const;

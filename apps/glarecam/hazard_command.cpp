@@ -23,6 +23,7 @@ struct HazardArgs {
   std::string models = "ellipse,circle";
   std::string criteria = "lai,ch";
   std::vector<std::string> sun = {"clear-sky"};
+  std::string daylight_saving = "none";
   unsigned threads = 0;
   bool json = false;
   bool no_progress = false;
@@ -40,6 +41,8 @@ Status runHazardCommand(const HazardArgs& args) {
   GLARECAM_ASSIGN(options.hazard.models, hazard::parseModels(args.models, "--models"));
   GLARECAM_ASSIGN(options.hazard.criteria, hazard::parseCriteria(args.criteria, "--criteria"));
   GLARECAM_ASSIGN(options.hazard.sun, hazard::parseSunBrightness(args.sun));
+  GLARECAM_ASSIGN(options.daylight_saving,
+                  hazard::parseDaylightSaving(args.daylight_saving, "--daylight-saving"));
   hazard::HazardRunSummary summary;
   GLARECAM_ASSIGN(summary, hazard::runHazard(options));
   for (const std::string& warning : summary.warnings)
@@ -90,6 +93,11 @@ void addHazardCommand(CLI::App& app, Action& action) {
                   "illuminance, as before), weather FILE.epw (an EnergyPlus weather file: the "
                   "expected glare)")
       ->expected(1, 2)
+      ->capture_default_str();
+  sub->add_option("--daylight-saving", args->daylight_saving,
+                  "also give clock times in local civil time: none, eu (last Sunday of March to "
+                  "last Sunday of October), us (second Sunday of March to first Sunday of "
+                  "November); counting stays in standard time")
       ->capture_default_str();
   sub->add_option("--threads", args->threads, "worker threads (default: one per core)");
   sub->add_flag("--json", args->json, "print hazard.json on stdout instead of the table");

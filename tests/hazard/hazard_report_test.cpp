@@ -139,12 +139,19 @@ TEST_F(HazardReportOutputs, EventsCsvHasOneRowPerEvent) {
             "observer,array,model,start_local,end_local,duration_min,alpha_min_deg,alpha_max_deg,"
             "peak_luminance_cd_m2,simulated,peak_local,glare_azimuth_deg,glare_elevation_deg,"
             "distance_m,sun_azimuth_deg,sun_elevation_deg,source_illuminance_lx,ocular_class,"
-            "retinal_irradiance_w_cm2,subtended_angle_mrad\n"
+            "retinal_irradiance_w_cm2,subtended_angle_mrad,start_civil,end_civil\n"
             "window,roof,ellipse,2027-03-21T18:00+01:00,2027-03-21T18:02+01:00,2,61.20,61.31,"
             "1.235e+05,false,2027-03-21T18:01+01:00,283.50,2.10,35.5,270.10,1.60,41000,yellow,"
-            "0.0123,4.56\n"
+            "0.0123,4.56,2027-03-21T18:00+01:00,2027-03-21T18:02+01:00\n"
             "window,roof,circle,2027-03-21T18:01+01:00,2027-03-21T18:02+01:00,1,61.30,61.30,,"
-            "false,2027-01-01T00:00+01:00,0.00,0.00,0.0,0.00,0.00,,,,\n");
+            "false,2027-01-01T00:00+01:00,0.00,0.00,0.0,0.00,0.00,,,,,2027-03-21T18:01+01:00,"
+            "2027-03-21T18:02+01:00\n");
+  // Under the EU's rule 21 March is still winter; a summer event moves an hour on.
+  report_.daylight_saving = DaylightSaving::kEu;
+  EXPECT_NE(eventsCsv(report_).find(",2027-03-21T18:00+01:00,2027-03-21T18:02+01:00\n"),
+            std::string::npos);
+  EXPECT_EQ(civilTimeText(report_, std::int64_t{181} * 86400 + 12 * 3600, false),
+            "2027-07-01T13:00+02:00");
 }
 
 TEST_F(HazardReportOutputs, ASimulatedProfileIsMarkedInEveryOutput) {

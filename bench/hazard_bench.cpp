@@ -3,13 +3,18 @@
 // year's sun directions alone: the floor every step pays). hazard/scene: 10 arrays × 20 observers,
 // the size of a report on a housing estate. main() prints hazard ÷ sun (target ≤ 1.5) and what
 // each extra array–observer pair adds, as a fraction of the sun pass (target ≤ 0.10).
+// hazard/year_clear_sky: hazard/year under a clear sky's sun, the region from the profile's
+// contour ladder at every step (target ≤ 1.3× hazard/year); hazard/year_obstructions: the same
+// with 5 buildings around, whose shadows and what they hide are clipped (target ≤ 2×).
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 
 #include "bench/benchmarks.h"
 #include "hazard/hazard_calculation.h"
+#include "hazard/obstruction.h"
 #include "hazard/profile_table.h"
 #include "hazard/scene.h"
 #include "sun/solar_track.h"
@@ -19,8 +24,10 @@ namespace {
 
 constexpr int kYear = 2027;
 
-// A profile of the demo module's size: 6° × 4° wherever it glares (0–80°).
-hazard::ProfileTable benchProfile() {
+// A profile of the demo module's size: 6° × 4° wherever it glares (0–80°); with `ladder`, a
+// glarecam.glare-profile/2 referred to 100 klx whose contour ladder is a log-quadratic lobe with
+// that limit ellipse (as a measured sweep's is).
+hazard::ProfileTable benchProfile(bool ladder = false) {
   nlohmann::json rows = nlohmann::json::array();
   for (int alpha = 0; alpha <= 80; ++alpha) {
     rows.push_back({{"alpha_deg", alpha},
@@ -30,10 +37,35 @@ hazard::ProfileTable benchProfile() {
                     {"horizontal_deg", 4.0},
                     {"circular_beam", {{"beta_mrad", 85.5}}}});
   }
-  const nlohmann::json document{{"schema", pipeline::kGlareProfileSchemaV1},
-                                {"module", "bench module"},
-                                {"glare_ranges_deg", {{0.0, 80.0}}},
-                                {"profile", rows}};
+  nlohmann::json document{{"schema", pipeline::kGlareProfileSchemaV1},
+                          {"module", "bench module"},
+                          {"glare_ranges_deg", {{0.0, 80.0}}},
+                          {"profile", rows}};
+  if (ladder) {
+    constexpr double kLmax = 1e6, kLimit = 3e4;
+    nlohmann::json degrees = nlohmann::json::array();
+    for (int alpha = 0; alpha <= 80; ++alpha) {
+      nlohmann::json contours = nlohmann::json::array();
+      for (const double level : {1e4, 2.15e4, 4.64e4, 1e5, 2.15e5, 4.64e5}) {
+        const double scale = std::sqrt(std::log(kLmax / level) / std::log(kLmax / kLimit));
+        contours.push_back({{"level_cd_m2", level},
+                            {"kind", "ladder"},
+                            {"vertical_deg", 6.0 * scale},
+                            {"horizontal_deg", 4.0 * scale},
+                            {"orientation_deg", 0.0},
+                            {"solid_angle_sr", 7.3e-3 * scale * scale},
+                            {"uncertainty",
+                             {{"vertical_deg", 0.0},
+                              {"horizontal_deg", 0.0},
+                              {"orientation_deg", 0.0},
+                              {"solid_angle_sr", 0.0}}}});
+      }
+      degrees.push_back({{"alpha_deg", alpha}, {"contours", contours}});
+    }
+    document["schema"] = pipeline::kGlareProfileSchema;
+    document["illuminance"] = {{"status", "referred"}, {"reference_lx", 1e5}};
+    document["ladder"] = degrees;
+  }
   return *hazard::ProfileTable::fromJson(document, "bench-profile.json");
 }
 
@@ -58,13 +90,37 @@ hazard::Scene benchScene(int arrays, int observers) {
   return scene;
 }
 
-void runYear(benchmark::State& state, int arrays, int observers) {
-  const hazard::ProfileTable profile = benchProfile();
-  const hazard::Scene scene = benchScene(arrays, observers);
+// Five buildings around the first roof and window: one south of the roof (its shadow falls on it
+// in winter), two between the roof and the window (they hide parts of it), two beside them.
+void addBuildings(hazard::Scene& scene) {
+  const std::array<std::array<double, 5>, 5> kBuildings = {{
+      // x0, y0, x1, y1, height_m
+      {-5, -16, 5, -10, 12},
+      {-10, 14, -3, 18, 10.5},
+      {2, 16, 9, 20, 11.5},
+      {-25, 0, -18, 8, 15},
+      {18, 5, 26, 12, 11},
+  }};
+  for (std::size_t b = 0; b < kBuildings.size(); ++b) {
+    const auto& [x0, y0, x1, y1, height] = kBuildings[b];
+    scene.obstructions.push_back(*hazard::makeExtrudedObstruction(
+        "house-" + std::to_string(b), {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, 0, height, "bench",
+        "obstructions"));
+  }
+}
+
+enum class BenchSun { kReference, kClearSky, kClearSkyObstructed };
+
+void runYear(benchmark::State& state, int arrays, int observers,
+             BenchSun sun = BenchSun::kReference) {
+  const hazard::ProfileTable profile = benchProfile(sun != BenchSun::kReference);
+  hazard::Scene scene = benchScene(arrays, observers);
+  if (sun == BenchSun::kClearSkyObstructed) addBuildings(scene);
   const std::vector<const hazard::ProfileTable*> profiles(scene.arrays.size(), &profile);
   hazard::HazardOptions options;
   options.year = kYear;
   options.threads = 1;
+  if (sun != BenchSun::kReference) options.sun.kind = hazard::SunKind::kClearSky;
   double minutes = 0;
   for (auto _ : state) {
     const Result<hazard::HazardResult> result = hazard::computeHazard(scene, profiles, options);
@@ -115,7 +171,16 @@ std::vector<std::string> registerHazardBenchmarks() {
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->Iterations(1);
-  return {kSunYearSpa, kHazardYear, kHazardScene};
+  benchmark::RegisterBenchmark(kHazardYearClearSky,
+                               [](benchmark::State& s) { runYear(s, 1, 1, BenchSun::kClearSky); })
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  benchmark::RegisterBenchmark(
+      kHazardYearObstructions,
+      [](benchmark::State& s) { runYear(s, 1, 1, BenchSun::kClearSkyObstructed); })
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  return {kSunYearSpa, kHazardYear, kHazardScene, kHazardYearClearSky, kHazardYearObstructions};
 }
 
 }  // namespace glarecam::bench

@@ -20,6 +20,8 @@
 //                                                and observer near the cost of its sun alone
 //   per extra array–observer pair ÷ sun/year_spa target <= 0.1x: (hazard/scene − hazard/year)
 //                                                ÷ (pairs − 1), the sun shared by every pair
+//   hazard/year_clear_sky ÷ hazard/year           target <= 1.3x: the sun's own brightness
+//   hazard/year_obstructions ÷ hazard/year        target <= 2x: with 5 buildings clipped
 //   brdf/angle ÷ brdf/analysis_floor             (no target yet: what reading a goniophotometer
 //                                                file costs beyond the glare analysis)
 //   sim/surface_scene ÷ sim/curves_scene         (no target: the price of drawing the simulated
@@ -63,6 +65,9 @@ constexpr double kCaptureOverheadTargetRatio = 1.1;
 constexpr double kHazardTargetRatio = 1.5;
 constexpr double kHazardPairTargetRatio = 0.1;
 constexpr double kHazardScenePairs = 10 * 20;  // hazard/scene's arrays × observers
+// The sun's own brightness (the contour ladder at every step) and 5 obstructions (issue 39).
+constexpr double kHazardClearSkyTargetRatio = 1.3;
+constexpr double kHazardObstructionsTargetRatio = 2.0;
 // Room after a name for an aggregate's suffix ("_median", "_stddev") with --benchmark_repetitions.
 constexpr std::size_t kAggregateSuffixWidth = 7;
 
@@ -276,6 +281,10 @@ int main(int argc, char** argv) {
   printRatio(reporter, kSunGlarecamSpa, kSunLibnova, 2, Target::kNone, 0);
   printRatio(reporter, kHazardYear, kSunYearSpa, 2, Target::kAtMost, kHazardTargetRatio);
   printPairRatio(reporter);
+  printRatio(reporter, kHazardYearClearSky, kHazardYear, 2, Target::kAtMost,
+             kHazardClearSkyTargetRatio);
+  printRatio(reporter, kHazardYearObstructions, kHazardYear, 2, Target::kAtMost,
+             kHazardObstructionsTargetRatio);
   printRatio(reporter, kBrdfAngle, kBrdfAnalysisFloor, 2, Target::kNone, 0);
   printRatio(reporter, kSimSurfaceScene, kSimCurvesScene, 2, Target::kNone, 0);
   benchmark::Shutdown();

@@ -14,6 +14,7 @@
 #include "hazard/glare_region.h"
 #include "hazard/obstruction.h"
 #include "hazard/plane_region.h"
+#include "pipeline/glare_ellipse.h"
 #include "sun/solar_track.h"
 
 namespace glarecam::hazard {
@@ -34,7 +35,9 @@ struct ModelRegion {
   RegionState state = RegionState::kNone;
   bool has_axes = false;
   RegionHalfAxes axes;
-  double solid_angle_sr = 0;  // of the region (its equal-solid-angle cone's)
+  // Of the region, when known without integrating it (the ladder's contour, a circular cone);
+  // else found from the axes when a step glares.
+  std::optional<double> solid_angle_sr;
   // The luminance seen at the lobe's peak and at the region's edge: L = peak (edge / peak)^q.
   std::optional<double> peak_cd_m2, edge_cd_m2;
 };
@@ -121,12 +124,9 @@ ModelRegion modelRegion(const GlareModel& model, const SpreadAt& spread,
   return region;
 }
 
-// The region's solid angle and the luminances seen at its peak and edge, under the reference sun.
+// The luminances seen at the region's peak and edge, under the reference sun.
 void addReferenceLuminances(ModelRegion& region, const ProfileTable& profile, double alpha_deg) {
   if (!region.has_axes) return;
-  region.solid_angle_sr = pipeline::circularBeamSpread(degrees(2 * region.axes.vertical_rad),
-                                                       degrees(2 * region.axes.horizontal_rad))
-                              .solid_angle_sr;
   const LuminancesAt luminances = profile.luminancesAt(alpha_deg);
   region.peak_cd_m2 = luminances.lmax_cd_m2;
   region.edge_cd_m2 = luminances.limit_cd_m2;
@@ -164,9 +164,9 @@ ModelRegion brightRegion(const GlareModel& model, const ProfileTable& profile, d
       axes = RegionAxesDeg{ladder.vertical_deg, ladder.horizontal_deg};
       break;
     case ModelKind::kCircle: {
+      // The circular cone of the contour's solid angle: Ω = 2π (1 − cos(β/2)).
       const double beta_deg = degrees(
-          pipeline::circularBeamSpread(ladder.vertical_deg, ladder.horizontal_deg).beta_mrad *
-          1e-3);
+          2 * std::acos(std::clamp(1 - ladder.solid_angle_sr / (2 * std::numbers::pi), -1.0, 1.0)));
       axes = RegionAxesDeg{beta_deg, beta_deg};
       break;
     }
@@ -180,8 +180,7 @@ ModelRegion brightRegion(const GlareModel& model, const ProfileTable& profile, d
   region.state = RegionState::kGlare;
   region.has_axes = true;
   region.axes = halfAxesRad(axes->vertical_deg, axes->horizontal_deg);
-  region.solid_angle_sr =
-      pipeline::circularBeamSpread(axes->vertical_deg, axes->horizontal_deg).solid_angle_sr;
+  if (model.kind != ModelKind::kCone) region.solid_angle_sr = ladder.solid_angle_sr;
   region.peak_cd_m2 = *luminances.lmax_cd_m2 * ratio;
   region.edge_cd_m2 = *luminances.limit_cd_m2;
   return region;
@@ -315,6 +314,19 @@ std::optional<double> regionMeets(const Context& context, std::size_t a, ArraySt
   return std::nullopt;
 }
 
+// The solid angle of an ellipse of half-axes a, b (radians) in the azimuthal-equidistant plane:
+// Ω = ∫ (1 − cos R(ψ)) dψ with R the ellipse's radius in direction ψ. Its series, with
+// ∫ R² dψ = 2π ab and ∫ R⁴ dψ = π ab (a² + b²), is Ω = π ab (1 − (a² + b²)/24 + …); the next
+// term is below 5e-6 of Ω for half-axes under 0.2 rad (11.5°). Wider regions take the integral
+// (pipeline::ellipseSolidAngleSr, 2 × its cost: per glaring step, not per step).
+constexpr double kSolidAngleSeriesLimitRad = 0.2;
+double regionSolidAngleSr(const RegionHalfAxes& axes) {
+  const double a = axes.vertical_rad, b = axes.horizontal_rad;
+  if (std::max(a, b) < kSolidAngleSeriesLimitRad)
+    return std::numbers::pi * a * b * (1 - (a * a + b * b) / 24);
+  return pipeline::ellipseSolidAngleSr(degrees(std::max(a, b)), degrees(std::min(a, b)));
+}
+
 double compassAzimuthDeg(Vec3 d) {
   const double azimuth_deg = degrees(std::atan2(d.x, d.y));
   return azimuth_deg < 0 ? azimuth_deg + 360 : azimuth_deg;
@@ -347,8 +359,9 @@ GlareSighting sighting(const Context& context, std::size_t a, const ArrayStep& s
   const double peak = *region.peak_cd_m2, edge = *region.edge_cd_m2;
   seen.luminance_cd_m2 = peak * std::pow(edge / peak, q);
   double spot_cd_m2 = *seen.luminance_cd_m2, spot_sr = pair.solid_angle_sr;
-  if (region.solid_angle_sr > 0 && region.solid_angle_sr <= pair.solid_angle_sr) {
-    spot_sr = region.solid_angle_sr;
+  const double region_sr = region.solid_angle_sr.value_or(regionSolidAngleSr(region.axes));
+  if (region_sr > 0 && region_sr <= pair.solid_angle_sr) {
+    spot_sr = region_sr;
     spot_cd_m2 = peak > edge * (1 + 1e-9) ? (peak - edge) / std::log(peak / edge) : peak;
   }
   if (spot_sr > 0) {

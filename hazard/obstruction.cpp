@@ -1,8 +1,8 @@
 #include "hazard/obstruction.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <functional>
 #include <limits>
 
 namespace glarecam::hazard {
@@ -14,10 +14,13 @@ constexpr double kEyeLevelFraction = 1e-6;
 // their shadow more than 4000 km away, beyond any scene (kMaxCoordinateM): left out, so that
 // a grazing sun's projections stay inside Clipper's integer range.
 constexpr double kShadowReachM = 4e6;
+constexpr double kFar = std::numeric_limits<double>::max();
 
-Obstruction withBounds(std::string name, std::vector<ArrayPolygon> faces) {
+Obstruction withBounds(std::string name, std::vector<ArrayPolygon> faces,
+                       std::vector<int> outward) {
   Obstruction obstruction;
   obstruction.name = std::move(name);
+  obstruction.outward = std::move(outward);
   Vec3 low{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
            std::numeric_limits<double>::max()};
   Vec3 high = -1 * low;
@@ -33,24 +36,39 @@ Obstruction withBounds(std::string name, std::vector<ArrayPolygon> faces) {
   return obstruction;
 }
 
-// A face's part with kSlabMarginM + d_min ≤ d ≤ d_max, d = n·(X − P₀) the distance in front of
-// the array's plane, each ring's vertices mapped by `project` onto that plane.
+// The strip d_min ≤ d(u, w) ≤ d_max of a face's plane, d = d0 + gu·u + gw·w, as a rectangle
+// holding the face's part of it (the face lies within `extent` of its centroid, the origin).
+PlaneRing slabStrip(double d0, double gu, double gw, double d_min, double d_max, double extent) {
+  const double g = std::hypot(gu, gw);
+  const double nu = gu / g, nw = gw / g;
+  // Along (nu, nw) the coordinate t = (d − d0)/g; across it, ±extent.
+  const double t0 = std::max((d_min - d0) / g, -extent), t1 = std::min((d_max - d0) / g, extent);
+  return {{t0 * nu + extent * nw, t0 * nw - extent * nu},
+          {t1 * nu + extent * nw, t1 * nw - extent * nu},
+          {t1 * nu - extent * nw, t1 * nw + extent * nu},
+          {t0 * nu - extent * nw, t0 * nw + extent * nu}};
+}
+
+// A face's part with d_min ≤ d ≤ d_max, d = n·(X − P₀) the distance in front of the array's
+// plane, each ring's vertices mapped by `project` onto that plane.
+template <typename Project>
 void projectFace(const ArrayPolygon& array, const ArrayPolygon& face, double d_min, double d_max,
-                 const std::function<Vec3(Vec3, double)>& project, std::vector<PlaneRing>& rings) {
+                 const Project& project, std::vector<PlaneRing>& rings) {
   const double d_centre = dot(face.centroid_m - array.centroid_m, array.normal);
   if (d_centre + face.radius_m < d_min || d_centre - face.radius_m > d_max) return;
   const double gu = dot(array.normal, face.axis_u), gw = dot(array.normal, face.axis_w);
-  bool inside = true;
+  bool inside = true, outside_low = true, outside_high = true;
   for (const PlanePoint& p : face.outline) {
     const double d = d_centre + gu * p[0] + gw * p[1];
     inside = inside && d >= d_min && d <= d_max;
+    outside_low = outside_low && d < d_min;
+    outside_high = outside_high && d > d_max;
   }
+  if (outside_low || outside_high) return;
   PlaneRegion part = arrayRegion(face);
   if (!inside) {
     const double extent = face.radius_m * 1.01 + 1e-3;
-    const PlaneRegion slab = intersect(halfPlane(gu, gw, d_centre - d_min, extent),
-                                       halfPlane(-gu, -gw, d_max - d_centre, extent));
-    part = intersect(part, slab);
+    part = intersect(part, PlaneRegion{{slabStrip(d_centre, gu, gw, d_min, d_max, extent)}});
   }
   for (const PlaneRing& ring : part.rings) {
     PlaneRing projected;
@@ -81,6 +99,11 @@ Result<Obstruction> makeExtrudedObstruction(std::string name,
   std::vector<ArrayPolygon> faces;
   ArrayPolygon face;
   GLARECAM_ASSIGN(face, makeArrayPolygon(name, bottom, file, field + ".footprint_m"));
+  // Counter-clockwise seen from above: the footprint's normal points up. Then the top's normal
+  // points out, the bottom's in, and each wall's (bottom i, bottom j, top j) out; clockwise, the
+  // other way round.
+  const int turn = face.normal.z > 0 ? 1 : -1;
+  std::vector<int> outward{-turn, turn};
   faces.push_back(std::move(face));
   GLARECAM_ASSIGN(face, makeArrayPolygon(name, top, file, field + ".footprint_m"));
   faces.push_back(std::move(face));
@@ -89,8 +112,9 @@ Result<Obstruction> makeExtrudedObstruction(std::string name,
     GLARECAM_ASSIGN(face, makeArrayPolygon(name, {bottom[i], bottom[j], top[j], top[i]}, file,
                                            field + ".footprint_m"));
     faces.push_back(std::move(face));
+    outward.push_back(turn);
   }
-  return withBounds(std::move(name), std::move(faces));
+  return withBounds(std::move(name), std::move(faces), std::move(outward));
 }
 
 Result<Obstruction> makePlanarObstruction(std::string name, std::vector<Vec3> vertices_m,
@@ -99,7 +123,7 @@ Result<Obstruction> makePlanarObstruction(std::string name, std::vector<Vec3> ve
   GLARECAM_ASSIGN(face, makeArrayPolygon(name, std::move(vertices_m), file, field));
   std::vector<ArrayPolygon> faces;
   faces.push_back(std::move(face));
-  return withBounds(std::move(name), std::move(faces));
+  return withBounds(std::move(name), std::move(faces), {0});
 }
 
 std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
@@ -108,17 +132,34 @@ std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
   const double cos_alpha = dot(array.normal, sun);
   if (cos_alpha <= 0) return rings;
   const auto along_sun = [&](Vec3 x, double d) { return x - (d / cos_alpha) * sun; };
+  std::array<double, 4> array_box{kFar, kFar, -kFar, -kFar};
+  for (const PlanePoint& p : array.outline)
+    array_box = {std::min(array_box[0], p[0]), std::min(array_box[1], p[1]),
+                 std::max(array_box[2], p[0]), std::max(array_box[3], p[1])};
   for (const Obstruction& obstruction : obstructions) {
-    // The parallel projection moves a point by at most (1 + 1/cos α) of its offset from the
-    // centre: an obstruction whose projected bound misses the array's circle shades nothing.
     const double d = dot(obstruction.centre_m - array.centroid_m, array.normal);
     if (d + obstruction.radius_m < kSlabMarginM) continue;
-    const Vec3 centre = along_sun(obstruction.centre_m, d);
-    if (norm(centre - array.centroid_m) >
-        array.radius_m + obstruction.radius_m * (1 + 1 / cos_alpha))
+    // The projection along the sun is affine, so every clipped face's shadow lies within the
+    // bounding box of the projected vertices: one that misses the array's box shades nothing.
+    std::array<double, 4> box{kFar, kFar, -kFar, -kFar};  // u min, w min, u max, w max
+    for (const ArrayPolygon& face : obstruction.faces) {
+      for (const Vec3& vertex : face.vertices_m) {
+        const PlanePoint p =
+            sceneToPlane(array, along_sun(vertex, dot(vertex - array.centroid_m, array.normal)));
+        box = {std::min(box[0], p[0]), std::min(box[1], p[1]), std::max(box[2], p[0]),
+               std::max(box[3], p[1])};
+      }
+    }
+    if (box[0] > array_box[2] || box[2] < array_box[0] || box[1] > array_box[3] ||
+        box[3] < array_box[1])
       continue;
-    for (const ArrayPolygon& face : obstruction.faces)
+    for (std::size_t f = 0; f < obstruction.faces.size(); ++f) {
+      const ArrayPolygon& face = obstruction.faces[f];
+      const double toward_sun = dot(face.normal, sun);
+      // Turned away from the sun, or seen edge-on (no area): not part of the shadow's outline.
+      if (toward_sun == 0 || obstruction.outward[f] * toward_sun < 0) continue;
       projectFace(array, face, kSlabMarginM, kShadowReachM * cos_alpha, along_sun, rings);
+    }
   }
   return rings;
 }

@@ -30,7 +30,10 @@ inline constexpr double kMinObstructionHeightM = 0.01, kMaxObstructionHeightM = 
 
 struct Obstruction {
   std::string name;
-  std::vector<ArrayPolygon> faces;  // planar, validated as arrays are; orientation unused
+  std::vector<ArrayPolygon> faces;  // planar, validated as arrays are
+  // Per face: +1 or −1 when its normal times this points out of the solid (an extrusion's
+  // faces), 0 for a face seen from both sides (a lone polygon).
+  std::vector<int> outward;
   Vec3 centre_m;
   double radius_m = 0;  // every face lies within this of centre_m
 };
@@ -47,10 +50,14 @@ Result<Obstruction> makePlanarObstruction(std::string name, std::vector<Vec3> ve
                                           const std::string& file, const std::string& field);
 
 // Where the obstructions shade the array's plane from a sun in direction `sun` (unit, in front:
-// n·s > 0), as rings in the array's plane frame, only those that can meet the array.
+// n·s > 0), as rings in the array's plane frame, only those that can meet the array. Of a solid
+// only the faces turned to the sun are projected: every ray through it enters through one of
+// them (or through its cut at the plane, which faces away from the sun), so their shadows are
+// its shadow.
 std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
                                       const std::vector<Obstruction>& obstructions, Vec3 sun);
-// Where the obstructions hide the array's plane from `point_m` (in front of it).
+// Where the obstructions hide the array's plane from `point_m` (in front of it): every face, so
+// that a point inside a solid is hidden too.
 std::vector<PlaneRing> hiddenRings(const ArrayPolygon& array,
                                    const std::vector<Obstruction>& obstructions, Vec3 point_m);
 

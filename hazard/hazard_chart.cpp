@@ -44,12 +44,26 @@ constexpr double kUpperPanelShare = 0.66;   // of the height below the header
 constexpr double kRuleGapPt = 3;            // between the subtitle and the rule below it
 constexpr double kStampGapPt = 22;          // between the title and the version stamp
 constexpr double kThresholdLabelGapPt = 2;  // between the limit's line and its label
+// Above the upper panel's data area: the top hour's tick label is centred on its edge.
+constexpr double kOverhangTopPt = 5;
+// The year's column beside the panels: its width, the gap before it, its bars and the room
+// above them for the title and the bars' values.
+constexpr double kYearColumnPt = 84;
+constexpr double kYearGapPt = 12;
+constexpr double kYearBarPt = 14;
+constexpr double kYearBarGapPt = 5;
+constexpr double kYearTitlePt = 22;
+constexpr double kYearValueRoomPt = 10;
+// The column's scale reaches this much above its highest limit and its highest bar.
+constexpr double kYearLimitHeadroom = 1.15, kYearBarHeadroom = 1.05;
 
 // ---- Type ----
 
 constexpr Font kTitleFont{.size = 16, .bold = true};
 constexpr Font kSubtitleFont{.size = 7.5};
 constexpr Font kThresholdFont{.size = 7};
+constexpr Font kYearTitleFont{.size = 7, .bold = true};
+constexpr Font kYearFont{.size = 6.5};
 constexpr Rgb kMutedInk{0.38, 0.38, 0.42};
 
 // ---- Colour: Okabe–Ito's colour-blind-safe set for what glares ----
@@ -64,6 +78,7 @@ constexpr Rgb kNoGlareColour = kWhite;
 constexpr std::array<Rgb, 2> kModelColours = {kFirstColour, kSecondColour};
 constexpr double kSeriesWidthPt = 1.0;
 constexpr LineStyle kCriterionLineStyle{.colour = kInk, .width_pt = 0.9, .dash = Dash::kDashed};
+constexpr LineStyle kYearBaselineStyle{.colour = kFrameColour, .width_pt = 0.7};
 constexpr double kSwatchPt = 6.5;  // a colour's square in the legend
 
 // ---- Cells ----
@@ -224,7 +239,12 @@ RgbImage rasterImage(const CellRaster& raster) {
 
 struct Layout {
   Box header;
-  Box upper, lower;  // the panels' frames (data area, ticks and titles)
+  Box body;  // the panels and the year's column
+};
+
+struct BodyLayout {
+  Box upper, lower;         // the panels' frames (data area, ticks and titles)
+  std::optional<Box> year;  // the year's column, beside both panels
 };
 
 // The box shrunk to whole pixels of the PNG, so that the cell raster's rows meet them exactly.
@@ -244,11 +264,20 @@ Layout pageLayout(Canvas& canvas, const HazardChartContent& c) {
   const double subtitle_pt = static_cast<double>(subtitleLines(canvas, c, page.width()).size()) *
                              lineHeight(kSubtitleFont);
   const double header_bottom = page.y0 + lineHeight(kTitleFont) + subtitle_pt + kRuleGapPt;
-  const double body_top = header_bottom + kGapPt;
-  const double split = body_top + (page.y1 - body_top - kGapPt) * kUpperPanelShare;
   return {.header = {page.x0, page.y0, page.x1, header_bottom},
-          .upper = {page.x0, body_top, page.x1, split},
-          .lower = {page.x0, split + kGapPt, page.x1, page.y1}};
+          .body = {page.x0, header_bottom + kGapPt - kOverhangTopPt, page.x1, page.y1}};
+}
+
+// `frame` holds everything drawn: the panels start below the top tick label's overhang.
+BodyLayout bodyLayout(const Box& frame, bool with_year) {
+  const Box body{frame.x0, frame.y0 + kOverhangTopPt, frame.x1, frame.y1};
+  const double split = body.y0 + (body.y1 - body.y0 - kGapPt) * kUpperPanelShare;
+  const double right = with_year ? body.x1 - kYearColumnPt - kYearGapPt : body.x1;
+  BodyLayout layout{.upper = {body.x0, body.y0, right, split},
+                    .lower = {body.x0, split + kGapPt, right, body.y1},
+                    .year = std::nullopt};
+  if (with_year) layout.year = Box{body.x1 - kYearColumnPt, body.y0, body.x1, body.y1};
+  return layout;
 }
 
 // ---- Header ----
@@ -358,7 +387,8 @@ std::string seriesLabel(const HazardChartSeries& s) {
                      total / kMinutesPerHour);
 }
 
-void drawMinutesPanel(Canvas& canvas, const HazardChartContent& c, const Box& frame) {
+// Returns the data area (the year's column stands on its zero line).
+Box drawMinutesPanel(Canvas& canvas, const HazardChartContent& c, const Box& frame) {
   double most = 0;
   for (const HazardChartSeries& s : c.models)
     for (const double m : s.minutes_per_day) most = std::max(most, m);
@@ -399,6 +429,94 @@ void drawMinutesPanel(Canvas& canvas, const HazardChartContent& c, const Box& fr
                       LineStyle{.colour = kModelColours[i], .width_pt = kSeriesWidthPt},
                       std::nullopt});
   drawLegend(canvas, plot, legend);
+  return plot.area;
+}
+
+// ---- The year's column: hours per year against the yearly limits ----
+
+double hoursPerYear(const HazardChartSeries& s) {
+  constexpr double kMinutesPerHour = 60;
+  double total = 0;
+  for (const double m : s.minutes_per_day) total += m;
+  return total / kMinutesPerHour;
+}
+
+// "142 h" from 10 h on, "8.3 h" below: narrow enough to stand over a bar.
+std::string hoursText(double hours) { return formatFixed(hours, hours >= 10 ? 0 : 1) + " h"; }
+
+// One label per distinct limit ("LAI/CH 30 h" when both are 30 h), lowest first.
+std::vector<HazardChartLimit> mergedLimits(const std::vector<HazardChartLimit>& limits) {
+  std::vector<HazardChartLimit> merged;
+  for (const HazardChartLimit& limit : limits) {
+    const auto same = std::find_if(merged.begin(), merged.end(), [&](const HazardChartLimit& m) {
+      return m.hours_per_year == limit.hours_per_year;
+    });
+    if (same == merged.end()) {
+      merged.push_back(limit);
+    } else {
+      same->label += "/" + limit.label;
+    }
+  }
+  std::sort(merged.begin(), merged.end(), [](const HazardChartLimit& a, const HazardChartLimit& b) {
+    return a.hours_per_year < b.hours_per_year;
+  });
+  return merged;
+}
+
+// `column` from the top of the upper panel to the bottom of the lower one; the bars stand on
+// `baseline_y`, the lower panel's zero line. The scale runs from 0 at the baseline to above the
+// highest limit and the highest bar, with no ticks: each bar carries its value, each limit its
+// label.
+void drawYearColumn(Canvas& canvas, const HazardChartContent& c, const Box& column,
+                    double baseline_y) {
+  drawText(canvas, {column.x0, column.y0 + kYearTitleFont.size}, "glare per year",
+           {kYearTitleFont, kInk, Align::kLeft});
+  drawText(canvas, {column.x0, column.y0 + kYearTitleFont.size + lineHeight(kYearFont)},
+           "h/year, yearly limits", {kYearFont, kMutedInk, Align::kLeft});
+
+  const std::vector<HazardChartLimit> limits = mergedLimits(c.yearly_limits);
+  std::vector<double> hours;
+  double top_hours = limits.back().hours_per_year * kYearLimitHeadroom;
+  for (const HazardChartSeries& s : c.models) {
+    hours.push_back(hoursPerYear(s));
+    top_hours = std::max(top_hours, hours.back() * kYearBarHeadroom);
+  }
+  const double area_top = column.y0 + kYearTitlePt + kYearValueRoomPt;
+  const auto y_of = [&](double h) { return baseline_y - h / top_hours * (baseline_y - area_top); };
+  const double bars_x0 = column.x0 + kYearBarGapPt;
+  const double bars_x1 = bars_x0 + static_cast<double>(hours.size()) * (kYearBarPt + kYearBarGapPt);
+
+  for (std::size_t i = 0; i < hours.size(); ++i) {
+    const double x0 = bars_x0 + static_cast<double>(i) * (kYearBarPt + kYearBarGapPt);
+    const double y = y_of(hours[i]);
+    canvas.rectangle({x0, y}, kYearBarPt, baseline_y - y);
+    canvas.setColour(kModelColours[i]);
+    canvas.fill();
+    drawText(canvas, {x0 + kYearBarPt / 2, y - kThresholdLabelGapPt}, hoursText(hours[i]),
+             {kYearFont, kInk, Align::kCentre});
+  }
+  drawSegment(canvas, {column.x0, baseline_y}, {bars_x1, baseline_y}, kYearBaselineStyle);
+
+  // The limits over the bars, their labels right of them, pushed apart upward when closer
+  // than a line.
+  double last_label_y = baseline_y + lineHeight(kYearFont);
+  for (const HazardChartLimit& limit : limits) {
+    const double y = y_of(limit.hours_per_year);
+    drawSegment(canvas, {column.x0, y}, {bars_x1, y}, kCriterionLineStyle);
+    const double label_y =
+        std::min(y + kBaselineBelowMiddleEm * kYearFont.size, last_label_y - lineHeight(kYearFont));
+    drawText(canvas, {bars_x1 + kThresholdLabelGapPt, label_y},
+             fmt::format("{} {} h", limit.label, formatPlain(limit.hours_per_year)),
+             {kYearFont, kInk, Align::kLeft});
+    last_label_y = label_y;
+  }
+}
+
+void drawBody(Canvas& canvas, const HazardChartContent& c, const Box& body) {
+  const BodyLayout layout = bodyLayout(body, !c.yearly_limits.empty());
+  drawCellPanel(canvas, c, layout.upper);
+  const Box minutes_area = drawMinutesPanel(canvas, c, layout.lower);
+  if (layout.year) drawYearColumn(canvas, c, *layout.year, minutes_area.y1);
 }
 
 // ---- The page ----
@@ -407,8 +525,7 @@ void drawChart(Canvas& canvas, const HazardChartContent& c) {
   paint(canvas, kWhite);
   const Layout layout = pageLayout(canvas, c);
   drawHeader(canvas, c, layout.header);
-  drawCellPanel(canvas, c, layout.upper);
-  drawMinutesPanel(canvas, c, layout.lower);
+  drawBody(canvas, c, layout.body);
   // Over everything: the cell panel is an opaque raster that would hide a mark drawn under it.
   if (!c.mark.empty()) drawPageMark(canvas, kPage, c.mark, c.mark_note, /*over=*/true);
 }
@@ -443,6 +560,12 @@ Status validate(const HazardChartContent& c) {
   if (!(std::isfinite(c.threshold_minutes_per_day) && c.threshold_minutes_per_day > 0))
     return refuse(fmt::format("the daily limit must be positive, not {} minutes",
                               c.threshold_minutes_per_day));
+  for (const HazardChartLimit& limit : c.yearly_limits) {
+    if (limit.label.empty()) return refuse("a yearly limit without a label");
+    if (!(std::isfinite(limit.hours_per_year) && limit.hours_per_year > 0))
+      return refuse(fmt::format("the yearly limit \"{}\" must be positive, not {} hours",
+                                limit.label, limit.hours_per_year));
+  }
   for (std::size_t i = 0; i < c.cells.size(); ++i) {
     const auto value = static_cast<int>(c.cells[i]);
     const bool second = c.cells[i] == HazardCell::kSecondOnly || c.cells[i] == HazardCell::kBoth;
@@ -462,6 +585,12 @@ Status writeHazardChart(const HazardChartContent& content, const fs::path& png_p
   const PageDrawing draw = [&content](Canvas& canvas) { drawChart(canvas, content); };
   GLARECAM_CHECK(writePngPage(png_path, kPage, draw));
   return writeSvgPage(svg_path, kPage, draw);
+}
+
+Status drawHazardChart(Canvas& canvas, const Box& frame, const HazardChartContent& content) {
+  GLARECAM_CHECK(validate(content));
+  drawBody(canvas, content, frame);
+  return canvas.status();
 }
 
 }  // namespace glarecam::hazard

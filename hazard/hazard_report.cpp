@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -52,23 +53,6 @@ std::string formatNumber(const char* format, double value) {
   return text;
 }
 
-// "faces 180° (S), tilt 30.0°, 72.0 m²": which way the front looks, so that a polygon listed
-// the wrong way round shows.
-std::string arrayFacingText(const ArrayPolygon& array) {
-  constexpr std::array<const char*, 8> kCompass = {"N", "NE", "E", "SE", "S", "SW", "W", "NW"};
-  const std::optional<double> azimuth_deg = facingAzimuthDeg(array);
-  const double tilt_deg = tiltDeg(array);
-  std::string faces;
-  if (azimuth_deg) {
-    const auto point = static_cast<std::size_t>(std::lround(*azimuth_deg / 45)) % kCompass.size();
-    faces = formatNumber("%.0f°", *azimuth_deg) + " (" + kCompass[point] + ")";
-  } else {
-    faces = tilt_deg < 90 ? "up (level)" : "down (level)";
-  }
-  return "faces " + faces + ", tilt " + formatNumber("%.1f°", tilt_deg) + ", " +
-         formatNumber("%.1f m²", array.area_m2);
-}
-
 // The profiles made from stacks of the simulated camera, each once: "module "M" (PATH), for
 // array "roof-north"".
 std::vector<std::string> simulatedProfiles(const HazardReport& report) {
@@ -99,6 +83,34 @@ bool anySimulated(const HazardReport& report) {
 
 }  // namespace
 
+std::string arrayFacingText(const ArrayPolygon& array) {
+  constexpr std::array<const char*, 8> kCompass = {"N", "NE", "E", "SE", "S", "SW", "W", "NW"};
+  const std::optional<double> azimuth_deg = facingAzimuthDeg(array);
+  const double tilt_deg = tiltDeg(array);
+  std::string faces;
+  if (azimuth_deg) {
+    const auto point = static_cast<std::size_t>(std::lround(*azimuth_deg / 45)) % kCompass.size();
+    faces = formatNumber("%.0f°", *azimuth_deg) + " (" + kCompass[point] + ")";
+  } else {
+    faces = tilt_deg < 90 ? "up (level)" : "down (level)";
+  }
+  return "faces " + faces + ", tilt " + formatNumber("%.1f°", tilt_deg) + ", " +
+         formatNumber("%.1f m²", array.area_m2);
+}
+
+std::string utcOffsetText(double utc_offset_h) { return "UTC" + offsetText(utc_offset_h); }
+
+std::vector<std::size_t> worstDays(const ModelSummary& summary, std::size_t count) {
+  std::vector<std::size_t> days;
+  for (std::size_t d = 0; d < summary.minutes_per_day.size(); ++d)
+    if (summary.minutes_per_day[d] > 0) days.push_back(d);
+  std::stable_sort(days.begin(), days.end(), [&summary](std::size_t a, std::size_t b) {
+    return summary.minutes_per_day[a] > summary.minutes_per_day[b];
+  });
+  if (days.size() > count) days.resize(count);
+  return days;
+}
+
 std::vector<std::string> reportWarnings(const HazardReport& report) {
   std::vector<std::string> warnings = report.scene->warnings;
   for (const std::string& profile : simulatedProfiles(report))
@@ -110,6 +122,15 @@ std::vector<std::string> reportWarnings(const HazardReport& report) {
       warnings.push_back(std::move(*far));
   }
   return warnings;
+}
+
+std::vector<Receptor> sceneReceptors(const Scene& scene) {
+  if (!scene.receptors.empty()) return scene.receptors;
+  std::vector<Receptor> receptors;
+  for (std::size_t o = 0; o < scene.observers.size(); ++o)
+    receptors.push_back(
+        {.kind = ReceptorKind::kObserver, .name = scene.observers[o].name, .first = o, .count = 1});
+  return receptors;
 }
 
 std::size_t worstPoint(const Receptor& receptor, const HazardResult& result) {
@@ -434,6 +455,13 @@ HazardChartContent chartContent(const HazardReport& report, std::size_t o) {
     day_limit = day_limit == 0 ? criterion.max_minutes_per_day
                                : std::min(day_limit, criterion.max_minutes_per_day);
   content.threshold_minutes_per_day = day_limit > 0 ? day_limit : 30;
+  for (const Criterion& criterion : options.criteria) {
+    std::string label = criterion.id;
+    std::transform(label.begin(), label.end(), label.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    if (criterion.max_hours_per_year > 0)
+      content.yearly_limits.push_back({label, criterion.max_hours_per_year});
+  }
   const std::vector<std::uint8_t>& steps = result.observers[o].steps;
   content.cells.resize(steps.size());
   for (std::size_t i = 0; i < steps.size(); ++i) {

@@ -1,6 +1,7 @@
 // What `glarecam hazard` writes (docs/hazard.md, "Outputs"): hazard.json (glarecam.hazard/1),
 // events.csv, one picture per observer (PNG and SVG, hazard_chart.h), and the short table printed
-// on stdout. Times are local standard time, "YYYY-MM-DDTHH:MM+HH:MM".
+// on stdout; the PDF report (hazard_pdf.h) is drawn from the same HazardReport. Times are local
+// standard time, "YYYY-MM-DDTHH:MM+HH:MM".
 #pragma once
 
 #include <array>
@@ -41,6 +42,9 @@ std::vector<std::string> pictureStems(const Scene& scene);
 // point (worstPoint); the others empty.
 std::vector<std::string> pictureStems(const Scene& scene, const HazardResult& result);
 
+// The scene's receptors; a scene built without them (tests) has one observer receptor per point.
+std::vector<Receptor> sceneReceptors(const Scene& scene);
+
 // The point of a receptor with the most glare by the first model (minutes per year, then the
 // largest day; the first such point on a tie).
 std::size_t worstPoint(const Receptor& receptor, const HazardResult& result);
@@ -58,6 +62,16 @@ std::string localTimeText(int year, std::int64_t seconds_of_year, double utc_off
 // report's daylight-saving rule: "2027-07-01T13:02+02:00".
 std::string civilTimeText(const HazardReport& report, std::int64_t seconds_of_year,
                           bool with_seconds);
+
+// "faces 180° (S), tilt 30.0°, 72.0 m²": which way the front looks, so that a polygon listed
+// the wrong way round shows.
+std::string arrayFacingText(const ArrayPolygon& array);
+// "UTC+01:00", "UTC-03:30".
+std::string utcOffsetText(double utc_offset_h);
+
+// The days (indices into minutes_per_day) with the most glare, most first (the earlier day first
+// on a tie), at most `count`; days without glare never.
+std::vector<std::size_t> worstDays(const ModelSummary& summary, std::size_t count);
 
 // Every warning of the run, as stderr and hazard.json's "warnings" give them: the scene's (an
 // array facing downward, an observer that never sees an array's front), each SIMULATED profile

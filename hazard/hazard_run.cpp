@@ -5,6 +5,7 @@
 
 #include "core/progress.h"
 #include "core/time.h"
+#include "hazard/hazard_pdf.h"
 #include "hazard/hazard_report.h"
 #include "hazard/profile_table.h"
 #include "hazard/scene.h"
@@ -15,6 +16,7 @@ Status HazardRunOptions::validate() const {
   if (scene.empty()) return badInput("hazard: no scene file given");
   if (out.empty()) return badInput("--out: no output directory given");
   if (profile && profile->empty()) return badInput("--profile: empty path");
+  if (report && report->empty()) return badInput("--report: empty path");
   return hazard.validate();
 }
 
@@ -58,6 +60,7 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
                       .picture_stems = pictureStems(scene, result),
                       .daylight_saving = options.daylight_saving};
   GLARECAM_CHECK(writeHazardOutputs(report, options.out));
+  if (options.report) GLARECAM_CHECK(writeHazardReportPdf(report, *options.report));
   return HazardRunSummary{.document = hazardJson(report),
                           .table = summaryText(report),
                           .warnings = reportWarnings(report)};

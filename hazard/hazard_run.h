@@ -1,6 +1,8 @@
 // `glarecam hazard` as one call: read and validate the scene and every profile (nothing is
 // written when any input is wrong), compute the year (hazard_calculation.h) with progress on
-// stderr, and write the outputs (hazard_report.h) into the output directory.
+// stderr, and write the outputs (hazard_report.h) into the output directory; then, when asked,
+// the PDF report (hazard_pdf.h). A report that cannot be written is a kIo error naming its file
+// (the other outputs are written by then).
 #pragma once
 
 #include <filesystem>
@@ -20,6 +22,7 @@ struct HazardRunOptions {
   std::filesystem::path out;
   HazardOptions hazard;
   DaylightSaving daylight_saving = DaylightSaving::kNone;  // civil clock times beside standard
+  std::optional<std::filesystem::path> report;  // the PDF report (hazard_pdf.h), if wanted
   bool show_progress = true;
 
   Status validate() const;

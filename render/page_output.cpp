@@ -60,6 +60,42 @@ Status writePdfPage(const fs::path& file, PageSize size, const PageDrawing& draw
   });
 }
 
+Status writePdfPages(const fs::path& file, PageSize size, const std::vector<PageDrawing>& pages,
+                     const PdfMetadata& metadata) {
+  if (pages.empty())
+    return badInput(fmt::format("{}: a PDF needs at least one page", file.string()));
+  std::size_t failed_page = 0;
+  const Status written = writeAtomically(file, [&](const fs::path& temp) {
+    CairoSurface surface(cairo_pdf_surface_create(temp.c_str(), size.width_pt, size.height_pt));
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, metadata.title.c_str());
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR,
+                                   metadata.creator.c_str());
+    for (std::size_t i = 0; i < pages.size(); ++i) {
+      // Each page on a context of its own, shown (emitted) before the next one starts.
+      CairoContext context(cairo_create(surface.get()));
+      cairo_t* const cr = context.get();
+      cairo_status_t status = CAIRO_STATUS_SUCCESS;
+      {
+        Canvas canvas(std::move(context));
+        pages[i](canvas);
+        cairo_show_page(cr);
+        status = cairo_status(cr);
+      }
+      if (status != CAIRO_STATUS_SUCCESS) {
+        failed_page = i + 1;
+        cairo_surface_finish(surface.get());
+        return status;
+      }
+    }
+    cairo_surface_finish(surface.get());
+    return cairo_surface_status(surface.get());
+  });
+  if (!written && failed_page > 0)
+    return ioError(
+        fmt::format("{} (page {} of {})", written.error().message, failed_page, pages.size()));
+  return written;
+}
+
 Status writeSvgPage(const fs::path& file, PageSize size, const PageDrawing& draw) {
   return writeAtomically(file, [&](const fs::path& temp) {
     CairoSurface surface(cairo_svg_surface_create(temp.c_str(), size.width_pt, size.height_pt));

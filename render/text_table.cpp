@@ -26,7 +26,9 @@ void drawTableRow(Canvas& canvas, const TextTable& table, std::size_t r,
   double x = top_left.x;
   const std::vector<std::string>& row = table.rows[r];
   for (std::size_t c = 0; c < row.size(); ++c) {
-    const bool left = c == 0 && table.first_column_left;
+    const bool left = (c == 0 && table.first_column_left) ||
+                      std::find(table.left_columns.begin(), table.left_columns.end(), c) !=
+                          table.left_columns.end();
     const Point at{left ? x + padding : x + widths[c] - padding, baseline};
     drawText(canvas, at, row[c],
              {cellFont(table, r, font), kInk, left ? Align::kLeft : Align::kRight});

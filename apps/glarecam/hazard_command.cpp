@@ -24,6 +24,7 @@ struct HazardArgs {
   std::string criteria = "lai,ch";
   std::vector<std::string> sun = {"clear-sky"};
   std::string daylight_saving = "none";
+  std::optional<std::string> report;
   unsigned threads = 0;
   bool json = false;
   bool no_progress = false;
@@ -33,6 +34,7 @@ Status runHazardCommand(const HazardArgs& args) {
   hazard::HazardRunOptions options;
   options.scene = args.scene;
   if (args.profile) options.profile = *args.profile;
+  if (args.report) options.report = *args.report;
   options.out = args.out;
   options.hazard.year = args.year;
   options.hazard.step_s = args.step_s;
@@ -99,6 +101,12 @@ void addHazardCommand(CLI::App& app, Action& action) {
                   "last Sunday of October), us (second Sunday of March to first Sunday of "
                   "November); counting stays in standard time")
       ->capture_default_str();
+  sub->add_option("--report", args->report,
+                  "also write the report as one PDF (A4): the scene in plan view, the inputs and "
+                  "profiles, the results beside what a circular-cone tool would say, the method, "
+                  "and per receptor its chart, months, worst days, ocular hazard and verdicts "
+                  "(docs/hazard-report.md)")
+      ->type_name("FILE.pdf");
   sub->add_option("--threads", args->threads, "worker threads (default: one per core)");
   sub->add_flag("--json", args->json, "print hazard.json on stdout instead of the table");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # glarecam hazard end to end: a profile from the paper's Table III, the docs' example scene, the
-# outputs, --json, an array's own profile, and every bad input: exit 2, one line naming the file
-# and the field, nothing written.
+# outputs, --json, an array's own profile, the PDF report as a reader reads it (pdftotext,
+# pdftoppm), and every bad input: exit 2, one line naming the file and the field, nothing written.
 set -u
 GLARECAM=$1
 SOURCE_DIR=$2
@@ -23,6 +23,7 @@ expect "help types --models" grep -qE -- "--models MODEL,\.\.\." "$WORK/out"
 expect "help types --profile" grep -qE -- "--profile FILE" "$WORK/out"
 expect "help explains --sun" grep -q -- "--sun" "$WORK/out"
 expect "help says circle is this module's" grep -q "not SGHAT's default" "$WORK/out"
+expect "help types --report" grep -qE -- "--report FILE.pdf" "$WORK/out"
 
 # 10-minute steps keep the year short; the physics is the unit tests'.
 check "a year" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --step-s 600 \
@@ -40,6 +41,60 @@ expect "summary gives the array's facing" grep -qxF "array roof-north: faces 0°
 expect "a measured profile: no SIMULATED" bash -c "! grep -q SIMULATED '$WORK/out' '$WORK/err' '$WORK/h/events.csv'"
 expect "a measured profile: events not simulated" awk -F, 'NR > 1 { n++; if ($10 != "false") bad = 1 } END { exit bad || !n }' "$WORK/h/events.csv"
 
+# The PDF report, read as a user reads it: each receptor's row of the results table (its name,
+# then the table's numbers and verdicts as stdout printed them), the sun used, civil clock times;
+# every page renders. A v2 scene, so that a route's worst point and a house are in it too.
+python3 -c 'import json,sys
+d=json.load(open(sys.argv[1])); d["schema"]="glarecam.hazard-scene/2"
+d["observers"][0]["facing_azimuth_deg"]=180
+d["routes"]=[{"name":"road","points_m":[[-40,40,1.1],[40,40,1.1]],"spacing_m":20,"direction":"both"}]
+d["obstructions"]=[{"name":"house","footprint_m":[[20,20],[30,20],[30,30],[20,30]],"height_m":8}]
+json.dump(d,open(sys.argv[2],"w"))' "$SCENE" "$WORK/report-scene.json"
+check "report" 0 "$GLARECAM" hazard "$WORK/report-scene.json" --profile "$PROFILE" --year 2027 \
+  --step-s 600 --out "$WORK/r" --no-progress --daylight-saving eu --report "$WORK/r/report.pdf"
+cp "$WORK/out" "$WORK/r-table.txt"
+expect "report: a PDF" bash -c "head -c 5 '$WORK/r/report.pdf' | grep -q '%PDF-'"
+pdftotext -layout "$WORK/r/report.pdf" "$WORK/r/report.txt"
+tr -s ' ' <"$WORK/r/report.txt" >"$WORK/r/rows.txt"         # table rows, one line each
+tr -s ' \n' '  ' <"$WORK/r/report.txt" >"$WORK/r/flat.txt"   # sentences across line breaks
+# The stdout table's rows ("window-3  ellipse  8539  142.3  74  125  significant  not tolerable")
+# of the pictured points: the observers, and the road's worst point (hazard.json names it).
+WORST_ROAD=$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print([r["worst_point"] for r in d["receptors"] if r["name"]=="road"][0])' "$WORK/r/hazard.json")
+rows=0
+for point in window-3 window-west "$WORST_ROAD"; do
+  expect "report names $point" grep -qF -- "$point" "$WORK/r/flat.txt"
+  while read -r name model rest; do
+    rows=$((rows + 1))
+    # As the PDF's row has it: the model, then the same numbers and verdict words in order.
+    expect "report: $name by $model: $rest" grep -qF -- "$model $rest" "$WORK/r/rows.txt"
+  done < <(tr -s ' ' <"$WORK/r-table.txt" | grep -F -- "$point " | grep -E -- "^[^ ]+ (ellipse|circle) ")
+done
+expect "report: every pictured row checked" test "$rows" -eq 6
+expect "report: receptor and minutes on one row" \
+  grep -qE -- "window-3 \(observer\).* ellipse $(awk '$1 == "window-3" && $2 == "ellipse" { print $3 }' "$WORK/r-table.txt") " "$WORK/r/rows.txt"
+expect "report: the route's worst point" grep -qF -- "road (route) $WORST_ROAD (worst)" "$WORK/r/rows.txt"
+expect "report: verdict words" grep -qF "not tolerable" "$WORK/r/flat.txt"
+expect "report: thresholds written out" grep -qF "> 30 min/day (exceeded)" "$WORK/r/flat.txt"
+expect "report: the sun used" grep -qF "clear-sky: a clear sky's direct normal illuminance (IES RP-21" "$WORK/r/flat.txt"
+expect "report: possible minutes" grep -qF "possible: the sun is taken to shine at every step it is up" "$WORK/r/flat.txt"
+expect "report: the profile's route" grep -qF "not recorded" "$WORK/r/flat.txt"
+expect "report: civil clock times" grep -qE "[0-9]{2}:[0-9]{2}–[0-9]{2}:[0-9]{2} \(\+02:00\)" "$WORK/r/rows.txt"
+expect "report: a circular-cone tool" grep -qF "What a circular-cone tool would have said" "$WORK/r/flat.txt"
+expect "report: a measured profile is not SIMULATED" bash -c "! grep -q SIMULATED '$WORK/r/flat.txt'"
+PAGES=$(pdfinfo "$WORK/r/report.pdf" | awk '/^Pages:/ { print $2 }')
+# The scene, the results, the method, then two pages for each of the three pictured points.
+expect "report: pages ($PAGES)" test "${PAGES:-0}" -ge 9
+expect "report: page numbers" grep -qF "page $PAGES of $PAGES" "$WORK/r/flat.txt"
+pdftoppm -r 50 -png "$WORK/r/report.pdf" "$WORK/r/page"
+expect "report: every page renders" test "$(ls "$WORK/r"/page-*.png 2>/dev/null | wc -l)" -eq "${PAGES:-0}"
+# A report that cannot be written is an error naming it (exit 1); bad input writes no report.
+check "report: unwritable" 1 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 \
+  --step-s 3600 --out "$WORK/r2" --no-progress --report "$WORK/r/report.pdf/x.pdf"
+expect "report: unwritable names it" one_line_naming "$WORK/r/report.pdf/x.pdf"
+check "report: bad input" 2 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 \
+  --step-s 7 --out "$WORK/r3" --no-progress --report "$WORK/r3.pdf"
+expect "report: bad input writes none" test ! -e "$WORK/r3.pdf"
+
 # A profile from simulated stacks: marked on stderr, in the table, in every event and hazard.json.
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["simulated"]=True; json.dump(d,open(sys.argv[2],"w"))' \
   "$PROFILE" "$WORK/sim-profile.json"
@@ -49,6 +104,9 @@ expect "simulated: warned on stderr" grep -qF "warning: SIMULATED profile of mod
 expect "simulated: the table's first line" bash -c "head -1 '$WORK/out' | grep -qF 'SIMULATED profile of module'"
 expect "simulated: every event" awk -F, 'NR > 1 { n++; if ($10 != "true") bad = 1 } END { exit bad || !n }' "$WORK/sim/events.csv"
 expect "simulated: hazard.json's warnings" grep -qF '"SIMULATED profile of module' "$WORK/sim/hazard.json"
+check "simulated report" 0 "$GLARECAM" hazard "$SCENE" --profile "$WORK/sim-profile.json" --year 2027 \
+  --step-s 3600 --out "$WORK/sim-r" --no-progress --report "$WORK/sim-r/report.pdf"
+expect "simulated: the report says so" bash -c "pdftotext '$WORK/sim-r/report.pdf' - | grep -qF 'SIMULATED: stacks of the simulated camera'"
 
 # Observers that can never see an array's front: computed (0 minutes), warned naming both.
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["observers"].append({"name": "in-the-house", "position_m": [0, 2, 5]}); json.dump(d,open(sys.argv[2],"w"))' \

@@ -1,19 +1,24 @@
 // The hazard chart's files: PNG and SVG written atomically, a glaring cell's colour where its day
 // and time put it (found relative to the cell panel, located in the PNG by its edge columns),
-// a single glaring step still visible, bad content refused with nothing written, and an
-// unwritable path an error.
+// a single glaring step still visible, the year's column (each model's hours as a bar, crossed by
+// the yearly limits it exceeds), the same chart drawn into a box of a canvas and nowhere else,
+// bad content refused with nothing written or drawn, and an unwritable path an error.
 #include "hazard/hazard_chart.h"
 
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "render/canvas.h"
+#include "render/rgb_surface.h"
 #include "support/test_support.h"
 
 namespace glarecam::hazard {
@@ -234,6 +239,8 @@ TEST(HazardChart, BadContentIsRefusedWithNothingWritten) {
   variant("no threshold", [](auto& c) { c.threshold_minutes_per_day = 0; });
   variant("not a cell", [](auto& c) { c.cells[100] = static_cast<HazardCell>(9); });
   variant("a second model's glare with one model", [](auto& c) { c.models.pop_back(); });
+  variant("a yearly limit of 0 h", [](auto& c) { c.yearly_limits = {{"LAI", 0}}; });
+  variant("a yearly limit without a label", [](auto& c) { c.yearly_limits = {{"", 30}}; });
   for (const auto& [name, content] : bad) {
     SCOPED_TRACE(name);
     glarecam::testing::TempDir dir;
@@ -248,6 +255,102 @@ TEST(HazardChart, BadContentIsRefusedWithNothingWritten) {
   for (HazardCell& cell : one.cells)
     if (cell == HazardCell::kBoth) cell = HazardCell::kFirstOnly;
   EXPECT_EQ(write(one).png.width, kPngWidth);
+}
+
+// The first model's bar in the year's column: the extent of its blue right of the cell panel.
+struct Bar {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // x1, y1 exclusive
+  bool found() const { return x1 > x0 && y1 > y0; }
+};
+
+Bar findBar(const Png& png, int right_of) {
+  Bar bar{png.width, png.height, -1, -1};
+  for (int y = 0; y < png.height; ++y)
+    for (int x = right_of; x < png.width; ++x)
+      if (png.at(x, y) == kBlue) {
+        bar.x0 = std::min(bar.x0, x);
+        bar.y0 = std::min(bar.y0, y);
+        bar.x1 = std::max(bar.x1, x + 1);
+        bar.y1 = std::max(bar.y1, y + 1);
+      }
+  return bar;
+}
+
+// Runs of pixel rows inside the bar crossed by dark ink: the yearly limits below its top.
+int limitsCrossing(const Png& png, const Bar& bar) {
+  const auto dark = [](const Pixel& p) { return p[0] < 100 && p[1] < 100 && p[2] < 100; };
+  int runs = 0;
+  bool in_run = false;
+  for (int y = bar.y0; y < bar.y1; ++y) {
+    bool crossed = false;
+    for (int x = bar.x0; x < bar.x1 && !crossed; ++x) crossed = dark(png.at(x, y));
+    runs += crossed && !in_run ? 1 : 0;
+    in_run = crossed;
+  }
+  return runs;
+}
+
+TEST(HazardChart, TheYearsColumnSetsEachModelsHoursAgainstTheYearlyLimits) {
+  HazardChartContent c = markedYear(24);
+  // Without limits, no column: nothing blue right of the cell panel.
+  {
+    const Png png = write(c).png;
+    EXPECT_FALSE(findBar(png, findPanel(png).x1 + 2).found());
+  }
+  c.yearly_limits = {{"LAI", 30}, {"CH", 50}};
+  // 10 min a day by the first model: 60.8 h, above both limits; 6.5 min a day: 39.5 h, above
+  // LAI's only.
+  for (const auto& [minutes_per_day, crossings] : {std::pair{10.0, 2}, std::pair{6.5, 1}}) {
+    SCOPED_TRACE(minutes_per_day);
+    c.models[0].minutes_per_day.assign(kDays, minutes_per_day);
+    const Png png = write(c).png;
+    const Panel panel = findPanel(png);
+    // The panels make room for the column, still most of the page wide.
+    EXPECT_GT(panel.x1 - panel.x0, kPngWidth * 2 / 3);
+    EXPECT_LT(panel.x1, kPngWidth - 150);
+    const Bar bar = findBar(png, panel.x1 + 2);
+    ASSERT_TRUE(bar.found());
+    EXPECT_GT(bar.y1 - bar.y0, 100);
+    EXPECT_EQ(limitsCrossing(png, bar), crossings);
+  }
+}
+
+// The chart drawn into a box of a canvas, as a report page embeds it: the panels inside the box,
+// nothing outside it; refused content draws nothing.
+TEST(HazardChart, DrawnIntoABoxOfACanvasAndNowhereElse) {
+  constexpr int kWidth = 900, kHeight = 560;
+  const render::Box box{40, 30, 860, 530};
+  const auto draw = [&](const HazardChartContent& c, Status& status) {
+    render::RgbSurface surface = render::RgbSurface::create(kWidth, kHeight).value();
+    render::Canvas canvas = render::Canvas::onSurface(surface).value();
+    render::paint(canvas, render::kWhite);
+    status = drawHazardChart(canvas, box, c);
+    const render::RgbImage image = surface.copyRgb();
+    return Png{image.width, image.height, image.rgb};
+  };
+  HazardChartContent c = markedYear(1440);
+  c.yearly_limits = {{"LAI", 30}};
+  Status status;
+  const Png png = draw(c, status);
+  ASSERT_TRUE(status) << status.error().message;
+  const Panel panel = findPanel(png);
+  EXPECT_GE(panel.x0, box.x0);
+  EXPECT_LE(panel.x1, box.x1);
+  EXPECT_GT(panel.x1 - panel.x0, (box.x1 - box.x0) / 2);
+  // One pixel of slack: a line on the box's edge is anti-aliased across it.
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      if (x < box.x0 - 1 || x > box.x1 + 1 || y < box.y0 - 1 || y > box.y1 + 1) {
+        ASSERT_EQ(png.at(x, y), (Pixel{255, 255, 255})) << x << ", " << y;
+      }
+    }
+  }
+
+  c.models.clear();
+  const Png refused = draw(c, status);
+  ASSERT_FALSE(status);
+  EXPECT_EQ(status.error().code, ErrorCode::kBadInput);
+  EXPECT_EQ(findPanel(refused).x1, -1);
 }
 
 TEST(HazardChart, AnUnwritablePathIsAnErrorNotACrash) {

@@ -219,6 +219,28 @@ TEST_F(HazardReportOutputs, ChartCellsShowWhichModelGlares) {
   EXPECT_EQ(content.cells[79 * 1440 + 1081], HazardCell::kBoth);
   EXPECT_EQ(content.cells[0], HazardCell::kNone);
   EXPECT_EQ(content.threshold_minutes_per_day, 30);
+  // Each criterion's yearly limit, named as the table names it, for the year's column.
+  ASSERT_EQ(content.yearly_limits.size(), 2u);
+  EXPECT_EQ(content.yearly_limits[0].label, "LAI");
+  EXPECT_EQ(content.yearly_limits[0].hours_per_year, 30);
+  EXPECT_EQ(content.yearly_limits[1].label, "CH");
+  EXPECT_EQ(content.yearly_limits[1].hours_per_year, 50);
+}
+
+TEST(HazardReport, WorstDaysAreTheMostGlaringMostFirst) {
+  ModelSummary summary;
+  summary.minutes_per_day = {0, 5, 12, 3, 12, 0, 30, 1};
+  EXPECT_EQ(worstDays(summary, 3), (std::vector<std::size_t>{6, 2, 4}));
+  // Never a day without glare, however many are asked for.
+  EXPECT_EQ(worstDays(summary, 10), (std::vector<std::size_t>{6, 2, 4, 1, 3, 7}));
+  EXPECT_TRUE(worstDays(ModelSummary{}, 5).empty());
+}
+
+TEST(HazardReport, OffsetsAndFacingsReadAsTheReportWritesThem) {
+  EXPECT_EQ(utcOffsetText(1.0), "UTC+01:00");
+  EXPECT_EQ(utcOffsetText(-3.5), "UTC-03:30");
+  EXPECT_EQ(arrayFacingText(testing::squareArray("flat", {0, 0, 0}, {0, 0, 1}, 2)),
+            "faces up (level), tilt 0.0°, 4.0 m²");
 }
 
 TEST_F(HazardReportOutputs, SummaryTableListsEveryObserverAndModel) {

@@ -77,5 +77,19 @@ TEST(TextTable, FirstColumnLeftAlignedOnRequest) {
   EXPECT_FALSE(right.anyInk(0, 13, 20, 24));
 }
 
+TEST(TextTable, AnyColumnLeftAlignedOnRequest) {
+  TextTable table{.rows = {{"x", "a much wider heading"}, {"1", "a"}}};
+  TestCanvas right(300, 40);
+  const double first_pt = columnWidthsPt(right.context(), table, kTableFont)[0];
+  drawTable(right.context(), table, {0, 0, 300, 40}, kTableFont);
+  table.left_columns = {1};
+  TestCanvas left(300, 40);
+  drawTable(left.context(), table, {0, 0, 300, 40}, kTableFont);
+  // The second column's short cell "a" at the column's start, or by default at its end.
+  const int start = static_cast<int>(first_pt);
+  EXPECT_TRUE(left.anyInk(start, 13, start + 20, 24));
+  EXPECT_FALSE(right.anyInk(start, 13, start + 20, 24));
+}
+
 }  // namespace
 }  // namespace glarecam::render

@@ -524,7 +524,14 @@ std::string summaryText(const HazardReport& report) {
                                    "h/year",   "days",  "max min/day"};
   for (const Criterion& criterion : options.criteria) heading.push_back(criterion.id);
   rows.push_back(heading);
+  // The pictured points only: every observer, each route's and area's worst point (the others
+  // are in hazard.json).
+  const auto pictured = [&](std::size_t o) {
+    return report.picture_stems.size() != scene.observers.size() ||
+           !report.picture_stems[o].empty();
+  };
   for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    if (!pictured(o)) continue;
     for (std::size_t m = 0; m < options.models.size(); ++m) {
       const ModelSummary& summary = result.observers[o].models[m];
       std::vector<std::string> row{scene.observers[o].name,
@@ -560,7 +567,15 @@ std::string summaryText(const HazardReport& report) {
     line.erase(line.find_last_not_of(' ') + 1);
     text += line + "\n";
   }
+  for (const Receptor& receptor : scene.receptors) {
+    if (receptor.kind == ReceptorKind::kObserver) continue;
+    text += std::string(receptorKindName(receptor.kind)) + " " + receptor.name + ": " +
+            std::to_string(receptor.count) + " points, the worst " +
+            scene.observers[worstPoint(receptor, result)].name + " (every point in " + kHazardJson +
+            ")\n";
+  }
   for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    if (!pictured(o)) continue;
     for (std::size_t m = 0; m < options.models.size(); ++m) {
       const ModelSummary& summary = result.observers[o].models[m];
       if (summary.steps_unknown_spread > 0 || summary.steps_beyond_method > 0) {

@@ -82,8 +82,10 @@ std::vector<std::string> reportWarnings(const HazardReport& report);
 nlohmann::json hazardJson(const HazardReport& report);
 std::string eventsCsv(const HazardReport& report);
 HazardChartContent chartContent(const HazardReport& report, std::size_t observer);
-// Per observer and model: minutes/year, days, largest day, each criterion's verdict; before it a
-// SIMULATED line per simulated profile and each array's facing, tilt and area.
+// Per pictured point (every observer, each route's and area's worst point) and model:
+// minutes/year, days, largest day, each criterion's verdict; before it a SIMULATED line per
+// simulated profile and each array's facing, tilt and area; after it each route and area with
+// its number of points and its worst.
 std::string summaryText(const HazardReport& report);
 
 // Writes every output into `directory` (created if missing), each file atomically.

@@ -1,5 +1,6 @@
 #include "hazard/hazard_run.h"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 
@@ -43,19 +44,34 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
     profiles.push_back(table.get());
   }
 
+  HazardOptions hazard = options.hazard;
+  if (options.sun_by_default && hazard.sun.kind != SunKind::kReference) {
+    const auto without = std::find_if(profiles.begin(), profiles.end(), [](const ProfileTable* p) {
+      return !p->ladderReferenceLx();
+    });
+    if (without != profiles.end()) {
+      scene.warnings.push_back(
+          (*without)->path().string() +
+          ": the profile has no contour ladder referred to a reference illuminance, so the sun "
+          "is the profile's reference at every step (--sun reference), not the clear sky's: "
+          "low suns count as bright as the reference; give --sun clear-sky to require the clear "
+          "sky");
+      hazard.sun = SunBrightness{};
+    }
+  }
   HazardResult result;
   {
-    Progress progress("hazard " + std::to_string(options.hazard.year),
-                      daysInYear(options.hazard.year), options.show_progress);
+    Progress progress("hazard " + std::to_string(hazard.year), daysInYear(hazard.year),
+                      options.show_progress);
     int reported = 0;
-    GLARECAM_ASSIGN(result, computeHazard(scene, profiles, options.hazard, [&](int done, int) {
+    GLARECAM_ASSIGN(result, computeHazard(scene, profiles, hazard, [&](int done, int) {
                       for (; reported < done; ++reported) progress.advance();
                     }));
     progress.finish();
   }
   HazardReport report{.scene = &scene,
                       .profiles = profiles,
-                      .options = &options.hazard,
+                      .options = &hazard,
                       .result = &result,
                       .picture_stems = pictureStems(scene, result),
                       .daylight_saving = options.daylight_saving};

@@ -23,6 +23,11 @@ struct HazardRunOptions {
   HazardOptions hazard;
   DaylightSaving daylight_saving = DaylightSaving::kNone;  // civil clock times beside standard
   std::optional<std::filesystem::path> report;  // the PDF report (hazard_pdf.h), if wanted
+  // The sun was not asked for (`--sun` not given): hazard.sun (the clear sky) where every profile
+  // has a referred contour ladder, else the reference sun, with a warning naming the profile
+  // (a profile from a table, or of an earlier glarecam). Asked for, a profile without a ladder
+  // is refused.
+  bool sun_by_default = false;
   bool show_progress = true;
 
   Status validate() const;

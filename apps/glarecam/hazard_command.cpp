@@ -23,6 +23,7 @@ struct HazardArgs {
   std::string models = "ellipse,circle";
   std::string criteria = "lai,ch";
   std::vector<std::string> sun = {"clear-sky"};
+  bool sun_given = false;
   std::string daylight_saving = "none";
   std::optional<std::string> report;
   unsigned threads = 0;
@@ -43,6 +44,7 @@ Status runHazardCommand(const HazardArgs& args) {
   GLARECAM_ASSIGN(options.hazard.models, hazard::parseModels(args.models, "--models"));
   GLARECAM_ASSIGN(options.hazard.criteria, hazard::parseCriteria(args.criteria, "--criteria"));
   GLARECAM_ASSIGN(options.hazard.sun, hazard::parseSunBrightness(args.sun));
+  options.sun_by_default = !args.sun_given;
   GLARECAM_ASSIGN(options.daylight_saving,
                   hazard::parseDaylightSaving(args.daylight_saving, "--daylight-saving"));
   hazard::HazardRunSummary summary;
@@ -93,7 +95,8 @@ void addHazardCommand(CLI::App& app, Action& action) {
                   "the sun's brightness at each step: clear-sky (a clear sky's direct normal "
                   "illuminance: the possible glare), reference (the profile's reference "
                   "illuminance, as before), weather FILE.epw (an EnergyPlus weather file: the "
-                  "expected glare)")
+                  "expected glare). Not given: clear-sky, or reference (warned) for a profile "
+                  "without a contour ladder")
       ->expected(1, 2)
       ->capture_default_str();
   sub->add_option("--daylight-saving", args->daylight_saving,
@@ -110,7 +113,10 @@ void addHazardCommand(CLI::App& app, Action& action) {
   sub->add_option("--threads", args->threads, "worker threads (default: one per core)");
   sub->add_flag("--json", args->json, "print hazard.json on stdout instead of the table");
   sub->add_flag("--no-progress", args->no_progress, "no progress on stderr");
-  sub->callback([args, &action] { action = [args] { return runHazardCommand(*args); }; });
+  sub->callback([args, sub, &action] {
+    args->sun_given = sub->count("--sun") > 0;
+    action = [args] { return runHazardCommand(*args); };
+  });
 }
 
 }  // namespace glarecam::apps

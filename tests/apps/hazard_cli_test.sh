@@ -147,6 +147,12 @@ expect "events give where the glare is seen" grep -q "glare_azimuth_deg,glare_el
 check "reference sun" 0 "$GLARECAM" hazard "$SCENE" --profile "$TABLE_PROFILE" --sun reference \
   --year 2027 --step-s 600 --out "$WORK/ref" --no-progress
 expect "reference sun recorded" grep -q '"kind": "reference"' "$WORK/ref/hazard.json"
+# No --sun and a profile without a ladder: the reference sun, warned naming the profile.
+check "no ladder, no --sun" 0 "$GLARECAM" hazard "$SCENE" --profile "$TABLE_PROFILE" \
+  --year 2027 --step-s 600 --out "$WORK/fallback" --no-progress
+expect "no ladder: warned naming it" grep -qF "warning: $TABLE_PROFILE: the profile has no contour ladder" "$WORK/err"
+expect "no ladder: the reference sun, recorded" grep -q '"kind": "reference"' "$WORK/fallback/hazard.json"
+expect "no ladder: the same as --sun reference" cmp -s "$WORK/fallback/events.csv" "$WORK/ref/events.csv"
 python3 - "$WORK/weather.epw" <<'PY'
 import sys
 lines = ["LOCATION,Zurich,ZH,CHE,test,066600,47.37,8.54,1.0,410.0",
@@ -182,7 +188,9 @@ d["obstructions"]=[{"name":"house","footprint_m":[[20,20],[30,20],[30,30],[20,30
 json.dump(d,open(sys.argv[2],"w"))' "$SCENE" "$WORK/v2.json"
 check "scene v2" 0 "$GLARECAM" hazard "$WORK/v2.json" --profile "$PROFILE" --year 2027 --step-s 3600 \
   --out "$WORK/v2" --no-progress
-expect "v2: the road's points" grep -qE "^road@0m +ellipse" "$WORK/out"
+expect "v2: the road's worst point" grep -qE "^road@[0-9]+m +ellipse" "$WORK/out"
+expect "v2: only the road's worst point" test "$(grep -cE '^road@[0-9]+m +(ellipse|circle) ' "$WORK/out")" -eq 2
+expect "v2: the road's points counted" grep -qE "^route road: 5 points, the worst road@[0-9]+m" "$WORK/out"
 expect "v2: receptors with their worst point" grep -q '"worst_point"' "$WORK/v2/hazard.json"
 expect "v2: a picture of the road's worst point only" bash -c "test \$(ls '$WORK/v2'/glare-road* | wc -l) -eq 2"
 
@@ -232,7 +240,7 @@ bad "bad cone" "cone:DEG" "$SCENE" --profile "$PROFILE" --models cone:0
 bad "unknown criterion" 'unknown criterion "de"' "$SCENE" --profile "$PROFILE" --criteria de
 bad "year out of range" "--year 7000" "$SCENE" --profile "$PROFILE" --year 7000 --step-s 3600
 bad "step not dividing a day" "--step-s 7" "$SCENE" --profile "$PROFILE" --year 2027 --step-s 7
-bad "no ladder for the clear sky" "has no contour ladder" "$SCENE" --profile "$TABLE_PROFILE"
+bad "no ladder for the clear sky" "has no contour ladder" "$SCENE" --profile "$TABLE_PROFILE" --sun clear-sky
 bad "unknown sun" '--sun "cloudy"' "$SCENE" --profile "$PROFILE" --sun cloudy
 bad "weather without a file" "--sun weather needs the weather file" "$SCENE" --profile "$PROFILE" --sun weather
 bad "a short weather file" "freiburg-two-days.epw" "$SCENE" --profile "$PROFILE" \

@@ -116,9 +116,10 @@ TEST(SunBrightness, ADimmerSunNeverAddsGlare) {
     EXPECT_GT(full->observers[0].models[m].minutes_per_year, 0);
     // The ellipse and circle shrink at 2.5× the level; the constant cone only loses where the
     // level would pass the peak, which a 1e6 cd/m² peak never does at 7.5e4 cd/m².
-    if (m < 2)
+    if (m < 2) {
       EXPECT_LT(less->observers[0].models[m].minutes_per_year,
                 full->observers[0].models[m].minutes_per_year);
+    }
   }
   // So dim that even the referred peak stays below the limit: no glare at all.
   const std::vector<double> dusk(sun::kEpwHoursPerYear, 2'000);

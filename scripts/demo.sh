@@ -236,12 +236,13 @@ echo "retention:       $((16 - first_left)) of the 21st's stacks deleted (a day 
   "$(du -sh "$OUT/daemon" | cut -f1) within 0.6 GiB; all 16 results and the 21st's sheet kept"
 
 # What the measurement is for: glare minutes at two neighbours' windows north of a roof in Zürich
-# (docs/examples/hazard-scene.json) from the profile just measured, by the measured elliptical,
-# α-dependent spread and by the equal-solid-angle circular cone that SGHAT-style tools would use.
+# (docs/examples/hazard-scene.json) from the profile just measured, under a clear sky's sun, by
+# the measured elliptical, α-dependent spread and by the equal-solid-angle circular cone of that
+# ellipse, with each glare's ocular hazard and the report a client gets (report.pdf).
 echo "demo: glare at the neighbours' windows over a year, ellipse beside circle (glarecam hazard)" >&2
 SCENE="$(dirname "$0")/../docs/examples/hazard-scene.json"
 "$BIN/glarecam" hazard "$SCENE" --profile "$OUT/sweep/glare-profile.json" --year 2027 \
-  --out "$OUT/hazard" >"$OUT/hazard-table.txt"
+  --daylight-saving eu --out "$OUT/hazard" --report "$OUT/hazard/report.pdf" >"$OUT/hazard-table.txt"
 echo
 cat "$OUT/hazard-table.txt"
 awk '$2 == "ellipse" { e[$1] = $3; order[++n] = $1 } $2 == "circle" { c[$1] = $3 }
@@ -252,4 +253,4 @@ awk '$2 == "ellipse" { e[$1] = $3; order[++n] = $1 } $2 == "circle" { c[$1] = $3
       printf "%s: %s min/year by the measured ellipse, %s by the circular cone%s\n", o, e[o], c[o], change
     }
   }' "$OUT/hazard-table.txt"
-echo "hazard:          $OUT/hazard/hazard.json, events.csv, glare-*.png (docs/hazard.md)"
+echo "hazard:          $OUT/hazard/report.pdf; hazard.json, events.csv, glare-*.png, ocular-glare-*.png (docs/hazard.md)"

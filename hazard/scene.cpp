@@ -119,6 +119,17 @@ Result<Vec3> readPoint(const JsonReader& value) {
   return Vec3{xyz[0], xyz[1], xyz[2]};
 }
 
+// Every element of a list as [x, y, z].
+Result<std::vector<Vec3>> readPoints(const JsonReader& list) {
+  std::vector<Vec3> points;
+  for (std::size_t v = 0; v < list.size(); ++v) {
+    Vec3 point;
+    GLARECAM_ASSIGN(point, readPoint(list.element(v)));
+    points.push_back(point);
+  }
+  return points;
+}
+
 Status readSite(const JsonReader& document, HazardSite& site) {
   JsonReader json;
   GLARECAM_ASSIGN(json, document.objectMember("site"));
@@ -169,11 +180,7 @@ Status readArrays(const JsonReader& document, const std::filesystem::path& base,
     JsonReader vertices_json;
     GLARECAM_ASSIGN(vertices_json, json.arrayMember("vertices_m"));
     std::vector<Vec3> vertices;
-    for (std::size_t v = 0; v < vertices_json.size(); ++v) {
-      Vec3 point;
-      GLARECAM_ASSIGN(point, readPoint(vertices_json.element(v)));
-      vertices.push_back(point);
-    }
+    GLARECAM_ASSIGN(vertices, readPoints(vertices_json));
     ArrayPolygon array;
     GLARECAM_ASSIGN(array, makeArrayPolygon(std::move(name), std::move(vertices), json.file(),
                                             vertices_json.path()));
@@ -366,11 +373,7 @@ Status readAreas(const JsonReader& document, Scene& scene, std::set<std::string>
     JsonReader vertices_json;
     GLARECAM_ASSIGN(vertices_json, json.arrayMember("vertices_m"));
     std::vector<Vec3> vertices;
-    for (std::size_t v = 0; v < vertices_json.size(); ++v) {
-      Vec3 point;
-      GLARECAM_ASSIGN(point, readPoint(vertices_json.element(v)));
-      vertices.push_back(point);
-    }
+    GLARECAM_ASSIGN(vertices, readPoints(vertices_json));
     ArrayPolygon polygon;
     GLARECAM_ASSIGN(polygon,
                     makeArrayPolygon(name, std::move(vertices), json.file(), vertices_json.path()));
@@ -436,11 +439,7 @@ Status readObstructions(const JsonReader& document, Scene& scene) {
       JsonReader vertices_json;
       GLARECAM_ASSIGN(vertices_json, json.arrayMember("vertices_m"));
       std::vector<Vec3> vertices;
-      for (std::size_t v = 0; v < vertices_json.size(); ++v) {
-        Vec3 point;
-        GLARECAM_ASSIGN(point, readPoint(vertices_json.element(v)));
-        vertices.push_back(point);
-      }
+      GLARECAM_ASSIGN(vertices, readPoints(vertices_json));
       GLARECAM_ASSIGN(obstruction, makePlanarObstruction(std::move(name), std::move(vertices),
                                                          json.file(), vertices_json.path()));
     } else {

@@ -26,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using Pixel = std::array<std::uint8_t, 3>;
+using Pixel = glarecam::testing::RgbPixel;
 
 // The chart's documented colours (hazard_chart.h: Okabe–Ito).
 constexpr Pixel kBlue{0x00, 0x72, 0xB2};        // first model only
@@ -36,33 +36,7 @@ constexpr Pixel kVermillion{0xD5, 0x5E, 0x00};  // both
 // An A4 landscape page at 144 dpi.
 constexpr int kPngWidth = 1684, kPngHeight = 1190;
 
-struct Png {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-  Pixel at(int x, int y) const {
-    const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
-    return {rgb[i], rgb[i + 1], rgb[i + 2]};
-  }
-};
-
-Png readPng(const fs::path& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  Png png;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    ADD_FAILURE() << path << ": " << image.message;
-    return png;
-  }
-  image.format = PNG_FORMAT_RGB;
-  png.width = static_cast<int>(image.width);
-  png.height = static_cast<int>(image.height);
-  png.rgb.resize(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, png.rgb.data(), 0, nullptr)) {
-    ADD_FAILURE() << path << ": " << image.message;
-    png = {};
-  }
-  return png;
-}
+using Png = glarecam::testing::RgbPicture;
 
 constexpr int kDays = 365;  // 2027
 
@@ -135,7 +109,8 @@ Written write(const HazardChartContent& content) {
   if (!status) return {};
   for (const auto& entry : fs::directory_iterator(dir.path()))
     EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
-  return {readPng(dir / "chart.png"), glarecam::testing::readText(dir / "chart.svg")};
+  return {glarecam::testing::readPngRgb(dir / "chart.png"),
+          glarecam::testing::readText(dir / "chart.svg")};
 }
 
 TEST(HazardChart, WritesAPngPageAndAnSvgDocument) {

@@ -31,7 +31,7 @@ namespace ocular_hazard_plot_test {
 
 namespace fs = std::filesystem;
 
-using Pixel = std::array<std::uint8_t, 3>;
+using Pixel = glarecam::testing::RgbPixel;
 
 // An A4 landscape page at 144 dpi.
 constexpr int kPngWidth = 1684, kPngHeight = 1190;
@@ -41,33 +41,7 @@ const Pixel kInkPixel = render::rgbBytes(render::kInk);  // series 0's marker
 constexpr int kCairoRounding = 1;
 const Pixel kWhitePixel = {255, 255, 255};
 
-struct Png {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-  Pixel at(int x, int y) const {
-    const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
-    return {rgb[i], rgb[i + 1], rgb[i + 2]};
-  }
-};
-
-Png readPng(const fs::path& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  Png png;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    ADD_FAILURE() << path << ": " << image.message;
-    return png;
-  }
-  image.format = PNG_FORMAT_RGB;
-  png.width = static_cast<int>(image.width);
-  png.height = static_cast<int>(image.height);
-  png.rgb.resize(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, png.rgb.data(), 0, nullptr)) {
-    ADD_FAILURE() << path << ": " << image.message;
-    png = {};
-  }
-  return png;
-}
+using Png = glarecam::testing::RgbPicture;
 
 Png fromSurface(const render::RgbSurface& surface) {
   const render::RgbImage image = surface.copyRgb();
@@ -134,7 +108,8 @@ Written write(const OcularPlotContent& content) {
   if (!status) return {};
   for (const auto& entry : fs::directory_iterator(dir.path()))
     EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
-  return {readPng(dir / "ocular.png"), glarecam::testing::readText(dir / "ocular.svg")};
+  return {glarecam::testing::readPngRgb(dir / "ocular.png"),
+          glarecam::testing::readText(dir / "ocular.svg")};
 }
 
 OcularPlotContent emptyPlot() {

@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <png.h>
 #include <stdlib.h>
 #include <sys/socket.h>
 
@@ -90,6 +91,25 @@ TestStack writeTestStack(const fs::path& directory, double alpha_deg) {
   const Status written = writeStack(directory, request);
   EXPECT_TRUE(written.has_value()) << (written ? "" : written.error().message);
   return stack;
+}
+
+RgbPicture readPngRgb(const std::filesystem::path& path) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  RgbPicture picture;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) {
+    ADD_FAILURE() << path << ": " << image.message;
+    return picture;
+  }
+  image.format = PNG_FORMAT_RGB;
+  picture.width = static_cast<int>(image.width);
+  picture.height = static_cast<int>(image.height);
+  picture.rgb.resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, picture.rgb.data(), 0, nullptr)) {
+    ADD_FAILURE() << path << ": " << image.message;
+    picture = {};
+  }
+  return picture;
 }
 
 }  // namespace glarecam::testing

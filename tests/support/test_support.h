@@ -3,6 +3,8 @@
 // writer. The simulator's helpers (scenes, simulated stacks) are in support/sim_support.h.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -48,5 +50,18 @@ struct TestStack {
 // exposures, 16-bit PNG, an inline calibration (reference f-number 8, the frames at f/8), α 40°
 // unless given, and a text file truth.json, as a simulated stack carries.
 TestStack writeTestStack(const std::filesystem::path& directory, double alpha_deg = 40.0);
+
+// A drawn page read back as 8-bit RGB (the pictures' tests).
+using RgbPixel = std::array<std::uint8_t, 3>;
+struct RgbPicture {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;  // row-major, 3 bytes a pixel
+  RgbPixel at(int x, int y) const {
+    const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+// A PNG file as RGB; empty, with a failure added to the calling test, when it cannot be read.
+RgbPicture readPngRgb(const std::filesystem::path& path);
 
 }  // namespace glarecam::testing

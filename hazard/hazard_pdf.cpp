@@ -521,6 +521,22 @@ std::string identityText(const nlohmann::json& identity) {
   return joined(parts, "; ");
 }
 
+// How the profile's rows were measured: "camera", "BRDF (laboratory)", both, or not recorded
+// (a profile of an earlier glarecam, or made from a table).
+std::string routeText(const ProfileTable& profile) {
+  const nlohmann::json& routes = profile.identity().value("routes", nlohmann::json::array());
+  if (routes.empty())
+    return "not recorded (the profile does not say whether it came from the camera or a BRDF)";
+  std::string text;
+  for (const nlohmann::json& route : routes) {
+    const std::string name = route.get<std::string>();
+    text += (text.empty() ? "" : " and ") +
+            (name == "brdf" ? std::string("BRDF (a laboratory goniophotometer)")
+                            : std::string("camera (luminance images)"));
+  }
+  return text;
+}
+
 std::vector<Fact> profileFacts(const HazardReport& report, const ProfileTable& profile) {
   std::vector<std::string> arrays;
   for (std::size_t a = 0; a < report.profiles.size(); ++a)
@@ -540,9 +556,7 @@ std::vector<Fact> profileFacts(const HazardReport& report, const ProfileTable& p
       {"reference", reference ? fmt::format("{} lx (referred, with a contour ladder)",
                                             formatGrouped(*reference, 4))
                               : "none: not referred, or no contour ladder"},
-      {"route",
-       "not recorded (the profile does not say whether it came from the camera or a "
-       "BRDF)"},
+      {"route", routeText(profile)},
       {"glares at", ranges.empty() ? "no α" : "α " + joined(ranges, ", ") + " (counted to 80°)"},
   };
   return facts;

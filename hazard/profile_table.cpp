@@ -34,6 +34,7 @@ ProfileTable::ProfileTable(const pipeline::GlareProfile& profile)
                {"calibrations", profile.calibrations}};
   if (profile.date) identity_["date"] = *profile.date;
   if (profile.source) identity_["source"] = *profile.source;
+  if (!profile.routes.empty()) identity_["routes"] = profile.routes;
   for (const pipeline::ProfileRow& source : profile.rows) {
     Row& row = rows_[static_cast<std::size_t>(source.alpha_deg)];
     row.lmax_cd_m2 = source.lmax_cd_m2;

@@ -315,6 +315,7 @@ GlareProfile makeGlareProfile(const ProfileIdentity& identity, const SweepTable&
   profile.source = identity.source;
   // Stacks of the simulated camera make a simulated profile, never a measurement's.
   profile.simulated = isSimulated(table);
+  profile.routes = tableRoutes(table);
   profile.cameras = tableCameras(table);
   profile.calibrations = tableCalibrations(table);
   std::vector<std::string> seen;
@@ -648,6 +649,7 @@ json toJson(const GlareProfile& p) {
   if (p.date) document["date"] = *p.date;
   if (p.source) document["source"] = *p.source;
   if (p.luminance_fit) document["luminance_fit"] = *p.luminance_fit;
+  if (!p.routes.empty()) document["routes"] = p.routes;
   if (p.generator) document["generator"] = toJson(*p.generator);
   return document;
 }
@@ -664,6 +666,12 @@ Result<GlareProfile> glareProfileFromJson(const json& document, const std::strin
   GLARECAM_ASSIGN(simulated, r.optionalBoolean("simulated"));
   p.simulated = simulated.value_or(false);
   GLARECAM_ASSIGN(p.cameras, readTexts(r, "cameras"));
+  GLARECAM_ASSIGN(p.routes, readTexts(r, "routes"));
+  for (std::size_t i = 0; i < p.routes.size(); ++i) {
+    if (p.routes[i] != "camera" && p.routes[i] != "brdf")
+      return r.fail("routes", "[" + std::to_string(i) + "] \"" + p.routes[i] +
+                                  "\" is not a route (camera or brdf)");
+  }
   GLARECAM_ASSIGN(p.calibrations, readTexts(r, "calibrations"));
   GLARECAM_ASSIGN(p.calibration_details,
                   readList<ProfileCalibration>(r, "calibration_details", readCalibration));

@@ -145,6 +145,9 @@ struct GlareProfile {
   std::optional<std::string> date = std::nullopt;    // YYYY-MM-DD
   std::optional<std::string> source = std::nullopt;  // the sweep table's path
   bool simulated = false;  // any row from the simulated camera: not a measurement
+  // Since /2: how the rows were measured, "camera" and/or "brdf" (sweep_table.h's tableRoutes);
+  // empty in a profile that does not record it.
+  std::vector<std::string> routes = {};
   std::vector<std::string> cameras = {}, calibrations = {};
   std::vector<ProfileCalibration> calibration_details = {};
   std::optional<std::string> luminance_fit = std::nullopt;  // "cos" or "biquadratic"

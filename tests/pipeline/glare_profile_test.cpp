@@ -186,6 +186,8 @@ void expectRoundTrip(const GlareProfile& profile, const std::string& what) {
 }
 
 TEST(GlareProfileDocument, WhatIsWrittenReadsBackEqual) {
+  // The table's rows say no route: the camera's, as the paper measured them.
+  EXPECT_EQ(tableIIIProfile().routes, std::vector<std::string>{"camera"});
   expectRoundTrip(tableIIIProfile(), "alpha curve");
   expectRoundTrip(tableIIIProfile({.constant_cd_m2 = 5e6}), "constant limit");
   expectRoundTrip(makeGlareProfile({"dim", "2026-11-26", "d.csv"}, exponentialSweep(10000, 40),
@@ -308,6 +310,8 @@ TEST(GlareProfileDocument, RefusesWhatIsNotAProfileNamingTheField) {
       {[](nlohmann::json& d) { d["measured"][0]["lmax_bound"] = "maybe"; },
        "p.json: measured[0].lmax_bound \"maybe\" is not lower or upper"},
       {[](nlohmann::json& d) { d["cameras"] = {7}; }, "p.json: cameras[0] must be a string, not 7"},
+      {[](nlohmann::json& d) { d["routes"] = {"camera", "lidar"}; },
+       "p.json: routes [1] \"lidar\" is not a route (camera or brdf)"},
       {[](nlohmann::json& d) { d["fits"] = "none"; },
        "p.json: fits must be an object, not \"none\""},
   };

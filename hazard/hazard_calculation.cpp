@@ -137,11 +137,11 @@ void addReferenceLuminances(ModelRegion& region, const ProfileTable& profile, do
 ModelRegion brightRegion(const GlareModel& model, const ProfileTable& profile, double alpha_deg,
                          double source_lx, double reference_lx) {
   ModelRegion region;
+  if (!(source_lx > 0)) return region;  // no direct sun: no glare, nor any beyond the method
   if (alpha_deg > pipeline::kProfileAlphaMaxDeg) {
     region = modelRegion(model, profile.at(alpha_deg), profile);  // beyond the method
     return region;
   }
-  if (!(source_lx > 0)) return region;  // no direct sun: no glare
   const LuminancesAt luminances = profile.luminancesAt(alpha_deg);
   if (!luminances.limit_cd_m2 || !luminances.lmax_cd_m2) {
     region.state = RegionState::kUnknown;
@@ -335,9 +335,9 @@ double elevationDeg(Vec3 d) { return degrees(std::asin(std::clamp(d.z, -1.0, 1.0
 
 // What a glaring step looks like from the receptor (GlareSighting): where, how bright, and its
 // ocular hazard. The spot the eye sees is the region where it is smaller than the part of the
-// array seen (its mean luminance, the logarithmic mean of the peak and the edge for the
-// log-quadratic lobe of hazard.md step 7, over its solid angle), else the array (the luminance
-// at the point seen, over the array's solid angle).
+// array seen (over its solid angle, at its mean luminance, the logarithmic mean of the peak and
+// the edge for the log-quadratic lobe of hazard.md step 7, but never brighter than the brightest
+// point seen), else the array (the luminance at the point seen, over the array's solid angle).
 GlareSighting sighting(const Context& context, std::size_t a, const ArrayStep& step,
                        const ModelRegion& region, const Pair& pair, double q, Vec3 direction,
                        std::int64_t step_index) {
@@ -358,11 +358,16 @@ GlareSighting sighting(const Context& context, std::size_t a, const ArrayStep& s
     return seen;
   const double peak = *region.peak_cd_m2, edge = *region.edge_cd_m2;
   seen.luminance_cd_m2 = peak * std::pow(edge / peak, q);
+  // The spot is no larger than the region or the part of the array seen, and no brighter than
+  // the brightest point seen (L at q): a region that only grazes the array shows its edge's
+  // luminance, not its mean.
   double spot_cd_m2 = *seen.luminance_cd_m2, spot_sr = pair.solid_angle_sr;
   const double region_sr = region.solid_angle_sr.value_or(regionSolidAngleSr(region.axes));
   if (region_sr > 0 && region_sr <= pair.solid_angle_sr) {
     spot_sr = region_sr;
-    spot_cd_m2 = peak > edge * (1 + 1e-9) ? (peak - edge) / std::log(peak / edge) : peak;
+    const double mean_cd_m2 =
+        peak > edge * (1 + 1e-9) ? (peak - edge) / std::log(peak / edge) : peak;
+    spot_cd_m2 = std::min(mean_cd_m2, *seen.luminance_cd_m2);
   }
   if (spot_sr > 0) {
     const Result<OcularExposure> exposure =

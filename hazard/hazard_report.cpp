@@ -439,9 +439,11 @@ HazardChartContent chartContent(const HazardReport& report, std::size_t o) {
   }
   const std::string simulated =
       anySimulated(report) ? std::string("SIMULATED: ") + pipeline::kSimulatedNote + " · " : "";
-  content.subtitle = simulated + scene.path.filename().string() + " · " + profiles + " · " + site +
-                     " · local standard time UTC" + offsetText(scene.site.utc_offset_h) + " · " +
-                     std::to_string(result.step_s) + "-s steps";
+  content.subtitle =
+      simulated + scene.path.filename().string() + " · " + profiles + " · " + site +
+      " · local standard time UTC" + offsetText(scene.site.utc_offset_h) + " · " +
+      std::to_string(result.step_s) + "-s steps · sun: " + options.sun.name() +
+      (options.sun.kind == SunKind::kWeather ? " (expected minutes)" : " (possible minutes)");
   content.year = result.year;
   content.days = result.days;
   content.steps_per_day = result.steps_per_day;
@@ -502,7 +504,7 @@ OcularPlotContent ocularContent(const HazardReport& report, std::size_t o) {
     content.mark = "SIMULATED";
     content.mark_note = pipeline::kSimulatedNote;
   }
-  const std::size_t shown = std::min<std::size_t>(options.models.size(), 2);
+  const std::size_t shown = std::min<std::size_t>(options.models.size(), kOcularPlotMaxSeries);
   for (std::size_t m = 0; m < shown; ++m) {
     OcularPlotSeries series{.label = options.models[m].name(), .points = {}};
     for (const GlareEvent& event : result.events) {

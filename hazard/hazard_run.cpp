@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 
+#include "core/atomic_file.h"
 #include "core/progress.h"
 #include "core/time.h"
 #include "hazard/hazard_pdf.h"
@@ -17,8 +18,29 @@ Status HazardRunOptions::validate() const {
   if (scene.empty()) return badInput("hazard: no scene file given");
   if (out.empty()) return badInput("--out: no output directory given");
   if (profile && profile->empty()) return badInput("--profile: empty path");
-  if (report && report->empty()) return badInput("--report: empty path");
+  if (report) GLARECAM_CHECK(checkReportPath(*report));
   return hazard.validate();
+}
+
+Status checkReportPath(const std::filesystem::path& report) {
+  if (report.empty()) return badInput("--report: empty path");
+  std::error_code error;
+  if (std::filesystem::is_directory(report, error))
+    return badInput("--report " + report.string() + " is a directory, not a file to write");
+  // The first ancestor that exists must be a directory: the missing ones are made when the
+  // report is written.
+  for (std::filesystem::path parent = report.parent_path(); !parent.empty();
+       parent = parent.parent_path()) {
+    if (!std::filesystem::exists(parent, error)) {
+      if (parent == parent.parent_path()) break;
+      continue;
+    }
+    if (!std::filesystem::is_directory(parent, error))
+      return badInput("--report " + report.string() + ": " + parent.string() +
+                      " is not a directory");
+    break;
+  }
+  return {};
 }
 
 Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
@@ -54,8 +76,8 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
           (*without)->path().string() +
           ": the profile has no contour ladder referred to a reference illuminance, so the sun "
           "is the profile's reference at every step (--sun reference), not the clear sky's: "
-          "low suns count as bright as the reference; give --sun clear-sky to require the clear "
-          "sky");
+          "low suns count as bright as the reference (a profile from referred stacks, with "
+          "contours, has the ladder the clear sky needs)");
       hazard.sun = SunBrightness{};
     }
   }
@@ -76,7 +98,11 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
                       .picture_stems = pictureStems(scene, result),
                       .daylight_saving = options.daylight_saving};
   GLARECAM_CHECK(writeHazardOutputs(report, options.out));
-  if (options.report) GLARECAM_CHECK(writeHazardReportPdf(report, *options.report));
+  if (options.report) {
+    if (options.report->has_parent_path())
+      GLARECAM_CHECK(ensureDirectory(options.report->parent_path()));
+    GLARECAM_CHECK(writeHazardReportPdf(report, *options.report));
+  }
   return HazardRunSummary{.document = hazardJson(report),
                           .table = summaryText(report),
                           .warnings = reportWarnings(report)};

@@ -39,6 +39,10 @@ struct HazardRunSummary {
   std::vector<std::string> warnings;
 };
 
+// A report path that can never be written, refused before anything is computed (kBadInput): an
+// existing directory, or a path under a file. Missing directories on the way are made.
+Status checkReportPath(const std::filesystem::path& report);
+
 Result<HazardRunSummary> runHazard(const HazardRunOptions& options);
 
 }  // namespace glarecam::hazard

@@ -201,6 +201,16 @@ Status readArrays(const JsonReader& document, const std::filesystem::path& base,
   return {};
 }
 
+// In a version-1 scene, a key of version 2: named with the schema that has it.
+Status refuseNewerKeys(const JsonReader& json, std::initializer_list<const char*> keys) {
+  for (const char* key : keys) {
+    if (json.has(key))
+      return json.fail(key, std::string("is a key of ") + kSceneSchema + " (give \"schema\": \"" +
+                                kSceneSchema + "\")");
+  }
+  return {};
+}
+
 // An optional [from, to] window of local standard hours.
 Status readHours(const JsonReader& json, double& from_h, double& to_h) {
   std::optional<JsonReader> hours;
@@ -251,11 +261,13 @@ Status readObservers(const JsonReader& document, Scene& scene, std::set<std::str
   if (!list) return {};
   for (std::size_t i = 0; i < list->size(); ++i) {
     const JsonReader json = list->element(i);
-    if (scene.version == 1)
+    if (scene.version == 1) {
+      GLARECAM_CHECK(refuseNewerKeys(json, {"facing_azimuth_deg", "field_of_view_deg"}));
       GLARECAM_CHECK(json.onlyKeys({"name", "position_m", "hours"}));
-    else
+    } else {
       GLARECAM_CHECK(json.onlyKeys(
           {"name", "position_m", "hours", "facing_azimuth_deg", "field_of_view_deg"}));
+    }
     Observer observer;
     GLARECAM_ASSIGN(observer.name, readName(json, names, "observer"));
     JsonReader position;
@@ -308,6 +320,8 @@ Status readRoutes(const JsonReader& document, Scene& scene, std::set<std::string
     for (std::size_t p = 0; p < points_json.size(); ++p) {
       Vec3 point;
       GLARECAM_ASSIGN(point, readPoint(points_json.element(p)));
+      if (!points.empty() && norm(point - points.back()) < kSameVertexM)
+        return points_json.element(p).fail("repeats the point before it");
       if (!points.empty() &&
           std::hypot(point.x - points.back().x, point.y - points.back().y) < kSameVertexM) {
         return points_json.element(p).fail(
@@ -328,12 +342,15 @@ Status readRoutes(const JsonReader& document, Scene& scene, std::set<std::string
 
     double length_m = 0;
     for (std::size_t p = 1; p < points.size(); ++p) length_m += norm(points[p] - points[p - 1]);
-    const std::size_t count = static_cast<std::size_t>(std::floor(length_m / spacing)) + 1;
-    GLARECAM_CHECK(checkPointCount(json, count + 1));
     // Samples at 0, spacing, 2·spacing, … along the line, and its end.
+    const double whole = std::floor(length_m / spacing);
+    const bool end_apart = length_m - whole * spacing > kSameVertexM;
+    GLARECAM_CHECK(checkPointCount(
+        json, static_cast<std::size_t>(std::min(whole, 1e12)) + 1 + (end_apart ? 1 : 0)));
+    const auto count = static_cast<std::size_t>(whole) + 1;
     std::vector<double> stations;
     for (std::size_t k = 0; k < count; ++k) stations.push_back(static_cast<double>(k) * spacing);
-    if (length_m - stations.back() > kSameVertexM) stations.push_back(length_m);
+    if (end_apart) stations.push_back(length_m);
     const std::size_t first = scene.observers.size();
     std::size_t segment = 0;
     double segment_start_m = 0;
@@ -621,11 +638,13 @@ Result<Scene> parseScene(const nlohmann::json& document, const std::string& file
   scene.version = schema == kSceneSchemaV1 ? 1 : 2;
   // Every object's keys are checked: a typo in an optional key ("profil", "hour") must never
   // silently change the result.
-  if (scene.version == 1)
+  if (scene.version == 1) {
+    GLARECAM_CHECK(refuseNewerKeys(fields, {"routes", "areas", "obstructions"}));
     GLARECAM_CHECK(fields.onlyKeys({"schema", "site", "arrays", "observers"}));
-  else
+  } else {
     GLARECAM_CHECK(fields.onlyKeys(
         {"schema", "site", "arrays", "observers", "routes", "areas", "obstructions"}));
+  }
   GLARECAM_CHECK(readSite(fields, scene.site));
   GLARECAM_CHECK(readArrays(fields, base, scene));
   std::set<std::string> receptor_names;

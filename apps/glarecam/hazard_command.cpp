@@ -91,12 +91,13 @@ void addHazardCommand(CLI::App& app, Action& action) {
                   "assessment criteria, comma-separated: lai (Germany, 30 min/day, 30 h/year), ch "
                   "(Switzerland, 30 min/day, 50 h/year)")
       ->capture_default_str();
-  sub->add_option("--sun", args->sun,
-                  "the sun's brightness at each step: clear-sky (a clear sky's direct normal "
-                  "illuminance: the possible glare), reference (the profile's reference "
-                  "illuminance, as before), weather FILE.epw (an EnergyPlus weather file: the "
-                  "expected glare). Not given: clear-sky, or reference (warned) for a profile "
-                  "without a contour ladder")
+  sub->add_option(
+         "--sun", args->sun,
+         "the sun's brightness at each step: clear-sky (a clear sky's direct normal "
+         "illuminance: the possible glare), reference (every step as bright as the "
+         "profile's reference illuminance), weather FILE.epw (an EnergyPlus weather file: the "
+         "expected glare). Not given: clear-sky, or reference (warned) for a profile "
+         "without a contour ladder")
       ->expected(1, 2)
       ->capture_default_str();
   sub->add_option("--daylight-saving", args->daylight_saving,

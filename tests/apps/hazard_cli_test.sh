@@ -77,7 +77,7 @@ expect "report: verdict words" grep -qF "not tolerable" "$WORK/r/flat.txt"
 expect "report: thresholds written out" grep -qF "> 30 min/day (exceeded)" "$WORK/r/flat.txt"
 expect "report: the sun used" grep -qF "clear-sky: a clear sky's direct normal illuminance (IES RP-21" "$WORK/r/flat.txt"
 expect "report: possible minutes" grep -qF "possible: the sun is taken to shine at every step it is up" "$WORK/r/flat.txt"
-expect "report: the profile's route" grep -qF "not recorded" "$WORK/r/flat.txt"
+expect "report: the profile's route" grep -qF "route camera (luminance images)" "$WORK/r/flat.txt"
 expect "report: civil clock times" grep -qE "[0-9]{2}:[0-9]{2}–[0-9]{2}:[0-9]{2} \(\+02:00\)" "$WORK/r/rows.txt"
 expect "report: a circular-cone tool" grep -qF "What a circular-cone tool would have said" "$WORK/r/flat.txt"
 expect "report: a measured profile is not SIMULATED" bash -c "! grep -q SIMULATED '$WORK/r/flat.txt'"
@@ -88,9 +88,18 @@ expect "report: page numbers" grep -qF "page $PAGES of $PAGES" "$WORK/r/flat.txt
 pdftoppm -r 50 -png "$WORK/r/report.pdf" "$WORK/r/page"
 expect "report: every page renders" test "$(ls "$WORK/r"/page-*.png 2>/dev/null | wc -l)" -eq "${PAGES:-0}"
 # A report that cannot be written is an error naming it (exit 1); bad input writes no report.
-check "report: unwritable" 1 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 \
+# A report that can never be written is refused before anything is computed (exit 2, nothing
+# written); a missing directory on its way is made.
+check "report: under a file" 2 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 \
   --step-s 3600 --out "$WORK/r2" --no-progress --report "$WORK/r/report.pdf/x.pdf"
-expect "report: unwritable names it" one_line_naming "$WORK/r/report.pdf/x.pdf"
+expect "report: under a file names it" one_line_naming "$WORK/r/report.pdf/x.pdf"
+expect "report: under a file writes nothing" test ! -e "$WORK/r2"
+check "report: a directory" 2 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 \
+  --step-s 3600 --out "$WORK/r2" --no-progress --report "$WORK/r"
+expect "report: a directory is named" one_line_naming "is a directory"
+check "report: a new directory" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 \
+  --step-s 3600 --out "$WORK/r4" --no-progress --report "$WORK/r4/new/sub/report.pdf"
+expect "report: the new directory made" test -s "$WORK/r4/new/sub/report.pdf"
 check "report: bad input" 2 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 \
   --step-s 7 --out "$WORK/r3" --no-progress --report "$WORK/r3.pdf"
 expect "report: bad input writes none" test ! -e "$WORK/r3.pdf"
@@ -246,7 +255,7 @@ bad "weather without a file" "--sun weather needs the weather file" "$SCENE" --p
 bad "a short weather file" "freiburg-two-days.epw" "$SCENE" --profile "$PROFILE" \
   --sun weather "$SOURCE_DIR/tests/data/weather/freiburg-two-days.epw"
 bad "bad sigma" "sigma:MRAD" "$SCENE" --profile "$PROFILE" --models sigma:-1
-bad "v2 key in a v1 scene" 'unknown key "routes"' \
+bad "v2 key in a v1 scene" 'routes is a key of glarecam.hazard-scene/2' \
   "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["routes"]=[]; print(json.dumps(d))' "$SCENE" >"$WORK/v1routes.json"; echo "$WORK/v1routes.json")" --profile "$PROFILE"
 bad "a bad obstruction" "obstructions[0]" \
   "$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["schema"]="glarecam.hazard-scene/2"; d["obstructions"]=[{"name":"w","footprint_m":[[0,0],[1,0],[1,1]],"height_m":-2}]; print(json.dumps(d))' "$SCENE" >"$WORK/badobs.json"; echo "$WORK/badobs.json")" --profile "$PROFILE"

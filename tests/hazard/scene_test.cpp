@@ -130,10 +130,10 @@ TEST(HazardScene, RefusesUnknownKeysAtEveryLevelSuggestingTheClosest) {
       {[](json& s) { s["site"]["timezone"] = "Europe/Zurich"; },
        "scene.json: site has an unknown key \"timezone\" (known: latitude_deg, longitude_deg, "
        "elevation_m, utc_offset_h, pressure_hpa, temperature_c)"},
-      // A key of a later version is no key of version 1.
+      // A key of a later version is no key of version 1: named with the version that has it.
       {[](json& s) { s["observers"][0]["facing_azimuth_deg"] = 180; },
-       "scene.json: observers[0] has an unknown key \"facing_azimuth_deg\" (known: name, "
-       "position_m, hours)"},
+       "scene.json: observers[0].facing_azimuth_deg is a key of glarecam.hazard-scene/2 (give "
+       "\"schema\": \"glarecam.hazard-scene/2\")"},
   };
   for (const auto& [change, expected] : cases) {
     json scene = goodScene();
@@ -398,6 +398,19 @@ TEST(HazardSceneV2, ExpandsRoutesAndAreasIntoPoints) {
   EXPECT_EQ(scene->obstructions[1].faces.size(), 1u);
 }
 
+TEST(HazardSceneV2, ARouteOfExactlyTheMostPointsIsAccepted) {
+  // 19 999 spacings of 0.5 m: 20 000 points with both ends, the most; one more is refused.
+  json scene = sceneV2();
+  scene["routes"][0]["points_m"] = {{0, 0, 1.1}, {9999.5, 0, 1.1}};
+  scene["routes"][0]["spacing_m"] = 0.5;
+  const Result<Scene> most = parseScene(scene, "scene.json", "/base");
+  ASSERT_TRUE(most) << most.error().message;
+  EXPECT_EQ(most->receptors[2].count, kMaxReceptorPoints);
+  scene["routes"][0]["points_m"][1] = {10000, 0, 1.1};
+  EXPECT_NE(errorOf(scene).find("samples 20001 points, more than 20000"), std::string::npos)
+      << errorOf(scene);
+}
+
 TEST(HazardSceneV2, BothDirectionsAndTheDefaults) {
   json scene = sceneV2();
   scene["routes"][0].erase("direction");
@@ -416,11 +429,14 @@ TEST(HazardSceneV2, AVersion1SceneReadsAsBeforeAndRefusesTheNewKeys) {
   EXPECT_EQ(v1->receptors.size(), 2u);
   json scene = goodScene();
   scene["routes"] = json::array();
-  EXPECT_NE(errorOf(scene).find("unknown key \"routes\""), std::string::npos) << errorOf(scene);
+  EXPECT_EQ(errorOf(scene),
+            "scene.json: routes is a key of glarecam.hazard-scene/2 (give "
+            "\"schema\": \"glarecam.hazard-scene/2\")");
   scene = goodScene();
   scene["observers"][0]["facing_azimuth_deg"] = 180;
-  EXPECT_NE(errorOf(scene).find("observers[0] has an unknown key \"facing_azimuth_deg\""),
-            std::string::npos)
+  EXPECT_NE(
+      errorOf(scene).find("observers[0].facing_azimuth_deg is a key of glarecam.hazard-scene/2"),
+      std::string::npos)
       << errorOf(scene);
 }
 
@@ -443,6 +459,11 @@ TEST(HazardSceneV2, RefusesEachBadInputNamingTheField) {
        "routes[0].field_of_view_deg is 0°"},
       {"too fine", [](json& s) { s["routes"][0]["spacing_m"] = 0.001; },
        "routes[0].spacing_m samples"},
+      {"repeated point",
+       [](json& s) {
+         s["routes"][0]["points_m"][1] = {60, -50, 1.1};
+       },
+       "routes[0].points_m[1] repeats the point before it"},
       {"fov without facing", [](json& s) { s["observers"][1]["field_of_view_deg"] = 30; },
        "observers[1].field_of_view_deg needs facing_azimuth_deg"},
       {"facing", [](json& s) { s["observers"][0]["facing_azimuth_deg"] = 400; },

@@ -24,16 +24,6 @@ std::optional<double> parseNumber(std::string_view text) {
   return value;
 }
 
-// A file's text as a message quotes it: control bytes (a NUL would end the message) as '?', at
-// most 40 characters.
-std::string printable(std::string_view text) {
-  constexpr std::size_t kMaxChars = 40;
-  std::string out(text.substr(0, kMaxChars));
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  return text.size() > kMaxChars ? out + "..." : out;
-}
-
 std::vector<std::string_view> splitBlanks(std::string_view line) {
   std::vector<std::string_view> words;
   std::size_t i = 0;
@@ -99,7 +89,7 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
         if (i >= words.size()) return fail("#" + key + " needs a number");
         const std::optional<double> v = parseNumber(words[i]);
         if (!v || !std::isfinite(*v))
-          return fail(fmt::format("#{}: \"{}\" is not a number", key, printable(words[i])));
+          return fail(fmt::format("#{}: \"{}\" is not a number", key, printableText(words[i])));
         return *v;
       };
       if (key == "format:" || key == "format") {
@@ -117,7 +107,7 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
           return fail("BTDF data (transmission): glare is reflection, a BRDF is needed");
         } else {
           return fail(fmt::format("#format: unknown quantity \"{}\" (BSDF or DSF)",
-                                  printable(words[kind_at])));
+                                  printableText(words[kind_at])));
         }
       } else if (key == "intheta" || key == "inphi" || key == "incident_angle") {
         // Each angle once, or again with the same value: two headers that disagree leave the
@@ -146,7 +136,7 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
         if (value != "cie-y")
           return fail(
               fmt::format("#colorimetry {}: only CIE-Y (luminance) data give a luminance picture",
-                          words.size() > 1 ? printable(words.back()) : "(empty)"));
+                          words.size() > 1 ? printableText(words.back()) : "(empty)"));
       } else if (key == "sample_name") {
         const std::size_t open = header.find('"'), close = header.rfind('"');
         m.sample_name = open != std::string::npos && close > open
@@ -171,8 +161,8 @@ Result<BrdfMeasurement> parsePabOpto(std::string_view text, const std::string& n
     double v[3];
     for (int i = 0; i < 3; ++i) {
       const std::optional<double> x = parseNumber(words[i]);
-      if (!x) return fail(fmt::format("\"{}\" is not a number", printable(words[i])));
-      if (!std::isfinite(*x)) return fail(fmt::format("{} is not finite", printable(words[i])));
+      if (!x) return fail(fmt::format("\"{}\" is not a number", printableText(words[i])));
+      if (!std::isfinite(*x)) return fail(fmt::format("{} is not finite", printableText(words[i])));
       v[i] = *x;
     }
     if (v[0] < 0) return fail(fmt::format("θ {:g}° is negative", v[0]));
@@ -246,9 +236,10 @@ class ZemaxParser {
     const int at_line = line();
     GLARECAM_ASSIGN(text, word(what));
     const std::optional<double> v = parseNumber(text);
-    if (!v) return fail(at_line, fmt::format("{}: \"{}\" is not a number", what, printable(text)));
+    if (!v)
+      return fail(at_line, fmt::format("{}: \"{}\" is not a number", what, printableText(text)));
     if (!std::isfinite(*v))
-      return fail(at_line, fmt::format("{}: {} is not finite", what, printable(text)));
+      return fail(at_line, fmt::format("{}: {} is not finite", what, printableText(text)));
     return *v;
   }
   // "Keyword N v1 … vN", angles in [low, high] and ascending.
@@ -305,7 +296,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
       } else {
         return fail(keyword.line, fmt::format("Symmetry {}: PlaneSymmetrical or Asymmetrical "
                                               "(a 4-D table is not supported)",
-                                              printable(value)));
+                                              printableText(value)));
       }
     } else if (keyword.text == "SpectralContent") {
       GLARECAM_ASSIGN(value, word("SpectralContent"));
@@ -313,7 +304,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
         xyz = true;
       } else if (value != "Monochrome") {
         return fail(keyword.line,
-                    fmt::format("SpectralContent {}: Monochrome or XYZ", printable(value)));
+                    fmt::format("SpectralContent {}: Monochrome or XYZ", printableText(value)));
       }
     } else if (keyword.text == "ScatterType") {
       GLARECAM_ASSIGN(value, word("ScatterType"));
@@ -321,7 +312,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
         return fail(keyword.line,
                     "ScatterType BTDF (transmission): glare is reflection, a BRDF is needed");
       if (value != "BRDF")
-        return fail(keyword.line, fmt::format("ScatterType {}: BRDF", printable(value)));
+        return fail(keyword.line, fmt::format("ScatterType {}: BRDF", printableText(value)));
       brdf = true;
     } else if (keyword.text == "SampleRotation") {
       GLARECAM_ASSIGN(rotations, angleList("SampleRotation", 0, 360));
@@ -335,7 +326,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
       GLARECAM_ASSIGN(radials, angleList("ScatterRadial", 0, 90));
       have_radial = true;
     } else {
-      return fail(keyword.line, fmt::format("unknown keyword \"{}\"", printable(keyword.text)));
+      return fail(keyword.line, fmt::format("unknown keyword \"{}\"", printableText(keyword.text)));
     }
   }
   const int header_end = line();
@@ -374,14 +365,15 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
     } else if (channel.text == "TristimulusY") {
     } else if (channel.text != "DataBegin") {
       return fail(channel.line,
-                  fmt::format("expected a data block, not \"{}\"", printable(channel.text)));
+                  fmt::format("expected a data block, not \"{}\"", printableText(channel.text)));
     }
     if (channel.text != "DataBegin") {
       std::string_view begin;
       const int begin_line = line();
       GLARECAM_ASSIGN(begin, word("DataBegin"));
       if (begin != "DataBegin")
-        return fail(begin_line, fmt::format("expected DataBegin, not \"{}\"", printable(begin)));
+        return fail(begin_line,
+                    fmt::format("expected DataBegin, not \"{}\"", printableText(begin)));
     }
     if (keep && read_y) return fail(channel.line, "a second block of luminance data");
     for (BrdfMeasurement& m : out) {
@@ -390,7 +382,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
       GLARECAM_ASSIGN(tis, word("TIS"));
       if (tis != "TIS")
         return fail(tis_line, fmt::format("expected TIS for the block of θ_i {:g}°, not \"{}\"",
-                                          m.incident_theta_deg, printable(tis)));
+                                          m.incident_theta_deg, printableText(tis)));
       GLARECAM_CHECK(number("TIS"));
       for (double azimuth : azimuths)
         for (double radial : radials) {
@@ -417,7 +409,7 @@ Result<std::vector<BrdfMeasurement>> ZemaxParser::parse() {
     GLARECAM_ASSIGN(end, word("DataEnd"));
     if (end != "DataEnd")
       return fail(end_line, fmt::format("expected DataEnd after {} values a block, not \"{}\"",
-                                        per_block, printable(end)));
+                                        per_block, printableText(end)));
     read_y = read_y || keep;
   }
   if (!read_y) return fail(lastLine(), xyz ? "no TristimulusY block" : "no data block");

@@ -28,4 +28,11 @@ Result<std::string> readTextFile(const std::filesystem::path& path, std::uintmax
   return std::move(text).str();
 }
 
+std::string printableText(std::string_view text) {
+  std::string out(text.substr(0, kQuotedTextChars));
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return text.size() > kQuotedTextChars ? out + "..." : out;
+}
+
 }  // namespace glarecam

@@ -21,4 +21,9 @@ Result<std::string> readTextFile(const std::filesystem::path& path,
                                  std::uintmax_t max_bytes = kNoFileSizeLimit,
                                  std::string_view what = "the file");
 
+// A file's text as a one-line message quotes it: control bytes (a NUL would end the message, a
+// line break split it) as '?', at most kQuotedTextChars bytes, then "...".
+inline constexpr std::size_t kQuotedTextChars = 40;
+std::string printableText(std::string_view text);
+
 }  // namespace glarecam

@@ -89,16 +89,6 @@ std::string_view epwTrim(std::string_view text) {
   return text;
 }
 
-// A file's text as a message quotes it: control bytes (a NUL would end the message) as '?', at
-// most 40 bytes.
-std::string epwPrintable(std::string_view text) {
-  constexpr std::size_t kMaxChars = 40;
-  std::string out(text.substr(0, kMaxChars));
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  return text.size() > kMaxChars ? out + "..." : out;
-}
-
 // A name from the file as glarecam keeps it: valid UTF-8 (reports and charts refuse anything
 // else; old files may be Latin-1), without control bytes.
 std::string epwName(std::string_view text) {
@@ -198,7 +188,7 @@ class EpwParser {
     return fail(fmt::format(
         "expected the header line {} (line {} of an EPW file's {}: {}, ..., {}), found \"{}\"",
         expected, index + 1, kEpwHeaderLines, kEpwHeaderKeywords.front(), kEpwHeaderKeywords.back(),
-        epwPrintable(line)));
+        printableText(line)));
   }
 
   Result<EpwLocation> parseLocation(std::string_view line) const {
@@ -235,10 +225,10 @@ class EpwParser {
       const std::optional<double> value = parseEpwNumber(text);
       if (!value)
         return failField(n.field, n.name,
-                         fmt::format("\"{}\" is not a number", epwPrintable(text)));
+                         fmt::format("\"{}\" is not a number", printableText(text)));
       if (*value < n.min || *value > n.max || (n.max_exclusive && *value == n.max))
         return failField(n.field, n.name,
-                         fmt::format("{}{} is out of range [{}, {}{}", epwPrintable(text), n.unit,
+                         fmt::format("{}{} is out of range [{}, {}{}", printableText(text), n.unit,
                                      n.min, n.max, n.max_exclusive ? ")" : "]"));
       *n.value = *value;
     }
@@ -258,12 +248,12 @@ class EpwParser {
     if (!periods || *periods < 1)
       return failField(2, kPeriods,
                        fmt::format("\"{}\" is not a whole number of at least 1",
-                                   epwPrintable(epwTrim(fields[1]))));
+                                   printableText(epwTrim(fields[1]))));
     const std::optional<int> per_hour = parseEpwInteger(fields[2]);
     if (!per_hour || *per_hour < 1)
       return failField(3, kPerHour,
                        fmt::format("\"{}\" is not a whole number of at least 1",
-                                   epwPrintable(epwTrim(fields[2]))));
+                                   printableText(epwTrim(fields[2]))));
     if (*per_hour != 1)
       return failField(3, kPerHour,
                        fmt::format("{} records per hour: a sub-hourly file (glarecam reads "
@@ -278,7 +268,7 @@ class EpwParser {
     const std::optional<int> value = parseEpwInteger(text);
     if (!value)
       return failField(field, name,
-                       fmt::format("\"{}\" is not a whole number", epwPrintable(text)));
+                       fmt::format("\"{}\" is not a whole number", printableText(text)));
     if (*value < min || *value > max)
       return failField(field, name, fmt::format("{} is out of range [{}, {}]", *value, min, max));
     return *value;
@@ -367,15 +357,15 @@ class EpwParser {
     const std::string_view text = epwTrim(fields[kField - 1]);
     const std::optional<double> value = parseEpwNumber(text);
     if (!value)
-      return failField(kField, kName, fmt::format("\"{}\" is not a number", epwPrintable(text)));
+      return failField(kField, kName, fmt::format("\"{}\" is not a number", printableText(text)));
     if (*value >= kEpwMissingIlluminanceFromLx && *value <= kEpwMissingIlluminanceLx)
       return failField(kField, kName,
                        fmt::format("{} is the missing-value code (from {} lx): glarecam needs "
                                    "every hour's illuminance",
-                                   epwPrintable(text), kEpwMissingIlluminanceFromLx));
+                                   printableText(text), kEpwMissingIlluminanceFromLx));
     if (*value < 0 || *value > kEpwMaxDirectNormalIlluminanceLx)
       return failField(kField, kName,
-                       fmt::format("{} lx is out of range [0, {}]", epwPrintable(text),
+                       fmt::format("{} lx is out of range [0, {}]", printableText(text),
                                    kEpwMaxDirectNormalIlluminanceLx));
     return *value;
   }

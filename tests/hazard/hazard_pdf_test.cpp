@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -71,33 +70,17 @@ Scene observersScene(int count) {
   return testing::sceneOf(testing::zurichSite(), {exampleRoof()}, observers);
 }
 
-// The page count cairo writes in the document's page tree ("/Count N").
-int pageCount(const fs::path& pdf) {
-  const std::string text = glarecam::testing::readText(pdf);
-  std::smatch match;
-  if (!std::regex_search(text, match,
-                         std::regex(R"(/Type /Pages\s*/Kids \[[^\]]*\]\s*/Count (\d+))")))
-    return -1;
-  return std::stoi(match[1]);
-}
-
-bool noTemporaries(const fs::path& dir) {
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().filename().string().rfind(".tmp-", 0) == 0) return false;
-  return true;
-}
-
 TEST(HazardPdf, TwoPagesPerPicturedReceptorAfterTheFrontPages) {
   glarecam::testing::TempDir dir;
   const Computed two(observersScene(2)), three(observersScene(3));
   ASSERT_TRUE(writeHazardReportPdf(two.report(), dir / "two.pdf"));
   ASSERT_TRUE(writeHazardReportPdf(three.report(), dir / "three.pdf"));
   EXPECT_EQ(glarecam::testing::readText(dir / "two.pdf").rfind("%PDF-", 0), 0u);
-  const int pages = pageCount(dir / "two.pdf");
+  const int pages = glarecam::testing::pdfPageCount(dir / "two.pdf");
   // The scene, the results and at least one page of the method, then two per receptor.
   EXPECT_GE(pages, 3 + 2 * 2);
-  EXPECT_EQ(pageCount(dir / "three.pdf"), pages + 2);
-  EXPECT_TRUE(noTemporaries(dir.path()));
+  EXPECT_EQ(glarecam::testing::pdfPageCount(dir / "three.pdf"), pages + 2);
+  EXPECT_TRUE(glarecam::testing::noTemporaryFiles(dir.path()));
 }
 
 // Routes, obstructions (extruded and planar), an observer facing away and a simulated profile:
@@ -128,7 +111,7 @@ TEST(HazardPdf, ASceneWithRoutesAndObstructionsIsDrawn) {
   const auto written = writeHazardReportPdf(computed.report(), dir / "report.pdf");
   ASSERT_TRUE(written) << written.error().message;
   // One observer and the road's worst point: four receptor pages after the front pages.
-  EXPECT_GE(pageCount(dir / "report.pdf"), 3 + 2 * 2);
+  EXPECT_GE(glarecam::testing::pdfPageCount(dir / "report.pdf"), 3 + 2 * 2);
   EXPECT_EQ(computed.report().picture_stems[first + 1], "");
 }
 
@@ -178,7 +161,7 @@ TEST(HazardPdf, AnUnwritablePathIsAnErrorNamingItAndLeavesWhatWasThere) {
   EXPECT_EQ(glarecam::testing::readText(dir / "old.pdf"), "an old report");
   ASSERT_TRUE(writeHazardReportPdf(computed.report(), dir / "old.pdf"));
   EXPECT_EQ(glarecam::testing::readText(dir / "old.pdf").rfind("%PDF-", 0), 0u);
-  EXPECT_TRUE(noTemporaries(dir.path()));
+  EXPECT_TRUE(glarecam::testing::noTemporaryFiles(dir.path()));
 }
 
 }  // namespace hazard_pdf_test

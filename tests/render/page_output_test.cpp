@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -21,22 +20,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr PageSize kSmallPage{200, 100};
-
-// The page count in the document's page tree ("/Type /Pages … /Count N", as Cairo writes it).
-int pdfPageCount(const fs::path& pdf) {
-  const std::string text = glarecam::testing::readText(pdf);
-  std::smatch match;
-  if (!std::regex_search(text, match,
-                         std::regex(R"(/Type /Pages\s*/Kids \[[^\]]*\]\s*/Count (\d+))")))
-    return -1;
-  return std::stoi(match[1]);
-}
-
-bool noTemporaries(const fs::path& dir) {
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().filename().string().rfind(".tmp-", 0) == 0) return false;
-  return true;
-}
 
 TEST(PageOutput, APdfOfSeveralPagesDrawsEachInOrderOnAFreshCanvas) {
   glarecam::testing::TempDir dir;
@@ -54,13 +37,13 @@ TEST(PageOutput, APdfOfSeveralPagesDrawsEachInOrderOnAFreshCanvas) {
   ASSERT_TRUE(writePdfPages(dir / "doc.pdf", kSmallPage, pages, {"three pages", "test"}));
   EXPECT_EQ(drawn, (std::vector<int>{0, 1, 2}));
   EXPECT_EQ(glarecam::testing::readText(dir / "doc.pdf").rfind("%PDF-", 0), 0u);
-  EXPECT_EQ(pdfPageCount(dir / "doc.pdf"), 3);
-  EXPECT_TRUE(noTemporaries(dir.path()));
+  EXPECT_EQ(glarecam::testing::pdfPageCount(dir / "doc.pdf"), 3);
+  EXPECT_TRUE(glarecam::testing::noTemporaryFiles(dir.path()));
   // One page is a document of one page, as writePdfPage writes it.
   ASSERT_TRUE(writePdfPages(dir / "one.pdf", kSmallPage, {pages[0]}, {}));
   ASSERT_TRUE(writePdfPage(dir / "page.pdf", kSmallPage, pages[0], {}));
-  EXPECT_EQ(pdfPageCount(dir / "one.pdf"), 1);
-  EXPECT_EQ(pdfPageCount(dir / "page.pdf"), 1);
+  EXPECT_EQ(glarecam::testing::pdfPageCount(dir / "one.pdf"), 1);
+  EXPECT_EQ(glarecam::testing::pdfPageCount(dir / "page.pdf"), 1);
 }
 
 TEST(PageOutput, NoPagesIsRefusedWithNothingWritten) {
@@ -87,7 +70,7 @@ TEST(PageOutput, AFailingDrawingNamesItsPageAndLeavesWhatWasThere) {
   EXPECT_NE(status.error().message.find("page 2 of 3"), std::string::npos)
       << status.error().message;
   EXPECT_EQ(glarecam::testing::readText(dir / "doc.pdf"), "the old document");
-  EXPECT_TRUE(noTemporaries(dir.path()));
+  EXPECT_TRUE(glarecam::testing::noTemporaryFiles(dir.path()));
 }
 
 TEST(PageOutput, AnUnwritablePathIsAnErrorNamingIt) {

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <random>
+#include <regex>
 #include <sstream>
 
 #include "core/stack_io.h"
@@ -91,6 +92,21 @@ TestStack writeTestStack(const fs::path& directory, double alpha_deg) {
   const Status written = writeStack(directory, request);
   EXPECT_TRUE(written.has_value()) << (written ? "" : written.error().message);
   return stack;
+}
+
+int pdfPageCount(const std::filesystem::path& pdf) {
+  const std::string text = readText(pdf);
+  std::smatch match;
+  if (!std::regex_search(text, match,
+                         std::regex(R"(/Type /Pages\s*/Kids \[[^\]]*\]\s*/Count (\d+))")))
+    return -1;
+  return std::stoi(match[1]);
+}
+
+bool noTemporaryFiles(const std::filesystem::path& directory) {
+  for (const auto& entry : std::filesystem::directory_iterator(directory))
+    if (entry.path().filename().string().rfind(".tmp-", 0) == 0) return false;
+  return true;
 }
 
 RgbPicture readPngRgb(const std::filesystem::path& path) {

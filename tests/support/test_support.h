@@ -51,6 +51,12 @@ struct TestStack {
 // unless given, and a text file truth.json, as a simulated stack carries.
 TestStack writeTestStack(const std::filesystem::path& directory, double alpha_deg = 40.0);
 
+// The page count in a PDF's page tree ("/Type /Pages … /Count N", as Cairo writes it); -1 when
+// the file has none.
+int pdfPageCount(const std::filesystem::path& pdf);
+// Whether a directory holds no temporary file of an atomic write (core/atomic_file.h: ".tmp-…").
+bool noTemporaryFiles(const std::filesystem::path& directory);
+
 // A drawn page read back as 8-bit RGB (the pictures' tests).
 using RgbPixel = std::array<std::uint8_t, 3>;
 struct RgbPicture {

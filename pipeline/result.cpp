@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/stack_manifest.h"
+#include "core/time.h"
 
 namespace glarecam::pipeline {
 
@@ -389,6 +390,9 @@ Result<ResultOutputs> readOutputs(const JsonReader& document) {
   GLARECAM_ASSIGN(outputs.luminance_exr, r.text("luminance_exr"));
   GLARECAM_ASSIGN(outputs.quality_exr, r.text("quality_exr"));
   GLARECAM_ASSIGN(outputs.luminance_png, r.text("luminance_png"));
+  GLARECAM_ASSIGN(outputs.pruned_at, r.optionalText("pruned_at"));
+  if (outputs.pruned_at && !parseIsoTime(*outputs.pruned_at))
+    return r.fail("pruned_at", "is not an ISO 8601 time");
   return outputs;
 }
 
@@ -586,7 +590,8 @@ json toJson(const StackResult& r) {
           {"outputs",
            {{"luminance_exr", r.outputs.luminance_exr},
             {"quality_exr", r.outputs.quality_exr},
-            {"luminance_png", r.outputs.luminance_png}}},
+            {"luminance_png", r.outputs.luminance_png},
+            {"pruned_at", jsonOrNull(r.outputs.pruned_at)}}},
           {"brdf", r.brdf},
           {"generator", toJson(r.generator)}};
 }

@@ -171,11 +171,17 @@ struct CalibrationIdentity {
 // The day (YYYY-MM-DD) the newest of the parts was measured, or "" when none says.
 std::string newestPartDate(const CalibrationIdentity& calibration);
 
-// The files `process` writes beside result.json.
+// The files `process` writes beside result.json. A rig's retention may prune them from a past
+// day's result to free space (daemon/storage/retention.h): `pruned_at` then says when, and the
+// files named are gone (or, after a prune cut short, going): the numbers stay in result.json.
 struct ResultOutputs {
   std::string luminance_exr = "luminance.exr";
   std::string quality_exr = "quality.exr";
   std::string luminance_png = "luminance.png";
+  std::optional<std::string> pruned_at = std::nullopt;  // ISO 8601, UTC
+  bool pruned() const { return pruned_at.has_value(); }
+  // The three file names, in the order process writes them.
+  std::array<std::string, 3> files() const { return {luminance_exr, quality_exr, luminance_png}; }
   bool operator==(const ResultOutputs&) const = default;
 };
 

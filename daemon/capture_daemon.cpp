@@ -9,6 +9,7 @@
 #include "capture/camera_registry.h"
 #include "daemon/hardware/simulated_rig.h"
 #include "daemon/journal_sink.h"
+#include "daemon/storage/day_budget.h"
 #include "daemon/storage/earlier_run.h"
 #include "rig/gpio/button_debouncer.h"
 #include "rig/gpio/rig_io_registry.h"
@@ -42,6 +43,9 @@ Config effectiveConfig(Config config, const DaemonOptions& options) {
     config.daemon.schedule.interval = *options.interval;
   }
   if (options.status_listen) config.daemon.status.listen = options.status_listen;
+  if (options.max_use_bytes)
+    config.daemon.output.retention = RetentionPolicy{.max_use_bytes = options.max_use_bytes};
+  if (options.reserve_bytes) config.daemon.output.reserve_bytes = *options.reserve_bytes;
   return config;
 }
 
@@ -96,7 +100,8 @@ Status CaptureDaemon::start() {
   applyConfig();
   spdlog::info("glarecamd: {} with camera {}, output {}", schedule_.describe(), *config_.rig.camera,
                output_.root().string());
-  retention_.apply(state_);  // before the recall: what it deletes is not shown
+  retention_.start(state_);  // before the recall: what it deletes is not shown
+  checkDayBudget();
   EarlierRun earlier = EarlierRun::read(output_, clock_.utcNow(), siteLongitude());
   earlier.recordInto(state_);
   // Catch-up: the stacks an earlier run left unprocessed go to the worker first.
@@ -194,7 +199,10 @@ void CaptureDaemon::handleWorker(const WorkerEvent& event) {
   ScopedLogFields fields(LogFields{{"GLARECAM_STACK", event.stack_id}});
   recordWorkerEvent(state_, event, worker_->hasParked());
   // A stack done is a stack that retention may now take, and one more for the budget.
-  if (event.last && !event.error) retention_.apply(state_);
+  if (event.last && !event.error) {
+    retention_.apply(state_);
+    if (!day_budget_checked_) checkDayBudget();
+  }
   if (event.last && event.captured && options_.max_stacks &&
       ++stacks_done_ >= *options_.max_stacks && !stopping_) {
     spdlog::info("glarecamd: {} stacks done: stopping", stacks_done_);
@@ -294,6 +302,7 @@ void CaptureDaemon::reload() {
   state_.config_warning.clear();
   ++state_.reloads;
   applyConfig();
+  checkDayBudget();  // a new budget or schedule
   spdlog::info("glarecamd: reloaded {}", options_.config_path.string());
 }
 
@@ -518,6 +527,34 @@ void CaptureDaemon::checkDisk() {
   else
     spdlog::error("glarecamd: disk: {}; capture pauses", reason);
   state_.disk_fault = std::move(reason);
+}
+
+void CaptureDaemon::checkDayBudget() {
+  const std::optional<std::uint64_t> budget = config_.daemon.output.retention.max_use_bytes;
+  if (!budget) {
+    day_budget_checked_ = true;
+    return;
+  }
+  const std::optional<std::uint64_t> stack_bytes = newestStackBytes(output_);
+  if (!stack_bytes) return;  // nothing to measure yet: after the first stack
+  day_budget_checked_ = true;
+  // The solar day's start in UTC, and the wall seconds per steady second (a time lapse).
+  const UtcTime now = clock_.utcNow();
+  const auto day = parseIsoDay(solarDay(now, siteLongitude()));
+  if (!day) return;
+  const auto offset = std::chrono::duration_cast<UtcTime::duration>(
+      std::chrono::duration<double>(siteLongitude().value_or(0.0) / 15.0 * 3600.0));
+  const UtcTime day_start = UtcTime(*day) - offset;
+  const auto steady_hour = clock_.steadyAt(now + std::chrono::hours(1)) - clock_.steadyAt(now);
+  const double wall_per_steady =
+      3600.0 / std::max(std::chrono::duration<double>(steady_hour).count(), 1e-9);
+  const std::optional<sun::ModuleOrientation> module =
+      rig_ && rig_->lastGeometry() ? std::optional(rig_->lastGeometry()->module) : std::nullopt;
+  const auto estimate = estimateDayStacks(config_.daemon.schedule, config_.rig.site, module,
+                                          day_start, wall_per_steady);
+  const auto warning = estimate ? dayBudgetWarning(*budget, *estimate, *stack_bytes) : std::nullopt;
+  state_.retention_budget_warning = warning.value_or("");
+  if (warning) spdlog::warn("glarecamd: retention: {}", *warning);
 }
 
 void CaptureDaemon::checkClock() {

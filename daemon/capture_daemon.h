@@ -78,6 +78,10 @@ struct DaemonOptions {
   std::optional<std::chrono::seconds> interval{};      // overrides [schedule]: a fixed interval
   std::optional<std::uint64_t> max_stacks{};  // stop once this many stacks are done (tests, demos)
   std::optional<ListenAddress> status_listen{};  // overrides [status] listen
+  // Override [output]: retention by space alone within this budget (keep_*_days not applied),
+  // and the reserve.
+  std::optional<std::uint64_t> max_use_bytes{};
+  std::optional<std::uint64_t> reserve_bytes{};
 };
 
 // The config with the command line's overrides applied: the one place they are.
@@ -142,6 +146,9 @@ class CaptureDaemon {
   void checkWallClock();
   void checkDisk();
   void checkClock();
+  // Warns once when max_use_gib cannot hold one day's stacks (day_budget.h): at start, or after
+  // the run's first stack when the output held none to measure.
+  void checkDayBudget();
   // The rig's clock's state (rigClockStatus): the status, /metrics and the stacks' flags.
   sun::ClockStatus clockStatus() const;
   // The running worker job's start, for the watchdog (none: idle, or no worker yet).
@@ -168,6 +175,7 @@ class CaptureDaemon {
   IlluminanceSession illuminance_;
   OutputTree output_;
   RetentionScheduler retention_;
+  bool day_budget_checked_ = false;  // the settings check of max_use_gib (day_budget.h) was made
 
   std::deque<CaptureTrigger> requests_;  // button presses and SIGUSR1, in order
   std::uint64_t stacks_done_ = 0;

@@ -51,6 +51,13 @@ struct ScheduleConfig {
   double max_alpha_deg = pipeline::kMaxLimitAlphaDeg;
 };
 
+// The bounds of [output] reserve_mb and max_use_gib (and of glarecamd's --reserve-mb and
+// --max-use-gib).
+inline constexpr std::int64_t kMaxReserveMb = std::int64_t{1} << 30;  // a petabyte
+inline constexpr double kBytesPerGib = 1024.0 * 1024.0 * 1024.0;
+inline constexpr double kMinMaxUseGib = 1.0 / 1024;  // 1 MiB: the smallest budget (tests, a tmpfs)
+inline constexpr double kMaxMaxUseGib = 1 << 20;     // a pebibyte
+
 // [output]: OUTPUT/stacks/<id>/, OUTPUT/results/<id>/, OUTPUT/days/<YYYY-MM-DD>/.
 struct OutputConfig {
   std::filesystem::path root = "/var/lib/glarecam";

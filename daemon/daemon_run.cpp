@@ -1,5 +1,6 @@
 #include "daemon/daemon_run.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -17,6 +18,9 @@ Result<DaemonRig> prepareDaemonRig(const DaemonRunOptions& run) {
   rig.options.interval = run.interval;
   rig.options.max_stacks = run.max_stacks;
   rig.options.status_listen = run.status_listen;
+  if (run.max_use_gib)
+    rig.options.max_use_bytes = static_cast<std::uint64_t>(*run.max_use_gib * kBytesPerGib);
+  if (run.reserve_mb) rig.options.reserve_bytes = static_cast<std::uint64_t>(*run.reserve_mb) << 20;
   if (!run.simulate) {
     if (run.config_path) rig.options.config_path = *run.config_path;
     rig.clock = std::make_unique<SystemDaemonClock>();
@@ -57,6 +61,11 @@ std::unique_ptr<StatusServer> startStatusPage(const Config& config, const Status
 }  // namespace
 
 Status DaemonRunOptions::validate() const {
+  if (max_use_gib && !(*max_use_gib >= kMinMaxUseGib && *max_use_gib <= kMaxMaxUseGib))
+    return badInput(
+        fmt::format("--max-use-gib must be between {:g} and {:g}", kMinMaxUseGib, kMaxMaxUseGib));
+  if (reserve_mb && !(*reserve_mb >= 0 && *reserve_mb <= kMaxReserveMb))
+    return badInput(fmt::format("--reserve-mb must be between 0 and {}", kMaxReserveMb));
   if (simulate && config_path)
     return badInput("--simulate runs the simulated rig: give --config or --simulate, not both");
   if (simulate && !output_root) return badInput("--simulate needs --output DIR");

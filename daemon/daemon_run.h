@@ -32,6 +32,9 @@ struct DaemonRunOptions {
   std::optional<std::chrono::seconds> interval;      // overrides [schedule]: a fixed interval
   std::optional<std::uint64_t> max_stacks;           // stop after this many stacks
   std::optional<ListenAddress> status_listen;        // overrides [status] listen
+  // Override [output]: retention by space alone within this budget, and the reserve.
+  std::optional<double> max_use_gib;
+  std::optional<std::int64_t> reserve_mb;
   // The simulated rig instead of a config: its camera, its clock's start and speed.
   bool simulate = false;
   std::optional<std::string> simulated_camera;

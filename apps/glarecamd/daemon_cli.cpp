@@ -24,7 +24,8 @@ namespace {
 
 struct DaemonArgs {
   std::optional<std::string> config, output, camera, start, status;
-  std::optional<std::int64_t> interval_s;
+  std::optional<std::int64_t> interval_s, reserve_mb;
+  std::optional<double> max_use_gib;
   std::optional<std::uint64_t> count;
   bool simulate = false;
   double time_lapse = daemon::kDefaultTimeLapse;
@@ -39,6 +40,14 @@ void addOptions(CLI::App& app, DaemonArgs& args) {
   app.add_option("--output", args.output, "output root: overrides the config's [output] root");
   app.add_option("--interval", args.interval_s,
                  "capture every S seconds: overrides the config's [schedule]");
+  app.add_option("--max-use-gib", args.max_use_gib,
+                 "retention by space alone: keep the output tree within G GiB, the least valuable "
+                 "of past days first (overrides the config's [output] retention; keep_*_days are "
+                 "not applied; docs/operator.md \"Retention\")")
+      ->type_name("G");
+  app.add_option("--reserve-mb", args.reserve_mb,
+                 "pause capture below M MiB free: overrides the config's [output] reserve_mb")
+      ->type_name("M");
   app.add_option("--count", args.count, "stop after N stacks are done (for demos and tests)");
   app.add_option("--status", args.status,
                  "serve the read-only status page on ADDRESS:PORT (e.g. 127.0.0.1:8080, "
@@ -76,6 +85,8 @@ Result<daemon::DaemonRunOptions> runOptions(const DaemonArgs& args) {
     run.interval = std::chrono::seconds(*args.interval_s);
   }
   run.max_stacks = args.count;
+  run.max_use_gib = args.max_use_gib;
+  run.reserve_mb = args.reserve_mb;
   if (args.status) {
     auto listen = daemon::parseListenAddress(*args.status);
     if (!listen) return badInput("--status: " + listen.error().message);

@@ -69,9 +69,14 @@ void recordDay(DaemonState& state, const DaySummary& day) {
 
 void recordRetention(DaemonState& state, const RetentionSummary& summary, bool disk_checked) {
   for (const RetentionDeletion& deleted : summary.deleted) {
-    if (deleted.kind == "stack") ++state.stacks_deleted;
-    if (deleted.kind == "result") ++state.results_deleted;
-    if (deleted.kind == "day") ++state.days_deleted;
+    if (deleted.kind == kDeletedStack) ++state.stacks_deleted;
+    if (deleted.kind == kDeletedResultImages) ++state.result_images_pruned;
+    if (deleted.kind == kDeletedResult) ++state.results_deleted;
+    if (deleted.kind == kDeletedDay) ++state.days_deleted;
+    // The last result's picture is gone with its images; its numbers stay on the page.
+    if (state.last_result && state.last_result->stack_id == deleted.name &&
+        (deleted.kind == kDeletedResultImages || deleted.kind == kDeletedResult))
+      state.last_result->images_pruned = true;
   }
   if (!summary.deleted.empty()) {
     const RetentionDeletion& last = summary.deleted.back();
@@ -95,6 +100,7 @@ void recordRetention(DaemonState& state, const RetentionSummary& summary, bool d
   else if (changed)
     spdlog::warn("glarecamd: retention: {}", summary.shortfall);
   state.retention_shortfall = summary.shortfall;
+  state.retention_day_overflows = summary.day_overflows;
 }
 
 namespace {
@@ -168,9 +174,12 @@ std::string statusLine(const DaemonState& state, const std::string& schedule) {
   if (!state.retention_shortfall.empty()) {
     retention = std::move(faults.back());
     faults.pop_back();
-  } else if (state.stacks_deleted + state.results_deleted + state.days_deleted > 0) {
-    retention = fmt::format("retention deleted {} stacks, {} results, {} days",
-                            state.stacks_deleted, state.results_deleted, state.days_deleted);
+  } else if (state.stacks_deleted + state.result_images_pruned + state.results_deleted +
+                 state.days_deleted >
+             0) {
+    retention = fmt::format("retention deleted {} stacks, {} result images, {} results, {} days",
+                            state.stacks_deleted, state.result_images_pruned, state.results_deleted,
+                            state.days_deleted);
   }
   parts.insert(parts.end(), faults.begin(), faults.end());
   if (!state.skip_reason.empty()) parts.push_back("skipped: " + state.skip_reason);

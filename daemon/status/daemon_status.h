@@ -52,7 +52,11 @@ struct DaemonState {
   std::uint64_t captures_skipped = 0, watchdog_pings = 0, reloads = 0;
   // Retention (retention.h): entries deleted so far, and why it could not free enough (empty
   // when it could, or had nothing to do).
-  std::uint64_t stacks_deleted = 0, results_deleted = 0, days_deleted = 0;
+  std::uint64_t stacks_deleted = 0, result_images_pruned = 0, results_deleted = 0, days_deleted = 0;
+  // The shortfall is today's stacks alone (the budget is smaller than one day's stacks).
+  bool retention_day_overflows = false;
+  // The settings check's: max_use_gib cannot hold one day's stacks (day_budget.h), or empty.
+  std::string retention_budget_warning;
   std::string retention_shortfall;
   std::string retention_last;  // the last pass that deleted: "deleted stack … (12.0 MiB): …"
   std::optional<UtcTime> retention_last_time;

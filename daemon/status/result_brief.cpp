@@ -35,8 +35,10 @@ std::optional<LastResult> newestResult(const fs::path& results) {
   if (!newest) return std::nullopt;
   const auto result = pipeline::readResult(*newest / pipeline::kResultFileName);
   if (!result) return std::nullopt;
-  return LastResult{
-      .stack_id = newest->filename().string(), .directory = *newest, .brief = resultBrief(*result)};
+  return LastResult{.stack_id = newest->filename().string(),
+                    .directory = *newest,
+                    .brief = resultBrief(*result),
+                    .images_pruned = result->outputs.pruned()};
 }
 
 }  // namespace glarecam::daemon

@@ -25,6 +25,9 @@ struct LastResult {
   std::string stack_id;
   std::filesystem::path directory;
   ResultBrief brief;
+  // Retention pruned its images (or deleted it whole) since: the brief's numbers stay, the picture
+  // is gone (retention.h).
+  bool images_pruned = false;
 };
 
 // The brief of a result.

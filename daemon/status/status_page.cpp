@@ -96,13 +96,22 @@ std::string htmlEscape(std::string_view text) {
 std::optional<std::filesystem::path> statusPicture(const StatusSnapshot& s, StatusPicture picture) {
   switch (picture) {
     case StatusPicture::kLastStack:
-      if (!s.state.last_result) return std::nullopt;
+      if (!s.state.last_result || s.state.last_result->images_pruned) return std::nullopt;
       return s.state.last_result->directory / "luminance.png";
     case StatusPicture::kDatasheet:
       if (s.output_root.empty() || s.today.empty()) return std::nullopt;
       return s.output_root / kDaysDirectory / s.today / kDatasheetPictureName;
   }
   return std::nullopt;
+}
+
+std::string statusPictureMissing(const StatusSnapshot& s, StatusPicture picture) {
+  if (picture == StatusPicture::kDatasheet) return "no data sheet today yet";
+  if (!s.state.last_result) return "no stack processed yet";
+  if (s.state.last_result->images_pruned)
+    return fmt::format("the images of {} were pruned by retention (its numbers stay)",
+                       s.state.last_result->stack_id);
+  return fmt::format("no picture of {}", s.state.last_result->stack_id);
 }
 
 json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
@@ -118,13 +127,15 @@ json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
   json last_result = nullptr;
   if (st.last_result) {
     const ResultBrief& b = st.last_result->brief;
-    last_result = {{"id", st.last_result->stack_id},
-                   {"alpha_deg", finiteOrNull(b.alpha_deg)},
-                   {"lmax_cd_m2", b.lmax_cd_m2},
-                   {"lmax_bound", optionalText(b.lmax_bound)},
-                   {"limit_cd_m2", finiteOrNull(b.limit_cd_m2)},
-                   {"glare", jsonOrNull(b.glare)},
-                   {"picture", "/last-stack.png"}};
+    last_result = {
+        {"id", st.last_result->stack_id},
+        {"alpha_deg", finiteOrNull(b.alpha_deg)},
+        {"lmax_cd_m2", b.lmax_cd_m2},
+        {"lmax_bound", optionalText(b.lmax_bound)},
+        {"limit_cd_m2", finiteOrNull(b.limit_cd_m2)},
+        {"glare", jsonOrNull(b.glare)},
+        {"images_pruned", st.last_result->images_pruned},
+        {"picture", st.last_result->images_pruned ? json(nullptr) : json("/last-stack.png")}};
   }
   json disk = {{"root", s.output_root.string()},
                {"reserve_bytes", s.reserve_bytes},
@@ -184,8 +195,10 @@ json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
         {"last_action_time",
          st.retention_last_time ? json(isoSeconds(*st.retention_last_time)) : json(nullptr)},
         {"shortfall", optionalText(st.retention_shortfall)},
+        {"budget_warning", optionalText(st.retention_budget_warning)},
         {"deleted",
          {{"stacks", st.stacks_deleted},
+          {"result_images", st.result_images_pruned},
           {"results", st.results_deleted},
           {"days", st.days_deleted}}}}},
       {"counters",
@@ -233,6 +246,8 @@ std::string statusMetrics(const StatusSnapshot& s) {
       "# HELP glarecam_retention_deleted_total Entries retention deleted, by kind.\n"
       "# TYPE glarecam_retention_deleted_total counter\n";
   out += fmt::format("glarecam_retention_deleted_total{{kind=\"stack\"}} {}\n", st.stacks_deleted);
+  out += fmt::format("glarecam_retention_deleted_total{{kind=\"result_images\"}} {}\n",
+                     st.result_images_pruned);
   out +=
       fmt::format("glarecam_retention_deleted_total{{kind=\"result\"}} {}\n", st.results_deleted);
   out += fmt::format("glarecam_retention_deleted_total{{kind=\"day\"}} {}\n", st.days_deleted);
@@ -342,7 +357,10 @@ img {{ max-width: 100%; height: auto; border: 1px solid #ccc; }}
     html += row("verdict", verdictText(b));
   }
   html += "</table>\n";
-  if (st.last_result)
+  if (st.last_result && st.last_result->images_pruned)
+    html += fmt::format("<p class=\"line\">{}</p>\n",
+                        e(statusPictureMissing(s, StatusPicture::kLastStack)));
+  else if (st.last_result)
     html += fmt::format(
         "<p><a href=\"/last-stack.png?stack={0}\"><img src=\"/last-stack.png?stack={0}\" "
         "alt=\"luminance image of {0} with its glare ellipses (Figure 9)\"></a></p>\n",
@@ -412,6 +430,8 @@ img {{ max-width: 100%; height: auto; border: 1px solid #ccc; }}
                                              ? " at " + daemonTime(s, *st.retention_last_time)
                                              : std::string()));
   if (!st.retention_shortfall.empty()) html += row("retention shortfall", st.retention_shortfall);
+  if (!st.retention_budget_warning.empty())
+    html += row("retention budget", st.retention_budget_warning);
   html += "</table>\n</section>\n</div>\n";
 
   html += fmt::format("<section id=\"log\">\n<h2>Log (last {})</h2>\n", kStatusLogEntries);

@@ -36,6 +36,9 @@ enum class StatusPicture {
 // today): the server answers 404 then.
 std::optional<std::filesystem::path> statusPicture(const StatusSnapshot& snapshot,
                                                    StatusPicture picture);
+// Why there is no picture, for the 404: "no stack processed yet", "the images of … were pruned by
+// retention (its numbers stay)", "no data sheet today yet".
+std::string statusPictureMissing(const StatusSnapshot& snapshot, StatusPicture picture);
 
 nlohmann::json statusJson(const StatusSnapshot& snapshot, const std::vector<LogEntry>& log);
 std::string statusHtml(const StatusSnapshot& snapshot, const std::vector<LogEntry>& log);

@@ -226,16 +226,17 @@ class StatusServer::Impl {
       if (!s) return unavailable(response);
       response.set_content(statusMetrics(*s), "text/plain; version=0.0.4; charset=utf-8");
     });
-    servePicture("/last-stack.png", StatusPicture::kLastStack, "no stack processed yet");
-    servePicture("/datasheet.png", StatusPicture::kDatasheet, "no data sheet today yet");
+    servePicture("/last-stack.png", StatusPicture::kLastStack);
+    servePicture("/datasheet.png", StatusPicture::kDatasheet);
   }
 
-  void servePicture(const char* route, StatusPicture picture, const char* none) {
-    server_.Get(route, [this, picture, none](const httplib::Request&, httplib::Response& response) {
+  void servePicture(const char* route, StatusPicture picture) {
+    server_.Get(route, [this, picture](const httplib::Request&, httplib::Response& response) {
       const auto s = snapshot();
-      const auto path = s ? statusPicture(*s, picture) : std::nullopt;
+      if (!s) return notFound(response, statusPictureMissing(StatusSnapshot{}, picture));
+      const auto path = statusPicture(*s, picture);
       const auto bytes = path ? readSmallFile(*path) : std::nullopt;
-      if (!bytes) return notFound(response, none);
+      if (!bytes) return notFound(response, statusPictureMissing(*s, picture));
       response.set_content(*bytes, "image/png");
     });
   }

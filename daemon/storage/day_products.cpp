@@ -26,6 +26,37 @@ namespace {
 
 constexpr double kDegreesPerHour = 15.0;  // the Earth turns 360° in 24 h
 
+// The rows (and ladders) the day's tables hold for stacks whose result retention deleted whole
+// (retention.h, tier 3): their numbers live on only there, so a rebuild keeps them.
+void keepRowsOfDeletedResults(const DayProductsOptions& options, const std::string& day,
+                              pipeline::SweepTable& table, pipeline::ContourTable& contours) {
+  const fs::path directory = options.root / kDaysDirectory / day;
+  const fs::path results = options.root / kResultsDirectory;
+  const auto gone = [&](const std::string& id) {
+    std::error_code error;
+    return !id.empty() && fs::path(id).filename() == fs::path(id) &&
+           !fs::exists(fs::symlink_status(results / id, error));
+  };
+  std::error_code error;
+  if (!fs::is_regular_file(directory / pipeline::kSweepTableFileName, error)) return;
+  const auto old_table = pipeline::readSweepTable(directory / pipeline::kSweepTableFileName);
+  if (!old_table) {  // a table of notes only, or one that was never ours: nothing to keep
+    spdlog::debug("day {}: the earlier table keeps no rows: {}", day, old_table.error().message);
+    return;
+  }
+  std::size_t kept = 0;
+  for (const pipeline::SweepRow& row : old_table->rows)
+    if (gone(row.stack_id)) {
+      table.rows.push_back(row);
+      ++kept;
+    }
+  if (kept == 0) return;
+  const auto old_contours = pipeline::readContourTable(directory / pipeline::kContourTableFileName);
+  if (!old_contours) return;  // the rows stay; their ladders are lost with the earlier file
+  for (const pipeline::ContourRow& contour : old_contours->rows)
+    if (gone(contour.stack_id)) contours.rows.push_back(contour);
+}
+
 // The rows of the day's processed stacks, with a note for each result that gives none, and
 // their contour ladders into `contours`.
 pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::string& day,
@@ -53,6 +84,7 @@ pipeline::SweepTable dayTable(const DayProductsOptions& options, const std::stri
     for (pipeline::ContourRow& contour : pipeline::contourRowsFromResult(*result))
       contours.rows.push_back(std::move(contour));
   }
+  keepRowsOfDeletedResults(options, day, table, contours);
   pipeline::sortByAlpha(table);
   return table;
 }

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <system_error>
 
 #include "core/atomic_file.h"
@@ -73,6 +75,38 @@ bool isDayDirectory(const fs::path& path) {
          fs::is_regular_file(path / pipeline::kSweepTableFileName, error);
 }
 
+// A file name `outputs` gives that is a plain name in its directory (never a path out of it).
+bool isPlainName(const std::string& name) {
+  const fs::path path(name);
+  return !name.empty() && path.filename() == path && name != "." && name != "..";
+}
+
+// The result.json of a glarecam result directory, read, or nullopt.
+std::optional<pipeline::StackResult> readResultOf(const fs::path& directory) {
+  if (!isRealDirectory(directory)) return std::nullopt;
+  auto result = pipeline::readResult(directory / pipeline::kResultFileName);
+  return result ? std::optional(std::move(*result)) : std::nullopt;
+}
+
+// The stack ids with a row in days/<day>/sweep.csv, read once a day.
+class DayRows {
+ public:
+  explicit DayRows(fs::path days) : days_(std::move(days)) {}
+  bool has(const std::string& day, const std::string& id) {
+    auto [it, fresh] = ids_.try_emplace(day);
+    if (fresh) {
+      const auto table = pipeline::readSweepTable(days_ / day / pipeline::kSweepTableFileName);
+      if (table)
+        for (const pipeline::SweepRow& row : table->rows) it->second.insert(row.stack_id);
+    }
+    return it->second.contains(id);
+  }
+
+ private:
+  fs::path days_;
+  std::map<std::string, std::set<std::string>> ids_;
+};
+
 // Renames `path` to a hidden temporary beside it (what removeLeftovers() clears at the next start
 // if this is cut short), then removes that.
 Status removeDirectory(const fs::path& path) {
@@ -103,18 +137,36 @@ struct Candidate {
   std::chrono::sys_days day;
 };
 
-// Why some stacks may not go, for a shortfall: "4 unprocessed, 12 of today".
+// Why some stacks and results may not go, for a shortfall: "stacks kept: 4 unprocessed, 12 of
+// today; results kept: 3 not in their day's sweep.csv".
 struct Withheld {
   std::size_t unprocessed = 0, failed = 0, today = 0, undated = 0;
+  std::size_t results_without_row = 0, results_with_stack = 0;
   std::string describe() const {
+    std::vector<std::string> stacks, results;
+    if (unprocessed) stacks.push_back(fmt::format("{} unprocessed", unprocessed));
+    if (failed) stacks.push_back(fmt::format("{} failed", failed));
+    if (today) stacks.push_back(fmt::format("{} of today", today));
+    if (undated) stacks.push_back(fmt::format("{} undated", undated));
+    if (results_without_row)
+      results.push_back(fmt::format("{} not in their day's sweep.csv", results_without_row));
+    if (results_with_stack)
+      results.push_back(fmt::format("{} with their stack", results_with_stack));
     std::vector<std::string> parts;
-    if (unprocessed) parts.push_back(fmt::format("{} unprocessed", unprocessed));
-    if (failed) parts.push_back(fmt::format("{} failed", failed));
-    if (today) parts.push_back(fmt::format("{} of today", today));
-    if (undated) parts.push_back(fmt::format("{} undated", undated));
-    if (parts.empty()) return "no processed stack before today left";
-    return fmt::format("stacks kept: {}", fmt::join(parts, ", "));
+    if (!stacks.empty()) parts.push_back(fmt::format("stacks kept: {}", fmt::join(stacks, ", ")));
+    if (!results.empty())
+      parts.push_back(fmt::format("results kept: {}", fmt::join(results, ", ")));
+    if (parts.empty()) return "nothing of a past day left";
+    return fmt::format("{}", fmt::join(parts, "; "));
   }
+};
+
+// A past day's result that the space rule may reduce: its images (tier 2), then itself (tier 3).
+struct ResultCandidate {
+  std::string id;
+  fs::path path;
+  std::chrono::sys_days day;
+  std::uint64_t image_bytes = 0;  // still on disk
 };
 
 }  // namespace
@@ -184,7 +236,7 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
     const std::string reason = fmt::format("older than {} days", *policy.keep_stacks_days);
     std::erase_if(stacks, [&](const Candidate& stack) {
       return ageDays(stack.day) >= *policy.keep_stacks_days &&
-             remove("stack", stack.name, stack.path, reason);
+             remove(kDeletedStack, stack.name, stack.path, reason);
     });
   }
   if (policy.keep_results_days) {
@@ -197,46 +249,178 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
       if (!day || ageDays(*day) < keep || !isResultDirectory(entry) ||
           fs::exists(fs::symlink_status(tree.stacks() / id, missing)))
         continue;
-      remove("result", id, entry, reason);
+      remove(kDeletedResult, id, entry, reason);
     }
     for (const fs::path& entry : sortedEntries(tree.days())) {
       const std::string day = entry.filename().string();
       if (!isDayDirectory(entry) || ageDays(*parseDay(day)) < keep) continue;
-      remove("day", day, entry, reason);
+      remove(kDeletedDay, day, entry, reason);
     }
   }
 
   if (!policy.max_use_bytes) return summary;
   summary.used_bytes =
       treeBytes(tree.stacks()) + treeBytes(tree.results()) + treeBytes(tree.days());
-  // The space rule: the oldest stacks that may go, until the tree is within its budget and the
-  // disk above its reserve.
+  // The space rule: the least valuable bytes of past days, tier by tier, oldest first, until the
+  // tree is within its budget and the disk above its reserve.
   const std::uint64_t budget = *policy.max_use_bytes;
   const auto overBudget = [&] { return summary.used_bytes > budget; };
   const std::uint64_t free_before = context.disk ? context.disk->free_bytes : 0;
   const auto belowReserve = [&] {  // the age rules' deletions count: the probe came before them
     return context.disk && free_before + summary.freed_bytes < context.reserve_bytes;
   };
+  const auto pressed = [&] { return overBudget() || belowReserve(); };
   const std::string over_reason = fmt::format("over the {} budget", formatBytes(budget));
   const std::string reserve_reason =
       fmt::format("below the {} reserve", formatBytes(context.reserve_bytes));
+  const auto reason = [&] { return overBudget() ? over_reason : reserve_reason; };
+  const auto used = [&](std::uint64_t freed_before) {
+    summary.used_bytes -= std::min(summary.used_bytes, summary.freed_bytes - freed_before);
+  };
+
+  // 1. Stacks with a complete result.
   for (const Candidate& stack : stacks) {
-    if (!overBudget() && !belowReserve()) break;
-    const std::string& reason = overBudget() ? over_reason : reserve_reason;
+    if (!pressed()) break;
     const std::uint64_t freed = summary.freed_bytes;
-    if (remove("stack", stack.name, stack.path, reason))
-      summary.used_bytes -= std::min(summary.used_bytes, summary.freed_bytes - freed);
+    if (remove(kDeletedStack, stack.name, stack.path, reason())) used(freed);
   }
-  if (overBudget()) {
-    summary.shortfall =
-        fmt::format("{} used, over the {} budget; nothing more may go ({})",
-                    formatBytes(summary.used_bytes), formatBytes(budget), withheld.describe());
-  } else if (belowReserve()) {
-    summary.shortfall = fmt::format("{} free, below the {} reserve; nothing more may go ({})",
-                                    formatBytes(free_before + summary.freed_bytes),
-                                    formatBytes(context.reserve_bytes), withheld.describe());
+
+  // 2. and 3. Results of past days: their images, then (their row in the day's table, their stack
+  // gone) themselves. Listed only when the stacks did not free enough.
+  std::vector<ResultCandidate> results;
+  if (pressed()) {
+    for (const fs::path& entry : sortedEntries(tree.results())) {
+      const std::string id = entry.filename().string();
+      const std::optional<std::chrono::sys_days> day = idDay(id, context.longitude_deg);
+      if (id.starts_with(kTemporaryPrefix) || !day || *day >= *today || !isRealDirectory(entry))
+        continue;
+      results.push_back({id, entry, *day});
+    }
+  }
+  for (ResultCandidate& result : results) {
+    if (!pressed()) break;
+    const std::optional<pipeline::StackResult> read = readResultOf(result.path);
+    if (!read) continue;  // not glarecam's, or being written
+    result.image_bytes = resultImageBytes(result.path, read->outputs);
+    if (result.image_bytes == 0) continue;
+    const std::uint64_t freed = summary.freed_bytes;
+    const auto pruned = pruneResultImages(result.path, context.now);
+    if (!pruned) {
+      summary.errors.push_back(pruned.error().message);
+      continue;
+    }
+    summary.deleted.push_back({kDeletedResultImages, result.id, *pruned, reason()});
+    summary.freed_bytes += *pruned;
+    used(freed);
+  }
+  DayRows rows(tree.days());
+  for (const ResultCandidate& result : results) {
+    if (!pressed()) break;
+    std::error_code missing;
+    if (!isResultDirectory(result.path)) continue;
+    if (fs::exists(fs::symlink_status(tree.stacks() / result.id, missing))) {
+      ++withheld.results_with_stack;
+      continue;
+    }
+    if (!rows.has(formatIsoDay(result.day), result.id)) {
+      ++withheld.results_without_row;
+      continue;
+    }
+    const std::uint64_t freed = summary.freed_bytes;
+    if (remove(kDeletedResult, result.id, result.path, reason())) used(freed);
+  }
+
+  if (!pressed()) return summary;
+  // Nothing more of a past day may go. Is it today that does not fit?
+  std::uint64_t today_bytes = 0;
+  for (const fs::path& directory : {tree.stacks(), tree.results()})
+    for (const fs::path& entry : sortedEntries(directory)) {
+      const std::optional<std::chrono::sys_days> day =
+          idDay(entry.filename().string(), context.longitude_deg);
+      if (day && *day >= *today) today_bytes += treeBytes(entry);
+    }
+  const std::uint64_t free_now = free_before + summary.freed_bytes;
+  // What the tree may hold: the budget, or what the disk holds above its reserve.
+  const std::uint64_t limit =
+      overBudget() ? budget
+                   : summary.used_bytes + free_now -
+                         std::min(free_now + summary.used_bytes, context.reserve_bytes);
+  const std::uint64_t kept_before_today =
+      summary.used_bytes - std::min(summary.used_bytes, today_bytes);
+  const std::string what = overBudget()
+                               ? fmt::format("{} used, over the {} budget",
+                                             formatBytes(summary.used_bytes), formatBytes(budget))
+                               : fmt::format("{} free, below the {} reserve", formatBytes(free_now),
+                                             formatBytes(context.reserve_bytes));
+  summary.shortfall = fmt::format("{}; nothing more may go ({})", what, withheld.describe());
+  if (withheld.today > 0 && kept_before_today < limit) {
+    const std::uint64_t leaves = limit - kept_before_today;
+    const double per_stack = double(today_bytes) / double(withheld.today);
+    summary.day_overflows = true;
+    summary.shortfall += fmt::format(
+        "; the budget is smaller than one day's stacks: today's {} stacks and their results take "
+        "{}, more than the {} left for a day: about {} stacks a day fit (raise max_use_gib or "
+        "capture less often)",
+        withheld.today, formatBytes(today_bytes), formatBytes(leaves),
+        static_cast<std::uint64_t>(double(leaves) / per_stack));
   }
   return summary;
+}
+
+RetentionSummary finishCutShortPrunes(const OutputTree& tree, UtcTime now) {
+  RetentionSummary summary;
+  for (const fs::path& entry : sortedEntries(tree.results())) {
+    const std::string id = entry.filename().string();
+    if (id.starts_with(kTemporaryPrefix)) continue;
+    const std::optional<pipeline::StackResult> read = readResultOf(entry);
+    if (!read || !read->outputs.pruned() || resultImageBytes(entry, read->outputs) == 0) continue;
+    const auto pruned = pruneResultImages(entry, now);
+    if (!pruned) {
+      summary.errors.push_back(pruned.error().message);
+      continue;
+    }
+    summary.deleted.push_back({kDeletedResultImages, id, *pruned, "finishing a prune cut short"});
+    summary.freed_bytes += *pruned;
+  }
+  return summary;
+}
+
+std::uint64_t resultImageBytes(const fs::path& directory, const pipeline::ResultOutputs& outputs) {
+  std::uint64_t bytes = 0;
+  for (const std::string& name : outputs.files()) {
+    std::error_code error;
+    if (!isPlainName(name) || name == pipeline::kResultFileName) continue;
+    const fs::path file = directory / name;
+    if (fs::is_regular_file(fs::symlink_status(file, error))) {
+      const std::uintmax_t size = fs::file_size(file, error);
+      if (!error) bytes += size;
+    }
+  }
+  return bytes;
+}
+
+Result<std::uint64_t> pruneResultImages(const fs::path& directory, UtcTime now) {
+  const fs::path file = directory / pipeline::kResultFileName;
+  if (!isRealDirectory(directory)) return badInput(directory.string() + ": not a result directory");
+  auto result = pipeline::readResult(file);
+  if (!result) return std::unexpected(result.error());
+  // result.json says so first: a prune cut short leaves a result that says "pruned".
+  if (!result->outputs.pruned()) {
+    result->outputs.pruned_at = formatIsoTime(std::chrono::floor<std::chrono::seconds>(now));
+    GLARECAM_CHECK(writeFileAtomic(file, jsonText(pipeline::toJson(*result))));
+  }
+  std::uint64_t bytes = 0;
+  for (const std::string& name : result->outputs.files()) {
+    if (!isPlainName(name) || name == pipeline::kResultFileName) continue;
+    const fs::path image = directory / name;
+    std::error_code error;
+    if (!fs::is_regular_file(fs::symlink_status(image, error))) continue;
+    const std::uintmax_t size = fs::file_size(image, error);
+    if (!fs::remove(image, error) || error)
+      return fail(ErrorCode::kIo, image.string() + ": cannot delete: " + error.message());
+    bytes += size;
+  }
+  return bytes;
 }
 
 }  // namespace glarecam::daemon

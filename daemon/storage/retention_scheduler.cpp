@@ -23,7 +23,27 @@ void RetentionScheduler::configure(const OutputConfig& output,
   longitude_deg_ = longitude_deg;
 }
 
+std::size_t RetentionScheduler::start(DaemonState& state) {
+  ScopedLogFields fields(LogFields{{"GLARECAM_EVENT", "retention"}});
+  const RetentionSummary finished = finishCutShortPrunes(tree_, clock_.utcNow());
+  logDeletions(finished);
+  for (const std::string& error : finished.errors) spdlog::warn("glarecamd: retention: {}", error);
+  for (const RetentionDeletion& deleted : finished.deleted)
+    if (deleted.kind == kDeletedResultImages) ++state.result_images_pruned;
+  return finished.deleted.size() + apply(state);
+}
+
 std::size_t RetentionScheduler::apply(DaemonState& state) { return pass(state, std::nullopt); }
+
+void RetentionScheduler::logDeletions(const RetentionSummary& summary) {
+  for (const RetentionDeletion& deleted : summary.deleted) {
+    ScopedLogFields deletion(LogFields{{"GLARECAM_DELETED", deleted.name},
+                                       {"GLARECAM_DELETED_KIND", deleted.kind},
+                                       {"GLARECAM_DELETED_BYTES", std::to_string(deleted.bytes)}});
+    spdlog::info("glarecamd: retention deleted {} {} ({}): {}", deleted.kind, deleted.name,
+                 formatBytes(deleted.bytes), deleted.reason);
+  }
+}
 
 HealthMonitor::DiskCheck RetentionScheduler::checkDisk(HealthMonitor& health, DaemonState& state) {
   HealthMonitor::DiskCheck disk = health.checkDisk(output_.root, output_.reserve_bytes);
@@ -55,13 +75,7 @@ std::size_t RetentionScheduler::pass(DaemonState& state, const std::optional<Dis
                                                    .longitude_deg = longitude_deg_,
                                                    .disk = disk,
                                                    .reserve_bytes = output_.reserve_bytes});
-  for (const RetentionDeletion& deleted : summary.deleted) {
-    ScopedLogFields deletion(LogFields{{"GLARECAM_DELETED", deleted.name},
-                                       {"GLARECAM_DELETED_KIND", deleted.kind},
-                                       {"GLARECAM_DELETED_BYTES", std::to_string(deleted.bytes)}});
-    spdlog::info("glarecamd: retention deleted {} {} ({}): {}", deleted.kind, deleted.name,
-                 formatBytes(deleted.bytes), deleted.reason);
-  }
+  logDeletions(summary);
   recordRetention(state, summary, disk.has_value());
   if (!summary.deleted.empty()) state.retention_last_time = clock_.utcNow();
   return summary.deleted.size();

@@ -2,7 +2,9 @@
 // journal and the status. A pass runs:
 //
 //   at start             before the status recalls the earlier run (earlier_run.h), so that the
-//                        page never shows what the pass has just deleted
+//                        page never shows what the pass has just deleted; first it finishes a
+//                        prune of a result's images that a power cut interrupted (whatever the
+//                        policy and the clock: result.json already says "pruned")
 //   after every stack    finished without an error: one more that may go, one more for the budget
 //   below the reserve    when the disk check finds less than the reserve free on a writable disk
 //                        and a space budget (max_use_gib) is set: the oldest stacks that may go are
@@ -39,8 +41,10 @@ class RetentionScheduler {
   // The same after a reload.
   void configure(const OutputConfig& output, std::optional<double> longitude_deg);
 
-  // At start and after every stack: the age rules and the budget, without looking at the disk.
-  // How many entries it deleted.
+  // At start: a prune cut short finished, then apply().
+  std::size_t start(DaemonState& state);
+  // After every stack: the age rules and the budget, without looking at the disk. How many
+  // entries it deleted.
   std::size_t apply(DaemonState& state);
 
   // The disk under the output root now (HealthMonitor::checkDisk); below the reserve, retention
@@ -54,6 +58,8 @@ class RetentionScheduler {
  private:
   // One pass; `disk` for the reserve rule (none: the disk not looked at).
   std::size_t pass(DaemonState& state, const std::optional<DiskState>& disk);
+  // Logs each deletion with its journal fields.
+  static void logDeletions(const RetentionSummary& summary);
 
   const DaemonClock& clock_;
   OutputConfig output_;

@@ -672,7 +672,7 @@ TEST_F(DaemonTest, RetentionDeletesWhatIsOlderThanItsDaysAndCaptureGoesOn) {
   EXPECT_EQ(state.stacks_deleted, 11u);
   EXPECT_EQ(state.results_deleted, 7u);
   EXPECT_EQ(state.days_deleted, 2u);
-  EXPECT_TRUE(statusMentioned("retention deleted 11 stacks, 7 results, 2 days"));
+  EXPECT_TRUE(statusMentioned("retention deleted 11 stacks, 0 result images, 7 results, 2 days"));
 }
 
 // Ages are told by the clock: while it is not synchronised (it may have run ahead) nothing goes.

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "core/json.h"
@@ -24,12 +25,17 @@ inline void makeGlarecamStack(const std::filesystem::path& directory, std::uint6
 }
 
 // A complete result: result.json as `process` writes it (tests/pipeline/result_fixture.h) with
-// Lmax `lmax_cd_m2`, and a luminance map.
-inline void makeGlarecamResult(const std::filesystem::path& directory, double lmax_cd_m2 = 1000) {
+// Lmax `lmax_cd_m2`, the stack's id (the directory's name) and α, and the images it names
+// (luminance.exr, quality.exr, luminance.png) of `image_bytes` each.
+inline void makeGlarecamResult(const std::filesystem::path& directory, double lmax_cd_m2 = 1000,
+                               std::optional<double> alpha_deg = std::nullopt,
+                               std::uint64_t image_bytes = 500) {
   std::filesystem::create_directories(directory);
-  writeText(directory / pipeline::kResultFileName,
-            jsonText(pipeline::toJson(minimalResult(lmax_cd_m2))));
-  writeText(directory / "luminance.exr", std::string(500, 'y'));
+  pipeline::StackResult result = minimalResult(lmax_cd_m2, alpha_deg);
+  result.stack = directory.filename().string();
+  writeText(directory / pipeline::kResultFileName, jsonText(pipeline::toJson(result)));
+  for (const std::string& image : result.outputs.files())
+    writeText(directory / image, std::string(image_bytes, 'y'));
 }
 
 // A processed stack of `id`: the stack and its complete result.

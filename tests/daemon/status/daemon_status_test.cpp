@@ -49,8 +49,9 @@ TEST(DaemonStatus, RetentionCountsItsDeletionsOrSaysWhyItCannotFreeEnough) {
   EXPECT_EQ(state.stacks_deleted, 2u);
   EXPECT_EQ(state.results_deleted, 1u);
   EXPECT_EQ(state.days_deleted, 1u);
-  EXPECT_NE(statusLine(state, "x").find("retention deleted 2 stacks, 1 results, 1 days"),
-            std::string::npos);
+  EXPECT_NE(
+      statusLine(state, "x").find("retention deleted 2 stacks, 0 result images, 1 results, 1 days"),
+      std::string::npos);
   const RetentionSummary short_of_space{
       .shortfall =
           "3.0 GiB used, over the 2.0 GiB budget; nothing more may go (stacks kept: 4 "
@@ -63,6 +64,31 @@ TEST(DaemonStatus, RetentionCountsItsDeletionsOrSaysWhyItCannotFreeEnough) {
   recordRetention(state, {});
   EXPECT_TRUE(state.retention_shortfall.empty());
   EXPECT_EQ(state.stacks_deleted, 2u);
+}
+
+// Each tier counts apart; the last result's images pruned (or the result deleted) marks it so
+// that the page stops offering its picture.
+TEST(DaemonStatus, RetentionCountsEachTierAndMarksThePrunedLastResult) {
+  DaemonState state;
+  state.ready = true;
+  state.last_result = LastResult{.stack_id = "b", .directory = "/out/results/b", .brief = {}};
+  RetentionSummary summary;
+  summary.deleted = {{kDeletedStack, "a", 10, "over the 1.0 GiB budget"},
+                     {kDeletedResultImages, "a", 5, "over the 1.0 GiB budget"},
+                     {kDeletedResultImages, "c", 5, "over the 1.0 GiB budget"},
+                     {kDeletedResult, "d", 1, "over the 1.0 GiB budget"}};
+  recordRetention(state, summary);
+  EXPECT_FALSE(state.last_result->images_pruned);
+  EXPECT_NE(
+      statusLine(state, "x").find("retention deleted 1 stacks, 2 result images, 1 results, 0 days"),
+      std::string::npos)
+      << statusLine(state, "x");
+  recordRetention(state, {.deleted = {{kDeletedResultImages, "b", 5, "below the reserve"}}});
+  EXPECT_TRUE(state.last_result->images_pruned);
+  EXPECT_EQ(state.result_images_pruned, 3u);
+  recordRetention(state, {.shortfall = "over; the budget is smaller than one day's stacks",
+                          .day_overflows = true});
+  EXPECT_TRUE(state.retention_day_overflows);
 }
 
 // The status page's one word: the camera lost outranks a pause, a pause outranks the other

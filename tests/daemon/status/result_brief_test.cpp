@@ -67,6 +67,14 @@ TEST(ResultBrief, NewestIsTheGreatestIdWithAResult) {
   EXPECT_EQ(newest->stack_id, "20260621T090000Z-a41.00");
   EXPECT_EQ(newest->directory, results / "20260621T090000Z-a41.00");
   EXPECT_EQ(newest->brief.lmax_cd_m2, 2000);
+  EXPECT_FALSE(newest->images_pruned);
+  // Retention pruned its images: the brief stays, the picture is known gone.
+  pipeline::StackResult pruned = minimalResult(2500);
+  pruned.outputs.pruned_at = "2026-06-22T10:00:00Z";
+  write("20260621T095000Z-a41.50", jsonText(pipeline::toJson(pruned)));
+  ASSERT_TRUE(newestResult(results));
+  EXPECT_TRUE(newestResult(results)->images_pruned);
+  EXPECT_EQ(newestResult(results)->brief.lmax_cd_m2, 2500);
   write("20260622T080000Z-a40.00", "{ not json");
   EXPECT_FALSE(newestResult(results));  // the newest cannot be read: none, not an older one
   // Nor one that is JSON but not a valid result (a key renamed by another tool).

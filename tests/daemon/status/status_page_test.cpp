@@ -171,6 +171,30 @@ TEST(StatusPage, ThePicturesAreTheFilesTheSnapshotNames) {
             std::filesystem::path("/out/days/2026-06-21/datasheet.png"));
 }
 
+// Retention pruned the last result's images (a past day's, on a rig that ran through midnight):
+// the page keeps its numbers and says why there is no picture; the JSON and /metrics count it.
+TEST(StatusPage, APrunedLastResultKeepsItsNumbersAndSaysWhyThereIsNoPicture) {
+  StatusSnapshot s = capturingRig();
+  s.state.last_result->images_pruned = true;
+  s.state.result_images_pruned = 40;
+  EXPECT_FALSE(statusPicture(s, StatusPicture::kLastStack));
+  EXPECT_EQ(statusPictureMissing(s, StatusPicture::kLastStack),
+            "the images of 20260621T101503Z-a42.30 were pruned by retention (its numbers stay)");
+  const std::string html = statusHtml(s, {});
+  EXPECT_NE(html.find("were pruned by retention"), std::string::npos);
+  EXPECT_EQ(html.find("/last-stack.png"), std::string::npos);
+  EXPECT_NE(html.find("5.4e+05 cd/m²"), std::string::npos) << html;
+  const auto j = statusJson(s, {});
+  EXPECT_EQ(j["last_result"]["images_pruned"], true);
+  EXPECT_TRUE(j["last_result"]["picture"].is_null());
+  EXPECT_EQ(j["last_result"]["lmax_cd_m2"], 5.4e5);
+  EXPECT_EQ(j["retention"]["deleted"]["result_images"], 40);
+  EXPECT_NE(statusMetrics(s).find("glarecam_retention_deleted_total{kind=\"result_images\"} 40\n"),
+            std::string::npos);
+  EXPECT_EQ(statusPictureMissing(StatusSnapshot{}, StatusPicture::kLastStack),
+            "no stack processed yet");
+}
+
 TEST(StatusPage, JsonCarriesThePagesContent) {
   const auto j = statusJson(capturingRig(), someLog());
   EXPECT_EQ(j["schema"], kStatusSchema);
@@ -182,6 +206,8 @@ TEST(StatusPage, JsonCarriesThePagesContent) {
   EXPECT_EQ(j["last_result"]["lmax_cd_m2"], 5.4e5);
   EXPECT_EQ(j["last_result"]["glare"], true);
   EXPECT_EQ(j["last_result"]["limit_cd_m2"], 30000);
+  EXPECT_EQ(j["last_result"]["images_pruned"], false);
+  EXPECT_EQ(j["last_result"]["picture"], "/last-stack.png");
   EXPECT_EQ(j["today"]["stacks"], 7);
   EXPECT_EQ(j["next"]["alpha_deg"], 40);
   EXPECT_EQ(j["disk"]["free_bytes"], 5ull << 30);

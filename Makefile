@@ -64,13 +64,18 @@ demo: demo-deps
 	bash scripts/demo.sh $(BUILD_DIR)/bin $(DEMO_DIR)
 
 # glarecamd on the simulated rig for SOAK_STACKS stacks (weeks of simulated days in a time
-# lapse), failing on growing memory or descriptors, a lost stack or a missing result
-# (docs/operator.md, "Soak test"). Not part of `make test`: about 5 minutes.
+# lapse), failing on growing memory or descriptors, a lost stack or a missing result; then a
+# season on a small disk (SEASON_DAYS simulated days on a 160 MiB tmpfs with max_use_gib 0.2
+# alone: never a pause for the disk, as many stacks every day, every stack's numbers kept;
+# docs/operator.md, "Soak test" and "Retention"). Not part of `make test`: about 5 + 17 minutes.
 SOAK_STACKS ?= 1000
 SOAK_DIR    ?= soak-out
+SEASON_DAYS ?= 42
+SEASON_DIR  ?= soak-season-out
 soak: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecamd
 	python3 scripts/soak --stacks $(SOAK_STACKS) --out $(SOAK_DIR) $(BUILD_DIR)/bin
+	python3 scripts/soak-season --days $(SEASON_DAYS) --out $(SEASON_DIR) $(BUILD_DIR)/bin
 
 # The method's two routes checked against each other (docs/brdf.md, "The route check"): each named
 # surface swept by the simulated camera under the sun and by the simulated goniophotometer, Lmax
@@ -86,10 +91,14 @@ route-check: configure
 	done
 
 # Issue 9's 50 SIGKILLs while glarecamd writes (25 while a stack, 25 while a result is staged):
-# no partial stack visible, the next start cleans up. `make test` kills 8 of each. About 3 minutes.
+# no partial stack visible, the next start cleans up; and the long camera-loss checks (the fake
+# GigE camera killed under glarecamd, a 6 s bracket cut and SIGTERM mid-bracket:
+# GLARECAM_LONG_CHECKS=1). `make test` kills 8 of each and skips the long ones, whose small
+# versions are unit tests. About 5 minutes.
 kill-check: build
-	GLARECAM_KILLS_PER_KIND=25 ctest --test-dir $(BUILD_DIR) --output-on-failure \
-	  -R 'GlarecamdKills\.' --timeout $(TEST_TIMEOUT_S)
+	GLARECAM_LONG_CHECKS=1 GLARECAM_KILLS_PER_KIND=25 ctest --test-dir $(BUILD_DIR) \
+	  --output-on-failure --timeout $(TEST_TIMEOUT_S) \
+	  -R 'GlarecamdKills\.|GlarecamdLongBracket\.|GlarecamdProcess\.FakeGigECameraKilledAndRestarted'
 
 # Do the reported uncertainties hold? 50 noise seeds at three α and two lobe sizes, each sigma
 # against the seeds' scatter (scripts/uncertainty-coverage, docs/process.md). About 10 minutes.

@@ -24,6 +24,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -242,6 +243,14 @@ class GlarecamdKills : public ::testing::Test {
   fs::path out_ = dir_ / "out";
 };
 
+// GLARECAM_LONG_CHECKS=1 (`make kill-check`): the checks of half a minute and more that a camera
+// lost under the daemon needs (the fake GigE camera killed, a long bracket cut). `make test` keeps
+// their small versions: the camera supervisor's and the watchdog's unit tests, the kills below.
+bool longChecks() {
+  const char* text = std::getenv("GLARECAM_LONG_CHECKS");
+  return text && std::string_view(text) == "1";
+}
+
 // GLARECAM_KILLS_PER_KIND: kills wanted while a stack, and while a result, is being written.
 int killsPerKind() {
   constexpr int kDefaultKillsPerKind = 8;
@@ -333,6 +342,7 @@ TEST_F(GlarecamdKills, SigkillWhileWritingLeavesNoPartialStack) {
 #if GLARECAM_WITH_ARAVIS
 // The camera lost under a running daemon: Aravis's fake GigE Vision camera, killed.
 TEST_F(GlarecamdProcess, FakeGigECameraKilledAndRestarted) {
+  if (!longChecks()) GTEST_SKIP() << "a long check (44 s): make kill-check runs it";
   const fs::path cal = dir_ / "cal";
   const auto startFake = [&] {
     return std::make_unique<Process>(
@@ -372,6 +382,7 @@ constexpr auto kLongBracketS = 5.8s;
 class GlarecamdLongBracket : public GlarecamdProcess {
  protected:
   void SetUp() override {
+    if (!longChecks()) GTEST_SKIP() << "a long check (30 s): make kill-check runs it";
     fake_ = startFake();
     ASSERT_TRUE(
         eventually([&] { return fs::exists(dir_ / "cal" / "fake-camera-mono16.json"); }, 30s));

@@ -675,6 +675,31 @@ TEST_F(DaemonTest, RetentionDeletesWhatIsOlderThanItsDaysAndCaptureGoesOn) {
   EXPECT_TRUE(statusMentioned("retention deleted 11 stacks, 0 result images, 7 results, 2 days"));
 }
 
+// The settings check: a budget that cannot hold one day's stacks is warned of after the first
+// stack (nothing to measure before it), in the log's and the status page's words; a budget that
+// can is not.
+TEST_F(DaemonTest, ABudgetSmallerThanOneDaysStacksIsWarnedOf) {
+  // A stack every hour while the sun is on the module (10.4 h here), about 0.4 MiB each.
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 3600",
+               .site = true,
+               .output = "max_use_gib = 0.001"});  // 1 MiB
+  auto daemon = makeDaemon();
+  terminateAt(2h, *daemon);
+  ASSERT_TRUE(daemon->run());
+  const std::string& warning = daemon->state().retention_budget_warning;
+  EXPECT_NE(warning.find("max_use_gib (1.0 MiB) holds about"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("a day the schedule takes (every 3600 s over 1"), std::string::npos)
+      << warning;
+
+  writeConfig({.schedule = "mode = \"interval\"\ninterval_s = 3600",
+               .site = true,
+               .output = "max_use_gib = 1"});
+  auto roomy = makeDaemon();
+  terminateAt(4h, *roomy);
+  ASSERT_TRUE(roomy->run());
+  EXPECT_EQ(roomy->state().retention_budget_warning, "");
+}
+
 // Ages are told by the clock: while it is not synchronised (it may have run ahead) nothing goes.
 TEST_F(DaemonTest, RetentionDeletesNothingWhileTheClockIsUnsynchronised) {
   clock_.setClockStatus({.synchronised = false, .detail = "no NTP"});

@@ -74,6 +74,10 @@ TEST_F(GlarecamdProcess, UsageErrorsExit2) {
   EXPECT_EQ(run({"--interval", "0", "--simulate", "--output", (dir_ / "o").string()}), 2);
   EXPECT_EQ(run({"--simulate", "--output", (dir_ / "o").string(), "--start", "noon"}), 2);
   EXPECT_EQ(run({"--config", "x.toml", "--simulate", "--output", (dir_ / "o").string()}), 2);
+  EXPECT_EQ(run({"--max-use-gib", "0", "--simulate", "--output", (dir_ / "o").string()}), 2);
+  EXPECT_NE(log().find("--max-use-gib must be between"), std::string::npos) << log();
+  EXPECT_EQ(run({"--reserve-mb", "-1", "--simulate", "--output", (dir_ / "o").string()}), 2);
+  EXPECT_NE(log().find("--reserve-mb must be between 0 and"), std::string::npos) << log();
   // The simulated rig's --output is the command line's, not a config's: 2, not 78.
   testing::writeText(dir_ / "a-file", "");
   EXPECT_EQ(run({"--simulate", "--output", (dir_ / "a-file").string(), "--count", "1"}), 2);

@@ -19,6 +19,7 @@
 
 #include "core/stack_io.h"
 #include "daemon/daemon_fixture.h"
+#include "daemon/daemon_run.h"
 #include "pipeline/contour_table.h"
 #include "pipeline/sweep_table.h"
 #include "support/sim_support.h"
@@ -29,6 +30,30 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using testing::utc;
+
+// --max-use-gib is retention by space alone (the config's ages not applied); --reserve-mb the
+// reserve; out of range they are usage errors.
+TEST(DaemonOptions, TheRetentionOverridesReplaceTheConfigs) {
+  Config config;
+  config.daemon.output.retention = {.keep_stacks_days = 7, .keep_results_days = 21};
+  config.daemon.output.reserve_bytes = 1ull << 30;
+  const Config same = effectiveConfig(config, {});
+  EXPECT_EQ(same.daemon.output.retention.keep_stacks_days, 7);
+  const Config budget =
+      effectiveConfig(config, {.max_use_bytes = 200ull << 20, .reserve_bytes = 64ull << 20});
+  EXPECT_EQ(budget.daemon.output.retention.max_use_bytes, 200ull << 20);
+  EXPECT_FALSE(budget.daemon.output.retention.keep_stacks_days);
+  EXPECT_FALSE(budget.daemon.output.retention.keep_results_days);
+  EXPECT_EQ(budget.daemon.output.reserve_bytes, 64ull << 20);
+  DaemonRunOptions run;
+  run.max_use_gib = 0.0;
+  EXPECT_FALSE(run.validate());
+  run.max_use_gib = 0.2;
+  run.reserve_mb = -1;
+  EXPECT_FALSE(run.validate());
+  run.reserve_mb = 64;
+  EXPECT_TRUE(run.validate());
+}
 
 TEST_F(DaemonTest, InvalidConfigIsBadInputBeforeAnythingOpens) {
   testing::writeText(config_path(), "camera = \"sim:\"\n[schedule]\nmode = 3\n");

@@ -88,6 +88,14 @@ std::optional<pipeline::StackResult> readResultOf(const fs::path& directory) {
   return result ? std::optional(std::move(*result)) : std::nullopt;
 }
 
+// Whether a result directory holds nothing but its result.json (its images pruned, or none).
+bool holdsOnlyItsDocument(const fs::path& directory) {
+  std::error_code error;
+  for (fs::directory_iterator it(directory, error), end; !error && it != end; it.increment(error))
+    if (it->path().filename() != pipeline::kResultFileName) return false;
+  return true;
+}
+
 // The stack ids with a row in days/<day>/sweep.csv, read once a day.
 class DayRows {
  public:
@@ -299,6 +307,7 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
   }
   for (ResultCandidate& result : results) {
     if (!pressed()) break;
+    if (holdsOnlyItsDocument(result.path)) continue;  // pruned already: not read again
     const std::optional<pipeline::StackResult> read = readResultOf(result.path);
     if (!read) continue;  // not glarecam's, or being written
     result.image_bytes = resultImageBytes(result.path, read->outputs);

@@ -531,7 +531,8 @@ void CaptureDaemon::checkDisk() {
 
 void CaptureDaemon::checkDayBudget() {
   const std::optional<std::uint64_t> budget = config_.daemon.output.retention.max_use_bytes;
-  if (!budget) {
+  if (!budget) {  // none, or a reload took it away
+    state_.retention_budget_warning.clear();
     day_budget_checked_ = true;
     return;
   }

@@ -195,6 +195,7 @@ json statusJson(const StatusSnapshot& s, const std::vector<LogEntry>& log) {
         {"last_action_time",
          st.retention_last_time ? json(isoSeconds(*st.retention_last_time)) : json(nullptr)},
         {"shortfall", optionalText(st.retention_shortfall)},
+        {"day_overflows", st.retention_day_overflows},
         {"budget_warning", optionalText(st.retention_budget_warning)},
         {"deleted",
          {{"stacks", st.stacks_deleted},

@@ -10,6 +10,7 @@
 #include "daemon/alpha_schedule.h"
 #include "daemon/storage/day_products.h"
 #include "daemon/storage/disk_space.h"
+#include "pipeline/process_stack.h"
 
 namespace glarecam::daemon {
 
@@ -61,22 +62,31 @@ std::optional<DayEstimate> estimateDayStacks(const ScheduleConfig& schedule,
   const double hours = usable_steps * std::chrono::duration<double>(kDayBudgetStep).count() / 3600;
   const double interval_s =
       std::chrono::duration<double>(schedule.interval).count() * std::max(wall_per_steady, 1e-9);
-  return DayEstimate{std::floor(hours * 3600 / interval_s),
-                     fmt::format("every {:.0f} s over {:.1f} h of {}", interval_s, hours,
-                                 module ? "sun on the module" : "sun")};
+  // The slots of the interval's grid within the hours: one more than the gaps between them,
+  // depending on where the grid falls (the larger count: a budget is checked against the worst).
+  const double slots = usable_steps > 0 ? std::floor(hours * 3600 / interval_s) + 1 : 0.0;
+  return DayEstimate{slots, fmt::format("every {:.0f} s over {:.1f} h of {}", interval_s, hours,
+                                        module ? "sun on the module" : "sun")};
 }
 
 std::optional<std::uint64_t> newestStackBytes(const OutputTree& tree) {
   std::error_code error;
-  std::optional<fs::path> newest;
+  std::optional<fs::path> newest, newest_processed;
   for (fs::directory_iterator it(tree.stacks(), error), end; !error && it != end;
        it.increment(error)) {
     const fs::path& path = it->path();
     if (!stackDay(path.filename().string(), std::nullopt) || !it->is_directory(error)) continue;
     if (!newest || path.filename() > newest->filename()) newest = path;
+    std::error_code missing;
+    const bool processed =
+        fs::is_regular_file(tree.results() / path.filename() / pipeline::kResultFileName, missing);
+    if (processed && (!newest_processed || path.filename() > newest_processed->filename()))
+      newest_processed = path;
   }
-  if (!newest) return std::nullopt;
-  return bytesUnder(*newest) + bytesUnder(tree.results() / newest->filename());
+  // A stack with its result, when there is one: a stack being processed has only half its bytes.
+  const std::optional<fs::path>& measured = newest_processed ? newest_processed : newest;
+  if (!measured) return std::nullopt;
+  return bytesUnder(*measured) + bytesUnder(tree.results() / measured->filename());
 }
 
 std::optional<std::string> dayBudgetWarning(std::uint64_t budget_bytes, const DayEstimate& day,

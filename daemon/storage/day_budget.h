@@ -8,7 +8,8 @@
 //                  orientation known, α below max_alpha_deg, over the interval in wall time (a
 //                  time lapse shortens it); α targets: the day's crossings (the module known),
 //                  else two per target (morning and afternoon); the button: none, no check
-//   bytes a stack  the newest stack on disk and its result
+//   bytes a stack  the newest processed stack on disk and its result (the newest stack when none
+//                  is processed yet)
 #pragma once
 
 #include <chrono>
@@ -43,7 +44,8 @@ std::optional<DayEstimate> estimateDayStacks(const ScheduleConfig& schedule,
                                              const std::optional<sun::ModuleOrientation>& module,
                                              UtcTime day_start, double wall_per_steady);
 
-// The bytes of the newest stack in the tree (by id) with its result; nullopt when there is none.
+// The bytes of the newest processed stack in the tree (by id) with its result, else of the newest
+// stack; nullopt when there is none.
 std::optional<std::uint64_t> newestStackBytes(const OutputTree& tree);
 
 // The warning when `budget_bytes` cannot hold `day` stacks of `stack_bytes` each, or nullopt:

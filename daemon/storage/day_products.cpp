@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <set>
 
 #include "core/atomic_file.h"
 #include "core/json.h"
@@ -26,35 +28,62 @@ namespace {
 
 constexpr double kDegreesPerHour = 15.0;  // the Earth turns 360° in 24 h
 
-// The rows (and ladders) the day's tables hold for stacks whose result retention deleted whole
-// (retention.h, tier 3): their numbers live on only there, so a rebuild keeps them.
+// Whether a sweep table's text has a row (a line that is neither the header, a '#' note nor
+// blank): one that holds rows but cannot be read must not be overwritten unseen.
+bool tableTextHasRows(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (line.empty() || line.starts_with('#')) continue;
+    if (header) {
+      header = false;
+      continue;
+    }
+    return true;
+  }
+  return false;
+}
+
+// The rows (and ladders) the day's tables hold for stacks whose result is gone (retention's tier
+// 3, retention.h, or removed by hand): their numbers live on only there, so a rebuild keeps them.
+// A row already rebuilt from its result (a result that went while this rebuild read it) is not
+// kept twice. An earlier table with rows that cannot be read is kept aside as sweep.csv.unreadable
+// (and logged), never lost.
 void keepRowsOfDeletedResults(const DayProductsOptions& options, const std::string& day,
                               pipeline::SweepTable& table, pipeline::ContourTable& contours) {
   const fs::path directory = options.root / kDaysDirectory / day;
   const fs::path results = options.root / kResultsDirectory;
+  std::set<std::string> rebuilt;
+  for (const pipeline::SweepRow& row : table.rows) rebuilt.insert(row.stack_id);
   const auto gone = [&](const std::string& id) {
     std::error_code error;
-    return !id.empty() && fs::path(id).filename() == fs::path(id) &&
+    return !id.empty() && !rebuilt.contains(id) && fs::path(id).filename() == fs::path(id) &&
            !fs::exists(fs::symlink_status(results / id, error));
   };
   std::error_code error;
-  if (!fs::is_regular_file(directory / pipeline::kSweepTableFileName, error)) return;
-  const auto old_table = pipeline::readSweepTable(directory / pipeline::kSweepTableFileName);
-  if (!old_table) {  // a table of notes only, or one that was never ours: nothing to keep
-    spdlog::debug("day {}: the earlier table keeps no rows: {}", day, old_table.error().message);
+  const fs::path table_path = directory / pipeline::kSweepTableFileName;
+  if (!fs::is_regular_file(table_path, error)) return;
+  const auto old_table = pipeline::readSweepTable(table_path);
+  if (!old_table) {
+    if (!tableTextHasRows(table_path)) return;  // notes only: nothing to keep
+    const fs::path aside = directory / (std::string(pipeline::kSweepTableFileName) + ".unreadable");
+    const fs::path staging = directory / (std::string(kTemporaryPrefix) + "sweep.csv.unreadable");
+    fs::copy_file(table_path, staging, fs::copy_options::overwrite_existing, error);
+    if (!error) fs::rename(staging, aside, error);
+    spdlog::warn("day {}: the earlier table cannot be read ({}); kept as {}{}", day,
+                 old_table.error().message, aside.string(),
+                 error ? " failed: " + error.message() : "");
     return;
   }
-  std::size_t kept = 0;
+  std::set<std::string> kept;
   for (const pipeline::SweepRow& row : old_table->rows)
-    if (gone(row.stack_id)) {
-      table.rows.push_back(row);
-      ++kept;
-    }
-  if (kept == 0) return;
+    if (gone(row.stack_id) && kept.insert(row.stack_id).second) table.rows.push_back(row);
+  if (kept.empty()) return;
   const auto old_contours = pipeline::readContourTable(directory / pipeline::kContourTableFileName);
   if (!old_contours) return;  // the rows stay; their ladders are lost with the earlier file
   for (const pipeline::ContourRow& contour : old_contours->rows)
-    if (gone(contour.stack_id)) contours.rows.push_back(contour);
+    if (kept.contains(contour.stack_id)) contours.rows.push_back(contour);
 }
 
 // The rows of the day's processed stacks, with a note for each result that gives none, and

@@ -8,8 +8,8 @@
 // over α, morning and afternoon, lands on one sheet wherever the rig stands; UTC without a site.
 // A stack belongs to the day of the time in its id ("20260621T101503Z-a42.30"). The day's table
 // is rebuilt from the results on disk each time, so a restart, a crash or a stack processed late
-// never loses or doubles a row; the rows of results that retention deleted whole (retention.h,
-// tier 3) are kept from the table as it was.
+// never loses or doubles a row; the rows of stacks whose result is gone (retention's tier 3,
+// retention.h, or removed by hand) are kept from the table as it was.
 #pragma once
 
 #include <cstddef>

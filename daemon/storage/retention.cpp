@@ -302,6 +302,13 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
       const std::optional<std::chrono::sys_days> day = idDay(id, context.longitude_deg);
       if (id.starts_with(kTemporaryPrefix) || !day || *day >= *today || !isRealDirectory(entry))
         continue;
+      // A result whose stack is still there (processed after tier 1 listed the stacks, or a
+      // stack that could not be deleted): the stack goes first, at a later pass.
+      std::error_code missing;
+      if (fs::exists(fs::symlink_status(tree.stacks() / id, missing))) {
+        ++withheld.results_with_stack;
+        continue;
+      }
       results.push_back({id, entry, *day});
     }
   }
@@ -318,19 +325,16 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
       summary.errors.push_back(pruned.error().message);
       continue;
     }
-    summary.deleted.push_back({kDeletedResultImages, result.id, *pruned, reason()});
-    summary.freed_bytes += *pruned;
+    for (const std::string& error : pruned->errors) summary.errors.push_back(error);
+    if (pruned->bytes == 0) continue;
+    summary.deleted.push_back({kDeletedResultImages, result.id, pruned->bytes, reason()});
+    summary.freed_bytes += pruned->bytes;
     used(freed);
   }
   DayRows rows(tree.days());
   for (const ResultCandidate& result : results) {
     if (!pressed()) break;
-    std::error_code missing;
     if (!isResultDirectory(result.path)) continue;
-    if (fs::exists(fs::symlink_status(tree.stacks() / result.id, missing))) {
-      ++withheld.results_with_stack;
-      continue;
-    }
     if (!rows.has(formatIsoDay(result.day), result.id)) {
       ++withheld.results_without_row;
       continue;
@@ -356,22 +360,35 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
                          std::min(free_now + summary.used_bytes, context.reserve_bytes);
   const std::uint64_t kept_before_today =
       summary.used_bytes - std::min(summary.used_bytes, today_bytes);
+  const std::uint64_t days_bytes = treeBytes(tree.days());
   const std::string what = overBudget()
                                ? fmt::format("{} used, over the {} budget",
                                              formatBytes(summary.used_bytes), formatBytes(budget))
                                : fmt::format("{} free, below the {} reserve", formatBytes(free_now),
                                              formatBytes(context.reserve_bytes));
-  summary.shortfall = fmt::format("{}; nothing more may go ({})", what, withheld.describe());
-  if (withheld.today > 0 && kept_before_today < limit) {
-    const std::uint64_t leaves = limit - kept_before_today;
-    const double per_stack = double(today_bytes) / double(withheld.today);
+  summary.shortfall = fmt::format(
+      "{}; nothing more may go ({}; day directories {}, which go by "
+      "age only)",
+      what, withheld.describe(), formatBytes(days_bytes));
+  if (withheld.today == 0 || today_bytes == 0) return summary;
+  const double per_stack = double(today_bytes) / double(withheld.today);
+  if (today_bytes > limit) {
+    // Today alone does not fit, however little the past keeps.
     summary.day_overflows = true;
     summary.shortfall += fmt::format(
         "; the budget is smaller than one day's stacks: today's {} stacks and their results take "
-        "{}, more than the {} left for a day: about {} stacks a day fit (raise max_use_gib or "
-        "capture less often)",
-        withheld.today, formatBytes(today_bytes), formatBytes(leaves),
-        static_cast<std::uint64_t>(double(leaves) / per_stack));
+        "{}, more than all of the {}: about {} stacks a day fit (raise max_use_gib or capture "
+        "less often)",
+        withheld.today, formatBytes(today_bytes), formatBytes(limit),
+        static_cast<std::uint64_t>(double(limit) / per_stack));
+  } else {
+    // Today would fit alone: what the past keeps leaves it too little.
+    const std::uint64_t leaves = limit - std::min(limit, kept_before_today);
+    summary.shortfall += fmt::format(
+        "; what past days keep ({}) leaves {} for today's {} stacks and their results ({}): "
+        "about {} stacks a day fit (set keep_results_days, or raise max_use_gib)",
+        formatBytes(kept_before_today), formatBytes(leaves), withheld.today,
+        formatBytes(today_bytes), static_cast<std::uint64_t>(double(leaves) / per_stack));
   }
   return summary;
 }
@@ -388,8 +405,11 @@ RetentionSummary finishCutShortPrunes(const OutputTree& tree, UtcTime now) {
       summary.errors.push_back(pruned.error().message);
       continue;
     }
-    summary.deleted.push_back({kDeletedResultImages, id, *pruned, "finishing a prune cut short"});
-    summary.freed_bytes += *pruned;
+    for (const std::string& error : pruned->errors) summary.errors.push_back(error);
+    if (pruned->bytes == 0) continue;
+    summary.deleted.push_back(
+        {kDeletedResultImages, id, pruned->bytes, "finishing a prune cut short"});
+    summary.freed_bytes += pruned->bytes;
   }
   return summary;
 }
@@ -408,7 +428,7 @@ std::uint64_t resultImageBytes(const fs::path& directory, const pipeline::Result
   return bytes;
 }
 
-Result<std::uint64_t> pruneResultImages(const fs::path& directory, UtcTime now) {
+Result<PrunedImages> pruneResultImages(const fs::path& directory, UtcTime now) {
   const fs::path file = directory / pipeline::kResultFileName;
   if (!isRealDirectory(directory)) return badInput(directory.string() + ": not a result directory");
   auto result = pipeline::readResult(file);
@@ -418,18 +438,20 @@ Result<std::uint64_t> pruneResultImages(const fs::path& directory, UtcTime now) 
     result->outputs.pruned_at = formatIsoTime(std::chrono::floor<std::chrono::seconds>(now));
     GLARECAM_CHECK(writeFileAtomic(file, jsonText(pipeline::toJson(*result))));
   }
-  std::uint64_t bytes = 0;
+  PrunedImages pruned;
   for (const std::string& name : result->outputs.files()) {
     if (!isPlainName(name) || name == pipeline::kResultFileName) continue;
     const fs::path image = directory / name;
     std::error_code error;
     if (!fs::is_regular_file(fs::symlink_status(image, error))) continue;
     const std::uintmax_t size = fs::file_size(image, error);
-    if (!fs::remove(image, error) || error)
-      return fail(ErrorCode::kIo, image.string() + ": cannot delete: " + error.message());
-    bytes += size;
+    if (!fs::remove(image, error) || error) {
+      pruned.errors.push_back(image.string() + ": cannot delete: " + error.message());
+      continue;
+    }
+    pruned.bytes += size;
   }
-  return bytes;
+  return pruned;
 }
 
 }  // namespace glarecam::daemon

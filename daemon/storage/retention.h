@@ -106,10 +106,14 @@ RetentionSummary applyRetention(const OutputTree& tree, const RetentionPolicy& p
 RetentionSummary finishCutShortPrunes(const OutputTree& tree, UtcTime now);
 
 // Tier 2 for one result directory: marks its result.json pruned at `now` (atomically; kept when
-// already marked) and then removes the files its `outputs` names. The bytes removed; kBadInput
-// when result.json is missing or not a readable glarecam result (nothing is touched), kIo when it
-// cannot be rewritten or a file cannot be removed.
-Result<std::uint64_t> pruneResultImages(const std::filesystem::path& directory, UtcTime now);
+// already marked) and then removes the files its `outputs` names. kBadInput when result.json is
+// missing or not a readable glarecam result (nothing is touched), kIo when it cannot be
+// rewritten; a file that cannot be removed is an error in the outcome, the others still go.
+struct PrunedImages {
+  std::uint64_t bytes = 0;          // removed
+  std::vector<std::string> errors;  // files that could not be removed
+};
+Result<PrunedImages> pruneResultImages(const std::filesystem::path& directory, UtcTime now);
 
 // The bytes of the images a result directory still holds (the files its result.json names).
 std::uint64_t resultImageBytes(const std::filesystem::path& directory,

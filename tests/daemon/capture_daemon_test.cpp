@@ -815,7 +815,7 @@ TEST_F(DaemonTest, BelowTheReserveRetentionFreesSpaceOrThePauseSaysWhy) {
     EXPECT_TRUE(fs::exists(out() / kResultsDirectory / stack.filename() / "result.json")) << stack;
   EXPECT_TRUE(statusMentioned("paused"));
   EXPECT_TRUE(statusMentioned("nothing more may go (stacks kept: "));
-  EXPECT_TRUE(statusMentioned("of today)"));
+  EXPECT_TRUE(statusMentioned("of today; day directories "));
   // Capture resumed on the last day.
   EXPECT_TRUE(std::ranges::any_of(stacks(), [](const fs::path& stack) {
     return stack.filename().string().starts_with("20260623T");
@@ -915,7 +915,7 @@ TEST_F(RealFilesystemTest, TmpfsFillsRetentionFreesItAndCaptureResumes) {
     EXPECT_TRUE(fs::exists(out() / kResultsDirectory / stack.filename() / "result.json")) << stack;
   }
   EXPECT_TRUE(statusMentioned("paused"));
-  EXPECT_TRUE(statusMentioned("of today)"));
+  EXPECT_TRUE(statusMentioned("of today; day directories "));
   EXPECT_TRUE(std::ranges::any_of(stacks(), [](const fs::path& stack) {
     return stack.filename().string().starts_with("20260623T");
   }));

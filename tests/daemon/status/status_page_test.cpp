@@ -189,6 +189,7 @@ TEST(StatusPage, APrunedLastResultKeepsItsNumbersAndSaysWhyThereIsNoPicture) {
   EXPECT_TRUE(j["last_result"]["picture"].is_null());
   EXPECT_EQ(j["last_result"]["lmax_cd_m2"], 5.4e5);
   EXPECT_EQ(j["retention"]["deleted"]["result_images"], 40);
+  EXPECT_EQ(j["retention"]["day_overflows"], false);
   EXPECT_NE(statusMetrics(s).find("glarecam_retention_deleted_total{kind=\"result_images\"} 40\n"),
             std::string::npos);
   EXPECT_EQ(statusPictureMissing(StatusSnapshot{}, StatusPicture::kLastStack),

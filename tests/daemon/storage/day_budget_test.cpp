@@ -16,12 +16,13 @@ const sun::ModuleOrientation kSouth{.tilt_deg = 24.5, .azimuth_deg = 180};
 const UtcTime kMidnight = *parseIsoTime("2026-06-21T00:00:00Z") - std::chrono::seconds(1884);
 
 double hoursOf(const DayEstimate& day, std::chrono::seconds interval) {
-  return day.stacks * std::chrono::duration<double>(interval).count() / 3600;
+  return (day.stacks - 1) * std::chrono::duration<double>(interval).count() / 3600;  // gaps
 }
 
 // At 48° N on the solstice the sun is up for 16.2 h (declination 23.44°: cos H = −tan φ tan δ
 // gives 15.8 h for the centre at the horizon; refraction and the disc's radius add about 0.3 h),
-// so an interval of 10 minutes takes 16.2 × 6 stacks, to one stack (the 5-minute sampling).
+// so an interval of 10 minutes takes 16.2 × 6 stacks (and one: slots, not gaps), to one stack
+// (the 5-minute sampling).
 TEST(DayBudget, AnIntervalTakesTheDaysSunHoursOverTheInterval) {
   ScheduleConfig schedule;  // an interval of 600 s by default
   ASSERT_EQ(schedule.mode, ScheduleMode::kInterval);
@@ -42,7 +43,7 @@ TEST(DayBudget, AnIntervalTakesTheDaysSunHoursOverTheInterval) {
   fast.interval = std::chrono::seconds(2);
   const auto lapsed = estimateDayStacks(fast, kSite, std::nullopt, kMidnight, 3600.0);
   ASSERT_TRUE(lapsed);
-  EXPECT_EQ(lapsed->stacks, 8);  // 16.2 h / 2 h
+  EXPECT_EQ(lapsed->stacks, 9);  // 16.2 h / 2 h: 8 gaps, 9 slots
 }
 
 TEST(DayBudget, AlphaTargetsAreCrossedMorningAndAfternoon) {
@@ -83,7 +84,10 @@ TEST(DayBudget, TheNewestStackWithItsResultIsMeasured) {
   testing::makeProcessed(tree, "20260621T080000Z-a40.00", 5000);
   testing::makeGlarecamStack(tree.stacks() / "20260621T090000Z-a30.00", 7000);  // unprocessed
   testing::makeGlarecamStack(tree.stacks() / "zz-notes", 1);                    // not a stack id
-  EXPECT_EQ(newestStackBytes(tree), 7000u + 30u);
+  // The newest processed one: the unprocessed one's result is not there yet.
+  const std::uint64_t first_json = std::filesystem::file_size(
+      tree.results() / "20260621T080000Z-a40.00" / pipeline::kResultFileName);
+  EXPECT_EQ(newestStackBytes(tree), 5000u + 30u + 3 * 500u + first_json);
   testing::makeGlarecamResult(tree.results() / "20260621T090000Z-a30.00", 1000, 30.0, 100);
   const std::uint64_t json_bytes = std::filesystem::file_size(
       tree.results() / "20260621T090000Z-a30.00" / pipeline::kResultFileName);

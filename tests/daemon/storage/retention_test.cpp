@@ -283,7 +283,8 @@ TEST_F(RetentionTiersTest, PastDaysGiveStacksThenImagesThenResultsEachOldestFirs
   EXPECT_NE(summary.shortfall.find("results kept: 2 not in their day's sweep.csv"),
             std::string::npos)
       << summary.shortfall;
-  EXPECT_FALSE(summary.day_overflows);  // what stays of the past alone is over 1 byte
+  EXPECT_TRUE(summary.day_overflows);  // today's stack alone is over 1 byte
+  EXPECT_NE(summary.shortfall.find("day directories "), std::string::npos) << summary.shortfall;
   // Today's result keeps its images; the pruned ones say so and keep their numbers.
   EXPECT_TRUE(fs::exists(tree.results() / today_id / "luminance.exr"));
   for (const std::string& id : {past[4], past[5]}) {
@@ -355,7 +356,8 @@ TEST_F(RetentionTiersTest, APrunedResultReadsAsBeforeAndSaysSo) {
   ASSERT_TRUE(before);
   const auto pruned = pruneResultImages(tree.results() / past[2], utcAt(kToday));
   ASSERT_TRUE(pruned) << pruned.error().message;
-  EXPECT_EQ(*pruned, 3 * 20 * kKiB);
+  EXPECT_EQ(pruned->bytes, 3 * 20 * kKiB);
+  EXPECT_TRUE(pruned->errors.empty());
   const auto after = pipeline::readResult(tree.results() / past[2] / pipeline::kResultFileName);
   ASSERT_TRUE(after) << after.error().message;
   EXPECT_TRUE(after->outputs.pruned());
@@ -365,7 +367,7 @@ TEST_F(RetentionTiersTest, APrunedResultReadsAsBeforeAndSaysSo) {
   EXPECT_EQ(entryNames(tree.results() / past[2]),
             std::vector<std::string>{pipeline::kResultFileName});
   // Pruning again changes nothing and frees nothing.
-  EXPECT_EQ(pruneResultImages(tree.results() / past[2], utcAt(kToday)).value(), 0u);
+  EXPECT_EQ(pruneResultImages(tree.results() / past[2], utcAt(kToday)).value().bytes, 0u);
   const DayProductsOptions options{.root = tree.root(), .longitude_deg = std::nullopt};
   ASSERT_TRUE(updateDayProducts(options, "2026-06-21"));
   EXPECT_EQ(testing::readText(day / pipeline::kSweepTableFileName), table_before);
@@ -452,6 +454,24 @@ TEST_F(RetentionTest, TodayAloneOverTheBudgetSaysHowManyStacksADayFit) {
             std::string::npos)
       << summary.shortfall;
   EXPECT_NE(summary.shortfall.find("about 2 stacks a day fit"), std::string::npos)
+      << summary.shortfall;
+}
+
+// Today would fit in the budget alone, but what past days must keep (here stacks not processed
+// yet) leaves it too little: the shortfall says so, not that the budget is smaller than a day.
+TEST_F(RetentionTest, WhatThePastKeepsIsNamedWhenTodayWouldFitAlone) {
+  makeGlarecamStack(tree.stacks() / "20260623T080000Z-a40.00", 2 * kMiB);  // unprocessed
+  makeProcessed(tree, "20260625T080000Z-a40.00", kMiB);
+  const RetentionSummary summary =
+      applyRetention(tree, {.max_use_bytes = 5 * kMiB / 2}, {.now = utcAt("2026-06-25T12:00:00Z")});
+  EXPECT_FALSE(summary.day_overflows);
+  EXPECT_NE(summary.shortfall.find("stacks kept: 1 unprocessed, 1 of today"), std::string::npos)
+      << summary.shortfall;
+  EXPECT_NE(summary.shortfall.find("what past days keep (2.0 MiB) leaves 512.0 KiB for today's 1 "
+                                   "stacks"),
+            std::string::npos)
+      << summary.shortfall;
+  EXPECT_NE(summary.shortfall.find("about 0 stacks a day fit"), std::string::npos)
       << summary.shortfall;
 }
 

@@ -66,6 +66,23 @@ TEST_F(RetentionSchedulerTest, APassAppliesTheAgeRulesAndIsRecordedInTheStatus) 
   EXPECT_EQ(disk.probes(), 0);  // a pass at start or after a stack does not look at the disk
 }
 
+// At start a prune a power cut interrupted is finished, whatever the policy and the clock (the
+// result already says "pruned"), and counted in the status.
+TEST_F(RetentionSchedulerTest, StartFinishesAPruneCutShortEvenWithoutAPolicy) {
+  const fs::path result = tree.results() / kOldStack;
+  pipeline::StackResult document = pipeline::readResult(result / pipeline::kResultFileName).value();
+  document.outputs.pruned_at = "2026-06-24T12:00:00Z";
+  testing::writeText(result / pipeline::kResultFileName, jsonText(pipeline::toJson(document)));
+  clock.setClockStatus({.synchronised = false, .detail = "no NTP"});
+  RetentionScheduler retention(clock, output, std::nullopt);  // no policy
+  EXPECT_EQ(retention.start(state), 1u);
+  EXPECT_FALSE(fs::exists(result / "luminance.exr"));
+  EXPECT_TRUE(fs::exists(result / pipeline::kResultFileName));
+  EXPECT_TRUE(fs::exists(tree.results() / kTodaysStack / "luminance.exr"));  // never marked
+  EXPECT_EQ(state.result_images_pruned, 1u);
+  EXPECT_EQ(retention.start(state), 0u);
+}
+
 // Ages are told by the clock: while it is not synchronised (it may have run ahead) nothing goes.
 TEST_F(RetentionSchedulerTest, NothingGoesWithoutAPolicyOrWhileTheClockIsUnsynchronised) {
   RetentionScheduler retention(clock, output, std::nullopt);

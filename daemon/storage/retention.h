@@ -11,15 +11,16 @@
 // less than the reserve free, the least valuable bytes of past days go first, tier by tier, each
 // oldest first:
 //   1. stacks of past days that have a complete result ("stack");
-//   2. the images of past days' results (the files result.json's `outputs` names: luminance.exr,
-//      quality.exr, luminance.png): result.json stays, marked first with outputs.pruned_at
-//      ("result images");
+//   2. the images of past days' results whose stack is gone (the files result.json's `outputs`
+//      names: luminance.exr, quality.exr, luminance.png): result.json stays, marked first with
+//      outputs.pruned_at ("result images");
 //   3. whole results of past days whose row is in their day's sweep.csv, their stack gone
 //      ("result"): the day's table and sheets keep their numbers (day_products.h keeps the row of
 //      a result that is gone).
 // Every stack ever written thus keeps its numbers: its result.json, or a row in its day's table.
-// When nothing of a past day may go and today alone overflows, the shortfall says that the budget
-// is smaller than one day's stacks, and how many stacks a day would fit.
+// When nothing of a past day may go, the shortfall names what stays and why; when today alone is
+// over the limit, that the budget is smaller than one day's stacks, and how many stacks a day
+// would fit (else what past days keep, and what that leaves for today).
 //
 // What is never deleted: a stack without a complete result (unprocessed, being processed) or
 // whose processing failed (results/<id>.failed); anything of today (the site's solar day, as the
@@ -31,7 +32,8 @@
 // first and then removed, so a deletion cut short leaves only a temporary that the next start
 // removes, never half a stack. A result's images are removed only after result.json says so, so a
 // prune cut short leaves a result that says "pruned" with some images still there, which the next
-// pass removes; never a result.json naming a missing image without saying so.
+// start removes (finishCutShortPrunes); never a result.json naming a missing image without saying
+// so.
 #pragma once
 
 #include <cstdint>

@@ -67,10 +67,10 @@ demo: demo-deps
 # lapse), failing on growing memory or descriptors, a lost stack or a missing result; then a
 # season on a small disk (SEASON_DAYS simulated days on a 160 MiB tmpfs with max_use_gib 0.2
 # alone: never a pause for the disk, as many stacks every day, every stack's numbers kept;
-# docs/operator.md, "Soak test" and "Retention"). Not part of `make test`: about 5 + 17 minutes.
+# docs/operator.md, "Soak test" and "Retention"). Not part of `make test`: about 5 + 12 minutes.
 SOAK_STACKS ?= 1000
 SOAK_DIR    ?= soak-out
-SEASON_DAYS ?= 42
+SEASON_DAYS ?= 28
 SEASON_DIR  ?= soak-season-out
 soak: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecamd

@@ -20,15 +20,6 @@ namespace {
 
 constexpr std::chrono::hours kDay{24};
 
-std::uint64_t bytesUnder(const fs::path& path) {
-  std::error_code error;
-  std::uint64_t bytes = 0;
-  for (fs::recursive_directory_iterator it(path, error), end; !error && it != end;
-       it.increment(error))
-    if (it->is_regular_file(error) && !it->is_symlink(error)) bytes += it->file_size(error);
-  return bytes;
-}
-
 }  // namespace
 
 std::optional<DayEstimate> estimateDayStacks(const ScheduleConfig& schedule,
@@ -86,7 +77,7 @@ std::optional<std::uint64_t> newestStackBytes(const OutputTree& tree) {
   // A stack with its result, when there is one: a stack being processed has only half its bytes.
   const std::optional<fs::path>& measured = newest_processed ? newest_processed : newest;
   if (!measured) return std::nullopt;
-  return bytesUnder(*measured) + bytesUnder(tree.results() / measured->filename());
+  return treeBytes(*measured) + treeBytes(tree.results() / measured->filename());
 }
 
 std::optional<std::string> dayBudgetWarning(std::uint64_t budget_bytes, const DayEstimate& day,

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cerrno>
+#include <system_error>
 
 namespace glarecam::daemon {
 
@@ -31,6 +32,23 @@ class StatvfsDiskProbe final : public DiskProbe {
 }  // namespace
 
 std::unique_ptr<DiskProbe> makeStatvfsDiskProbe() { return std::make_unique<StatvfsDiskProbe>(); }
+
+std::uint64_t treeBytes(const std::filesystem::path& path) {
+  std::error_code error;
+  std::uint64_t bytes = 0;
+  const auto status = std::filesystem::symlink_status(path, error);
+  if (std::filesystem::is_regular_file(status)) return std::filesystem::file_size(path, error);
+  if (!std::filesystem::is_directory(status)) return 0;
+  for (std::filesystem::recursive_directory_iterator it(path, error), end; !error && it != end;
+       it.increment(error)) {
+    if (it->is_regular_file(error) && !it->is_symlink(error)) {
+      const std::uintmax_t size = it->file_size(error);
+      if (!error) bytes += size;
+      error.clear();
+    }
+  }
+  return bytes;
+}
 
 std::string formatBytes(std::uint64_t bytes) {
   static constexpr std::array kUnits{"KiB", "MiB", "GiB", "TiB", "PiB"};

@@ -33,6 +33,10 @@ std::unique_ptr<DiskProbe> makeStatvfsDiskProbe();
 std::string diskPauseReason(const DiskState& state, std::uint64_t reserve_bytes,
                             const std::filesystem::path& path);
 
+// The bytes of the regular files under `path` (or of `path` itself, a file), symbolic links not
+// followed: what a stack, a result or a directory of the output tree takes.
+std::uint64_t treeBytes(const std::filesystem::path& path);
+
 // "1.5 GiB", "12.0 MiB", "512 B".
 std::string formatBytes(std::uint64_t bytes);
 

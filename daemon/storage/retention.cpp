@@ -43,24 +43,6 @@ bool isRealDirectory(const fs::path& path) {
   return fs::is_directory(fs::symlink_status(path, error));
 }
 
-// The bytes of the regular files under `path`, symbolic links not followed.
-std::uint64_t treeBytes(const fs::path& path) {
-  std::error_code error;
-  std::uint64_t bytes = 0;
-  const auto status = fs::symlink_status(path, error);
-  if (fs::is_regular_file(status)) return fs::file_size(path, error);
-  if (!fs::is_directory(status)) return 0;
-  for (fs::recursive_directory_iterator it(path, error), end; !error && it != end;
-       it.increment(error)) {
-    if (it->is_regular_file(error) && !it->is_symlink(error)) {
-      const std::uintmax_t size = it->file_size(error);
-      if (!error) bytes += size;
-      error.clear();
-    }
-  }
-  return bytes;
-}
-
 bool isResultDirectory(const fs::path& path) {
   std::error_code error;
   if (!isRealDirectory(path) || !fs::is_regular_file(path / pipeline::kResultFileName, error))

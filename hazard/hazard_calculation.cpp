@@ -11,6 +11,7 @@
 #include "core/angles.h"
 #include "core/parallel.h"
 #include "core/time.h"
+#include "hazard/candidate_pairs.h"
 #include "hazard/glare_region.h"
 #include "hazard/obstruction.h"
 #include "hazard/plane_region.h"
@@ -63,10 +64,21 @@ struct ArrayStep {
 // array the observer can see glare from: all of it, or what its field of view and the
 // obstructions leave.
 struct Pair {
+  std::size_t array = 0;  // index into scene.arrays
   PolygonView view;
   bool clipped = false;                         // view is less than the whole array
   double solid_angle_sr = 0;                    // of the part seen, from the observer
   std::array<double, kMaxModels> reject_cos{};  // c·d below this: the region cannot reach it
+  // The day-level bound (candidate_pairs.h): the largest reach over the models (π: never
+  // rejected) and the angle from the mirrored pole to the array's centre.
+  double reach_rad = std::numbers::pi;
+  double mirrored_pole_rad = 0;
+};
+
+// An obstruction that can shade an array, and the sine of the highest sun that it can.
+struct Caster {
+  double max_sin_elevation = 0;
+  const Obstruction* obstruction = nullptr;
 };
 
 // Per array and model: whether some glaring α has no spread there (then every lit step must be
@@ -90,7 +102,9 @@ struct Context {
   const Scene& scene;
   const std::vector<const ProfileTable*>& profiles;
   const HazardOptions& options;
-  std::vector<std::vector<Pair>> pairs;         // [observer][array]
+  std::vector<std::vector<Pair>> pairs;         // [observer][candidate], by array
+  std::vector<std::vector<Caster>> casters;     // [array], highest sun first
+  Vec3 pole;                                    // the celestial pole, unit, ENU
   std::vector<UnknownSpreads> unknown_spreads;  // [array]
   int steps_per_day = 0;
   int first_day = 0;
@@ -271,10 +285,28 @@ double solidAngleSeenSr(const ArrayPolygon& array, Vec3 point_m, double area_m2)
   return area_m2 * std::max(0.0, dot(array.normal, d)) / (distance_m * distance_m * distance_m);
 }
 
+// The obstructions that can stand between a point and the array: those within the box around
+// both (every sight line lies in their convex hull).
+std::vector<const Obstruction*> obstructionsBetween(const Scene& scene, const ArrayPolygon& array,
+                                                    Vec3 point_m) {
+  const Vec3 reach{array.radius_m, array.radius_m, array.radius_m};
+  const Vec3 a_lo = array.centroid_m - reach, a_hi = array.centroid_m + reach;
+  const Vec3 lo{std::min(a_lo.x, point_m.x), std::min(a_lo.y, point_m.y),
+                std::min(a_lo.z, point_m.z)};
+  const Vec3 hi{std::max(a_hi.x, point_m.x), std::max(a_hi.y, point_m.y),
+                std::max(a_hi.z, point_m.z)};
+  std::vector<const Obstruction*> between;
+  for (const Obstruction& obstruction : scene.obstructions)
+    if (mayMeetBox(obstruction, lo, hi)) between.push_back(&obstruction);
+  return between;
+}
+
 // The part of the array an observer can see glare from (Pair::view).
 Pair makePair(const Scene& scene, const ArrayPolygon& array, const Observer& observer) {
   Pair pair;
-  if (observer.view_azimuths_deg.empty() && scene.obstructions.empty()) {
+  const std::vector<const Obstruction*> between =
+      obstructionsBetween(scene, array, observer.position_m);
+  if (observer.view_azimuths_deg.empty() && between.empty()) {
     pair.view = viewFrom(array, observer.position_m);
     pair.solid_angle_sr = solidAngleSeenSr(array, observer.position_m, array.area_m2);
     return pair;
@@ -283,7 +315,7 @@ Pair makePair(const Scene& scene, const ArrayPolygon& array, const Observer& obs
                            ? arrayRegion(array)
                            : fieldOfViewRegion(array, observer);
   if (seesFront(array, observer.position_m))
-    region = subtract(region, hiddenRings(array, scene.obstructions, observer.position_m));
+    region = subtract(region, hiddenRings(array, between, observer.position_m));
   pair.clipped = true;
   pair.view = viewFrom(array, observer.position_m, std::move(region));
   pair.solid_angle_sr = solidAngleSeenSr(array, observer.position_m, areaM2(pair.view.region));
@@ -300,11 +332,17 @@ std::optional<double> regionMeets(const Context& context, std::size_t a, ArraySt
   const double q =
       minNormalisedDistance(step.frame, region.axes, array, pair.view, glare_direction);
   if (q > 1) return std::nullopt;
-  if (context.scene.obstructions.empty()) return q;
+  const std::vector<Caster>& casters = context.casters[a];
+  if (casters.empty() || casters.front().max_sin_elevation < step.sun.z) return q;
   if (!step.lit_resolved) {
     step.lit_resolved = true;
-    step.lit_part =
-        subtract(arrayRegion(array), sunShadowRings(array, context.scene.obstructions, step.sun));
+    // Only what can shade the array from this high a sun (maxShadingElevationRad).
+    std::vector<const Obstruction*> shading;
+    for (const Caster& caster : casters) {
+      if (caster.max_sin_elevation < step.sun.z) break;
+      shading.push_back(caster.obstruction);
+    }
+    step.lit_part = subtract(arrayRegion(array), sunShadowRings(array, shading, step.sun));
   }
   const PolygonView lit_view =
       viewFrom(array, pair.view.observer_m, intersect(pair.view.region, step.lit_part));
@@ -390,63 +428,98 @@ Result<DayOutput> computeDay(const Context& context, int index,
   std::vector<sun::SunDirection> track;
   GLARECAM_ASSIGN(track, sun::solarTrack(first_utc, step, static_cast<std::size_t>(steps),
                                          scene.site.location));
+  std::vector<Vec3> suns(track.size());
+  PoleAngleRange pole_range{.min_rad = std::numbers::pi, .max_rad = -1};
+  for (std::size_t k = 0; k < track.size(); ++k) {
+    suns[k] = Vec3{track[k].east, track[k].north, track[k].up};
+    if (suns[k].z <= 0) continue;
+    const double theta = angleBetweenRad(suns[k], context.pole);
+    pole_range.min_rad = std::min(pole_range.min_rad, theta);
+    pole_range.max_rad = std::max(pole_range.max_rad, theta);
+  }
 
   DayOutput output;
   output.tallies.resize(scene.observers.size());
-  // open[o][m][a]: the event being built, if any.
-  std::vector<std::vector<std::vector<std::optional<GlareEvent>>>> open(
-      scene.observers.size(),
-      std::vector<std::vector<std::optional<GlareEvent>>>(
-          models, std::vector<std::optional<GlareEvent>>(scene.arrays.size())));
-  auto close = [&](std::size_t o, std::size_t m, std::size_t a) {
-    if (open[o][m][a]) {
-      output.events.push_back(*open[o][m][a]);
-      open[o][m][a].reset();
+  // Per observer, the candidates the day-level bound keeps (indices into context.pairs[o]).
+  std::vector<std::vector<std::size_t>> active(scene.observers.size());
+  std::vector<std::size_t> active_observers;
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    const std::vector<Pair>& pairs = context.pairs[o];
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      if (dayMayReach(pairs[i].mirrored_pole_rad, pairs[i].reach_rad, pole_range))
+        active[o].push_back(i);
+    if (!active[o].empty()) active_observers.push_back(o);
+  }
+  if (!options.keep_steps && active_observers.empty()) return output;
+
+  // open[o][m][i]: the event being built for active candidate i, if any.
+  std::vector<std::vector<std::vector<std::optional<GlareEvent>>>> open(scene.observers.size());
+  for (const std::size_t o : active_observers)
+    open[o].assign(models, std::vector<std::optional<GlareEvent>>(active[o].size()));
+  auto close = [&](std::size_t o, std::size_t m, std::size_t i) {
+    if (open[o][m][i]) {
+      output.events.push_back(*open[o][m][i]);
+      open[o][m][i].reset();
     }
   };
   auto closeObserver = [&](std::size_t o) {
+    if (open[o].empty()) return;
     for (std::size_t m = 0; m < models; ++m)
-      for (std::size_t a = 0; a < scene.arrays.size(); ++a) close(o, m, a);
+      for (std::size_t i = 0; i < active[o].size(); ++i) close(o, m, i);
   };
 
+  // Each array's step is made when a pair first needs it in the step.
   std::vector<ArrayStep> array_steps(scene.arrays.size());
+  std::vector<int> array_step_made(scene.arrays.size(), -1);
+  std::vector<std::size_t> all_observers;
+  if (options.keep_steps) {
+    all_observers.resize(scene.observers.size());
+    for (std::size_t o = 0; o < all_observers.size(); ++o) all_observers[o] = o;
+  }
+  const std::vector<std::size_t>& visited = options.keep_steps ? all_observers : active_observers;
   const std::int64_t day_first_step = std::int64_t{day} * steps;
   for (int k = 0; k < steps; ++k) {
     const std::size_t cell = static_cast<std::size_t>(std::int64_t{index} * steps + k);
-    const Vec3 sun{track[static_cast<std::size_t>(k)].east,
-                   track[static_cast<std::size_t>(k)].north, track[static_cast<std::size_t>(k)].up};
+    const Vec3 sun = suns[static_cast<std::size_t>(k)];
     if (sun.z <= 0) {  // apparent elevation ≤ 0°
-      for (std::size_t o = 0; o < scene.observers.size(); ++o) {
-        observers[o].steps[cell] = kSunDownBit;
+      for (const std::size_t o : visited) {
+        if (options.keep_steps) observers[o].steps[cell] = kSunDownBit;
         closeObserver(o);
       }
       continue;
     }
-    double source_lx = 0;
-    if (options.sun.kind != SunKind::kReference) {
-      source_lx = sourceIlluminanceLx(options.sun, first_utc + k * step, elevationDeg(sun), day + 1,
-                                      scene.site);
-    }
-    for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
-      array_steps[a] = arrayStep(context, a, sun);
-      array_steps[a].source_lx = source_lx;
-    }
+    std::optional<double> source_lx;
+    auto arrayStepAt = [&](std::size_t a) -> ArrayStep& {
+      if (array_step_made[a] != k) {
+        array_step_made[a] = k;
+        if (!source_lx) {
+          source_lx = options.sun.kind == SunKind::kReference
+                          ? 0.0
+                          : sourceIlluminanceLx(options.sun, first_utc + k * step,
+                                                elevationDeg(sun), day + 1, scene.site);
+        }
+        array_steps[a] = arrayStep(context, a, sun);
+        array_steps[a].source_lx = *source_lx;
+      }
+      return array_steps[a];
+    };
     const double local_h = (k + 0.5) * options.step_s / 3600.0;
-    for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    for (const std::size_t o : visited) {
       const Observer& observer = scene.observers[o];
       if (local_h < observer.from_h || local_h >= observer.to_h) {
-        observers[o].steps[cell] = kOutsideHoursBit;
+        if (options.keep_steps) observers[o].steps[cell] = kOutsideHoursBit;
         closeObserver(o);
         continue;
       }
       std::uint8_t mask = 0;
-      for (std::size_t m = 0; m < models; ++m) {
+      for (std::size_t m = 0; m < models && !active[o].empty(); ++m) {
         bool glare = false, beyond = false, unknown = false;
         std::optional<OcularClass> step_class;
         bool unclassified = false;
-        for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
-          ArrayStep& array_step = array_steps[a];
-          const Pair& pair = context.pairs[o][a];
+        for (std::size_t i = 0; i < active[o].size(); ++i) {
+          const Pair& pair = context.pairs[o][active[o][i]];
+          const std::size_t a = pair.array;
+          ArrayStep& array_step = arrayStepAt(a);
           std::optional<double> q;
           Vec3 direction;
           // The cheap rejection first: c too far from the array for any region of the profile.
@@ -473,7 +546,7 @@ Result<DayOutput> computeDay(const Context& context, int index,
             }
           }
           if (!q) {
-            close(o, m, a);
+            close(o, m, i);
             continue;
           }
           glare = true;
@@ -486,7 +559,7 @@ Result<DayOutput> computeDay(const Context& context, int index,
             unclassified = true;
           }
           const std::optional<double> luminance = seen.luminance_cd_m2;
-          std::optional<GlareEvent>& event = open[o][m][a];
+          std::optional<GlareEvent>& event = open[o][m][i];
           if (!event) {
             event = GlareEvent{.observer = o,
                                .array = a,
@@ -526,10 +599,10 @@ Result<DayOutput> computeDay(const Context& context, int index,
         tally.beyond += beyond ? 1 : 0;
         tally.unknown += unknown ? 1 : 0;
       }
-      observers[o].steps[cell] = mask;
+      if (options.keep_steps) observers[o].steps[cell] = mask;
     }
   }
-  for (std::size_t o = 0; o < scene.observers.size(); ++o) closeObserver(o);
+  for (const std::size_t o : active_observers) closeObserver(o);
   return output;
 }
 
@@ -592,6 +665,9 @@ Status HazardOptions::validate() const {
                     std::to_string(kMaxThreads));
   }
   if (models.empty()) return badInput("--models: no model given");
+  if (!(max_distance_m > 0))
+    return badInput("--max-distance " + std::to_string(max_distance_m) +
+                    " is not a positive distance in metres");
   if (models.size() > kMaxModels)
     return badInput("--models: at most " + std::to_string(kMaxModels) + " models at once");
   if (first_day < 0 || day_count < 0 || first_day + day_count > daysInYear(year) ||
@@ -624,6 +700,8 @@ Result<HazardResult> computeHazard(const Scene& scene,
       .profiles = profiles,
       .options = options,
       .pairs = {},
+      .casters = {},
+      .pole = {},
       .unknown_spreads = {},
       .steps_per_day = result.steps_per_day,
       .first_day = result.first_day,
@@ -665,10 +743,27 @@ Result<HazardResult> computeHazard(const Scene& scene,
                                  std::max(profile.maxLadderAxisDeg(), profile.maxFullAxisDeg()));
     }
   }
-  for (const Observer& observer : scene.observers) {
+  context.pole = celestialPole(scene.site.location.latitude_deg);
+  for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
+    std::vector<Caster> casters;
+    for (const Obstruction& obstruction : scene.obstructions) {
+      const double elevation_rad = maxShadingElevationRad(obstruction, scene.arrays[a]);
+      if (elevation_rad > 0) casters.push_back({std::sin(elevation_rad), &obstruction});
+    }
+    std::stable_sort(casters.begin(), casters.end(), [](const Caster& x, const Caster& y) {
+      return x.max_sin_elevation > y.max_sin_elevation;
+    });
+    context.casters.push_back(std::move(casters));
+  }
+  const std::vector<std::vector<std::size_t>> candidates =
+      candidateArrays(scene, options.max_distance_m);
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    const Observer& observer = scene.observers[o];
     std::vector<Pair> row;
-    for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
+    for (const std::size_t a : candidates[o]) {
       Pair pair = makePair(scene, scene.arrays[a], observer);
+      pair.array = a;
+      pair.reach_rad = 0;
       for (std::size_t m = 0; m < options.models.size(); ++m) {
         const double full_axis_deg =
             options.sun.kind == SunKind::kReference || options.models[m].kind == ModelKind::kCone
@@ -676,7 +771,11 @@ Result<HazardResult> computeHazard(const Scene& scene,
                 : max_axis_deg[a];
         const double reach = radians(full_axis_deg / 2) + pair.view.angular_radius_rad;
         pair.reject_cos[m] = reach >= std::numbers::pi ? kNeverReject : std::cos(reach);
+        pair.reach_rad =
+            context.unknown_spreads[a][m] ? std::numbers::pi : std::max(pair.reach_rad, reach);
       }
+      pair.mirrored_pole_rad =
+          mirroredPoleAngleRad(scene.arrays[a], context.pole, pair.view.centre_direction);
       row.push_back(std::move(pair));
     }
     context.pairs.push_back(std::move(row));
@@ -684,7 +783,8 @@ Result<HazardResult> computeHazard(const Scene& scene,
 
   result.observers.resize(scene.observers.size());
   for (ObserverHazard& observer : result.observers) {
-    observer.steps.assign(static_cast<std::size_t>(result.days) * result.steps_per_day, 0);
+    if (options.keep_steps)
+      observer.steps.assign(static_cast<std::size_t>(result.days) * result.steps_per_day, 0);
     observer.models.resize(options.models.size());
   }
   std::vector<DayOutput> days(static_cast<std::size_t>(result.days));

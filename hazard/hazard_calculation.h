@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,10 @@ namespace glarecam::hazard {
 // Models per run: each is one bit of a step's mask.
 inline constexpr std::size_t kMaxModels = 6;
 inline constexpr unsigned kMaxThreads = 1024;
+// The distance within which `glarecam hazard` looks for glare by default: Germany's LAI
+// guidance ("Hinweise zur Messung, Beurteilung und Minderung von Lichtimmissionen", Anhang 2)
+// considers receptors within about 100 m of a PV array.
+inline constexpr double kDefaultMaxDistanceM = 100;
 
 struct HazardOptions {
   int year = 0;
@@ -44,6 +49,12 @@ struct HazardOptions {
   // profile referred, with its contour ladder.
   SunBrightness sun;
   EyeParameters eye;  // for the ocular hazard of each glaring step
+  // Receptor points farther than this from an array's polygon are never computed against it
+  // (candidate_pairs.h; infinity: every pair). `glarecam hazard` gives kDefaultMaxDistanceM.
+  double max_distance_m = std::numeric_limits<double>::infinity();
+  // Keep every step's mask (ObserverHazard::steps, for the charts). Off, an observer's steps are
+  // not stored and the days on which no array can glare there cost nothing (screening).
+  bool keep_steps = true;
 
   Status validate() const;  // kBadInput naming the option
   // A warning for a year that is valid but unlikely meant (outside kLikelyYears: "27" for 2027, a
@@ -102,7 +113,8 @@ struct ModelSummary {
 
 struct ObserverHazard {
   std::vector<ModelSummary> models;  // per options.models
-  std::vector<std::uint8_t> steps;   // days × steps_per_day masks, day-major from first_day
+  // days × steps_per_day masks, day-major from first_day; empty unless options.keep_steps
+  std::vector<std::uint8_t> steps;
 };
 
 struct HazardResult {

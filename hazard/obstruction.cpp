@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace glarecam::hazard {
 namespace {
@@ -126,8 +127,28 @@ Result<Obstruction> makePlanarObstruction(std::string name, std::vector<Vec3> ve
   return withBounds(std::move(name), std::move(faces), {0});
 }
 
+namespace {
+std::vector<const Obstruction*> pointersTo(const std::vector<Obstruction>& obstructions) {
+  std::vector<const Obstruction*> pointers;
+  pointers.reserve(obstructions.size());
+  for (const Obstruction& obstruction : obstructions) pointers.push_back(&obstruction);
+  return pointers;
+}
+}  // namespace
+
 std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
                                       const std::vector<Obstruction>& obstructions, Vec3 sun) {
+  return sunShadowRings(array, pointersTo(obstructions), sun);
+}
+
+std::vector<PlaneRing> hiddenRings(const ArrayPolygon& array,
+                                   const std::vector<Obstruction>& obstructions, Vec3 point_m) {
+  return hiddenRings(array, pointersTo(obstructions), point_m);
+}
+
+std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
+                                      const std::vector<const Obstruction*>& obstructions,
+                                      Vec3 sun) {
   std::vector<PlaneRing> rings;
   const double cos_alpha = dot(array.normal, sun);
   if (cos_alpha <= 0) return rings;
@@ -136,7 +157,8 @@ std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
   for (const PlanePoint& p : array.outline)
     array_box = {std::min(array_box[0], p[0]), std::min(array_box[1], p[1]),
                  std::max(array_box[2], p[0]), std::max(array_box[3], p[1])};
-  for (const Obstruction& obstruction : obstructions) {
+  for (const Obstruction* casting : obstructions) {
+    const Obstruction& obstruction = *casting;
     const double d = dot(obstruction.centre_m - array.centroid_m, array.normal);
     if (d + obstruction.radius_m < kSlabMarginM) continue;
     // The projection along the sun is affine, so every clipped face's shadow lies within the
@@ -165,18 +187,38 @@ std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
 }
 
 std::vector<PlaneRing> hiddenRings(const ArrayPolygon& array,
-                                   const std::vector<Obstruction>& obstructions, Vec3 point_m) {
+                                   const std::vector<const Obstruction*>& obstructions,
+                                   Vec3 point_m) {
   std::vector<PlaneRing> rings;
   const double d_point = dot(point_m - array.centroid_m, array.normal);
   if (d_point <= kSlabMarginM) return rings;
   const auto from_point = [&](Vec3 x, double d) {
     return point_m + (d_point / (d_point - d)) * (x - point_m);
   };
-  for (const Obstruction& obstruction : obstructions) {
-    for (const ArrayPolygon& face : obstruction.faces)
+  for (const Obstruction* obstruction : obstructions) {
+    for (const ArrayPolygon& face : obstruction->faces)
       projectFace(array, face, kSlabMarginM, d_point * (1 - kEyeLevelFraction), from_point, rings);
   }
   return rings;
+}
+
+bool mayMeetBox(const Obstruction& obstruction, Vec3 lo, Vec3 hi) {
+  const Vec3& c = obstruction.centre_m;
+  const double r = obstruction.radius_m;
+  return c.x + r >= lo.x && c.x - r <= hi.x && c.y + r >= lo.y && c.y - r <= hi.y &&
+         c.z + r >= lo.z && c.z - r <= hi.z;
+}
+
+double maxShadingElevationRad(const Obstruction& obstruction, const ArrayPolygon& array) {
+  double lowest_m = kFar;
+  for (const Vec3& vertex : array.vertices_m) lowest_m = std::min(lowest_m, vertex.z);
+  const double rise_m = obstruction.centre_m.z + obstruction.radius_m - lowest_m;
+  if (rise_m <= 0) return -1;  // a shadow ray rises from the array: it never meets this one
+  const double gap_m = std::hypot(obstruction.centre_m.x - array.centroid_m.x,
+                                  obstruction.centre_m.y - array.centroid_m.y) -
+                       obstruction.radius_m - array.radius_m;
+  if (gap_m <= 0) return std::numbers::pi / 2;
+  return std::atan2(rise_m, gap_m);
 }
 
 }  // namespace glarecam::hazard

@@ -60,5 +60,19 @@ std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
 // that a point inside a solid is hidden too.
 std::vector<PlaneRing> hiddenRings(const ArrayPolygon& array,
                                    const std::vector<Obstruction>& obstructions, Vec3 point_m);
+// The same over some of a scene's obstructions (those that can matter, hazard_calculation.h).
+std::vector<PlaneRing> sunShadowRings(const ArrayPolygon& array,
+                                      const std::vector<const Obstruction*>& obstructions,
+                                      Vec3 sun);
+std::vector<PlaneRing> hiddenRings(const ArrayPolygon& array,
+                                   const std::vector<const Obstruction*>& obstructions,
+                                   Vec3 point_m);
+
+// Whether the obstruction's bounding sphere can meet the axis-aligned box [lo, hi].
+bool mayMeetBox(const Obstruction& obstruction, Vec3 lo, Vec3 hi);
+// The highest apparent sun elevation (radians, up to π/2) at which the obstruction can shade
+// some point of the array: its top above the array's lowest point over the horizontal gap
+// between their bounding spheres; below zero when it is lower than every point of the array.
+double maxShadingElevationRad(const Obstruction& obstruction, const ArrayPolygon& array);
 
 }  // namespace glarecam::hazard

@@ -95,6 +95,7 @@ struct Tally {
 
 struct DayOutput {
   std::vector<std::array<Tally, kMaxModels>> tallies;  // per observer, per model
+  std::vector<int> active_pairs;                       // per observer: the bound let these through
   std::vector<GlareEvent> events;
 };
 
@@ -450,6 +451,9 @@ Result<DayOutput> computeDay(const Context& context, int index,
         active[o].push_back(i);
     if (!active[o].empty()) active_observers.push_back(o);
   }
+  output.active_pairs.resize(scene.observers.size());
+  for (const std::size_t o : active_observers)
+    output.active_pairs[o] = static_cast<int>(active[o].size());
   if (!options.keep_steps && active_observers.empty()) return output;
 
   // open[o][m][i]: the event being built for active candidate i, if any.
@@ -813,6 +817,9 @@ Result<HazardResult> computeHazard(const Scene& scene,
   const double minutes_per_step = options.step_s / 60.0;
   std::vector<GlareEvent> events;
   for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    result.observers[o].candidates = context.pairs[o].size();
+    for (const DayOutput& day : days)
+      result.observers[o].pair_days += day.active_pairs.empty() ? 0 : day.active_pairs[o];
     for (std::size_t m = 0; m < options.models.size(); ++m) {
       ModelSummary& summary = result.observers[o].models[m];
       summary.minutes_per_day.assign(static_cast<std::size_t>(result.days), 0.0);

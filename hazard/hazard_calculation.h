@@ -115,6 +115,8 @@ struct ObserverHazard {
   std::vector<ModelSummary> models;  // per options.models
   // days × steps_per_day masks, day-major from first_day; empty unless options.keep_steps
   std::vector<std::uint8_t> steps;
+  std::size_t candidates = 0;  // arrays within max_distance_m whose front it sees
+  std::int64_t pair_days = 0;  // (candidate, day) pairs the day-level bound let through
 };
 
 struct HazardResult {

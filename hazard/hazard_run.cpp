@@ -1,12 +1,19 @@
 #include "hazard/hazard_run.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "core/atomic_file.h"
 #include "core/progress.h"
+#include "core/sha256.h"
+#include "core/text_file.h"
 #include "core/time.h"
+#include "hazard/geo_frame.h"
 #include "hazard/hazard_pdf.h"
 #include "hazard/hazard_report.h"
 #include "hazard/profile_table.h"
@@ -19,7 +26,18 @@ Status HazardRunOptions::validate() const {
   if (out.empty()) return badInput("--out: no output directory given");
   if (profile && profile->empty()) return badInput("--profile: empty path");
   if (report) GLARECAM_CHECK(checkReportPath(*report));
+  if (screen && report)
+    return badInput(
+        "--report: a screening writes no PDF report (run the receptors of interest "
+        "without --screen for one)");
+  if (shard && !screen) return badInput("--shard: only with --screen");
   return hazard.validate();
+}
+
+Status HazardMergeOptions::validate() const {
+  if (shards.empty()) return badInput("hazard merge: no shard directory given");
+  if (out.empty()) return badInput("--out: no output directory given");
+  return {};
 }
 
 Status checkReportPath(const std::filesystem::path& report) {
@@ -43,28 +61,86 @@ Status checkReportPath(const std::filesystem::path& report) {
   return {};
 }
 
+namespace {
+
+// Each profile file read once, however many arrays name it.
+struct SceneProfiles {
+  std::map<std::filesystem::path, std::unique_ptr<ProfileTable>> tables;
+  std::vector<const ProfileTable*> profiles;  // per array
+};
+
+Status readProfiles(const Scene& scene, const std::filesystem::path& scene_path,
+                    const std::optional<std::filesystem::path>& fallback, SceneProfiles& read) {
+  for (const ArrayPolygon& array : scene.arrays) {
+    const std::optional<std::filesystem::path>& path = array.profile ? array.profile : fallback;
+    if (!path) {
+      return badInput(scene_path.string() + ": array \"" + array.name +
+                      "\" has no profile (give --profile or the array's \"profile\")");
+    }
+    auto& table = read.tables[path->lexically_normal()];
+    if (!table) {
+      Result<ProfileTable> loaded = ProfileTable::read(*path);
+      if (!loaded) return std::unexpected(loaded.error());
+      table = std::make_unique<ProfileTable>(std::move(*loaded));
+    }
+    read.profiles.push_back(table.get());
+  }
+  return {};
+}
+
+Result<HazardRunSummary> runScreen(const HazardRunOptions& options, const Scene& scene,
+                                   const std::vector<const ProfileTable*>& profiles,
+                                   const HazardOptions& hazard) {
+  ScreenOptions screen{.hazard = hazard, .shard = options.shard};
+  ScreenIdentity identity;
+  GLARECAM_ASSIGN(identity, screenIdentity(options.scene, hazard));
+  ScreenResult result;
+  {
+    const std::string label =
+        options.shard ? fmt::format("screen {}/{}", options.shard->index, options.shard->count)
+                      : std::string("screen");
+    std::optional<Progress> progress;
+    std::size_t reported = 0;
+    GLARECAM_ASSIGN(result,
+                    screenHazard(scene, profiles, screen, [&](std::size_t done, std::size_t total) {
+                      if (!progress)
+                        progress.emplace(label, static_cast<int>(total), options.show_progress);
+                      for (; reported < done; ++reported) progress->advance();
+                    }));
+    if (progress) progress->finish();
+  }
+  HazardRunSummary summary;
+  summary.warnings = scene.warnings;
+  if (options.shard) {
+    summary.document = shardJson(identity, result);
+    GLARECAM_CHECK(ensureDirectory(options.out));
+    GLARECAM_CHECK(writeFileAtomic(options.out / "shard.json", summary.document.dump() + "\n"));
+    summary.table = fmt::format(
+        "shard {}/{}: {} of {} receptor points into {}\n", result.shard.index, result.shard.count,
+        result.points.size(), result.counts.receptor_points, (options.out / "shard.json").string());
+    return summary;
+  }
+  const ScreenOutputs outputs{.scene = &scene,
+                              .options = &hazard,
+                              .identity = &identity,
+                              .result = &result,
+                              .to_lon_lat = sceneToLonLat(scene)};
+  GLARECAM_CHECK(writeScreenOutputs(outputs, options.out));
+  Result<std::string> written = readTextFile(options.out / "screen.json");
+  if (written) summary.document = nlohmann::json::parse(*written, nullptr, false);
+  summary.table = screenSummaryText(outputs);
+  return summary;
+}
+
+}  // namespace
+
 Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
   GLARECAM_CHECK(options.validate());
   Scene scene;
   GLARECAM_ASSIGN(scene, readScene(options.scene));
-  // Each profile file read once, however many arrays name it.
-  std::map<std::filesystem::path, std::unique_ptr<ProfileTable>> tables;
-  std::vector<const ProfileTable*> profiles;
-  for (const ArrayPolygon& array : scene.arrays) {
-    const std::optional<std::filesystem::path>& path =
-        array.profile ? array.profile : options.profile;
-    if (!path) {
-      return badInput(options.scene.string() + ": array \"" + array.name +
-                      "\" has no profile (give --profile or the array's \"profile\")");
-    }
-    auto& table = tables[path->lexically_normal()];
-    if (!table) {
-      Result<ProfileTable> read = ProfileTable::read(*path);
-      if (!read) return std::unexpected(read.error());
-      table = std::make_unique<ProfileTable>(std::move(*read));
-    }
-    profiles.push_back(table.get());
-  }
+  SceneProfiles read;
+  GLARECAM_CHECK(readProfiles(scene, options.scene, options.profile, read));
+  const std::vector<const ProfileTable*>& profiles = read.profiles;
 
   HazardOptions hazard = options.hazard;
   if (options.sun_by_default && hazard.sun.kind != SunKind::kReference) {
@@ -81,6 +157,7 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
       hazard.sun = SunBrightness{};
     }
   }
+  if (options.screen) return runScreen(options, scene, profiles, hazard);
   HazardResult result;
   {
     Progress progress("hazard " + std::to_string(hazard.year), daysInYear(hazard.year),
@@ -106,6 +183,86 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
   return HazardRunSummary{.document = hazardJson(report),
                           .table = summaryText(report),
                           .warnings = reportWarnings(report)};
+}
+
+ToLonLat sceneToLonLat(const Scene& scene) {
+  std::shared_ptr<const GeoFrame> frame;
+  if (false) {  // MERGE-GEO: scene.geo
+  } else {
+    Result<GeoFrame> made =
+        GeoFrame::make(scene.site.location.longitude_deg, scene.site.location.latitude_deg,
+                       scene.site.location.altitude_m);
+    if (made) frame = std::make_shared<GeoFrame>(std::move(*made));
+  }
+  if (!frame) {
+    return [](Vec3) {
+      constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+      return std::array<double, 3>{kNaN, kNaN, kNaN};
+    };
+  }
+  return [frame](Vec3 point_m) { return frame->toLonLatH(point_m); };
+}
+
+Result<HazardRunSummary> runHazardMerge(const HazardMergeOptions& options) {
+  GLARECAM_CHECK(options.validate());
+  std::vector<ShardFile> shards;
+  for (const std::filesystem::path& given : options.shards) {
+    std::error_code error;
+    const std::filesystem::path path =
+        std::filesystem::is_directory(given, error) ? given / "shard.json" : given;
+    if (!std::filesystem::exists(path, error))
+      return badInput(given.string() +
+                      ": no shard.json (a directory written by "
+                      "`glarecam hazard --screen --shard I/N`)");
+    ShardFile shard;
+    GLARECAM_ASSIGN(shard, readShard(path));
+    shards.push_back(std::move(shard));
+  }
+  ScreenResult result;
+  GLARECAM_ASSIGN(result, mergeShardResults(shards));
+  ScreenIdentity identity = shards.front().identity;
+  const std::filesystem::path scene_path = options.scene.value_or(identity.scene);
+  std::string sha256;
+  GLARECAM_ASSIGN(sha256, sha256OfFile(scene_path));
+  if (sha256 != identity.scene_sha256)
+    return badInput(scene_path.string() +
+                    ": not the scene the shards were computed from (its "
+                    "SHA-256 differs; give the original with --scene)");
+  Scene scene;
+  GLARECAM_ASSIGN(scene, readScene(scene_path));
+  if (scene.observers.size() != result.counts.receptor_points ||
+      scene.arrays.size() != result.counts.arrays)
+    return badInput(scene_path.string() +
+                    ": the scene's receptor points or arrays differ from "
+                    "the shards'");
+  HazardOptions hazard;
+  const nlohmann::json& o = identity.options;
+  try {
+    hazard.year = o.at("year").get<int>();
+    hazard.step_s = o.at("step_s").get<int>();
+    std::string models, criteria;
+    for (const auto& m : o.at("models"))
+      models += (models.empty() ? "" : ",") + m.get<std::string>();
+    for (const auto& c : o.at("criteria"))
+      criteria += (criteria.empty() ? "" : ",") + c.get<std::string>();
+    GLARECAM_ASSIGN(hazard.models, parseModels(models, "shard models"));
+    GLARECAM_ASSIGN(hazard.criteria, parseCriteria(criteria, "shard criteria"));
+    if (!o.at("max_distance_m").is_null())
+      hazard.max_distance_m = o.at("max_distance_m").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    return badInput(shards.front().path.string() + ": unreadable options: " + e.what());
+  }
+  const ScreenOutputs outputs{.scene = &scene,
+                              .options = &hazard,
+                              .identity = &identity,
+                              .result = &result,
+                              .to_lon_lat = sceneToLonLat(scene)};
+  GLARECAM_CHECK(writeScreenOutputs(outputs, options.out));
+  HazardRunSummary summary;
+  Result<std::string> written = readTextFile(options.out / "screen.json");
+  if (written) summary.document = nlohmann::json::parse(*written, nullptr, false);
+  summary.table = screenSummaryText(outputs);
+  return summary;
 }
 
 }  // namespace glarecam::hazard

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "hazard/civil_time.h"
 #include "hazard/hazard_calculation.h"
+#include "hazard/screening.h"
 
 namespace glarecam::hazard {
 
@@ -29,6 +30,10 @@ struct HazardRunOptions {
   // is refused.
   bool sun_by_default = false;
   bool show_progress = true;
+  // Screening (screening.h): a row per receptor point instead of charts and a report; with a
+  // shard, only that shard's shard.json.
+  bool screen = false;
+  std::optional<ShardSpec> shard;
 
   Status validate() const;
 };
@@ -44,5 +49,20 @@ struct HazardRunSummary {
 Status checkReportPath(const std::filesystem::path& report);
 
 Result<HazardRunSummary> runHazard(const HazardRunOptions& options);
+
+// `glarecam hazard merge`: the shard directories (or shard.json files) combined into the outputs
+// one screening writes, into `out`. The scene is read again from where the shards say it is, or
+// from `scene` when given (its SHA-256 must match theirs).
+struct HazardMergeOptions {
+  std::vector<std::filesystem::path> shards;
+  std::filesystem::path out;
+  std::optional<std::filesystem::path> scene;
+  Status validate() const;
+};
+Result<HazardRunSummary> runHazardMerge(const HazardMergeOptions& options);
+
+// [longitude, latitude, height] of a point of the scene: through the scene's geographic frame,
+// or for a scene in metres around its site, the frame at the site (hazard.geojson).
+ToLonLat sceneToLonLat(const Scene& scene);
 
 }  // namespace glarecam::hazard

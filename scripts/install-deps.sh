@@ -40,7 +40,7 @@ DEMO_PACKAGES=(
   # vision and maths (libopencv-dev carries OpenCV's CMake package config)
   libopencv-dev libeigen3-dev libceres-dev
   # the glare hazard's polygon clipping (obstructions, fields of view)
-  libpolyclipping-dev
+  libpolyclipping-dev libboost-dev
   # pictures and data sheets
   libcairo2-dev fonts-dejavu-core
   # rig hardware: cameras, GPIO, I2C, systemd (the backends are built when their package is

@@ -31,7 +31,14 @@ env SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_MAX=4 bash "$a
 [[ $? -eq 2 ]] || fail "array 1-4 for 4 shards: not exit 2"
 env SLURM_ARRAY_TASK_ID=1 bash "$array" a b 2027 0 /o >/dev/null 2>&1
 [[ $? -eq 2 ]] || fail "SHARDS 0: not exit 2"
+env SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_MAX=2 \
+  bash "$array" a b 2027 "" /o >/dev/null 2>&1
+[[ $? -eq 2 ]] || fail "SHARDS from the count of an array 1-2: not exit 2"
 set -e
+# A rerun of one shard (--array=5) with SHARDS given.
+out=$(env SLURM_ARRAY_TASK_ID=5 SLURM_ARRAY_TASK_COUNT=1 SLURM_ARRAY_TASK_MIN=5 SLURM_ARRAY_TASK_MAX=5 \
+      bash "$array" a b 2027 8 /o 2>/dev/null)
+[[ $out == *"--shard 5/8 "* ]] || fail "a rerun of shard 5: $out"
 
 merge="$root/deploy/slurm/merge.sbatch"
 mkdir -p "$tmp/o/shard-0" "$tmp/o/shard-1"

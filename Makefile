@@ -5,7 +5,7 @@ JOBS           ?= $(shell nproc)
 DEMO_DIR       ?= demo-out
 CMAKE_FLAGS    ?=
 
-.PHONY: deps demo-deps configure build test test-asan fuzz soak demo bench install package coverage-check kill-check route-check clean format
+.PHONY: deps demo-deps configure build test test-asan fuzz soak demo bench install package coverage-check kill-check route-check cluster-check clean format
 
 deps:
 	bash scripts/install-deps.sh
@@ -106,6 +106,17 @@ COVERAGE_SEEDS ?= 50
 coverage-check: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecam
 	python3 scripts/uncertainty-coverage --seeds $(COVERAGE_SEEDS) --jobs $(JOBS) $(BUILD_DIR)/bin
+
+# District screening on a real Slurm (docs/cluster.md): installs slurm-wlm and munge where missing
+# (scripts/install-deps.sh --cluster), brings up a one-node Slurm on this machine as root (state in
+# a temp dir, torn down at the end), runs deploy/slurm's job array over CLUSTER_SHARDS shards of a
+# small city (scripts/make-city) and the merge after it, and compares hazard.geojson,
+# receptors.csv and screen.json with one `glarecam hazard --screen` run byte for byte. Exit 77
+# (a skip, with the reason) where Slurm cannot run here. Not part of `make test`: about a minute.
+CLUSTER_SHARDS ?= 4
+cluster-check: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target glarecam
+	bash scripts/cluster-check --shards $(CLUSTER_SHARDS) $(BUILD_DIR)/bin
 
 bench: build
 	$(BUILD_DIR)/bin/glarecam-bench --benchmark_counters_tabular=true

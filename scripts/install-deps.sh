@@ -5,11 +5,13 @@
 #   scripts/install-deps.sh          everything: build, test, benchmark, package, fuzz (make deps)
 #   scripts/install-deps.sh --demo   what `make demo` needs: build glarecam and glarecamd (every
 #                                    hardware backend included) and run scripts/demo.sh
+#   scripts/install-deps.sh --cluster  only what `make cluster-check` adds: Slurm and munge
+#                                    (scripts/cluster-check; in neither of the others)
 #   --list                           print the packages, one a line, and install nothing
 set -euo pipefail
 
 usage() {
-  echo "usage: scripts/install-deps.sh [--demo] [--list]" >&2
+  echo "usage: scripts/install-deps.sh [--demo | --cluster] [--list]" >&2
   exit 2
 }
 
@@ -18,9 +20,10 @@ list=false
 for arg in "$@"; do
   case "$arg" in
     --demo) profile=demo ;;
+    --cluster) profile=cluster ;;
     --list) list=true ;;
     -h | --help)
-      sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'
+      sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *)
@@ -73,9 +76,15 @@ DEVELOPER_PACKAGES=(
   clang-19 libclang-rt-19-dev
 )
 
+# A one-node Slurm for `make cluster-check` (scripts/cluster-check, docs/cluster.md): slurmctld,
+# slurmd and the client commands, and munge for their authentication. Only on request.
+CLUSTER_PACKAGES=(slurm-wlm munge)
+
 PACKAGES=("${DEMO_PACKAGES[@]}")
 if [[ $profile == all ]]; then
   PACKAGES+=("${DEVELOPER_PACKAGES[@]}")
+elif [[ $profile == cluster ]]; then
+  PACKAGES=("${CLUSTER_PACKAGES[@]}")
 fi
 
 if $list; then

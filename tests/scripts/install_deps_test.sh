@@ -22,6 +22,14 @@ for pkg in build-essential cmake ninja-build libopencv-dev libceres-dev libcairo
            libsystemd-dev libcpp-httplib-dev libmodbus-dev; do
   grep -qx -- "$pkg" <<<"$demo" || fail "the demo does not install $pkg"
 done
+# The cluster profile: Slurm and munge alone, in neither of the others (make cluster-check only).
+cluster=$(bash "$script" --cluster --list)
+for pkg in slurm-wlm munge; do
+  grep -qx -- "$pkg" <<<"$cluster" || fail "--cluster does not install $pkg"
+  if grep -qx -- "$pkg" <<<"$all"; then fail "the full list installs $pkg, which only --cluster needs"; fi
+done
+[[ $(wc -l <<<"$cluster") -eq 2 ]] || fail "--cluster lists more than Slurm and munge: $cluster"
+bash "$script" --help | grep -q -- "--cluster" || fail "--help does not describe --cluster"
 # No package twice.
 [[ -z $(sort <<<"$all" | uniq -d) ]] || fail "listed twice: $(sort <<<"$all" | uniq -d | tr '\n' ' ')"
 

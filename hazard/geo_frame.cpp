@@ -10,15 +10,6 @@
 namespace glarecam::hazard {
 namespace {
 
-struct ProjContextDeleter {
-  void operator()(PJ_CONTEXT* context) const { proj_context_destroy(context); }
-};
-struct ProjDeleter {
-  void operator()(PJ* transformation) const { proj_destroy(transformation); }
-};
-using ProjContextHandle = std::unique_ptr<PJ_CONTEXT, ProjContextDeleter>;
-using ProjHandle = std::unique_ptr<PJ, ProjDeleter>;
-
 constexpr double kNotAPosition = std::numeric_limits<double>::quiet_NaN();
 
 // PROJ marks a point it cannot convert with HUGE_VAL; we give NaN, which every check refuses.
@@ -29,8 +20,14 @@ double projValueOrNan(double value) { return std::isfinite(value) ? value : kNot
 // One PROJ context (contexts are not shared between threads) and its transformation; the mutex
 // serialises the frame's users.
 struct GeoFrame::Transform {
-  ProjContextHandle context;
-  ProjHandle transformation;
+  struct ContextDeleter {
+    void operator()(PJ_CONTEXT* context) const { proj_context_destroy(context); }
+  };
+  struct TransformationDeleter {
+    void operator()(PJ* transformation) const { proj_destroy(transformation); }
+  };
+  std::unique_ptr<PJ_CONTEXT, ContextDeleter> context;
+  std::unique_ptr<PJ, TransformationDeleter> transformation;
   std::mutex mutex;
 };
 
@@ -49,6 +46,7 @@ Result<std::unique_ptr<GeoFrame::Transform>> GeoFrame::makeTransform(const LonLa
   if (!transform->context) return fail(ErrorCode::kInternal, "PROJ: cannot create a context");
   // The pipeline is a PROJ string of operators only: no database, no grids, no network.
   proj_context_set_enable_network(transform->context.get(), 0);
+  proj_log_level(transform->context.get(), PJ_LOG_NONE);  // its errors go into ours, not stderr
   const std::string pipeline = geoFramePipeline(origin[0], origin[1], origin[2]);
   transform->transformation.reset(proj_create(transform->context.get(), pipeline.c_str()));
   if (!transform->transformation) {
@@ -103,9 +101,9 @@ std::vector<Vec3> GeoFrame::toEnu(std::span<const LonLatH> positions) const {
   if (!transform_ || positions.empty()) return points;
   {
     const std::lock_guard lock(transform_->mutex);
-    proj_trans_generic(transform_->transformation.get(), PJ_FWD, x.data(), sizeof(double),
-                       x.size(), y.data(), sizeof(double), y.size(), z.data(), sizeof(double),
-                       z.size(), nullptr, 0, 0);
+    proj_trans_generic(transform_->transformation.get(), PJ_FWD, x.data(), sizeof(double), x.size(),
+                       y.data(), sizeof(double), y.size(), z.data(), sizeof(double), z.size(),
+                       nullptr, 0, 0);
   }
   for (std::size_t i = 0; i < points.size(); ++i)
     points[i] = {projValueOrNan(x[i]), projValueOrNan(y[i]), projValueOrNan(z[i])};
@@ -114,14 +112,16 @@ std::vector<Vec3> GeoFrame::toEnu(std::span<const LonLatH> positions) const {
 
 std::vector<LonLatH> GeoFrame::toLonLatH(std::span<const Vec3> points_m) const {
   std::vector<double> x, y, z;
-  for (const Vec3& point : points_m) x.push_back(point.x), y.push_back(point.y), z.push_back(point.z);
-  std::vector<LonLatH> positions(points_m.size(), LonLatH{kNotAPosition, kNotAPosition, kNotAPosition});
+  for (const Vec3& point : points_m)
+    x.push_back(point.x), y.push_back(point.y), z.push_back(point.z);
+  std::vector<LonLatH> positions(points_m.size(),
+                                 LonLatH{kNotAPosition, kNotAPosition, kNotAPosition});
   if (!transform_ || points_m.empty()) return positions;
   {
     const std::lock_guard lock(transform_->mutex);
-    proj_trans_generic(transform_->transformation.get(), PJ_INV, x.data(), sizeof(double),
-                       x.size(), y.data(), sizeof(double), y.size(), z.data(), sizeof(double),
-                       z.size(), nullptr, 0, 0);
+    proj_trans_generic(transform_->transformation.get(), PJ_INV, x.data(), sizeof(double), x.size(),
+                       y.data(), sizeof(double), y.size(), z.data(), sizeof(double), z.size(),
+                       nullptr, 0, 0);
   }
   for (std::size_t i = 0; i < positions.size(); ++i)
     positions[i] = {projValueOrNan(x[i]), projValueOrNan(y[i]), projValueOrNan(z[i])};

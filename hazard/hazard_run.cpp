@@ -187,7 +187,8 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
 
 ToLonLat sceneToLonLat(const Scene& scene) {
   std::shared_ptr<const GeoFrame> frame;
-  if (false) {  // MERGE-GEO: scene.geo
+  if (scene.geo) {
+    frame = std::make_shared<GeoFrame>(*scene.geo);
   } else {
     Result<GeoFrame> made =
         GeoFrame::make(scene.site.location.longitude_deg, scene.site.location.latitude_deg,

@@ -1,11 +1,13 @@
 #include "hazard/scene.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <set>
 
 #include "core/angles.h"
 #include "core/json.h"
+#include "hazard/geo_scene.h"
 #include "hazard/obstruction.h"
 
 namespace glarecam::hazard {
@@ -15,6 +17,10 @@ namespace {
 constexpr double kSameVertexM = 1e-6;
 // Level within this: the up-slope direction falls back to north (hazard.md step 4).
 constexpr double kLevelTolerance = 1e-9;
+// An array "faces downward" (listed the wrong way round) when its normal points more than 1°
+// below the horizontal: a facade drawn vertical on a map leans by the Earth's curvature in the
+// site's frame (0.45° at 50 km, geo_frame.h) and by rounding, and is not warned about.
+const double kFacesDownwardNormalZ = -std::sin(radians(1.0));
 
 using Point2 = std::array<double, 2>;
 
@@ -191,7 +197,7 @@ Status readArrays(const JsonReader& document, const std::filesystem::path& base,
       const std::filesystem::path path(*profile);
       array.profile = path.is_absolute() ? path : base / path;
     }
-    if (array.normal.z < 0) {
+    if (array.normal.z < kFacesDownwardNormalZ) {
       scene.warnings.push_back(json.file() + ": array \"" + array.name +
                                "\" faces downward (its vertices may run clockwise seen from "
                                "its front)");
@@ -659,10 +665,18 @@ Result<Scene> parseScene(const nlohmann::json& document, const std::string& file
 }
 
 Result<Scene> readScene(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::ranges::transform(extension, extension.begin(),
+                         [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".kml") return readKmlScene(path);
   nlohmann::json document;
   GLARECAM_ASSIGN(document, readJsonFile(path.string()));
   Scene scene;
-  GLARECAM_ASSIGN(scene, parseScene(document, path.string(), path.parent_path()));
+  if (isGeoJson(document)) {
+    GLARECAM_ASSIGN(scene, parseGeoJsonScene(document, path.string(), path.parent_path()));
+  } else {
+    GLARECAM_ASSIGN(scene, parseScene(document, path.string(), path.parent_path()));
+  }
   scene.path = path;
   return scene;
 }

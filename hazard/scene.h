@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "hazard/geo_frame.h"
 #include "hazard/vec3.h"
 #include "sun/solar_position.h"
 
@@ -102,6 +103,8 @@ struct Scene {
   std::vector<Receptor> receptors;
   std::vector<Obstruction> obstructions;
   int version = 2;  // of the scene's schema
+  // A geographic scene's frame (geo_scene.h): where the local metres lie on the Earth.
+  std::optional<GeoFrame> geo;
   // e.g. an array facing downward, an observer that never sees an array's front
   std::vector<std::string> warnings;
 
@@ -114,7 +117,8 @@ struct Scene {
 };
 
 // Reads and validates a scene file. An array's relative `profile` path is taken relative to the
-// scene file's directory.
+// scene file's directory. A `.kml` file, or a JSON document that is a GeoJSON FeatureCollection,
+// is a geographic scene (geo_scene.h).
 Result<Scene> readScene(const std::filesystem::path& path);
 // The same from a parsed document; `file` names it in messages, `base` resolves profile paths.
 Result<Scene> parseScene(const nlohmann::json& document, const std::string& file,

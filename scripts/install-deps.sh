@@ -43,7 +43,12 @@ DEMO_PACKAGES=(
   # vision and maths (libopencv-dev carries OpenCV's CMake package config)
   libopencv-dev libeigen3-dev libceres-dev
   # the glare hazard's polygon clipping (obstructions, fields of view)
-  libpolyclipping-dev libboost-dev
+  libpolyclipping-dev
+  # screening a district: Boost.Geometry's R-tree (header-only)
+  libboost-dev
+  # geographic scenes: PROJ (geodetic to local east-north-up; proj-bin's cct checks it in the
+  # tests) and pugixml (KML)
+  libproj-dev proj-bin libpugixml-dev
   # pictures and data sheets
   libcairo2-dev fonts-dejavu-core
   # rig hardware: cameras, GPIO, I2C, systemd (the backends are built when their package is

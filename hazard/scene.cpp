@@ -21,6 +21,12 @@ constexpr double kLevelTolerance = 1e-9;
 // below the horizontal: a facade drawn vertical on a map leans by the Earth's curvature in the
 // site's frame (0.45° at 50 km, geo_frame.h) and by rounding, and is not warned about.
 const double kFacesDownwardNormalZ = -std::sin(radians(1.0));
+// A route's end within this of its last sample adds no receptor, an area this much larger than
+// whole cells no row or column: coordinates converted from a map (geo_scene.h) or rounded in a
+// file are exact to about a millimetre, and must not change the receptors.
+constexpr double kReceptorSnapM = 1e-3;
+// An area within this of level lays its receptor grid north–south (readAreas).
+constexpr double kLevelAreaTiltDeg = 1;
 
 using Point2 = std::array<double, 2>;
 
@@ -350,7 +356,7 @@ Status readRoutes(const JsonReader& document, Scene& scene, std::set<std::string
     for (std::size_t p = 1; p < points.size(); ++p) length_m += norm(points[p] - points[p - 1]);
     // Samples at 0, spacing, 2·spacing, … along the line, and its end.
     const double whole = std::floor(length_m / spacing);
-    const bool end_apart = length_m - whole * spacing > kSameVertexM;
+    const bool end_apart = length_m - whole * spacing > kReceptorSnapM;
     GLARECAM_CHECK(checkPointCount(
         json, static_cast<std::size_t>(std::min(whole, 1e12)) + 1 + (end_apart ? 1 : 0)));
     const auto count = static_cast<std::size_t>(whole) + 1;
@@ -407,14 +413,25 @@ Status readAreas(const JsonReader& document, Scene& scene, std::set<std::string>
     double from_h = 0, to_h = 24;
     GLARECAM_CHECK(readHours(json, from_h, to_h));
     // Cell centres of a grid in the polygon's own plane, aligned with its bounding box there;
-    // a polygon smaller than one cell gets its centroid.
+    // a polygon smaller than one cell gets its centroid. The grid's rows run up its slope, or
+    // north on a polygon within kLevelAreaTiltDeg of level: a terrace drawn on a map is level
+    // but for rounding and the Earth's curvature, whose micro-tilt must not turn its grid.
+    Vec3 axis_u = polygon.axis_u, axis_w = polygon.axis_w;
+    if (std::abs(polygon.normal.z) >= std::cos(radians(kLevelAreaTiltDeg))) {
+      const Vec3 north{0, 1, 0};
+      axis_w = normalised(north - dot(north, polygon.normal) * polygon.normal);
+      axis_u = normalised(cross(axis_w, polygon.normal));
+    }
     double u_min = 0, u_max = 0, w_min = 0, w_max = 0;
-    for (const auto& [u, w] : polygon.outline) {
+    for (const Vec3& vertex : polygon.vertices_m) {
+      const double u = dot(vertex - polygon.centroid_m, axis_u);
+      const double w = dot(vertex - polygon.centroid_m, axis_w);
       u_min = std::min(u_min, u), u_max = std::max(u_max, u);
       w_min = std::min(w_min, w), w_max = std::max(w_max, w);
     }
-    const double columns = std::max(1.0, std::ceil((u_max - u_min) / spacing - 1e-9));
-    const double rows = std::max(1.0, std::ceil((w_max - w_min) / spacing - 1e-9));
+    const double columns =
+        std::max(1.0, std::ceil((u_max - u_min - kReceptorSnapM) / spacing - 1e-9));
+    const double rows = std::max(1.0, std::ceil((w_max - w_min - kReceptorSnapM) / spacing - 1e-9));
     GLARECAM_CHECK(checkPointCount(json, static_cast<std::size_t>(std::min(columns * rows, 1e12))));
     const double u0 = (u_min + u_max) / 2 - (columns - 1) * spacing / 2;
     const double w0 = (w_min + w_max) / 2 - (rows - 1) * spacing / 2;
@@ -429,8 +446,8 @@ Status readAreas(const JsonReader& document, Scene& scene, std::set<std::string>
     };
     for (int r = 0; r < static_cast<int>(rows); ++r) {
       for (int c = 0; c < static_cast<int>(columns); ++c) {
-        const Vec3 ground = polygon.centroid_m + (u0 + c * spacing) * polygon.axis_u +
-                            (w0 + r * spacing) * polygon.axis_w;
+        const Vec3 ground =
+            polygon.centroid_m + (u0 + c * spacing) * axis_u + (w0 + r * spacing) * axis_w;
         if (containsPlanePoint(polygon, ground)) add(ground);
       }
     }

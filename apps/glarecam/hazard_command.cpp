@@ -98,7 +98,8 @@ void addHazardCommand(CLI::App& app, Action& action) {
       "(docs/hazard.md)");
   sub->add_option("SCENE", args->scene,
                   "scene file, glarecam.hazard-scene/1 or /2 (docs/hazard.md): arrays, observers, "
-                  "routes, areas, obstructions");
+                  "routes, areas, obstructions; or drawn on a map: GeoJSON (.geojson, a "
+                  "FeatureCollection with a \"glarecam\" member) or Google Earth KML (.kml)");
   sub->add_option("--profile", args->profile,
                   "glare-profile.json (glarecam datasheet) for every array without its own "
                   "\"profile\" in the scene");

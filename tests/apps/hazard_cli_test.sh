@@ -25,6 +25,25 @@ expect "help explains --sun" grep -q -- "--sun" "$WORK/out"
 expect "help says circle is this module's" grep -q "not SGHAT's default" "$WORK/out"
 expect "help types --report" grep -qE -- "--report FILE.pdf" "$WORK/out"
 
+expect "help names geographic scenes" grep -q "GeoJSON (.geojson" "$WORK/out"
+
+# A geographic scene: the v2 example drawn on a map gives the v2 example's table; a swapped
+# lon/lat exits 2 with one line naming the feature.
+check "v2 example" 0 "$GLARECAM" hazard "$SOURCE_DIR/docs/examples/hazard-scene-v2.json" \
+  --profile "$PROFILE" --year 2027 --step-s 600 --out "$WORK/enu" --no-progress --sun reference
+grep -E "ellipse|circle" "$WORK/out" >"$WORK/enu-table.txt"
+check "geojson example" 0 "$GLARECAM" hazard "$SOURCE_DIR/docs/examples/hazard-scene.geojson" \
+  --profile "$PROFILE" --year 2027 --step-s 600 --out "$WORK/geo" --no-progress --sun reference
+grep -E "ellipse|circle" "$WORK/out" >"$WORK/geo-table.txt"
+expect "geojson: the v2 example's table" cmp -s "$WORK/enu-table.txt" "$WORK/geo-table.txt"
+python3 -c 'import json,sys
+d=json.load(open(sys.argv[1])); c=d["features"][1]["geometry"]["coordinates"]; c[0],c[1]=c[1],c[0]
+json.dump(d,open(sys.argv[2],"w"))' "$SOURCE_DIR/docs/examples/hazard-scene.geojson" "$WORK/swapped.geojson"
+check "geojson: lon/lat swapped" 2 "$GLARECAM" hazard "$WORK/swapped.geojson" --profile "$PROFILE" \
+  --year 2027 --out "$WORK/swapped" --no-progress
+expect "swapped: one line naming the feature" one_line_naming 'swapped.geojson: features[1] ("window-3"): geometry vertex 0'
+expect "swapped: says lon/lat swapped" grep -qF "lon/lat swapped?" "$WORK/err"
+
 # 10-minute steps keep the year short; the physics is the unit tests'.
 check "a year" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --step-s 600 \
   --out "$WORK/h" --no-progress

@@ -469,5 +469,28 @@ TEST(GeoScene, ReadSceneDispatchesOnTheFilesKind) {
   EXPECT_EQ(kml->path, dir / "plant.KML");
 }
 
+TEST(GeoScene, TheDocsGeoJsonExampleHasTheEnuExamplesReceptors) {
+  // The same scene drawn on a map, its coordinates rounded to 1e-9°: a terrace level but for the
+  // Earth's curvature keeps its north-aligned grid, and neither the rounded terrace nor the
+  // rounded street gains a receptor.
+  const std::filesystem::path examples =
+      std::filesystem::path(GLARECAM_TEST_DATA_DIR) / ".." / ".." / "docs" / "examples";
+  const Result<Scene> enu = readScene(examples / "hazard-scene-v2.json");
+  const Result<Scene> geo = readScene(examples / "hazard-scene.geojson");
+  ASSERT_TRUE(enu) << enu.error().message;
+  ASSERT_TRUE(geo) << geo.error().message;
+  ASSERT_EQ(geo->observers.size(), enu->observers.size());
+  // The geographic frame's origin is the roof's first vertex, (-6, 0, 9) in the ENU example's.
+  const Vec3 shift{-6, 0, 9};
+  for (std::size_t o = 0; o < enu->observers.size(); ++o) {
+    EXPECT_EQ(geo->observers[o].name, enu->observers[o].name);
+    // Within 2 mm: the curvature (0.1 mm at 60 m) and the rounding to 1e-9° and 0.1 mm.
+    EXPECT_LT(norm(geo->observers[o].position_m + shift - enu->observers[o].position_m), 2e-3)
+        << enu->observers[o].name;
+  }
+  EXPECT_EQ(geo->obstructions.size(), enu->obstructions.size());
+  EXPECT_TRUE(geo->warnings.empty()) << ::testing::PrintToString(geo->warnings);
+}
+
 }  // namespace
 }  // namespace glarecam::hazard

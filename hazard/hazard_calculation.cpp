@@ -57,6 +57,7 @@ struct ArrayStep {
   std::array<ModelRegion, kMaxModels> regions{};
   // With obstructions: the part of the array the sun lights, found when a pair first needs it.
   bool lit_resolved = false;
+  bool shaded = false;  // some shadow falls on the array (else lit_part is all of it, unused)
   PlaneRegion lit_part;
 };
 
@@ -343,8 +344,11 @@ std::optional<double> regionMeets(const Context& context, std::size_t a, ArraySt
       if (caster.max_sin_elevation < step.sun.z) break;
       shading.push_back(caster.obstruction);
     }
-    step.lit_part = subtract(arrayRegion(array), sunShadowRings(array, shading, step.sun));
+    const std::vector<PlaneRing> shadows = sunShadowRings(array, shading, step.sun);
+    step.shaded = !shadows.empty();
+    if (step.shaded) step.lit_part = subtract(arrayRegion(array), shadows);
   }
+  if (!step.shaded) return q;  // the whole array is lit: the part seen is the part that glares
   const PolygonView lit_view =
       viewFrom(array, pair.view.observer_m, intersect(pair.view.region, step.lit_part));
   const double lit_q =

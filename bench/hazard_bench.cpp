@@ -11,12 +11,15 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 
 #include "bench/benchmarks.h"
 #include "hazard/hazard_calculation.h"
 #include "hazard/obstruction.h"
 #include "hazard/profile_table.h"
 #include "hazard/scene.h"
+#include "hazard/screening.h"
 #include "sun/solar_track.h"
 
 namespace glarecam::bench {
@@ -160,6 +163,96 @@ void sunYear(benchmark::State& state) {
   state.counters["steps"] = 365.0 * 1440;
 }
 
+// hazard/pairs/*: 20 pairs of one roof, all glaring (windows north of it, as benchScene's) or
+// none ever (windows along the roof's normal, where the sun, which never stands 60° high in the
+// north at 47° N, would have to be: the day-level bound rejects every day), and none at all (the
+// year's sun alone, the floor both pay). Steps are not kept, as in a screening.
+enum class BenchPairs { kNone, kNever, kGlaring };
+constexpr int kBenchPairs = 20;
+
+void runPairs(benchmark::State& state, BenchPairs pairs) {
+  const hazard::ProfileTable profile = benchProfile();
+  hazard::Scene scene = benchScene(1, 0);
+  const hazard::ArrayPolygon& roof = scene.arrays[0];
+  for (int o = 0; pairs != BenchPairs::kNone && o < kBenchPairs; ++o) {
+    const hazard::Vec3 position = pairs == BenchPairs::kGlaring
+                                      ? hazard::Vec3{-9.5 + o, 30, 12}
+                                      : roof.centroid_m + (15.0 + o) * roof.normal;
+    scene.observers.push_back({.name = "window-" + std::to_string(o), .position_m = position});
+  }
+  const std::vector<const hazard::ProfileTable*> profiles(scene.arrays.size(), &profile);
+  hazard::HazardOptions options;
+  options.year = kYear;
+  options.threads = 1;
+  options.keep_steps = false;
+  double minutes = 0;
+  for (auto _ : state) {
+    const Result<hazard::HazardResult> result = hazard::computeHazard(scene, profiles, options);
+    if (!result) {
+      state.SkipWithError(result.error().message.c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(result->observers.data());
+    minutes = 0;
+    for (const hazard::ObserverHazard& observer : result->observers)
+      minutes += observer.models[0].minutes_per_year;
+  }
+  state.counters["pairs"] = pairs == BenchPairs::kNone ? 0 : kBenchPairs;
+  state.counters["min_per_year"] = minutes;  // all windows, ellipse: > 0 only when glaring
+}
+
+// hazard/city/R_roofs: a scripts/make-city district of R roofs and 4 R receptors screened over a
+// year at 60-s steps on every core, 100 m around each receptor (`glarecam hazard --screen`'s
+// calculation, without reading and writing files). Three sizes: the time per candidate pair
+// should not grow with the district.
+void runCity(benchmark::State& state, int roofs) {
+  const std::filesystem::path scene_path =
+      std::filesystem::temp_directory_path() /
+      ("glarecam-bench-city-" + std::to_string(roofs) + ".geojson");
+  const std::string command = "python3 " GLARECAM_SOURCE_DIR "/scripts/make-city --roofs " +
+                              std::to_string(roofs) + " --receptors " + std::to_string(4 * roofs) +
+                              " --out " + scene_path.string() + " >/dev/null 2>&1";
+  if (std::system(command.c_str()) != 0) {
+    state.SkipWithError("scripts/make-city failed (python3 missing?)");
+    return;
+  }
+  const Result<hazard::Scene> scene = hazard::readScene(scene_path);
+  std::filesystem::remove(scene_path);
+  if (!scene) {
+    state.SkipWithError(scene.error().message.c_str());
+    return;
+  }
+  const hazard::ProfileTable profile = benchProfile();
+  const std::vector<const hazard::ProfileTable*> profiles(scene->arrays.size(), &profile);
+  hazard::ScreenOptions options;
+  options.hazard.year = kYear;
+  options.hazard.max_distance_m = hazard::kDefaultMaxDistanceM;
+  std::size_t candidates = 0, glaring = 0;
+  std::int64_t pair_days = 0;
+  for (auto _ : state) {
+    const Result<hazard::ScreenResult> result = hazard::screenHazard(*scene, profiles, options);
+    if (!result) {
+      state.SkipWithError(result.error().message.c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(result->points.data());
+    candidates = result->counts.candidate_pairs;
+    pair_days = 0;
+    glaring = 0;
+    for (const hazard::ScreenedPoint& point : result->points) {
+      pair_days += point.pair_days;
+      glaring += point.models[0].arrays.size();
+    }
+  }
+  state.counters["receptor_points"] = static_cast<double>(scene->observers.size());
+  state.counters["candidate_pairs"] = static_cast<double>(candidates);
+  state.counters["pair_days"] = static_cast<double>(pair_days);
+  state.counters["glaring_pairs"] = static_cast<double>(glaring);
+  state.counters["s_per_1000_pairs"] = benchmark::Counter(
+      static_cast<double>(candidates) / 1000.0,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 
 std::vector<std::string> registerHazardBenchmarks() {
@@ -180,7 +273,26 @@ std::vector<std::string> registerHazardBenchmarks() {
       [](benchmark::State& s) { runYear(s, 1, 1, BenchSun::kClearSkyObstructed); })
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
-  return {kSunYearSpa, kHazardYear, kHazardScene, kHazardYearClearSky, kHazardYearObstructions};
+  const std::pair<const char*, BenchPairs> kPairs[] = {{kHazardPairsNone, BenchPairs::kNone},
+                                                       {kHazardPairsNever, BenchPairs::kNever},
+                                                       {kHazardPairsGlaring, BenchPairs::kGlaring}};
+  std::vector<std::string> names = {kSunYearSpa, kHazardYear, kHazardScene, kHazardYearClearSky,
+                                    kHazardYearObstructions};
+  for (const auto& [name, pairs] : kPairs) {
+    benchmark::RegisterBenchmark(name, [pairs](benchmark::State& s) { runPairs(s, pairs); })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    names.emplace_back(name);
+  }
+  for (const int roofs : kHazardCityRoofs) {
+    const std::string name = std::string(kHazardCity) + "/" + std::to_string(roofs) + "_roofs";
+    benchmark::RegisterBenchmark(name.c_str(), [roofs](benchmark::State& s) { runCity(s, roofs); })
+        ->Unit(benchmark::kSecond)
+        ->UseRealTime()
+        ->Iterations(1);
+    names.push_back(name);
+  }
+  return names;
 }
 
 }  // namespace glarecam::bench

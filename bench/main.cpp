@@ -68,6 +68,8 @@ constexpr double kHazardScenePairs = 10 * 20;  // hazard/scene's arrays × obser
 // The sun's own brightness (the contour ladder at every step) and 5 obstructions (issue 39).
 constexpr double kHazardClearSkyTargetRatio = 1.3;
 constexpr double kHazardObstructionsTargetRatio = 2.0;
+// Issue 40: a pair that never glares costs at most a fiftieth of one that glares.
+constexpr double kNeverGlaringTargetRatio = 1.0 / 50;
 // Room after a name for an aggregate's suffix ("_median", "_stddev") with --benchmark_repetitions.
 constexpr std::size_t kAggregateSuffixWidth = 7;
 
@@ -164,6 +166,21 @@ void printPairRatio(const RecordingReporter& reporter) {
                 "ratio (%s \u2212 %s) \u00f7 %.0f extra pairs \u00f7 %s = %.3fx (target <= %gx)\n",
                 kHazardScene, kHazardYear, kHazardScenePairs - 1, kSunYearSpa,
                 (*scene - *year) / (kHazardScenePairs - 1) / *sun, kHazardPairTargetRatio);
+  reporter.ratioStream() << line << std::flush;
+}
+
+// Pairs that never glare against pairs that glare, each less the year's sun both pay
+// (hazard/pairs/none): target <= 1/50.
+void printNeverGlaringRatio(const RecordingReporter& reporter) {
+  const std::optional<double> none = reporter.realTimeSeconds(kHazardPairsNone);
+  const std::optional<double> never = reporter.realTimeSeconds(kHazardPairsNever);
+  const std::optional<double> glaring = reporter.realTimeSeconds(kHazardPairsGlaring);
+  if (!none || !never || !glaring || !(*glaring > *none)) return;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "ratio (%s \u2212 %s) \u00f7 (%s \u2212 %s) = %.4fx (target <= %gx)\n",
+                kHazardPairsNever, kHazardPairsNone, kHazardPairsGlaring, kHazardPairsNone,
+                std::max(0.0, *never - *none) / (*glaring - *none), kNeverGlaringTargetRatio);
   reporter.ratioStream() << line << std::flush;
 }
 
@@ -281,6 +298,13 @@ int main(int argc, char** argv) {
   printRatio(reporter, kSunGlarecamSpa, kSunLibnova, 2, Target::kNone, 0);
   printRatio(reporter, kHazardYear, kSunYearSpa, 2, Target::kAtMost, kHazardTargetRatio);
   printPairRatio(reporter);
+  printNeverGlaringRatio(reporter);
+  // The district's time per candidate pair at three sizes: linear when these stay near 1.
+  for (std::size_t i = 1; i < std::size(kHazardCityRoofs); ++i)
+    printRatio(reporter,
+               std::string(kHazardCity) + "/" + std::to_string(kHazardCityRoofs[i]) + "_roofs",
+               std::string(kHazardCity) + "/" + std::to_string(kHazardCityRoofs[0]) + "_roofs", 2,
+               Target::kNone, 0);
   printRatio(reporter, kHazardYearClearSky, kHazardYear, 2, Target::kAtMost,
              kHazardClearSkyTargetRatio);
   printRatio(reporter, kHazardYearObstructions, kHazardYear, 2, Target::kAtMost,

@@ -36,6 +36,7 @@ struct Obstruction {
   std::vector<int> outward;
   Vec3 centre_m;
   double radius_m = 0;  // every face lies within this of centre_m
+  double top_m = 0;     // the highest vertex's z
 };
 
 // An extruded footprint: `footprint_m` (x, y; a simple polygon, as arrays are checked) from

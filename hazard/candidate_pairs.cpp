@@ -5,6 +5,7 @@
 #include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <utility>
 
 #include "core/angles.h"
@@ -53,43 +54,49 @@ double distanceToArrayM(const ArrayPolygon& array, Vec3 point_m) {
   return nearest_m;
 }
 
-std::vector<std::vector<std::size_t>> candidateArrays(const Scene& scene, double max_distance_m,
-                                                      CandidateCounts& counts) {
-  std::vector<std::vector<std::size_t>> candidates(scene.observers.size());
-  const bool unlimited = !std::isfinite(max_distance_m);
-  std::vector<RtreeEntry> entries;
-  if (!unlimited) {
-    entries.reserve(scene.arrays.size());
-    for (std::size_t a = 0; a < scene.arrays.size(); ++a)
-      entries.emplace_back(arrayBox(scene.arrays[a]), a);
+std::vector<std::vector<std::size_t>> arraysWithin(const Scene& scene, double max_distance_m) {
+  std::vector<std::vector<std::size_t>> within(scene.observers.size());
+  if (!std::isfinite(max_distance_m)) {
+    for (std::vector<std::size_t>& row : within) {
+      row.resize(scene.arrays.size());
+      std::iota(row.begin(), row.end(), std::size_t{0});
+    }
+    return within;
   }
+  std::vector<RtreeEntry> entries;
+  entries.reserve(scene.arrays.size());
+  for (std::size_t a = 0; a < scene.arrays.size(); ++a)
+    entries.emplace_back(arrayBox(scene.arrays[a]), a);
   // Bulk loading (the packing constructor) builds a better tree than inserting one by one.
   const bgi::rtree<RtreeEntry, bgi::rstar<kRtreeNodeEntries>> tree(entries.begin(), entries.end());
   std::vector<RtreeEntry> found;
   for (std::size_t o = 0; o < scene.observers.size(); ++o) {
     const Vec3 p = scene.observers[o].position_m;
-    std::vector<std::size_t> within;
-    if (unlimited) {
-      for (std::size_t a = 0; a < scene.arrays.size(); ++a) within.push_back(a);
-    } else {
-      found.clear();
-      const RtreeBox query(
-          RtreePoint(p.x - max_distance_m, p.y - max_distance_m, p.z - max_distance_m),
-          RtreePoint(p.x + max_distance_m, p.y + max_distance_m, p.z + max_distance_m));
-      tree.query(bgi::intersects(query), std::back_inserter(found));
-      for (const RtreeEntry& entry : found) {
-        if (distanceToArrayM(scene.arrays[entry.second], p) <= max_distance_m)
-          within.push_back(entry.second);
-      }
-      std::sort(within.begin(), within.end());
+    found.clear();
+    const RtreeBox query(
+        RtreePoint(p.x - max_distance_m, p.y - max_distance_m, p.z - max_distance_m),
+        RtreePoint(p.x + max_distance_m, p.y + max_distance_m, p.z + max_distance_m));
+    tree.query(bgi::intersects(query), std::back_inserter(found));
+    for (const RtreeEntry& entry : found) {
+      if (distanceToArrayM(scene.arrays[entry.second], p) <= max_distance_m)
+        within[o].push_back(entry.second);
     }
-    counts.within_distance += within.size();
-    for (const std::size_t a : within) {
-      if (seesFront(scene.arrays[a], p))
-        candidates[o].push_back(a);
-      else
-        ++counts.behind;
-    }
+    std::sort(within[o].begin(), within[o].end());
+  }
+  return within;
+}
+
+std::vector<std::vector<std::size_t>> candidateArrays(const Scene& scene, double max_distance_m,
+                                                      CandidateCounts& counts) {
+  std::vector<std::vector<std::size_t>> candidates = arraysWithin(scene, max_distance_m);
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    const Vec3 p = scene.observers[o].position_m;
+    std::vector<std::size_t>& row = candidates[o];
+    counts.within_distance += row.size();
+    const auto behind = std::remove_if(
+        row.begin(), row.end(), [&](std::size_t a) { return !seesFront(scene.arrays[a], p); });
+    counts.behind += static_cast<std::size_t>(row.end() - behind);
+    row.erase(behind, row.end());
   }
   return candidates;
 }

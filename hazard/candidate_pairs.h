@@ -23,6 +23,10 @@ inline constexpr double kUnlimitedDistanceM = std::numeric_limits<double>::infin
 double distanceToArrayM(const ArrayPolygon& array, Vec3 point_m);
 
 // Per observer of the scene, the indices of the arrays whose polygon lies within max_distance_m
+// (kUnlimitedDistanceM: all), in array order: O(observers · log arrays + pairs found).
+std::vector<std::vector<std::size_t>> arraysWithin(const Scene& scene, double max_distance_m);
+
+// Per observer of the scene, the indices of the arrays whose polygon lies within max_distance_m
 // (kUnlimitedDistanceM: all) and whose front the observer sees (seesFront), in array order.
 std::vector<std::vector<std::size_t>> candidateArrays(const Scene& scene, double max_distance_m);
 

@@ -460,6 +460,13 @@ std::string receptorCounts(std::size_t observers, std::size_t routes, std::size_
   return fmt::format("{}: {} point{}", joined(kinds, ", "), points, points == 1 ? "" : "s");
 }
 
+// "receptors within 100 m of an array (Germany's LAI looks within 100 m)".
+std::string distanceText(const HazardOptions& options) {
+  if (!std::isfinite(options.max_distance_m)) return "every receptor and array, at any distance";
+  return fmt::format("receptors within {} m of an array (Germany's LAI looks within {} m)",
+                     formatPlain(options.max_distance_m), formatPlain(kDefaultMaxDistanceM));
+}
+
 std::vector<Fact> inputFacts(const HazardReport& report) {
   const Scene& scene = *report.scene;
   const HazardOptions& options = *report.options;
@@ -494,6 +501,7 @@ std::vector<Fact> inputFacts(const HazardReport& report) {
       {"year", days},
       {"time step", fmt::format("{} s, each sampled at its middle", result.step_s)},
       {"receptors", receptorCounts(observers, routes, areas, scene.observers.size())},
+      {"distance", distanceText(options)},
       {"obstructions", obstructions.empty() ? "none" : joined(obstructions, ", ")},
       {"models", joined(models, ", ")},
       {"criteria", joined(criteria, "; ")},

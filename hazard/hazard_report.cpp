@@ -13,6 +13,7 @@
 #include "core/csv.h"
 #include "core/json.h"
 #include "core/version.h"
+#include "hazard/hazard_geojson.h"
 #include "hazard/obstruction.h"
 #include "pipeline/sweep_table.h"
 
@@ -354,6 +355,7 @@ json hazardJson(const HazardReport& report) {
               {"pressure_hpa", location.pressure_hpa},
               {"temperature_c", location.temperature_c},
               {"utc_offset_h", scene.site.utc_offset_h}}},
+            {"frame", sceneFrameJson(scene)},
             {"local_time",
              "UTC" + offsetText(scene.site.utc_offset_h) + " (standard time, no daylight saving)"},
             {"daylight_saving", daylightSavingName(report.daylight_saving)},
@@ -362,6 +364,7 @@ json hazardJson(const HazardReport& report) {
             {"year", result.year},
             {"days", result.days},
             {"step_s", result.step_s},
+            {"max_distance_m", maxDistanceJson(options)},
             {"models", models},
             {"criteria", criteria},
             {"scene_schema", scene.version},
@@ -603,6 +606,14 @@ Status writeHazardOutputs(const HazardReport& report, const std::filesystem::pat
                                          directory / ("ocular-" + stem + ".svg")));
   }
   GLARECAM_CHECK(writeFileAtomic(directory / kEventsCsv, eventsCsv(report)));
+  const std::vector<ScreenedPoint> points = screenedPoints(*report.result);
+  json geojson;
+  GLARECAM_ASSIGN(geojson, hazardGeoJson({.scene = report.scene,
+                                          .options = report.options,
+                                          .points = &points,
+                                          .to_lon_lat = sceneToLonLat(*report.scene),
+                                          .results = kHazardJson}));
+  GLARECAM_CHECK(writeFileAtomic(directory / kHazardGeoJson, geojson.dump() + "\n"));
   GLARECAM_CHECK(writeFileAtomic(directory / kHazardJson, jsonText(hazardJson(report))));
   return {};
 }

@@ -1,5 +1,6 @@
 // What `glarecam hazard` writes (docs/hazard.md, "Outputs"): hazard.json (glarecam.hazard/1),
-// events.csv, one picture per observer (PNG and SVG, hazard_chart.h), and the short table printed
+// events.csv, hazard.geojson (the map, hazard_geojson.h: the screening's schema), one picture per
+// observer (PNG and SVG, hazard_chart.h), and the short table printed
 // on stdout; the PDF report (hazard_pdf.h) is drawn from the same HazardReport. Times are local
 // standard time, "YYYY-MM-DDTHH:MM+HH:MM".
 #pragma once

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -13,7 +12,6 @@
 #include "core/sha256.h"
 #include "core/text_file.h"
 #include "core/time.h"
-#include "hazard/geo_frame.h"
 #include "hazard/hazard_pdf.h"
 #include "hazard/hazard_report.h"
 #include "hazard/profile_table.h"
@@ -183,25 +181,6 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
   return HazardRunSummary{.document = hazardJson(report),
                           .table = summaryText(report),
                           .warnings = reportWarnings(report)};
-}
-
-ToLonLat sceneToLonLat(const Scene& scene) {
-  std::shared_ptr<const GeoFrame> frame;
-  if (scene.geo) {
-    frame = std::make_shared<GeoFrame>(*scene.geo);
-  } else {
-    Result<GeoFrame> made =
-        GeoFrame::make(scene.site.location.longitude_deg, scene.site.location.latitude_deg,
-                       scene.site.location.altitude_m);
-    if (made) frame = std::make_shared<GeoFrame>(std::move(*made));
-  }
-  if (!frame) {
-    return [](Vec3) {
-      constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-      return std::array<double, 3>{kNaN, kNaN, kNaN};
-    };
-  }
-  return [frame](Vec3 point_m) { return frame->toLonLatH(point_m); };
 }
 
 Result<HazardRunSummary> runHazardMerge(const HazardMergeOptions& options) {

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "hazard/civil_time.h"
 #include "hazard/hazard_calculation.h"
+#include "hazard/hazard_geojson.h"
 #include "hazard/screening.h"
 
 namespace glarecam::hazard {
@@ -60,9 +61,5 @@ struct HazardMergeOptions {
   Status validate() const;
 };
 Result<HazardRunSummary> runHazardMerge(const HazardMergeOptions& options);
-
-// [longitude, latitude, height] of a point of the scene: through the scene's geographic frame,
-// or for a scene in metres around its site, the frame at the site (hazard.geojson).
-ToLonLat sceneToLonLat(const Scene& scene);
 
 }  // namespace glarecam::hazard

@@ -1,13 +1,18 @@
 #include "hazard/scene.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "core/angles.h"
 #include "core/json.h"
+#include "hazard/candidate_pairs.h"
 #include "hazard/geo_scene.h"
+#include "hazard/hazard_calculation.h"
 #include "hazard/obstruction.h"
 
 namespace glarecam::hazard {
@@ -511,27 +516,95 @@ Status readObstructions(const JsonReader& document, Scene& scene) {
 }
 
 // A receptor behind an array's plane, or on it, never sees its front: the array can add no
-// minute there. Inside the building, on the roof, or a facade listed the wrong way round. A
-// route or area is warned about when none of its points sees it.
+// minute there. Inside the building, on the roof, or a facade listed the wrong way round; in a
+// district also the ordinary case of a window facing away from a roof. Only the pairs within
+// kHiddenFrontDistanceM count (found through an R-tree: never observers × arrays), and a
+// route's or area's pair only when none of its points there sees the front. A handful of pairs
+// is a small scene's drawing mistake: a warning each. More is a district: one line counting them
+// with examples, and one naming the arrays that every receptor near them sees from behind, the
+// ones whose vertices are most likely listed the wrong way round.
+constexpr double kHiddenFrontDistanceM = kDefaultMaxDistanceM;
+constexpr std::size_t kHiddenFrontPairsListed = 10, kHiddenFrontExamples = 3,
+                      kBackOnlyArraysNamed = 5;
+
+std::string receptorWho(const Receptor& receptor, const char* observer_verb,
+                        const char* receptor_verb) {
+  if (receptor.kind == ReceptorKind::kObserver)
+    return "observer \"" + receptor.name + "\" (observers[" + std::to_string(receptor.first) +
+           "])" + observer_verb;
+  return std::string(receptorKindName(receptor.kind)) + " \"" + receptor.name + "\"" +
+         receptor_verb;
+}
+
 void warnHiddenFronts(const std::string& file, Scene& scene) {
-  for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
-    const ArrayPolygon& array = scene.arrays[a];
-    for (const Receptor& receptor : scene.receptors) {
-      bool seen = false;
-      for (std::size_t o = receptor.first; o < receptor.first + receptor.count; ++o)
-        seen = seen || seesFront(array, scene.observers[o].position_m);
-      if (seen) continue;
-      const std::string who = receptor.kind == ReceptorKind::kObserver
-                                  ? "observer \"" + receptor.name + "\" (observers[" +
-                                        std::to_string(receptor.first) + "]) is"
-                                  : std::string(receptorKindName(receptor.kind)) + " \"" +
-                                        receptor.name + "\" lies wholly";
-      scene.warnings.push_back(file + ": " + who + " behind or on the plane of array \"" +
-                               array.name + "\" (arrays[" + std::to_string(a) +
-                               "]) and never sees its front, so that array adds no glare there "
-                               "(are the array's vertices listed the wrong way round?)");
+  const std::vector<std::vector<std::size_t>> near = arraysWithin(scene, kHiddenFrontDistanceM);
+  struct Pair {
+    std::size_t array, receptor;
+    auto operator<=>(const Pair&) const = default;
+  };
+  std::vector<Pair> hidden;
+  // Per array: the receptors within the distance, and of those the ones that see its front.
+  std::vector<std::size_t> near_receptors(scene.arrays.size(), 0),
+      front_seen(scene.arrays.size(), 0);
+  for (std::size_t r = 0; r < scene.receptors.size(); ++r) {
+    const Receptor& receptor = scene.receptors[r];
+    std::map<std::size_t, bool> seen;  // per array near one of its points: a point sees the front
+    for (std::size_t o = receptor.first; o < receptor.first + receptor.count; ++o) {
+      for (const std::size_t a : near[o]) {
+        bool& front = seen[a];
+        front = front || seesFront(scene.arrays[a], scene.observers[o].position_m);
+      }
+    }
+    for (const auto& [a, front] : seen) {
+      ++near_receptors[a];
+      if (front)
+        ++front_seen[a];
+      else
+        hidden.push_back({a, r});
     }
   }
+  std::sort(hidden.begin(), hidden.end());
+  if (hidden.size() <= kHiddenFrontPairsListed) {
+    for (const Pair& pair : hidden) {
+      scene.warnings.push_back(
+          file + ": " + receptorWho(scene.receptors[pair.receptor], " is", " lies wholly") +
+          " behind or on the plane of array \"" + scene.arrays[pair.array].name + "\" (arrays[" +
+          std::to_string(pair.array) +
+          "]) and never sees its front, so that array adds no glare there (are the array's "
+          "vertices listed the wrong way round?)");
+    }
+    return;
+  }
+  std::set<std::size_t> receptors, arrays;
+  for (const Pair& pair : hidden) receptors.insert(pair.receptor), arrays.insert(pair.array);
+  std::string examples;
+  for (std::size_t i = 0; i < std::min(hidden.size(), kHiddenFrontExamples); ++i) {
+    const Pair& pair = hidden[i];
+    examples += (i ? "; " : "") + receptorWho(scene.receptors[pair.receptor], "", "") +
+                " and array \"" + scene.arrays[pair.array].name + "\" (arrays[" +
+                std::to_string(pair.array) + "])";
+  }
+  scene.warnings.push_back(fmt::format(
+      "{}: {} of {} receptors lie behind or on the plane of an array within {} m and never see "
+      "its front ({} receptor–array pairs, {} arrays; in a district mostly windows and roads "
+      "facing away from a roof), so those arrays add no glare there; e.g. {}",
+      file, receptors.size(), scene.receptors.size(), kHiddenFrontDistanceM, hidden.size(),
+      arrays.size(), examples));
+  std::vector<std::size_t> back_only;
+  for (std::size_t a = 0; a < scene.arrays.size(); ++a)
+    if (near_receptors[a] > 0 && front_seen[a] == 0) back_only.push_back(a);
+  if (back_only.empty()) return;
+  std::string named;
+  for (std::size_t i = 0; i < std::min(back_only.size(), kBackOnlyArraysNamed); ++i)
+    named += fmt::format("{}\"{}\" (arrays[{}])", i ? ", " : "", scene.arrays[back_only[i]].name,
+                         back_only[i]);
+  if (back_only.size() > kBackOnlyArraysNamed)
+    named += fmt::format(" and {} more", back_only.size() - kBackOnlyArraysNamed);
+  scene.warnings.push_back(fmt::format(
+      "{}: {} array{} seen only from behind by every receptor within {} m: {} (are {} vertices "
+      "listed the wrong way round?)",
+      file, back_only.size(), back_only.size() == 1 ? " is" : "s are", kHiddenFrontDistanceM, named,
+      back_only.size() == 1 ? "its" : "their"));
 }
 
 }  // namespace

@@ -11,8 +11,15 @@
 // closest known one); an array with fewer than 3 vertices, a repeated vertex, all on one line,
 // not planar within kPlanarityToleranceM (naming the vertex farthest from the plane of the
 // others), crossing itself (naming two edges that cross) or of zero area. What is valid but
-// surely unmeant is warned about (Scene::warnings): an array facing downward, an observer that
-// never sees an array's front.
+// surely unmeant is warned about (Scene::warnings): an array facing downward, and a receptor
+// that never sees the front of an array within kDefaultMaxDistanceM (100 m, LAI) of it (behind or
+// on its plane; a route or area when none of its points there does). Up to ten such pairs are a
+// small scene's drawing mistake and get a warning each; more are a district, where most windows
+// face away from most roofs: then one line counts them (receptors, pairs, arrays, three
+// examples), and one names the arrays that every receptor within the distance sees from behind
+// (listed the wrong way round?). Farther pairs are never computed by default and not warned
+// about. The check goes through an R-tree (candidate_pairs.h): O(points · log arrays + pairs
+// within the distance), never observers × arrays.
 #pragma once
 
 #include <array>

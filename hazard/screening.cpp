@@ -17,6 +17,7 @@
 #include "core/time.h"
 #include "hazard/candidate_pairs.h"
 #include "hazard/criteria.h"
+#include "hazard/hazard_geojson.h"
 #include "hazard/obstruction.h"
 #include "sun/solar_track.h"
 
@@ -170,20 +171,6 @@ ScreenCounts countsFromJson(const json& j) {
           .candidate_pairs = j.at("candidate_pairs").get<std::size_t>()};
 }
 
-std::string isoDay(int year, int day_of_year) {
-  const std::chrono::year_month_day date{std::chrono::sys_days{std::chrono::year{year} / 1 / 1} +
-                                         std::chrono::days(day_of_year)};
-  return fmt::format("{:04d}-{:02d}-{:02d}", static_cast<int>(date.year()),
-                     static_cast<unsigned>(date.month()), static_cast<unsigned>(date.day()));
-}
-
-const char* ocularClassName(const ScreenedModel& model) {
-  if (model.ocular_minutes[2] > 0) return "red";
-  if (model.ocular_minutes[1] > 0) return "yellow";
-  if (model.ocular_minutes[0] > 0) return "green";
-  return model.minutes_per_year > 0 ? "unclassified" : "none";
-}
-
 // A CSV field: quoted when it holds a separator, a quote or a line break.
 std::string csvField(const std::string& text) {
   if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
@@ -296,47 +283,12 @@ Result<ScreenResult> screenHazard(const Scene& scene,
     for (const std::size_t a : arrays) batch_profiles.push_back(profiles[a]);
     HazardResult computed_batch;
     GLARECAM_ASSIGN(computed_batch, computeHazard(batch, batch_profiles, hazard));
-    for (std::size_t i = 0; i < batch_points.size(); ++i) {
-      const ObserverHazard& observer = computed_batch.observers[i];
-      ScreenedPoint point = zeroPoint(batch_points[i], models);
-      point.candidates = observer.candidates;
-      point.pair_days = observer.pair_days;
-      for (std::size_t m = 0; m < models; ++m) {
-        const ModelSummary& summary = observer.models[m];
-        ScreenedModel& model = point.models[m];
-        model.minutes_per_year = summary.minutes_per_year;
-        model.days_with_glare = summary.days_with_glare;
-        model.max_minutes_per_day = summary.max_minutes_per_day;
-        if (summary.max_minutes_per_day > 0) {
-          const auto worst =
-              std::max_element(summary.minutes_per_day.begin(), summary.minutes_per_day.end());
-          model.worst_day =
-              computed_batch.first_day + static_cast<int>(worst - summary.minutes_per_day.begin());
-        }
-        model.steps_beyond_method = summary.steps_beyond_method;
-        model.steps_unknown_spread = summary.steps_unknown_spread;
-        model.ocular_minutes = summary.ocular_minutes;
-        model.unclassified_minutes = summary.unclassified_minutes;
-      }
+    for (ScreenedPoint& point : screenedPoints(computed_batch, batch_points, arrays))
       points.emplace(point.observer, std::move(point));
-    }
-    for (const GlareEvent& event : computed_batch.events) {
-      ScreenedModel& model = points.at(batch_points[event.observer]).models[event.model];
-      model.arrays.push_back(arrays[event.array]);
-      if (event.peak_luminance_cd_m2 && (!model.peak_luminance_cd_m2 ||
-                                         *event.peak_luminance_cd_m2 > *model.peak_luminance_cd_m2))
-        model.peak_luminance_cd_m2 = event.peak_luminance_cd_m2;
-    }
     done += batch_points.size();
     if (progress) progress(done, mine.size());
   }
-  for (auto& [o, point] : points) {
-    for (ScreenedModel& model : point.models) {
-      std::sort(model.arrays.begin(), model.arrays.end());
-      model.arrays.erase(std::unique(model.arrays.begin(), model.arrays.end()), model.arrays.end());
-    }
-    result.points.push_back(std::move(point));
-  }
+  for (auto& [o, point] : points) result.points.push_back(std::move(point));
   return result;
 }
 
@@ -350,14 +302,9 @@ Result<ScreenIdentity> screenIdentity(const std::filesystem::path& scene,
   json models = json::array(), criteria = json::array();
   for (const GlareModel& model : options.models) models.push_back(model.name());
   for (const Criterion& criterion : options.criteria) criteria.push_back(criterion.id);
-  identity.options = {
-      {"year", options.year},
-      {"step_s", options.step_s},
-      {"models", models},
-      {"criteria", criteria},
-      {"sun", options.sun.name()},
-      {"max_distance_m",
-       std::isfinite(options.max_distance_m) ? json(options.max_distance_m) : json(nullptr)}};
+  identity.options = {{"year", options.year},      {"step_s", options.step_s},
+                      {"models", models},          {"criteria", criteria},
+                      {"sun", options.sun.name()}, {"max_distance_m", maxDistanceJson(options)}};
   return identity;
 }
 
@@ -477,10 +424,9 @@ Status writeScreenOutputs(const ScreenOutputs& outputs, const std::filesystem::p
     csv += fmt::format(",{0}_ocular_class,{0}_arrays", m);
   }
   csv += "\n";
-  json point_features = json::array();
-  // Per array and model, the receptor points it glares.
-  std::vector<std::vector<std::vector<std::size_t>>> glared(
-      scene.arrays.size(), std::vector<std::vector<std::size_t>>(models));
+  // Per array and model, how many receptor points it glares.
+  std::vector<std::vector<std::size_t>> glared(scene.arrays.size(),
+                                               std::vector<std::size_t>(models, 0));
   std::size_t glaring_points = 0, glaring_pairs = 0;
   std::int64_t pair_days = 0;
   for (const ScreenedPoint& point : result.points) {
@@ -493,93 +439,43 @@ Status writeScreenOutputs(const ScreenOutputs& outputs, const std::filesystem::p
                        number(observer.position_m.x), number(observer.position_m.y),
                        number(observer.position_m.z), number(lon_lat[0]), number(lon_lat[1]),
                        number(lon_lat[2]), point.candidates);
-    json properties = {{"kind", receptorKindName(receptor.kind)},
-                       {"name", observer.name},
-                       {"receptor", receptor.name},
-                       {"candidates", point.candidates}};
     for (std::size_t m = 0; m < models; ++m) {
       const ScreenedModel& model = point.models[m];
-      const std::string name = options.models[m].name();
       std::string arrays;
-      json array_names = json::array();
       for (const std::size_t a : model.arrays) {
         if (!arrays.empty()) arrays += ';';
         arrays += scene.arrays[a].name;
-        array_names.push_back(scene.arrays[a].name);
-        glared[a][m].push_back(point.observer);
+        ++glared[a][m];
       }
       if (m == 0) {
         glaring_points += model.minutes_per_year > 0 ? 1 : 0;
         glaring_pairs += model.arrays.size();
       }
       const std::string worst_day =
-          model.worst_day >= 0 ? isoDay(options.year, model.worst_day) : std::string();
+          model.worst_day >= 0 ? isoDate(options.year, model.worst_day) : std::string();
       csv += fmt::format(",{},{},{},{}", number(model.minutes_per_year), model.days_with_glare,
                          number(model.max_minutes_per_day), worst_day);
-      json verdicts = json::object();
       for (const Criterion& criterion : options.criteria) {
         const Verdict verdict =
             assess(criterion, model.max_minutes_per_day, model.minutes_per_year / 60.0);
         csv += fmt::format(",{}", csvField(verdict.text));
-        verdicts[criterion.id] = verdict.text;
       }
-      csv += fmt::format(",{},{}", ocularClassName(model), csvField(arrays));
-      properties[name] = {
-          {"minutes_per_year", model.minutes_per_year},
-          {"hours_per_year", model.minutes_per_year / 60.0},
-          {"days_with_glare", model.days_with_glare},
-          {"max_minutes_per_day", model.max_minutes_per_day},
-          {"worst_day", model.worst_day >= 0 ? json(worst_day) : json(nullptr)},
-          {"verdicts", verdicts},
-          {"ocular_class", ocularClassName(model)},
-          {"ocular_minutes",
-           {{"green", model.ocular_minutes[0]},
-            {"yellow", model.ocular_minutes[1]},
-            {"red", model.ocular_minutes[2]}}},
-          {"peak_luminance_cd_m2",
-           model.peak_luminance_cd_m2 ? json(*model.peak_luminance_cd_m2) : json(nullptr)},
-          {"steps_beyond_method", model.steps_beyond_method},
-          {"steps_unknown_spread", model.steps_unknown_spread},
-          {"arrays", array_names}};
+      csv += fmt::format(",{},{}", worstOcularClass(model), csvField(arrays));
     }
     csv += "\n";
-    point_features.push_back(
-        {{"type", "Feature"},
-         {"geometry", {{"type", "Point"}, {"coordinates", {lon_lat[0], lon_lat[1], lon_lat[2]}}}},
-         {"properties", properties}});
   }
-
-  json features = json::array();
   json arrays_summary = json::array();
   for (std::size_t a = 0; a < scene.arrays.size(); ++a) {
-    const ArrayPolygon& array = scene.arrays[a];
-    json ring = json::array();
-    for (const Vec3& vertex : array.vertices_m) {
-      const std::array<double, 3> p = outputs.to_lon_lat(vertex);
-      ring.push_back({p[0], p[1], p[2]});
-    }
-    ring.push_back(ring.front());  // RFC 7946: a linear ring is closed
-    json properties = {{"kind", "array"}, {"name", array.name}};
-    json summary = {{"name", array.name}};
-    for (std::size_t m = 0; m < models; ++m) {
-      json receptors = json::array();
-      for (const std::size_t o : glared[a][m]) receptors.push_back(scene.observers[o].name);
-      properties[options.models[m].name()] = {{"glares", receptors},
-                                              {"receptor_points", receptors.size()}};
-      summary[options.models[m].name()] = receptors.size();
-    }
-    features.push_back({{"type", "Feature"},
-                        {"geometry", {{"type", "Polygon"}, {"coordinates", json::array({ring})}}},
-                        {"properties", properties}});
+    json summary = {{"name", scene.arrays[a].name}};
+    for (std::size_t m = 0; m < models; ++m) summary[options.models[m].name()] = glared[a][m];
     arrays_summary.push_back(summary);
   }
-  for (json& feature : point_features) features.push_back(std::move(feature));
-  const json geojson = {{"type", "FeatureCollection"},
-                        {"glarecam",
-                         {{"schema", kScreenSchema},
-                          {"year", options.year},
-                          {"max_distance_m", outputs.identity->options.at("max_distance_m")}}},
-                        {"features", features}};
+  json geojson;
+  GLARECAM_ASSIGN(geojson, hazardGeoJson({.scene = &scene,
+                                          .options = &options,
+                                          .points = &result.points,
+                                          .to_lon_lat = outputs.to_lon_lat,
+                                          .results = "screen.json"}));
 
   // screen.json: per receptor as written, its worst point under each model.
   json receptors = json::array();
@@ -605,9 +501,9 @@ Status writeScreenOutputs(const ScreenOutputs& outputs, const std::filesystem::p
           {"days_with_glare", model.days_with_glare},
           {"max_minutes_per_day", model.max_minutes_per_day},
           {"worst_day",
-           model.worst_day >= 0 ? json(isoDay(options.year, model.worst_day)) : json(nullptr)},
+           model.worst_day >= 0 ? json(isoDate(options.year, model.worst_day)) : json(nullptr)},
           {"verdicts", verdicts},
-          {"ocular_class", ocularClassName(model)}};
+          {"ocular_class", worstOcularClass(model)}};
     }
     receptors.push_back(entry);
   }
@@ -627,7 +523,7 @@ Status writeScreenOutputs(const ScreenOutputs& outputs, const std::filesystem::p
                        {"arrays", arrays_summary}};
 
   GLARECAM_CHECK(writeFileAtomic(out / "receptors.csv", csv));
-  GLARECAM_CHECK(writeFileAtomic(out / "hazard.geojson", geojson.dump() + "\n"));
+  GLARECAM_CHECK(writeFileAtomic(out / kHazardGeoJson, geojson.dump() + "\n"));
   GLARECAM_CHECK(writeFileAtomic(out / "screen.json", screen.dump(2) + "\n"));
   return {};
 }

@@ -125,7 +125,7 @@ using ToLonLat = std::function<std::array<double, 3>(Vec3)>;
 
 // The outputs of a whole screening into `out`: screen.json (the identity, the counts, per
 // receptor as written its worst point, per array the receptors it glares), receptors.csv (a row
-// per receptor point) and hazard.geojson (every receptor point and every array, in lon/lat).
+// per receptor point) and hazard.geojson (hazard_geojson.h, the map an ordinary run writes too).
 struct ScreenOutputs {
   const Scene* scene = nullptr;
   const HazardOptions* options = nullptr;

@@ -47,7 +47,7 @@ expect "swapped: says lon/lat swapped" grep -qF "lon/lat swapped?" "$WORK/err"
 # 10-minute steps keep the year short; the physics is the unit tests'.
 check "a year" 0 "$GLARECAM" hazard "$SCENE" --profile "$PROFILE" --year 2027 --step-s 600 \
   --out "$WORK/h" --no-progress
-for f in hazard.json events.csv glare-window-3.png glare-window-3.svg glare-window-west.png; do
+for f in hazard.json hazard.geojson events.csv glare-window-3.png glare-window-3.svg glare-window-west.png; do
   expect "wrote $f" test -s "$WORK/h/$f"
 done
 expect "table lists window-3 by ellipse" grep -qE "^window-3 +ellipse" "$WORK/out"
@@ -55,6 +55,15 @@ expect "table lists the circle" grep -qE "^window-west +circle" "$WORK/out"
 expect "table gives verdicts" grep -q "significant" "$WORK/out"
 expect "events.csv header" grep -q "^observer,array,model,start_local,end_local,duration_min" "$WORK/h/events.csv"
 expect "hazard.json schema" grep -q '"schema": "glarecam.hazard/1"' "$WORK/h/hazard.json"
+expect "hazard.geojson: a point per observer, a polygon per array, hazard.json's minutes" python3 -c 'import json,sys
+g=json.load(open(sys.argv[1])); h=json.load(open(sys.argv[2]))
+assert g["type"]=="FeatureCollection" and g["glarecam"]["schema"]=="glarecam.hazard-geojson/1"
+p=[f for f in g["features"] if f["geometry"]["type"]=="Point"]
+a=[f for f in g["features"] if f["geometry"]["type"]=="Polygon"]
+assert len(p)==len(h["observers"]) and len(a)==len(h["inputs"]["arrays"])
+for f,o in zip(p,h["observers"]):
+  assert f["properties"]["ellipse"]["minutes_per_year"]==o["models"]["ellipse"]["minutes_per_year"]
+assert h["inputs"]["max_distance_m"]==100 and h["inputs"]["frame"]==g["glarecam"]["frame"]' "$WORK/h/hazard.geojson" "$WORK/h/hazard.json"
 expect "hazard.json names the profile's module" grep -q '"module": "Standard module"' "$WORK/h/hazard.json"
 expect "summary gives the array's facing" grep -qxF "array roof-north: faces 0° (N), tilt 30.0°, 72.0 m²" "$WORK/out"
 expect "a measured profile: no SIMULATED" bash -c "! grep -q SIMULATED '$WORK/out' '$WORK/err' '$WORK/h/events.csv'"
@@ -76,6 +85,7 @@ expect "report: a PDF" bash -c "head -c 5 '$WORK/r/report.pdf' | grep -q '%PDF-'
 pdftotext -layout "$WORK/r/report.pdf" "$WORK/r/report.txt"
 tr -s ' ' <"$WORK/r/report.txt" >"$WORK/r/rows.txt"         # table rows, one line each
 tr -s ' \n' '  ' <"$WORK/r/report.txt" >"$WORK/r/flat.txt"   # sentences across line breaks
+expect "report: states the distance" grep -q "receptors within 100 m of an array" "$WORK/r/flat.txt"
 # The stdout table's rows ("window-3  ellipse  8539  142.3  74  125  significant  not tolerable")
 # of the pictured points: the observers, and the road's worst point (hazard.json names it).
 WORST_ROAD=$(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print([r["worst_point"] for r in d["receptors"] if r["name"]=="road"][0])' "$WORK/r/hazard.json")

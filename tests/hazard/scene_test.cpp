@@ -6,6 +6,8 @@
 #include <functional>
 
 #include "core/angles.h"
+#include "hazard/candidate_pairs.h"
+#include "hazard/hazard_calculation.h"
 #include "hazard/obstruction.h"
 #include "tests/hazard/hazard_fixtures.h"
 #include "tests/support/test_support.h"
@@ -99,6 +101,76 @@ TEST(HazardScene, WarnsForEveryObserverThatNeverSeesAnArraysFront) {
   EXPECT_EQ(read->arrays[1].normal.y, -1);
   EXPECT_NEAR(*facingAzimuthDeg(read->arrays[1]), 180, 1e-9);
   EXPECT_NEAR(tiltDeg(read->arrays[1]), 90, 1e-9);
+}
+
+// A district: a row of 20 north-facing roofs 15 m apart, 40 windows south of them (behind
+// every roof), one north of the first roofs (in front of them) and one behind, but 500 m away.
+// Hundreds of pairs see a back: not a line each, but one counting them and one naming the roofs
+// that every receptor near them sees from behind; the far one is never counted.
+TEST(HazardScene, ADistrictsHiddenFrontsAreCountedNotListed) {
+  json scene = goodScene();
+  scene["arrays"] = json::array();
+  for (int i = 0; i < 20; ++i) {
+    const double x = 15.0 * i;
+    scene["arrays"].push_back(
+        {{"name", "roof-" + std::to_string(i)},
+         {"vertices_m", {{x - 6, 0, 9}, {x + 6, 0, 9}, {x + 6, 5.2, 6}, {x - 6, 5.2, 6}}}});
+  }
+  scene["observers"] = json::array();
+  for (int i = 0; i < 40; ++i)
+    scene["observers"].push_back(
+        {{"name", "south-" + std::to_string(i)}, {"position_m", {7.5 * i, -20, 3}}});
+  scene["observers"].push_back({{"name", "north"}, {"position_m", {0, 30, 12}}});
+  scene["observers"].push_back({{"name", "far"}, {"position_m", {0, -500, 3}}});
+  const Result<Scene> read = parseScene(scene, "scene.json", "/base");
+  ASSERT_TRUE(read) << read.error().message;
+  // The pairs within 100 m that see a back, counted the slow way, and the roofs the window in
+  // the north sees the front of.
+  std::size_t hidden = 0, back_only = 0;
+  for (const ArrayPolygon& array : read->arrays) {
+    bool front = false, near = false;
+    for (const Observer& observer : read->observers) {
+      if (distanceToArrayM(array, observer.position_m) > kDefaultMaxDistanceM) continue;
+      near = true;
+      if (seesFront(array, observer.position_m))
+        front = true;
+      else
+        ++hidden;
+    }
+    back_only += near && !front ? 1 : 0;
+  }
+  ASSERT_GT(hidden, 200u);
+  ASSERT_GT(back_only, 5u);
+  ASSERT_LT(back_only, 20u);
+  ASSERT_EQ(read->warnings.size(), 2u);
+  EXPECT_EQ(read->warnings[0],
+            "scene.json: 40 of 42 receptors lie behind or on the plane of an array within 100 m "
+            "and never see its front (" +
+                std::to_string(hidden) +
+                " receptor–array pairs, 20 arrays; in a district mostly windows and roads facing "
+                "away from a roof), so those arrays add no glare there; e.g. observer "
+                "\"south-0\" (observers[0]) and array \"roof-0\" (arrays[0]); observer "
+                "\"south-1\" (observers[1]) and array \"roof-0\" (arrays[0]); observer "
+                "\"south-2\" (observers[2]) and array \"roof-0\" (arrays[0])");
+  EXPECT_EQ(read->warnings[1].substr(0, read->warnings[1].find(':', 12)),
+            "scene.json: " + std::to_string(back_only) +
+                " arrays are seen only from behind by every receptor within 100 m");
+  EXPECT_NE(read->warnings[1].find("and " + std::to_string(back_only - 5) +
+                                   " more (are their "
+                                   "vertices listed the wrong way round?)"),
+            std::string::npos)
+      << read->warnings[1];
+  // The roofs near the northern window are seen from the front: never named.
+  EXPECT_EQ(read->warnings[1].find("\"roof-0\""), std::string::npos) << read->warnings[1];
+}
+
+// Pairs farther apart than the distance the run looks within are not warned about.
+TEST(HazardScene, AnArrayFarAwayIsNotWarnedAbout) {
+  json scene = goodScene();
+  scene["observers"][1]["position_m"] = {10, -150, 3};  // behind the roof, 150 m away
+  const Result<Scene> read = parseScene(scene, "scene.json", "/base");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_TRUE(read->warnings.empty()) << read->warnings.front();
 }
 
 TEST(HazardScene, FacingAzimuthAndTiltOfTheFront) {

@@ -57,6 +57,7 @@ struct ArrayStep {
   std::array<ModelRegion, kMaxModels> regions{};
   // With obstructions: the part of the array the sun lights, found when a pair first needs it.
   bool lit_resolved = false;
+  bool shaded = false;  // some shadow falls on the array (else lit_part is all of it, unused)
   PlaneRegion lit_part;
 };
 
@@ -323,6 +324,21 @@ Pair makePair(const Scene& scene, const ArrayPolygon& array, const Observer& obs
   return pair;
 }
 
+// Whether an obstruction stands between a point and the sun: the ray toward the sun meets one of
+// the faces of those that can shade from a sun this high.
+bool sunBlocked(const std::vector<Caster>& casters, Vec3 point_m, Vec3 sun) {
+  for (const Caster& caster : casters) {
+    if (caster.max_sin_elevation < sun.z) break;
+    for (const ArrayPolygon& face : caster.obstruction->faces) {
+      const double along = dot(face.normal, sun);
+      if (along == 0) continue;
+      const double t = dot(face.centroid_m - point_m, face.normal) / along;
+      if (t > kSlabMarginM && containsPlanePoint(face, point_m + t * sun)) return true;
+    }
+  }
+  return false;
+}
+
 // Whether the region reaches the part of the array the observer sees and the sun lights, and q
 // there when it does. The sun's shadows are found only for a region that reaches the part seen
 // (q over a part is never below q over the whole).
@@ -330,11 +346,22 @@ std::optional<double> regionMeets(const Context& context, std::size_t a, ArraySt
                                   const ModelRegion& region, const Pair& pair,
                                   Vec3* glare_direction = nullptr) {
   const ArrayPolygon& array = context.scene.arrays[a];
-  const double q =
-      minNormalisedDistance(step.frame, region.axes, array, pair.view, glare_direction);
+  Vec3 direction;
+  const double q = minNormalisedDistance(step.frame, region.axes, array, pair.view, &direction);
   if (q > 1) return std::nullopt;
+  if (glare_direction) *glare_direction = direction;
   const std::vector<Caster>& casters = context.casters[a];
   if (casters.empty() || casters.front().max_sin_elevation < step.sun.z) return q;
+  // Where q is attained, seen along `direction`: when the sun lights that point, the minimum over
+  // the lit part is the same q (the lit part seen is within the part seen), and no shadow need
+  // be clipped.
+  const double toward = dot(direction, array.normal);
+  if (toward < 0) {
+    const Vec3 seen_m =
+        pair.view.observer_m +
+        (dot(array.centroid_m - pair.view.observer_m, array.normal) / toward) * direction;
+    if (!sunBlocked(casters, seen_m, step.sun)) return q;
+  }
   if (!step.lit_resolved) {
     step.lit_resolved = true;
     // Only what can shade the array from this high a sun (maxShadingElevationRad).
@@ -343,8 +370,11 @@ std::optional<double> regionMeets(const Context& context, std::size_t a, ArraySt
       if (caster.max_sin_elevation < step.sun.z) break;
       shading.push_back(caster.obstruction);
     }
-    step.lit_part = subtract(arrayRegion(array), sunShadowRings(array, shading, step.sun));
+    const std::vector<PlaneRing> shadows = sunShadowRings(array, shading, step.sun);
+    step.shaded = !shadows.empty();
+    if (step.shaded) step.lit_part = subtract(arrayRegion(array), shadows);
   }
+  if (!step.shaded) return q;  // the whole array is lit: the part seen is the part that glares
   const PolygonView lit_view =
       viewFrom(array, pair.view.observer_m, intersect(pair.view.region, step.lit_part));
   const double lit_q =

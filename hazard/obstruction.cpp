@@ -212,7 +212,10 @@ bool mayMeetBox(const Obstruction& obstruction, Vec3 lo, Vec3 hi) {
 double maxShadingElevationRad(const Obstruction& obstruction, const ArrayPolygon& array) {
   double lowest_m = kFar;
   for (const Vec3& vertex : array.vertices_m) lowest_m = std::min(lowest_m, vertex.z);
-  const double rise_m = obstruction.centre_m.z + obstruction.radius_m - lowest_m;
+  double top_m = -kFar;
+  for (const ArrayPolygon& face : obstruction.faces)
+    for (const Vec3& vertex : face.vertices_m) top_m = std::max(top_m, vertex.z);
+  const double rise_m = top_m - lowest_m;
   if (rise_m <= 0) return -1;  // a shadow ray rises from the array: it never meets this one
   const double gap_m = std::hypot(obstruction.centre_m.x - array.centroid_m.x,
                                   obstruction.centre_m.y - array.centroid_m.y) -

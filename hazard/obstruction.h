@@ -71,8 +71,8 @@ std::vector<PlaneRing> hiddenRings(const ArrayPolygon& array,
 // Whether the obstruction's bounding sphere can meet the axis-aligned box [lo, hi].
 bool mayMeetBox(const Obstruction& obstruction, Vec3 lo, Vec3 hi);
 // The highest apparent sun elevation (radians, up to π/2) at which the obstruction can shade
-// some point of the array: its top above the array's lowest point over the horizontal gap
-// between their bounding spheres; below zero when it is lower than every point of the array.
+// some point of the array: its highest vertex above the array's lowest point over the horizontal
+// gap between their bounding spheres; below zero when it is lower than every point of the array.
 double maxShadingElevationRad(const Obstruction& obstruction, const ArrayPolygon& array);
 
 }  // namespace glarecam::hazard

@@ -35,6 +35,21 @@ env SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=1 SLURM_
   bash "$array" a b 2027 "" /o >/dev/null 2>&1
 [[ $? -eq 2 ]] || fail "SHARDS from the count of an array 1-2: not exit 2"
 set -e
+# EXTRA_ARGS: further options, split at blanks, after the others; never --shard, --out, ...
+out=$(env SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=1 \
+      EXTRA_ARGS=' --step-s 300  --criteria lai,ch ' bash "$array" a b 2027 2 /o 2>/dev/null)
+[[ $out == "glarecam hazard a --profile b --year 2027 --screen --shard 1/2 --threads 1 --no-progress --out /o/shard-1 --step-s 300 --criteria lai,ch" ]] \
+  || fail "EXTRA_ARGS: $out"
+out=$(cd "$tmp" && touch x1 x2 && env SLURM_ARRAY_TASK_ID=0 EXTRA_ARGS='--models x*' \
+      bash "$array" a b 2027 1 /o 2>/dev/null)
+[[ $out == *" --models x*" ]] || fail "EXTRA_ARGS globbed: $out"
+for bad in '--out /elsewhere' '--shard 0/1' '--threads=8' '--no-progress'; do
+  set +e
+  env SLURM_ARRAY_TASK_ID=0 EXTRA_ARGS="$bad" bash "$array" a b 2027 1 /o >/dev/null 2>&1
+  status=$?
+  set -e
+  [[ $status -eq 2 ]] || fail "EXTRA_ARGS '$bad': exit $status, not 2"
+done
 # A rerun of one shard (--array=5) with SHARDS given.
 out=$(env SLURM_ARRAY_TASK_ID=5 SLURM_ARRAY_TASK_COUNT=1 SLURM_ARRAY_TASK_MIN=5 SLURM_ARRAY_TASK_MAX=5 \
       bash "$array" a b 2027 8 /o 2>/dev/null)
@@ -44,8 +59,11 @@ merge="$root/deploy/slurm/merge.sbatch"
 mkdir -p "$tmp/o/shard-0" "$tmp/o/shard-1"
 echo '{}' > "$tmp/o/shard-0/shard.json"
 echo '{}' > "$tmp/o/shard-1/shard.json"
-out=$(bash "$merge" 2 "$tmp/o" 2>/dev/null)
+out=$(env -u SCENE -u MERGED bash "$merge" 2 "$tmp/o" 2>/dev/null)
 [[ $out == "glarecam hazard merge $tmp/o/shard-0 $tmp/o/shard-1 --out $tmp/o/merged" ]] || fail "merge: $out"
+out=$(env SCENE=/in/city.geojson MERGED=/m bash "$merge" 2 "$tmp/o" 2>/dev/null)
+[[ $out == "glarecam hazard merge $tmp/o/shard-0 $tmp/o/shard-1 --out /m --scene /in/city.geojson" ]] \
+  || fail "merge with SCENE and MERGED: $out"
 set +e
 bash "$merge" 3 "$tmp/o" >/dev/null 2>&1
 [[ $? -eq 2 ]] || fail "merge with a shard missing: not exit 2"
@@ -81,6 +99,9 @@ got = shell(shards, dict(env, JOB_COMPLETION_INDEX="5")).stdout.strip()
 want = (f"glarecam hazard {env['SCENE']} --profile {env['PROFILE']} --year {env['YEAR']} --screen "
         f"--shard 5/{env['SHARDS']} --threads {env['THREADS']} --no-progress --out {env['OUT']}/shard-5")
 assert got == want, got
+got = shell(shards, dict(env, JOB_COMPLETION_INDEX="0", EXTRA_ARGS="--step-s 300 --models *")).stdout.strip()
+assert got == want.replace("--shard 5/", "--shard 0/").replace(
+    "--no-progress --out", "--no-progress --step-s 300 --models * --out").replace("shard-5", "shard-0"), got
 got = shell(merge, {"SHARDS": "2", "OUT": os.path.join(tmp, "o")}).stdout.strip()
 assert got == f"glarecam hazard merge {tmp}/o/shard-0 {tmp}/o/shard-1 --out {tmp}/o/merged", got
 assert shell(merge, {"SHARDS": "3", "OUT": os.path.join(tmp, "o")}).returncode == 2

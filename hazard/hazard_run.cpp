@@ -202,6 +202,10 @@ Result<HazardRunSummary> runHazardMerge(const HazardMergeOptions& options) {
   GLARECAM_ASSIGN(result, mergeShardResults(shards));
   ScreenIdentity identity = shards.front().identity;
   const std::filesystem::path scene_path = options.scene.value_or(identity.scene);
+  std::error_code missing;
+  if (!options.scene && !std::filesystem::exists(scene_path, missing))
+    return badInput(scene_path.string() +
+                    ": the shards' scene is not there (moved? give it with --scene)");
   std::string sha256;
   GLARECAM_ASSIGN(sha256, sha256OfFile(scene_path));
   if (sha256 != identity.scene_sha256)

@@ -365,12 +365,13 @@ Result<ScreenResult> mergeShardResults(const std::vector<ShardFile>& shards) {
   std::vector<const ShardFile*> by_index(count, nullptr);
   for (const ShardFile& shard : shards) {
     const auto differs = [&](const std::string& what) {
-      return badInput(shard.path.string() + ": " + what + " differs from " + first.path.string() +
+      return badInput(shard.path.string() + ": " + what + " differ from " + first.path.string() +
                       "'s: shards of another screening");
     };
-    if (shard.identity.scene_sha256 != first.identity.scene_sha256) return differs("the scene");
+    if (shard.identity.scene_sha256 != first.identity.scene_sha256)
+      return differs("the scene's bytes (SHA-256)");
     if (shard.identity.options != first.identity.options) return differs("the options");
-    if (shard.result.shard.count != count) return differs("the shard count");
+    if (shard.result.shard.count != count) return differs("the shard counts");
     if (!(countsJson(shard.result.counts) == countsJson(first.result.counts)))
       return differs("the scene's counts");
     const unsigned index = shard.result.shard.index;

@@ -47,7 +47,8 @@ int runGlarecam(int argc, char** argv) {
       "Docs: docs/process.md, docs/sweep.md, docs/datasheet.md, docs/glare-profile.md,\n"
       "docs/cameras.md, docs/calibration.md, docs/rig.md, docs/illuminance.md, docs/operator.md,\n"
       "docs/simulate.md, docs/hazard.md, docs/hazard-report.md, docs/ocular-hazard.md,\n"
-      "docs/weather-files.md, docs/brdf.md, docs/stack-format.md, docs/method.md"};
+      "docs/weather-files.md, docs/brdf.md, docs/cluster.md, docs/stack-format.md,\n"
+      "docs/method.md"};
   app.set_version_flag("--version", kVersion);
   // `--json=yes` is refused, not read as true: a flag takes no value (subcommands inherit this).
   app.option_defaults()->disable_flag_override();

@@ -179,7 +179,7 @@ TEST_F(ScreeningTest, MergeRefusesMissingRepeatedAndForeignShards) {
   ASSERT_TRUE(runHazard(other).has_value());
   merged = mergeOf({shards[0], other.out, shards[2]});
   ASSERT_FALSE(merged.has_value());
-  EXPECT_NE(merged.error().message.find("the options differs"), std::string::npos)
+  EXPECT_NE(merged.error().message.find("the options differ"), std::string::npos)
       << merged.error().message;
   EXPECT_EQ(merged.error().code, ErrorCode::kBadInput);
   // No shard at all, and a directory without one.

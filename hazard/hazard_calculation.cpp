@@ -80,7 +80,30 @@ struct Pair {
 struct Caster {
   double max_sin_elevation = 0;
   const Obstruction* obstruction = nullptr;
+  // Seen from the array's centroid, horizontally: the obstruction's direction (radians from
+  // east, counter-clockwise) and the half-width within which a sun's azimuth must lie for a
+  // shadow ray from some point of the array to meet its bounding sphere (π: any).
+  double direction_rad = 0, half_width_rad = std::numbers::pi;
 };
+
+Caster makeCaster(const Obstruction& obstruction, const ArrayPolygon& array,
+                  double max_elevation_rad) {
+  Caster caster{.max_sin_elevation = std::sin(max_elevation_rad), .obstruction = &obstruction};
+  const double dx = obstruction.centre_m.x - array.centroid_m.x,
+               dy = obstruction.centre_m.y - array.centroid_m.y;
+  const double distance_m = std::hypot(dx, dy), reach_m = obstruction.radius_m + array.radius_m;
+  caster.direction_rad = std::atan2(dy, dx);
+  if (distance_m > reach_m) caster.half_width_rad = std::asin(reach_m / distance_m);
+  return caster;
+}
+
+// Whether the sun (horizontal direction `sun_rad`, radians from east) stands where the caster
+// can throw a shadow on the array.
+bool towardSun(const Caster& caster, double sun_rad) {
+  if (caster.half_width_rad >= std::numbers::pi) return true;
+  const double off = std::remainder(sun_rad - caster.direction_rad, 2 * std::numbers::pi);
+  return std::abs(off) <= caster.half_width_rad;
+}
 
 // Per array and model: whether some glaring α has no spread there (then every lit step must be
 // resolved to count it, not only those the rejection lets through).
@@ -327,8 +350,10 @@ Pair makePair(const Scene& scene, const ArrayPolygon& array, const Observer& obs
 // Whether an obstruction stands between a point and the sun: the ray toward the sun meets one of
 // the faces of those that can shade from a sun this high.
 bool sunBlocked(const std::vector<Caster>& casters, Vec3 point_m, Vec3 sun) {
+  const double sun_rad = std::atan2(sun.y, sun.x);
   for (const Caster& caster : casters) {
     if (caster.max_sin_elevation < sun.z) break;
+    if (!towardSun(caster, sun_rad)) continue;
     for (const ArrayPolygon& face : caster.obstruction->faces) {
       const double along = dot(face.normal, sun);
       if (along == 0) continue;
@@ -366,9 +391,10 @@ std::optional<double> regionMeets(const Context& context, std::size_t a, ArraySt
     step.lit_resolved = true;
     // Only what can shade the array from this high a sun (maxShadingElevationRad).
     std::vector<const Obstruction*> shading;
+    const double sun_rad = std::atan2(step.sun.y, step.sun.x);
     for (const Caster& caster : casters) {
       if (caster.max_sin_elevation < step.sun.z) break;
-      shading.push_back(caster.obstruction);
+      if (towardSun(caster, sun_rad)) shading.push_back(caster.obstruction);
     }
     const std::vector<PlaneRing> shadows = sunShadowRings(array, shading, step.sun);
     step.shaded = !shadows.empty();
@@ -782,7 +808,8 @@ Result<HazardResult> computeHazard(const Scene& scene,
     std::vector<Caster> casters;
     for (const Obstruction& obstruction : scene.obstructions) {
       const double elevation_rad = maxShadingElevationRad(obstruction, scene.arrays[a]);
-      if (elevation_rad > 0) casters.push_back({std::sin(elevation_rad), &obstruction});
+      if (elevation_rad > 0)
+        casters.push_back(makeCaster(obstruction, scene.arrays[a], elevation_rad));
     }
     std::stable_sort(casters.begin(), casters.end(), [](const Caster& x, const Caster& y) {
       return x.max_sin_elevation > y.max_sin_elevation;

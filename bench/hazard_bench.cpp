@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "bench/benchmarks.h"
 #include "hazard/hazard_calculation.h"
@@ -114,6 +115,22 @@ void addBuildings(hazard::Scene& scene) {
 
 enum class BenchSun { kReference, kClearSky, kClearSkyObstructed };
 
+// One year of the scene, or nullopt with the benchmark marked skipped with the reason. The caller
+// keeps the result's storage alive: DoNotOptimize on it, not on a double (benchmark 1.7's "+m,r"
+// constraint can hand a double back corrupted, google/benchmark#1340).
+std::optional<hazard::HazardResult> computeYear(
+    benchmark::State& state, const hazard::Scene& scene,
+    const std::vector<const hazard::ProfileTable*>& profiles,
+    const hazard::HazardOptions& options) {
+  Result<hazard::HazardResult> result = hazard::computeHazard(scene, profiles, options);
+  if (!result) {
+    state.SkipWithError(result.error().message.c_str());
+    return std::nullopt;
+  }
+  benchmark::DoNotOptimize(result->observers.data());
+  return std::move(*result);
+}
+
 void runYear(benchmark::State& state, int arrays, int observers,
              BenchSun sun = BenchSun::kReference) {
   const hazard::ProfileTable profile = benchProfile(sun != BenchSun::kReference);
@@ -126,14 +143,8 @@ void runYear(benchmark::State& state, int arrays, int observers,
   if (sun != BenchSun::kReference) options.sun.kind = hazard::SunKind::kClearSky;
   double minutes = 0;
   for (auto _ : state) {
-    const Result<hazard::HazardResult> result = hazard::computeHazard(scene, profiles, options);
-    if (!result) {
-      state.SkipWithError(result.error().message.c_str());
-      return;
-    }
-    // DoNotOptimize on the result's storage, not on a double: benchmark 1.7's "+m,r" constraint
-    // can hand a double back corrupted (google/benchmark#1340).
-    benchmark::DoNotOptimize(result->observers.data());
+    const std::optional<hazard::HazardResult> result = computeYear(state, scene, profiles, options);
+    if (!result) return;
     minutes = result->observers[0].models[0].minutes_per_year;
   }
   state.counters["steps"] = 365.0 * 1440;
@@ -187,12 +198,8 @@ void runPairs(benchmark::State& state, BenchPairs pairs) {
   options.keep_steps = false;
   double minutes = 0;
   for (auto _ : state) {
-    const Result<hazard::HazardResult> result = hazard::computeHazard(scene, profiles, options);
-    if (!result) {
-      state.SkipWithError(result.error().message.c_str());
-      return;
-    }
-    benchmark::DoNotOptimize(result->observers.data());
+    const std::optional<hazard::HazardResult> result = computeYear(state, scene, profiles, options);
+    if (!result) return;
     minutes = 0;
     for (const hazard::ObserverHazard& observer : result->observers)
       minutes += observer.models[0].minutes_per_year;

@@ -86,6 +86,22 @@ Status readProfiles(const Scene& scene, const std::filesystem::path& scene_path,
   return {};
 }
 
+// The outputs of a whole screening (one run, or merged shards) and what the command prints.
+Status writeScreen(const Scene& scene, const HazardOptions& hazard, const ScreenIdentity& identity,
+                   const ScreenResult& result, const std::filesystem::path& out,
+                   HazardRunSummary& summary) {
+  const ScreenOutputs outputs{.scene = &scene,
+                              .options = &hazard,
+                              .identity = &identity,
+                              .result = &result,
+                              .to_lon_lat = sceneToLonLat(scene)};
+  GLARECAM_CHECK(writeScreenOutputs(outputs, out));
+  Result<std::string> written = readTextFile(out / "screen.json");
+  if (written) summary.document = nlohmann::json::parse(*written, nullptr, false);
+  summary.table = screenSummaryText(outputs);
+  return {};
+}
+
 Result<HazardRunSummary> runScreen(const HazardRunOptions& options, const Scene& scene,
                                    const std::vector<const ProfileTable*>& profiles,
                                    const HazardOptions& hazard) {
@@ -118,15 +134,7 @@ Result<HazardRunSummary> runScreen(const HazardRunOptions& options, const Scene&
         result.points.size(), result.counts.receptor_points, (options.out / "shard.json").string());
     return summary;
   }
-  const ScreenOutputs outputs{.scene = &scene,
-                              .options = &hazard,
-                              .identity = &identity,
-                              .result = &result,
-                              .to_lon_lat = sceneToLonLat(scene)};
-  GLARECAM_CHECK(writeScreenOutputs(outputs, options.out));
-  Result<std::string> written = readTextFile(options.out / "screen.json");
-  if (written) summary.document = nlohmann::json::parse(*written, nullptr, false);
-  summary.table = screenSummaryText(outputs);
+  GLARECAM_CHECK(writeScreen(scene, hazard, identity, result, options.out, summary));
   return summary;
 }
 
@@ -236,16 +244,8 @@ Result<HazardRunSummary> runHazardMerge(const HazardMergeOptions& options) {
   } catch (const nlohmann::json::exception& e) {
     return badInput(shards.front().path.string() + ": unreadable options: " + e.what());
   }
-  const ScreenOutputs outputs{.scene = &scene,
-                              .options = &hazard,
-                              .identity = &identity,
-                              .result = &result,
-                              .to_lon_lat = sceneToLonLat(scene)};
-  GLARECAM_CHECK(writeScreenOutputs(outputs, options.out));
   HazardRunSummary summary;
-  Result<std::string> written = readTextFile(options.out / "screen.json");
-  if (written) summary.document = nlohmann::json::parse(*written, nullptr, false);
-  summary.table = screenSummaryText(outputs);
+  GLARECAM_CHECK(writeScreen(scene, hazard, identity, result, options.out, summary));
   return summary;
 }
 

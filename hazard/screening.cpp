@@ -81,21 +81,61 @@ double estimatedCost(const Scene& scene, const std::vector<const ProfileTable*>&
   return cost;
 }
 
-// The points of shard `index`: dealt largest estimated cost first (ties by index), each to the
-// least loaded shard (ties to the lowest), then in observer order.
-std::vector<std::size_t> shardPoints(const std::vector<double>& costs, ShardSpec shard) {
-  std::vector<std::size_t> order(costs.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; });
-  std::vector<double> load(shard.count, 0);
-  std::vector<std::size_t> mine;
-  for (const std::size_t o : order) {
-    const auto least = std::min_element(load.begin(), load.end());
-    *least += costs[o];
-    if (static_cast<unsigned>(least - load.begin()) == shard.index) mine.push_back(o);
+// Receptor points in the order of a Z-order (Morton) curve over cells of kOrderCellM (half the
+// default distance: a cell's points share most of their arrays), ties by index: neighbours
+// follow each other, so that a batch's points share their arrays (an array's step and region
+// are made once per step for every point of the batch that needs them). On make-city's district
+// of 1000 roofs this costs the same as its own building-by-building order (78 s against 77 s of
+// CPU); 10-m cells cost 10 % more.
+constexpr double kOrderCellM = 50;
+std::vector<std::size_t> spatialOrder(const Scene& scene) {
+  double min_x = 0, min_y = 0;
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    const Vec3& p = scene.observers[o].position_m;
+    min_x = o == 0 ? p.x : std::min(min_x, p.x);
+    min_y = o == 0 ? p.y : std::min(min_y, p.y);
   }
-  std::sort(mine.begin(), mine.end());
+  const auto spread = [](std::uint32_t v) {  // the bits of v at the even positions of 64
+    std::uint64_t x = v;
+    x = (x | (x << 16)) & 0x0000FFFF0000FFFFull;
+    x = (x | (x << 8)) & 0x00FF00FF00FF00FFull;
+    x = (x | (x << 4)) & 0x0F0F0F0F0F0F0F0Full;
+    x = (x | (x << 2)) & 0x3333333333333333ull;
+    x = (x | (x << 1)) & 0x5555555555555555ull;
+    return x;
+  };
+  std::vector<std::pair<std::uint64_t, std::size_t>> keyed;
+  for (std::size_t o = 0; o < scene.observers.size(); ++o) {
+    const Vec3& p = scene.observers[o].position_m;
+    // Coordinates are within kMaxCoordinateM: 2e6 m / 10 m cells fit in 32 bits.
+    const auto cell = [](double offset_m) {
+      return static_cast<std::uint32_t>(std::max(0.0, std::floor(offset_m / kOrderCellM)));
+    };
+    keyed.emplace_back(spread(cell(p.x - min_x)) | (spread(cell(p.y - min_y)) << 1), o);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::size_t> order;
+  order.reserve(keyed.size());
+  for (const auto& [key, o] : keyed) order.push_back(o);
+  return order;
+}
+
+// The points of shard `index`: the spatial order cut into `count` runs of about equal estimated
+// cost (a point goes to the run its cost's middle falls in), so that each shard keeps its
+// points' neighbours (and their arrays) together.
+std::vector<std::size_t> shardPoints(const std::vector<std::size_t>& order,
+                                     const std::vector<double>& costs, ShardSpec shard) {
+  double total = 0;
+  for (const std::size_t o : order) total += costs[o];
+  std::vector<std::size_t> mine;
+  double before = 0;
+  for (const std::size_t o : order) {
+    const double middle = before + costs[o] / 2;
+    before += costs[o];
+    const auto run = static_cast<unsigned>(
+        std::min<double>(shard.count - 1, std::floor(middle / total * shard.count)));
+    if (run == shard.index) mine.push_back(o);
+  }
   return mine;
 }
 
@@ -245,10 +285,11 @@ Result<ScreenResult> screenHazard(const Scene& scene,
                    .candidate_pairs = 0};
   for (const auto& row : candidates) result.counts.candidate_pairs += row.size();
 
+  // Batches and shards follow the spatial order; each point's numbers do not depend on them.
+  const std::vector<std::size_t> order = spatialOrder(scene);
   std::vector<std::size_t> mine;
   if (result.shard.count == 1) {
-    mine.resize(scene.observers.size());
-    std::iota(mine.begin(), mine.end(), std::size_t{0});
+    mine = order;
   } else {
     std::vector<PoleAngleRange> days;
     GLARECAM_ASSIGN(days,
@@ -257,7 +298,7 @@ Result<ScreenResult> screenHazard(const Scene& scene,
     std::vector<double> costs(scene.observers.size());
     for (std::size_t o = 0; o < costs.size(); ++o)
       costs[o] = estimatedCost(scene, profiles, o, candidates[o], days, pole);
-    mine = shardPoints(costs, result.shard);
+    mine = shardPoints(order, costs, result.shard);
   }
 
   const std::size_t models = options.hazard.models.size();

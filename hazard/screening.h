@@ -8,8 +8,9 @@
 //
 // Sharding: `--shard I/N` computes a deterministic 1/N of the candidate pairs, whole receptor
 // points at a time (a point's minutes are the union over its arrays, so its pairs stay
-// together), the points dealt to the shards by their estimated cost (pair-days the bound lets
-// through), largest first, each to the least loaded shard. A shard writes shard.json;
+// together): the points in a Z-order over the ground (neighbours together, so that they share
+// their arrays' steps within a batch) cut into N runs of about equal estimated cost (pair-days
+// the bound lets through, from an hourly sun). A shard writes shard.json;
 // mergeShards() combines shards into exactly the outputs one run writes (writeScreenOutputs), in
 // any order, and refuses shards of another scene, other options, a missing or repeated shard.
 #pragma once

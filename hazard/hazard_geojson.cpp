@@ -35,32 +35,31 @@ json mapPointProperties(const HazardMap& map, const ScreenedPoint& point) {
       {"name", observer.name},
       {"receptor", has_receptor ? scene.receptors[observer.receptor].name : observer.name},
       {"candidates", point.candidates}};
+  // Flat keys, MODEL_FIELD: a GIS reads each as a column it can style a map by (QGIS reads a
+  // nested object as one JSON string).
   for (std::size_t m = 0; m < options.models.size(); ++m) {
     const ScreenedModel& model = point.models[m];
+    const std::string key = options.models[m].name() + "_";
     json array_names = json::array();
     for (const std::size_t a : model.arrays) array_names.push_back(scene.arrays[a].name);
-    json verdicts = json::object();
+    properties[key + "minutes_per_year"] = model.minutes_per_year;
+    properties[key + "hours_per_year"] = model.minutes_per_year / 60.0;
+    properties[key + "days_with_glare"] = model.days_with_glare;
+    properties[key + "max_minutes_per_day"] = model.max_minutes_per_day;
+    properties[key + "worst_day"] =
+        model.worst_day >= 0 ? json(isoDate(options.year, model.worst_day)) : json(nullptr);
     for (const Criterion& criterion : options.criteria)
-      verdicts[criterion.id] =
+      properties[key + criterion.id] =
           assess(criterion, model.max_minutes_per_day, model.minutes_per_year / 60.0).text;
-    properties[options.models[m].name()] = {
-        {"minutes_per_year", model.minutes_per_year},
-        {"hours_per_year", model.minutes_per_year / 60.0},
-        {"days_with_glare", model.days_with_glare},
-        {"max_minutes_per_day", model.max_minutes_per_day},
-        {"worst_day",
-         model.worst_day >= 0 ? json(isoDate(options.year, model.worst_day)) : json(nullptr)},
-        {"verdicts", verdicts},
-        {"ocular_class", worstOcularClass(model)},
-        {"ocular_minutes",
-         {{"green", model.ocular_minutes[0]},
-          {"yellow", model.ocular_minutes[1]},
-          {"red", model.ocular_minutes[2]}}},
-        {"peak_luminance_cd_m2",
-         model.peak_luminance_cd_m2 ? json(*model.peak_luminance_cd_m2) : json(nullptr)},
-        {"steps_beyond_method", model.steps_beyond_method},
-        {"steps_unknown_spread", model.steps_unknown_spread},
-        {"arrays", array_names}};
+    properties[key + "ocular_class"] = worstOcularClass(model);
+    properties[key + "ocular_green_minutes"] = model.ocular_minutes[0];
+    properties[key + "ocular_yellow_minutes"] = model.ocular_minutes[1];
+    properties[key + "ocular_red_minutes"] = model.ocular_minutes[2];
+    properties[key + "peak_luminance_cd_m2"] =
+        model.peak_luminance_cd_m2 ? json(*model.peak_luminance_cd_m2) : json(nullptr);
+    properties[key + "steps_beyond_method"] = model.steps_beyond_method;
+    properties[key + "steps_unknown_spread"] = model.steps_unknown_spread;
+    properties[key + "arrays"] = array_names;
   }
   return properties;
 }
@@ -202,8 +201,9 @@ Result<json> hazardGeoJson(const HazardMap& map) {
     json properties = {{"kind", "array"}, {"name", array.name}};
     for (std::size_t m = 0; m < models; ++m) {
       const std::size_t count = glared[a][m].size();
-      properties[options.models[m].name()] = {{"glares", std::move(glared[a][m])},
-                                              {"receptor_points", count}};
+      const std::string key = options.models[m].name() + "_";
+      properties[key + "glares"] = std::move(glared[a][m]);
+      properties[key + "receptor_points"] = count;
     }
     features.push_back({{"type", "Feature"},
                         {"geometry", {{"type", "Polygon"}, {"coordinates", json::array({ring})}}},

@@ -62,7 +62,7 @@ p=[f for f in g["features"] if f["geometry"]["type"]=="Point"]
 a=[f for f in g["features"] if f["geometry"]["type"]=="Polygon"]
 assert len(p)==len(h["observers"]) and len(a)==len(h["inputs"]["arrays"])
 for f,o in zip(p,h["observers"]):
-  assert f["properties"]["ellipse"]["minutes_per_year"]==o["models"]["ellipse"]["minutes_per_year"]
+  assert f["properties"]["ellipse_minutes_per_year"]==o["models"]["ellipse"]["minutes_per_year"]
 assert h["inputs"]["max_distance_m"]==100 and h["inputs"]["frame"]==g["glarecam"]["frame"]' "$WORK/h/hazard.geojson" "$WORK/h/hazard.json"
 expect "hazard.json names the profile's module" grep -q '"module": "Standard module"' "$WORK/h/hazard.json"
 expect "summary gives the array's facing" grep -qxF "array roof-north: faces 0° (N), tilt 30.0°, 72.0 m²" "$WORK/out"

@@ -107,7 +107,7 @@ Result<HazardRunSummary> runScreen(const HazardRunOptions& options, const Scene&
                                    const HazardOptions& hazard) {
   ScreenOptions screen{.hazard = hazard, .shard = options.shard};
   ScreenIdentity identity;
-  GLARECAM_ASSIGN(identity, screenIdentity(options.scene, hazard));
+  GLARECAM_ASSIGN(identity, screenIdentity(options.scene, hazard, profiles));
   ScreenResult result;
   {
     const std::string label =

@@ -33,6 +33,10 @@ constexpr int kEstimateStepS = 3600;
 constexpr double kEstimateMarginRad = 0.02;  // 1.15°
 constexpr int kSecondsPerDayScreen = 86400;
 
+// A shard naming more receptor points or arrays than this is damaged: a scene holds at most
+// kMaxReceptorPoints per receptor, and a district far fewer than this.
+constexpr std::size_t kMaxShardPoints = 100'000'000;
+
 // Per day of the run, the sun's polar-angle range from hourly samples (the estimate's).
 Result<std::vector<PoleAngleRange>> estimatePoleRanges(const Scene& scene,
                                                        const HazardOptions& options, int days) {
@@ -334,7 +338,8 @@ Result<ScreenResult> screenHazard(const Scene& scene,
 }
 
 Result<ScreenIdentity> screenIdentity(const std::filesystem::path& scene,
-                                      const HazardOptions& options) {
+                                      const HazardOptions& options,
+                                      const std::vector<const ProfileTable*>& profiles) {
   ScreenIdentity identity;
   std::error_code error;
   identity.scene = std::filesystem::absolute(scene, error).lexically_normal();
@@ -346,6 +351,29 @@ Result<ScreenIdentity> screenIdentity(const std::filesystem::path& scene,
   identity.options = {{"year", options.year},      {"step_s", options.step_s},
                       {"models", models},          {"criteria", criteria},
                       {"sun", options.sun.name()}, {"max_distance_m", maxDistanceJson(options)}};
+  // What the numbers also depend on, by content: every array's profile in order (one hash of
+  // their hashes) and the weather file, so that shards of refitted profiles or another weather
+  // file never merge.
+  std::map<std::filesystem::path, std::string> profile_hashes;
+  std::string hashes;
+  for (const ProfileTable* profile : profiles) {
+    std::string& hash = profile_hashes[profile->path()];
+    if (hash.empty()) {
+      if (profile->path().empty()) {
+        hash = sha256Hex(profile->module());
+      } else {
+        GLARECAM_ASSIGN(hash, sha256OfFile(profile->path()));
+      }
+    }
+    hashes += hash;
+  }
+  identity.options["profiles_sha256"] = sha256Hex(hashes);
+  identity.options["weather_sha256"] = nullptr;
+  if (options.sun.weather && !options.sun.weather->path.empty()) {
+    std::string weather;
+    GLARECAM_ASSIGN(weather, sha256OfFile(options.sun.weather->path));
+    identity.options["weather_sha256"] = weather;
+  }
   return identity;
 }
 
@@ -382,8 +410,9 @@ Result<ShardFile> readShard(const std::filesystem::path& path) {
     shard.identity.options = j.at("options");
     shard.result.shard = {.index = j.at("shard").at("index").get<unsigned>(),
                           .count = j.at("shard").at("count").get<unsigned>()};
-    if (shard.result.shard.count == 0 || shard.result.shard.index >= shard.result.shard.count)
-      return badInput(path.string() + ": shard index out of range");
+    if (shard.result.shard.count == 0 || shard.result.shard.count > kMaxShards ||
+        shard.result.shard.index >= shard.result.shard.count)
+      return badInput(path.string() + ": shard index or count out of range");
     shard.result.counts = countsFromJson(j.at("counts"));
     for (const json& p : j.at("points")) {
       ScreenedPoint point;
@@ -392,6 +421,20 @@ Result<ShardFile> readShard(const std::filesystem::path& path) {
       point.pair_days = p.at("pair_days").get<std::int64_t>();
       for (const json& m : p.at("models")) point.models.push_back(modelFromJson(m));
       shard.result.points.push_back(std::move(point));
+    }
+    // What the writer indexes with must be inside the scene the counts describe.
+    const ScreenCounts& counts = shard.result.counts;
+    const std::size_t models = shard.identity.options.at("models").size();
+    if (counts.receptor_points > kMaxShardPoints || counts.arrays > kMaxShardPoints)
+      return badInput(path.string() + ": receptor points or arrays out of range");
+    for (const ScreenedPoint& point : shard.result.points) {
+      bool inside = point.observer < counts.receptor_points && point.models.size() == models;
+      for (const ScreenedModel& model : point.models)
+        for (const std::size_t a : model.arrays) inside = inside && a < counts.arrays;
+      if (!inside)
+        return badInput(path.string() + ": receptor point " + std::to_string(point.observer) +
+                        " names a point, an array or a number of models the shard's scene and "
+                        "options do not have");
     }
   } catch (const json::exception& e) {
     return badInput(path.string() + ": not a readable shard: " + e.what());

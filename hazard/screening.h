@@ -98,7 +98,8 @@ Result<ScreenResult> screenHazard(const Scene& scene,
                                   const ScreenOptions& options,
                                   const ScreenProgress& progress = {});
 
-// What identifies a screening: the scene file's SHA-256 and every option that changes a number.
+// What identifies a screening: the scene file's SHA-256, every option that changes a number, and
+// the contents of the profiles and the weather file (their SHA-256).
 // Shards merge only when this is equal in all of them.
 struct ScreenIdentity {
   std::filesystem::path scene;  // absolute
@@ -106,7 +107,8 @@ struct ScreenIdentity {
   nlohmann::json options;  // year, step_s, models, criteria, sun, max_distance_m
 };
 Result<ScreenIdentity> screenIdentity(const std::filesystem::path& scene,
-                                      const HazardOptions& options);
+                                      const HazardOptions& options,
+                                      const std::vector<const ProfileTable*>& profiles);
 
 // shard.json: the identity, the counts and the shard's points.
 nlohmann::json shardJson(const ScreenIdentity& identity, const ScreenResult& result);

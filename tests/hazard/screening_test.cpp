@@ -182,6 +182,26 @@ TEST_F(ScreeningTest, MergeRefusesMissingRepeatedAndForeignShards) {
   EXPECT_NE(merged.error().message.find("the options differ"), std::string::npos)
       << merged.error().message;
   EXPECT_EQ(merged.error().code, ErrorCode::kBadInput);
+  // A shard of another profile (same scene, same options, refitted profile) is another screening.
+  std::ofstream(dir_ / "profile-b.json") << constantProfileJson(4, 9).dump();
+  HazardRunOptions refitted = runOptions("refitted");
+  refitted.profile = dir_ / "profile-b.json";
+  refitted.shard = ShardSpec{1, 3};
+  ASSERT_TRUE(runHazard(refitted).has_value());
+  merged = mergeOf({shards[0], refitted.out, shards[2]});
+  ASSERT_FALSE(merged.has_value());
+  EXPECT_NE(merged.error().message.find("the options differ"), std::string::npos);
+  // A damaged shard: an array index beyond the scene's is refused, not written through.
+  {
+    json damaged = json::parse(fileText(shards[1] / "shard.json"));
+    damaged["points"][0]["models"][0]["arrays"] = {999999};
+    std::filesystem::create_directories(dir_ / "damaged");
+    std::ofstream(dir_ / "damaged" / "shard.json") << damaged.dump();
+  }
+  merged = mergeOf({shards[0], dir_ / "damaged", shards[2]});
+  ASSERT_FALSE(merged.has_value());
+  EXPECT_EQ(merged.error().code, ErrorCode::kBadInput);
+  EXPECT_NE(merged.error().message.find("damaged"), std::string::npos) << merged.error().message;
   // No shard at all, and a directory without one.
   merged = mergeOf({dir_ / "nowhere"});
   ASSERT_FALSE(merged.has_value());

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <optional>
@@ -12,6 +13,7 @@
 #include "core/sha256.h"
 #include "core/text_file.h"
 #include "core/time.h"
+#include "hazard/candidate_pairs.h"
 #include "hazard/hazard_pdf.h"
 #include "hazard/hazard_report.h"
 #include "hazard/profile_table.h"
@@ -84,6 +86,37 @@ Status readProfiles(const Scene& scene, const std::filesystem::path& scene_path,
     read.profiles.push_back(table.get());
   }
   return {};
+}
+
+// An ordinary run's receptor points that see the front of an array beyond the distance: they are
+// not computed against it, which a report must not hide. Checked pair by pair up to
+// kMaxDistanceCheckPairs (a scene of that size is screened, whose counts say it).
+constexpr std::size_t kMaxDistanceCheckPairs = 1'000'000;
+std::optional<std::string> beyondDistanceWarning(const Scene& scene, double max_distance_m) {
+  if (!std::isfinite(max_distance_m) ||
+      scene.observers.size() * scene.arrays.size() > kMaxDistanceCheckPairs)
+    return std::nullopt;
+  std::size_t points = 0;
+  std::string example;
+  for (const Observer& observer : scene.observers) {
+    bool counted = false;
+    for (const ArrayPolygon& array : scene.arrays) {
+      if (!seesFront(array, observer.position_m)) continue;
+      const double distance_m = distanceToArrayM(array, observer.position_m);
+      if (distance_m <= max_distance_m) continue;
+      if (example.empty())
+        example = fmt::format("\"{}\" is {:.0f} m from array \"{}\"", observer.name, distance_m,
+                              array.name);
+      if (!counted) ++points;
+      counted = true;
+    }
+  }
+  if (points == 0) return std::nullopt;
+  return fmt::format(
+      "{} receptor point{} the front of an array farther than --max-distance {:g} m and "
+      "{} not computed against it (e.g. {}): give a larger --max-distance to include {}",
+      points, points == 1 ? " sees" : "s see", max_distance_m, points == 1 ? "is" : "are", example,
+      points == 1 ? "it" : "them");
 }
 
 // The outputs of a whole screening (one run, or merged shards) and what the command prints.
@@ -164,6 +197,8 @@ Result<HazardRunSummary> runHazard(const HazardRunOptions& options) {
     }
   }
   if (options.screen) return runScreen(options, scene, profiles, hazard);
+  if (std::optional<std::string> beyond = beyondDistanceWarning(scene, hazard.max_distance_m))
+    scene.warnings.push_back(std::move(*beyond));
   HazardResult result;
   {
     Progress progress("hazard " + std::to_string(hazard.year), daysInYear(hazard.year),

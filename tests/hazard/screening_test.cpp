@@ -301,6 +301,34 @@ TEST_F(ScreeningTest, ADayTheBoundRejectsHasNoGlareByBruteForce) {
   EXPECT_GT(rejected, 3 * kept) << "the bound rejects too little to be tested";
 }
 
+TEST_F(ScreeningTest, AnOrdinaryRunSaysWhatTheDistanceLeavesOut) {
+  // The method docs' roof, a window near it and one 149 m away (it sees the roof's front).
+  std::ofstream(dir_ / "far.json") << R"({"schema": "glarecam.hazard-scene/1",
+    "site": {"latitude_deg": 47.37, "longitude_deg": 8.54, "elevation_m": 410, "utc_offset_h": 1},
+    "arrays": [{"name": "roof-north", "vertices_m": [[-6,0,9],[6,0,9],[6,5.2,6],[-6,5.2,6]]}],
+    "observers": [{"name": "near", "position_m": [0, 15, 12]},
+                  {"name": "far", "position_m": [0, 150, 40]}]})";
+  HazardRunOptions options = runOptions("ordinary");
+  options.scene = dir_ / "far.json";
+  options.screen = false;
+  options.hazard.max_distance_m = kDefaultMaxDistanceM;
+  const Result<HazardRunSummary> run = runHazard(options);
+  ASSERT_TRUE(run.has_value()) << run.error().message;
+  const auto warned = std::find_if(
+      run->warnings.begin(), run->warnings.end(),
+      [](const std::string& w) { return w.find("--max-distance 100 m") != std::string::npos; });
+  ASSERT_NE(warned, run->warnings.end()) << ::testing::PrintToString(run->warnings);
+  EXPECT_NE(warned->find("not computed against it"), std::string::npos) << *warned;
+  EXPECT_NE(warned->find("1 receptor point sees"), std::string::npos) << *warned;
+  EXPECT_NE(warned->find("\"far\" is 149 m"), std::string::npos) << *warned;
+  // Unlimited: nothing is left out, nothing is said.
+  options.hazard.max_distance_m = kUnlimitedDistanceM;
+  const Result<HazardRunSummary> all = runHazard(options);
+  ASSERT_TRUE(all.has_value());
+  for (const std::string& warning : all->warnings)
+    EXPECT_EQ(warning.find("--max-distance"), std::string::npos) << warning;
+}
+
 TEST(Screening, ShardSpecsAreCheckedWithTheirOption) {
   EXPECT_EQ(parseShard("0/1", "--shard")->count, 1u);
   EXPECT_EQ(parseShard("6/7", "--shard")->index, 6u);

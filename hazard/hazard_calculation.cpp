@@ -1,5 +1,7 @@
 #include "hazard/hazard_calculation.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -726,8 +728,8 @@ Status HazardOptions::validate() const {
   }
   if (models.empty()) return badInput("--models: no model given");
   if (!(max_distance_m > 0))
-    return badInput("--max-distance " + std::to_string(max_distance_m) +
-                    " is not a positive distance in metres");
+    return badInput(fmt::format("--max-distance {:g} is not a positive distance in metres",
+                                max_distance_m));
   if (models.size() > kMaxModels)
     return badInput("--models: at most " + std::to_string(kMaxModels) + " models at once");
   if (first_day < 0 || day_count < 0 || first_day + day_count > daysInYear(year) ||

@@ -31,6 +31,10 @@ Status HazardRunOptions::validate() const {
         "--report: a screening writes no PDF report (run the receptors of interest "
         "without --screen for one)");
   if (shard && !screen) return badInput("--shard: only with --screen");
+  // Every array a candidate of every point: lists of points × arrays, which a district does not
+  // fit in memory (and LAI's guidance never asks for).
+  if (screen && !std::isfinite(hazard.max_distance_m))
+    return badInput("--max-distance: a screening needs a finite distance in metres");
   return hazard.validate();
 }
 

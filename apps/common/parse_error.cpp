@@ -101,6 +101,10 @@ std::optional<std::string> commandProblem(const std::vector<const CLI::App*>& ch
                                           char** argv) {
   const auto commands = chain.back()->get_subcommands({});
   if (commands.empty()) return std::nullopt;
+  // A command that also takes positional arguments (`hazard SCENE` beside `hazard merge`): a
+  // word that is no command is one of them, not a misspelt command.
+  if (!chain.back()->get_options([](const CLI::Option* o) { return o->get_positional(); }).empty())
+    return std::nullopt;
   const std::vector<KnownOption> known = knownOptions(chain);
   std::vector<std::string> names;
   for (const CLI::App* sub : commands) names.push_back(sub->get_name());

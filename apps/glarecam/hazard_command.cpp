@@ -111,9 +111,8 @@ void addHazardCommand(CLI::App& app, Action& action) {
   sub->add_option("--max-distance", args->max_distance_m,
                   "metres: receptor points farther than this from an array's polygon are not "
                   "computed against it (Germany's LAI guidance looks within 100 m; the outputs "
-                  "state it)")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+                  "state it); inf: every pair (not with --screen)")
+      ->capture_default_str();
   sub->add_flag("--screen", args->screen,
                 "screen a district: a row per receptor point (receptors.csv, hazard.geojson, "
                 "screen.json) instead of charts and events, memory bounded however many "

@@ -247,6 +247,14 @@ edit() {  # edit NAME SED-EXPRESSION: a copy of the example scene, changed
   sed "$2" "$SCENE" >"$WORK/$1.json"
   echo "$WORK/$1.json"
 }
+bad "negative distance" "--max-distance -5 is not a positive distance in metres" "$SCENE" \
+  --profile "$PROFILE" --max-distance -5
+bad "screening every pair" "a screening needs a finite distance" "$SCENE" --profile "$PROFILE" \
+  --screen --max-distance inf
+bad "shard without screening" "--shard: only with --screen" "$SCENE" --profile "$PROFILE" \
+  --shard 0/2
+bad "shard past N" "I counts from 0 and must be below N" "$SCENE" --profile "$PROFILE" --screen \
+  --shard 2/2
 bad "wrong schema" "schema" "$(edit schema 's/hazard-scene\/1/hazard-scene\/9/')" --profile "$PROFILE"
 bad "latitude" "site.latitude_deg 95° is outside" "$(edit lat 's/"latitude_deg": 47.37/"latitude_deg": 95/')" --profile "$PROFILE"
 bad "text coordinate" "arrays[0].vertices_m[1][0] must be a number, not" \

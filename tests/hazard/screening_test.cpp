@@ -202,6 +202,12 @@ TEST_F(ScreeningTest, MergeRefusesMissingRepeatedAndForeignShards) {
   ASSERT_FALSE(merged.has_value());
   EXPECT_EQ(merged.error().code, ErrorCode::kBadInput);
   EXPECT_NE(merged.error().message.find("damaged"), std::string::npos) << merged.error().message;
+  // A screening without a distance is refused before anything is read.
+  HazardRunOptions unlimited = runOptions("unlimited");
+  unlimited.hazard.max_distance_m = kUnlimitedDistanceM;
+  const Result<HazardRunSummary> refused = runHazard(unlimited);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_NE(refused.error().message.find("--max-distance"), std::string::npos);
   // No shard at all, and a directory without one.
   merged = mergeOf({dir_ / "nowhere"});
   ASSERT_FALSE(merged.has_value());

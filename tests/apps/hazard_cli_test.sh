@@ -249,6 +249,9 @@ edit() {  # edit NAME SED-EXPRESSION: a copy of the example scene, changed
 }
 bad "negative distance" "--max-distance -5 is not a positive distance in metres" "$SCENE" \
   --profile "$PROFILE" --max-distance -5
+# A command with SCENE beside the subcommand merge: an option's error is named as such, not as an
+# unknown command SCENE.
+bad "distance not a number" "--max-distance = abc" "$SCENE" --profile "$PROFILE" --max-distance abc
 bad "screening every pair" "a screening needs a finite distance" "$SCENE" --profile "$PROFILE" \
   --screen --max-distance inf
 bad "shard without screening" "--shard: only with --screen" "$SCENE" --profile "$PROFILE" \

@@ -728,8 +728,8 @@ Status HazardOptions::validate() const {
   }
   if (models.empty()) return badInput("--models: no model given");
   if (!(max_distance_m > 0))
-    return badInput(fmt::format("--max-distance {:g} is not a positive distance in metres",
-                                max_distance_m));
+    return badInput(
+        fmt::format("--max-distance {:g} is not a positive distance in metres", max_distance_m));
   if (models.size() > kMaxModels)
     return badInput("--models: at most " + std::to_string(kMaxModels) + " models at once");
   if (first_day < 0 || day_count < 0 || first_day + day_count > daysInYear(year) ||

@@ -9,6 +9,7 @@
 #include <memory>
 #include <numeric>
 
+#include "core/time.h"
 #include "hazard/criteria.h"
 #include "hazard/geo_frame.h"
 
@@ -99,10 +100,8 @@ json maxDistanceJson(const HazardOptions& options) {
 }
 
 std::string isoDate(int year, int day_of_year) {
-  const std::chrono::year_month_day date{std::chrono::sys_days{std::chrono::year{year} / 1 / 1} +
-                                         std::chrono::days(day_of_year)};
-  return fmt::format("{:04d}-{:02d}-{:02d}", static_cast<int>(date.year()),
-                     static_cast<unsigned>(date.month()), static_cast<unsigned>(date.day()));
+  return formatIsoDay(std::chrono::sys_days{std::chrono::year{year} / 1 / 1} +
+                      std::chrono::days(day_of_year));
 }
 
 const char* worstOcularClass(const ScreenedModel& model) {

@@ -12,6 +12,7 @@
 
 #include "core/angles.h"
 #include "core/atomic_file.h"
+#include "core/csv.h"
 #include "core/sha256.h"
 #include "core/text_file.h"
 #include "core/time.h"
@@ -213,17 +214,6 @@ ScreenCounts countsFromJson(const json& j) {
           .pairs_within_distance = j.at("pairs_within_distance").get<std::size_t>(),
           .pairs_behind = j.at("pairs_behind").get<std::size_t>(),
           .candidate_pairs = j.at("candidate_pairs").get<std::size_t>()};
-}
-
-// A CSV field: quoted when it holds a separator, a quote or a line break.
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c;
-  }
-  return quoted + "\"";
 }
 
 // Numbers as the shortest text that reads back to the same double (nlohmann's), so that the
@@ -519,8 +509,8 @@ Status writeScreenOutputs(const ScreenOutputs& outputs, const std::filesystem::p
     const Receptor& receptor = scene.receptors[observer.receptor];
     const std::array<double, 3> lon_lat = outputs.to_lon_lat(observer.position_m);
     pair_days += point.pair_days;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{}", csvField(observer.name),
-                       csvField(receptor.name), receptorKindName(receptor.kind),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{}", quoteCsvField(observer.name),
+                       quoteCsvField(receptor.name), receptorKindName(receptor.kind),
                        number(observer.position_m.x), number(observer.position_m.y),
                        number(observer.position_m.z), number(lon_lat[0]), number(lon_lat[1]),
                        number(lon_lat[2]), point.candidates);
@@ -543,9 +533,9 @@ Status writeScreenOutputs(const ScreenOutputs& outputs, const std::filesystem::p
       for (const Criterion& criterion : options.criteria) {
         const Verdict verdict =
             assess(criterion, model.max_minutes_per_day, model.minutes_per_year / 60.0);
-        csv += fmt::format(",{}", csvField(verdict.text));
+        csv += fmt::format(",{}", quoteCsvField(verdict.text));
       }
-      csv += fmt::format(",{},{}", worstOcularClass(model), csvField(arrays));
+      csv += fmt::format(",{},{}", worstOcularClass(model), quoteCsvField(arrays));
     }
     csv += "\n";
   }

@@ -585,9 +585,9 @@ void warnHiddenFronts(const std::string& file, Scene& scene) {
                 std::to_string(pair.array) + "])";
   }
   scene.warnings.push_back(fmt::format(
-      "{}: {} of {} receptors lie behind or on the plane of an array within {} m and never see "
-      "its front ({} receptor–array pairs, {} arrays; in a district mostly windows and roads "
-      "facing away from a roof), so those arrays add no glare there; e.g. {}",
+      "{}: {} of {} receptors each see some array within {} m only from behind or edge-on "
+      "({} receptor–array pairs, {} arrays; in a district mostly windows and roads facing away "
+      "from a roof), so those arrays add no glare there (others may); e.g. {}",
       file, receptors.size(), scene.receptors.size(), kHiddenFrontDistanceM, hidden.size(),
       arrays.size(), examples));
   std::vector<std::size_t> back_only;

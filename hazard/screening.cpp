@@ -444,7 +444,19 @@ Result<ScreenResult> mergeShardResults(const std::vector<ShardFile>& shards) {
     };
     if (shard.identity.scene_sha256 != first.identity.scene_sha256)
       return differs("the scene's bytes (SHA-256)");
-    if (shard.identity.options != first.identity.options) return differs("the options");
+    if (shard.identity.options != first.identity.options) {
+      std::string which = "the options";
+      for (const auto& [key, value] : first.identity.options.items()) {
+        if (!shard.identity.options.contains(key) || shard.identity.options[key] != value) {
+          which = "the options (" + key + ": " +
+                  (shard.identity.options.contains(key) ? shard.identity.options[key].dump()
+                                                        : std::string("none")) +
+                  " against " + value.dump() + ")";
+          break;
+        }
+      }
+      return differs(which);
+    }
     if (shard.result.shard.count != count) return differs("the shard counts");
     if (!(countsJson(shard.result.counts) == countsJson(first.result.counts)))
       return differs("the scene's counts");

@@ -179,7 +179,8 @@ TEST_F(ScreeningTest, MergeRefusesMissingRepeatedAndForeignShards) {
   ASSERT_TRUE(runHazard(other).has_value());
   merged = mergeOf({shards[0], other.out, shards[2]});
   ASSERT_FALSE(merged.has_value());
-  EXPECT_NE(merged.error().message.find("the options differ"), std::string::npos)
+  EXPECT_NE(merged.error().message.find("the options (year: 2027 against 2026) differ"),
+            std::string::npos)
       << merged.error().message;
   EXPECT_EQ(merged.error().code, ErrorCode::kBadInput);
   // A shard of another profile (same scene, same options, refitted profile) is another screening.
@@ -190,7 +191,7 @@ TEST_F(ScreeningTest, MergeRefusesMissingRepeatedAndForeignShards) {
   ASSERT_TRUE(runHazard(refitted).has_value());
   merged = mergeOf({shards[0], refitted.out, shards[2]});
   ASSERT_FALSE(merged.has_value());
-  EXPECT_NE(merged.error().message.find("the options differ"), std::string::npos);
+  EXPECT_NE(merged.error().message.find("the options (profiles_sha256: "), std::string::npos);
   // A damaged shard: an array index beyond the scene's is refused, not written through.
   {
     json damaged = json::parse(fileText(shards[1] / "shard.json"));
